@@ -1,0 +1,17 @@
+#pragma once
+#include "graph/resolve.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <string>
+
+namespace brickyard::fw {
+
+nlohmann::json manifest_to_json(const PluginEntry& p);
+std::string plugins_text(const Registry& reg);
+std::string graph_dot(const GraphDecl& g, const Registry* reg);
+// Copies the SDK template to dir/, naming the plugin. Throws InvalidInput on bad NAME or DIR.
+void scaffold_plugin(const std::string& name, const std::string& dir, const std::string& template_dir);
+std::string find_template_dir();
+
+}  // namespace brickyard::fw

@@ -1,0 +1,219 @@
+// brickyard — the host executive.
+#include "cli/commands.hpp"
+#include "exec/executive.hpp"
+#include "graph/diagnostics.hpp"
+
+#include <brickyard/version.hpp>
+
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+
+using namespace brickyard::fw;
+namespace fs = std::filesystem;
+
+namespace {
+
+const char* kUsage = R"(brickyard — plugin-based autonomy framework
+
+usage:
+  brickyard run GRAPH.json [options]       run a graph
+  brickyard validate GRAPH.json [options]  check everything, start nothing
+  brickyard plugins [--json]               list the plugins found and their manifests
+  brickyard graph GRAPH.json --dot         print the graph for Graphviz
+  brickyard new-plugin NAME --dir DIR      scaffold a plugin project from the SDK template
+  brickyard --version
+
+options:
+  --duration S         stop after S seconds (sim or real clock); overrides clock.duration_s
+  --set NODE.PARAM=V   override a parameter (V is JSON, or else a string); repeatable
+  --seed N             seed of every random source (default 0)
+  --out DIR            write DIR/summary.json
+  --process NAME       run only the nodes of process NAME; other processes meet over DDS
+  --domain N           DDS domain id; overrides transport.domain
+  --plugin-path DIR    search DIR for plugin libraries first; repeatable
+  --quiet              only warnings and errors
+
+exit codes: 0 success, 1 the run failed, 2 invalid input
+)";
+
+struct Args {
+  std::string command, target, dir, out, process;
+  std::vector<std::string> sets, plugin_paths;
+  std::optional<double> duration;
+  std::optional<int> domain;
+  std::uint64_t seed = 0;
+  bool json = false, dot = false, quiet = false;
+};
+
+[[noreturn]] void usage_error(const std::string& where, const std::string& msg) {
+  throw InvalidInput(where, msg);
+}
+
+double parse_number(const std::string& flag, const std::string& v) {
+  try {
+    std::size_t n = 0;
+    double d = std::stod(v, &n);
+    if (n == v.size()) return d;
+  } catch (...) {
+  }
+  usage_error(flag + " " + v, "expected a number");
+}
+
+Args parse_args(int argc, char** argv) {
+  Args a;
+  std::vector<std::string> v(argv + 1, argv + argc);
+  if (v.empty()) usage_error("brickyard", "no command given (try --help)");
+  a.command = v[0];
+  for (std::size_t i = 1; i < v.size(); ++i) {
+    const std::string& f = v[i];
+    auto value = [&]() -> std::string {
+      if (i + 1 >= v.size()) usage_error(f, "needs a value");
+      return v[++i];
+    };
+    if (f == "--duration") {
+      double d = parse_number(f, value());
+      if (!(d > 0)) usage_error("--duration", "expected a positive number of seconds");
+      a.duration = d;
+    } else if (f == "--set") a.sets.push_back(value());
+    else if (f == "--seed") {
+      std::string s = value();
+      if (s.empty() || s.find_first_not_of("0123456789") != std::string::npos) usage_error("--seed " + s, "expected a non-negative integer");
+      a.seed = std::stoull(s);
+    } else if (f == "--out") a.out = value();
+    else if (f == "--process") a.process = value();
+    else if (f == "--domain") {
+      double d = parse_number(f, value());
+      if (d < 0 || d > 232 || d != static_cast<int>(d)) usage_error("--domain", "expected an integer from 0 to 232");
+      a.domain = static_cast<int>(d);
+    } else if (f == "--plugin-path") a.plugin_paths.push_back(value());
+    else if (f == "--dir") a.dir = value();
+    else if (f == "--json") a.json = true;
+    else if (f == "--dot") a.dot = true;
+    else if (f == "--quiet" || f == "-q") a.quiet = true;
+    else if (f.rfind("--", 0) == 0) usage_error(f, "unknown option (see brickyard --help)");
+    else if (a.target.empty()) a.target = f;
+    else usage_error(f, "unexpected argument");
+  }
+  return a;
+}
+
+Registry load_registry(const Args& a, const GraphDecl* g) {
+  Registry reg;
+  for (const auto& d : a.plugin_paths) reg.add_directory(d);
+  if (g)
+    for (const auto& d : g->plugin_path) reg.add_directory(d);
+  for (const auto& d : default_plugin_dirs()) reg.add_directory(d);
+  return reg;
+}
+
+void on_signal(int) { g_interrupt = true; }
+
+int cmd_run(const Args& a, bool validate_only) {
+  if (a.target.empty()) usage_error(a.command, "needs a graph file");
+  GraphDecl g = load_graph_file(a.target, a.sets);
+  Registry reg = load_registry(a, &g);
+  ResolvedGraph rg = resolve_graph(g, reg, a.process);
+  if (validate_only) {
+    std::size_t wires = g.wires.size();
+    std::cout << a.target << ": valid — " << rg.nodes.size() << " nodes, " << wires << " wires, "
+              << rg.processes.size() << " process(es), " << (g.clock.sim ? "sim" : "real") << " clock\n";
+    return 0;
+  }
+  if (!a.out.empty()) {
+    std::error_code ec;
+    fs::create_directories(a.out, ec);
+    if (ec) usage_error("--out " + a.out, "cannot create the folder: " + ec.message());
+  }
+  std::signal(SIGINT, on_signal);
+  std::signal(SIGTERM, on_signal);
+  RunOptions opt;
+  opt.duration_s = a.duration;
+  opt.seed = a.seed;
+  opt.process = a.process;
+  opt.domain = a.domain;
+  opt.quiet = a.quiet;
+  RunSummary s;
+  {
+    Executive ex(rg, opt);
+    s = ex.run();
+  }
+  std::fprintf(stderr, "[brickyard] %s: %s (sim %.3f s, wall %.3f s)\n", to_string(s.result), s.reason.c_str(),
+               s.sim_time_s, s.wall_time_s);
+  if (!a.out.empty()) {
+    std::ofstream f(fs::path(a.out) / "summary.json");
+    f << s.json.dump(2) << "\n";
+    if (!f) {
+      std::fprintf(stderr, "error: cannot write %s/summary.json\n", a.out.c_str());
+      return 1;
+    }
+  }
+  return s.result == RunResult::failed ? 1 : 0;
+}
+
+int cmd_plugins(const Args& a) {
+  Registry reg = load_registry(a, nullptr);
+  if (a.json) {
+    nlohmann::json j;
+    j["plugins"] = nlohmann::json::array();
+    for (const auto& p : reg.plugins()) j["plugins"].push_back(manifest_to_json(p));
+    j["errors"] = nlohmann::json::array();
+    for (const auto& lp : reg.problems()) j["errors"].push_back({{"library", lp.library}, {"problems", lp.problems}});
+    std::cout << j.dump(2) << "\n";
+  } else {
+    std::cout << plugins_text(reg);
+  }
+  for (const auto& lp : reg.problems())
+    for (const auto& p : lp.problems) std::fprintf(stderr, "error: %s: %s\n", lp.library.c_str(), p.c_str());
+  return reg.problems().empty() ? 0 : 2;
+}
+
+int cmd_graph(const Args& a) {
+  if (a.target.empty()) usage_error("graph", "needs a graph file");
+  if (!a.dot) usage_error("graph", "choose an output format: --dot");
+  GraphDecl g = load_graph_file(a.target, a.sets);
+  Registry reg = load_registry(a, &g);
+  resolve_graph(g, reg);
+  std::cout << graph_dot(g, &reg);
+  return 0;
+}
+
+int cmd_new_plugin(const Args& a) {
+  if (a.target.empty()) usage_error("new-plugin", "needs a NAME");
+  if (a.dir.empty()) usage_error("new-plugin", "needs --dir DIR");
+  scaffold_plugin(a.target, a.dir, find_template_dir());
+  std::cout << "wrote plugin project " << a.target << " in " << a.dir << "\n"
+            << "build it:  cmake -S " << a.dir << " -B " << a.dir << "/build -DCMAKE_PREFIX_PATH=<brickyard prefix> && cmake --build "
+            << a.dir << "/build\n";
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    if (argc >= 2 && (std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h" || std::string(argv[1]) == "help")) {
+      std::cout << kUsage;
+      return 0;
+    }
+    if (argc >= 2 && std::string(argv[1]) == "--version") {
+      std::cout << "brickyard " << BRICKYARD_SDK_VERSION << " (plugin ABI " << BRICKYARD_ABI_MAJOR << "." << BRICKYARD_ABI_MINOR << ")\n";
+      return 0;
+    }
+    Args a = parse_args(argc, argv);
+    if (a.command == "run") return cmd_run(a, false);
+    if (a.command == "validate") return cmd_run(a, true);
+    if (a.command == "plugins") return cmd_plugins(a);
+    if (a.command == "graph") return cmd_graph(a);
+    if (a.command == "new-plugin") return cmd_new_plugin(a);
+    usage_error(a.command, "unknown command (commands: run, validate, plugins, graph, new-plugin)");
+  } catch (const InvalidInput& e) {
+    std::cerr << format_diagnostics(e.diagnostics());
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "error: " << e.what() << "\n";
+    return 1;
+  }
+}

@@ -1,0 +1,84 @@
+#pragma once
+// Port endpoints: a bounded queue per input, a fan-out per output. Same-process readers get
+// the publisher's object by pointer; the DDS writer serializes only for remote readers.
+#include "transport/dds.hpp"
+
+#include <brickyard/context.hpp>
+
+#include <deque>
+#include <functional>
+#include <mutex>
+
+namespace brickyard::fw {
+
+class InputQueue final : public detail::InputChannel {
+ public:
+  InputQueue(std::string name, std::string type, std::uint32_t depth, bool connected)
+      : name_(std::move(name)), type_(std::move(type)), depth_(depth), connected_(connected) {}
+
+  const std::string& name() const { return name_; }
+  const std::string& type_name() const override { return type_; }
+  bool connected() const override { return connected_; }
+
+  // Thread-safe; the oldest sample is dropped (and counted) when the queue is full.
+  void push(std::shared_ptr<const void> s) {
+    {
+      std::lock_guard<std::mutex> l(m_);
+      last_ = s;
+      q_.push_back(std::move(s));
+      ++received_;
+      if (q_.size() > depth_) {
+        q_.pop_front();
+        ++dropped_;
+      }
+    }
+    if (on_arrival) on_arrival(name_);
+  }
+  std::vector<std::shared_ptr<const void>> take() override {
+    std::lock_guard<std::mutex> l(m_);
+    std::vector<std::shared_ptr<const void>> out(std::make_move_iterator(q_.begin()), std::make_move_iterator(q_.end()));
+    q_.clear();
+    return out;
+  }
+  std::shared_ptr<const void> latest() const override {
+    std::lock_guard<std::mutex> l(m_);
+    return last_;
+  }
+  std::uint64_t received() const { std::lock_guard<std::mutex> l(m_); return received_; }
+  std::uint64_t dropped() const { std::lock_guard<std::mutex> l(m_); return dropped_; }
+
+  std::function<void(const std::string&)> on_arrival;  // set by the executive before the run
+
+ private:
+  std::string name_, type_;
+  std::uint32_t depth_;
+  bool connected_;
+  mutable std::mutex m_;
+  std::deque<std::shared_ptr<const void>> q_;
+  std::shared_ptr<const void> last_;
+  std::uint64_t received_ = 0, dropped_ = 0;
+};
+
+class OutputPort final : public detail::OutputChannel {
+ public:
+  OutputPort(std::string name, std::string type) : name_(std::move(name)), type_(std::move(type)) {}
+  const std::string& name() const { return name_; }
+  const std::string& type_name() const override { return type_; }
+
+  void publish(std::shared_ptr<const void> s) override {
+    if (!s) return;
+    ++published_;
+    for (InputQueue* q : local) q->push(s);
+    if (writer && writer->has_remote_readers()) writer->write(s.get());
+  }
+  std::uint64_t published() const { return published_; }
+
+  std::vector<InputQueue*> local;
+  DdsWriter* writer = nullptr;
+
+ private:
+  std::string name_, type_;
+  std::atomic<std::uint64_t> published_{0};
+};
+
+}  // namespace brickyard::fw

@@ -1,0 +1,74 @@
+#pragma once
+// Runs a resolved graph: builds the nodes of this process, wires them, steps them on the sim
+// clock (one thread, ordered, reproducible) or the real clock (a thread per node).
+#include "exec/channels.hpp"
+#include "graph/resolve.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <atomic>
+#include <condition_variable>
+#include <optional>
+
+namespace brickyard::fw {
+
+struct RunOptions {
+  std::optional<double> duration_s;  // overrides the graph's clock.duration_s
+  std::uint64_t seed = 0;
+  std::string process;               // empty: every node
+  std::optional<int> domain;         // overrides transport.domain
+  bool quiet = false;
+};
+
+enum class RunResult { success, failed, interrupted };
+const char* to_string(RunResult r);
+
+struct RunSummary {
+  RunResult result = RunResult::success;
+  std::string reason;
+  double sim_time_s = 0, wall_time_s = 0;
+  nlohmann::json json;  // what summary.json holds
+};
+
+// Set from a signal handler: the running executive stops cleanly at the next event.
+extern std::atomic<bool> g_interrupt;
+
+class NodeRuntime;
+
+class Executive {
+ public:
+  Executive(const ResolvedGraph& g, RunOptions opt);
+  ~Executive();
+  RunSummary run();
+
+  // For NodeContext.
+  std::int64_t now_ns() const;
+  bool sim() const { return graph_.decl->clock.sim; }
+  std::uint64_t seed() const { return opt_.seed; }
+  void log(const NodeRuntime& n, LogLevel level, std::string_view msg);
+  void request_stop(RunResult r, std::string reason);
+
+ private:
+  void build();
+  bool call(NodeRuntime& n, const char* phase, const std::function<void()>& f);
+  void run_sim();
+  void run_real();
+  void step(NodeRuntime& n, Trigger t);
+  void host_log(const std::string& msg);
+
+  const ResolvedGraph& graph_;
+  RunOptions opt_;
+  std::unique_ptr<DdsTransport> transport_;
+  std::vector<std::unique_ptr<NodeRuntime>> nodes_;
+
+  std::atomic<bool> stop_{false};
+  std::mutex stop_m_;
+  std::optional<RunResult> stop_result_;
+  std::string stop_reason_;
+
+  std::int64_t sim_now_ns_ = 0;
+  std::int64_t real_start_ns_ = 0;
+  std::mutex log_m_;
+};
+
+}  // namespace brickyard::fw

@@ -1,0 +1,248 @@
+#include "graph/graph.hpp"
+
+#include "graph/diagnostics.hpp"
+#include "graph/json_scan.hpp"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <set>
+#include <sstream>
+
+namespace brickyard::fw {
+namespace {
+
+using nlohmann::json;
+constexpr int kMaxDepth = 64;
+
+const char* type_word(const json& j) {
+  switch (j.type()) {
+    case json::value_t::object: return "object";
+    case json::value_t::array: return "array";
+    case json::value_t::string: return "string";
+    case json::value_t::boolean: return "boolean";
+    case json::value_t::null: return "null";
+    case json::value_t::number_float: return "number";
+    case json::value_t::number_integer:
+    case json::value_t::number_unsigned: return "integer";
+    default: return "value";
+  }
+}
+
+struct Ctx {
+  const std::string& file;
+  Diagnostics& d;
+  void err(const std::string& ptr, const std::string& msg) { d.add(at(file, ptr), msg); }
+  bool expect(const json& j, json::value_t t, const char* word, const std::string& ptr) {
+    bool ok = j.type() == t || (t == json::value_t::number_float && j.is_number());
+    if (!ok) err(ptr, std::string("expected ") + word + ", found " + type_word(j));
+    return ok;
+  }
+  void only_keys(const json& obj, const std::set<std::string>& allowed, const std::string& ptr) {
+    for (auto it = obj.begin(); it != obj.end(); ++it) {
+      if (allowed.count(it.key())) continue;
+      std::string list;
+      for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
+      err(ptr + "/" + pointer_escape(it.key()), "unknown key \"" + it.key() + "\" (allowed: " + list + ")");
+    }
+  }
+};
+
+const std::regex kIdent("[A-Za-z_][A-Za-z0-9_]*");
+
+std::optional<Endpoint> parse_endpoint(const json& j, const std::string& ptr, Ctx& c) {
+  if (!c.expect(j, json::value_t::string, "string \"node.port\"", ptr)) return std::nullopt;
+  const std::string s = j.get<std::string>();
+  auto dot = s.find('.');
+  if (dot == std::string::npos || s.find('.', dot + 1) != std::string::npos ||
+      !std::regex_match(s.substr(0, dot), kIdent) || !std::regex_match(s.substr(dot + 1), kIdent)) {
+    c.err(ptr, "expected \"node.port\", found \"" + s + "\"");
+    return std::nullopt;
+  }
+  return Endpoint{s.substr(0, dot), s.substr(dot + 1)};
+}
+
+void parse_clock(const json& j, GraphDecl& g, Ctx& c) {
+  if (!c.expect(j, json::value_t::object, "object", "/clock")) return;
+  c.only_keys(j, {"mode", "step_s", "duration_s"}, "/clock");
+  if (j.contains("mode") && c.expect(j["mode"], json::value_t::string, "string", "/clock/mode")) {
+    auto m = j["mode"].get<std::string>();
+    if (m == "sim") g.clock.sim = true;
+    else if (m == "real") g.clock.sim = false;
+    else c.err("/clock/mode", "expected \"sim\" or \"real\", found \"" + m + "\"");
+  }
+  if (j.contains("step_s") && c.expect(j["step_s"], json::value_t::number_float, "number", "/clock/step_s")) {
+    double v = j["step_s"].get<double>();
+    if (!(v >= 1e-6 && v <= 1.0)) c.err("/clock/step_s", "expected a step from 1e-06 to 1 s, found " + j["step_s"].dump());
+    else g.clock.step_s = v;
+  }
+  if (j.contains("duration_s") &&
+      c.expect(j["duration_s"], json::value_t::number_float, "number", "/clock/duration_s")) {
+    double v = j["duration_s"].get<double>();
+    if (!(v > 0 && std::isfinite(v))) c.err("/clock/duration_s", "expected a positive duration, found " + j["duration_s"].dump());
+    else g.clock.duration_s = v;
+  }
+}
+
+void parse_string_list(const json& j, std::vector<std::string>& out, const std::string& ptr, Ctx& c) {
+  if (!c.expect(j, json::value_t::array, "array of strings", ptr)) return;
+  out.clear();
+  for (std::size_t i = 0; i < j.size(); ++i)
+    if (c.expect(j[i], json::value_t::string, "string", ptr + "/" + std::to_string(i))) out.push_back(j[i]);
+}
+
+void parse_transport(const json& j, GraphDecl& g, Ctx& c) {
+  if (!c.expect(j, json::value_t::object, "object", "/transport")) return;
+  c.only_keys(j, {"domain", "interfaces", "peers"}, "/transport");
+  if (j.contains("domain") && c.expect(j["domain"], json::value_t::number_integer, "integer", "/transport/domain")) {
+    if (!j["domain"].is_number_integer()) c.err("/transport/domain", "expected integer, found " + j["domain"].dump());
+    else if (j["domain"].get<long long>() < 0 || j["domain"].get<long long>() > 232)
+      c.err("/transport/domain", "expected a DDS domain id from 0 to 232, found " + j["domain"].dump());
+    else g.transport.domain = j["domain"].get<int>();
+  }
+  if (j.contains("interfaces")) parse_string_list(j["interfaces"], g.transport.interfaces, "/transport/interfaces", c);
+  if (j.contains("peers")) parse_string_list(j["peers"], g.transport.peers, "/transport/peers", c);
+}
+
+void apply_sets(json& root, const std::vector<std::string>& sets, Diagnostics& d,
+                std::map<std::string, std::map<std::string, std::string>>& origin) {
+  static const std::regex kSet("([A-Za-z_][A-Za-z0-9_]*)\\.([A-Za-z_][A-Za-z0-9_]*)=(.*)");
+  for (const auto& s : sets) {
+    std::smatch m;
+    if (!std::regex_match(s, m, kSet)) {
+      d.add("--set " + s, "expected node.param=value");
+      continue;
+    }
+    const std::string node = m[1], param = m[2], text = m[3];
+    if (!root.is_object() || !root.contains("nodes") || !root["nodes"].is_object() || !root["nodes"].contains(node)) {
+      d.add("--set " + s, "the graph has no node \"" + node + "\"");
+      continue;
+    }
+    json& n = root["nodes"][node];
+    if (!n.is_object()) continue;  // reported by the structural check
+    if (!n.contains("params")) n["params"] = json::object();
+    if (!n["params"].is_object()) continue;
+    // A value that parses as JSON is taken as such (numbers, true, [1,2]); anything else is a string.
+    json v = json::parse(text, nullptr, false);
+    if (v.is_discarded()) v = text;
+    n["params"][param] = v;
+    origin[node][param] = "--set " + s;
+  }
+}
+
+}  // namespace
+
+std::string pointer_escape(const std::string& token) {
+  std::string out;
+  for (char ch : token) {
+    if (ch == '~') out += "~0";
+    else if (ch == '/') out += "~1";
+    else out += ch;
+  }
+  return out;
+}
+
+std::string at(const std::string& file, const std::string& pointer) { return file + "#" + pointer; }
+
+GraphDecl parse_graph_text(const std::string& text, const std::string& file, const std::vector<std::string>& sets) {
+  Diagnostics d;
+  auto located = [&](std::size_t off, const std::string& msg) {
+    auto p = position_of(text, off);
+    d.add(file + ":" + std::to_string(p.line) + ":" + std::to_string(p.column), msg);
+    d.raise_if_any();
+  };
+  if (auto f = find_excess_depth(text, kMaxDepth)) located(f->offset, f->message);
+  json root;
+  try {
+    root = json::parse(text);
+  } catch (const json::parse_error& e) {
+    std::string msg = e.what();
+    // nlohmann's text starts with "[json.exception.parse_error.101] parse error at line 1, column 2: "
+    auto colon = msg.find(": ", msg.find("parse error"));
+    located(e.byte > 0 ? e.byte - 1 : 0, "invalid JSON: " + (colon == std::string::npos ? msg : msg.substr(colon + 2)));
+  }
+  if (auto f = find_duplicate_key(text)) located(f->offset, f->message);
+
+  GraphDecl g;
+  g.file = file;
+  g.name = std::filesystem::path(file).stem().string();
+  Ctx c{file, d};
+  if (!c.expect(root, json::value_t::object, "object", "")) d.raise_if_any();
+
+  std::map<std::string, std::map<std::string, std::string>> origin;
+  apply_sets(root, sets, d, origin);
+
+  c.only_keys(root, {"name", "description", "nodes", "wires", "clock", "transport", "plugin_path"}, "");
+  if (root.contains("name") && c.expect(root["name"], json::value_t::string, "string", "/name"))
+    g.name = root["name"].get<std::string>();
+  if (root.contains("description") && c.expect(root["description"], json::value_t::string, "string", "/description"))
+    g.description = root["description"].get<std::string>();
+
+  if (!root.contains("nodes")) {
+    c.err("", "missing key \"nodes\"");
+  } else if (c.expect(root["nodes"], json::value_t::object, "object", "/nodes")) {
+    if (root["nodes"].empty()) c.err("/nodes", "a graph needs at least one node");
+    for (auto it = root["nodes"].begin(); it != root["nodes"].end(); ++it) {
+      const std::string ptr = "/nodes/" + pointer_escape(it.key());
+      if (!std::regex_match(it.key(), kIdent)) {
+        c.err(ptr, "node name \"" + it.key() + "\" must be letters, digits and _ (not starting with a digit)");
+        continue;
+      }
+      const json& n = it.value();
+      if (!c.expect(n, json::value_t::object, "object", ptr)) continue;
+      c.only_keys(n, {"plugin", "params", "process", "description"}, ptr);
+      NodeDecl nd;
+      nd.name = it.key();
+      if (!n.contains("plugin")) c.err(ptr, "missing key \"plugin\"");
+      else if (c.expect(n["plugin"], json::value_t::string, "string", ptr + "/plugin")) nd.plugin = n["plugin"];
+      if (n.contains("params") && c.expect(n["params"], json::value_t::object, "object", ptr + "/params"))
+        nd.params = n["params"];
+      if (n.contains("process") && c.expect(n["process"], json::value_t::string, "string", ptr + "/process")) {
+        nd.process = n["process"];
+        if (!std::regex_match(nd.process, kIdent)) c.err(ptr + "/process", "process name \"" + nd.process + "\" must be an identifier");
+      }
+      if (nd.process.empty()) nd.process = kDefaultProcess;
+      nd.param_origin = origin[nd.name];
+      g.nodes.emplace(nd.name, std::move(nd));
+    }
+  }
+
+  if (root.contains("wires") && c.expect(root["wires"], json::value_t::array, "array", "/wires")) {
+    for (std::size_t i = 0; i < root["wires"].size(); ++i) {
+      const std::string ptr = "/wires/" + std::to_string(i);
+      const json& w = root["wires"][i];
+      if (!c.expect(w, json::value_t::object, "object", ptr)) continue;
+      c.only_keys(w, {"from", "to"}, ptr);
+      if (!w.contains("from")) c.err(ptr, "missing key \"from\"");
+      if (!w.contains("to")) c.err(ptr, "missing key \"to\"");
+      if (!w.contains("from") || !w.contains("to")) continue;
+      auto from = parse_endpoint(w["from"], ptr + "/from", c);
+      auto to = parse_endpoint(w["to"], ptr + "/to", c);
+      if (from && to) g.wires.push_back({*from, *to, i});
+    }
+  }
+  if (root.contains("clock")) parse_clock(root["clock"], g, c);
+  if (root.contains("transport")) parse_transport(root["transport"], g, c);
+  if (root.contains("plugin_path")) {
+    parse_string_list(root["plugin_path"], g.plugin_path, "/plugin_path", c);
+    auto base = std::filesystem::path(file).parent_path();
+    for (auto& p : g.plugin_path)
+      if (std::filesystem::path(p).is_relative()) p = (base / p).lexically_normal().string();
+  }
+  d.raise_if_any();
+  return g;
+}
+
+GraphDecl load_graph_file(const std::string& path, const std::vector<std::string>& sets) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec))
+    throw InvalidInput(path, std::filesystem::exists(path, ec) ? "not a regular file" : "no such file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InvalidInput(path, "cannot be read");
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return parse_graph_text(ss.str(), path, sets);
+}
+
+}  // namespace brickyard::fw

@@ -1,0 +1,63 @@
+#pragma once
+// The graph file as declared: structure checked, nothing resolved against plugins yet.
+#include <nlohmann/json.hpp>
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace brickyard::fw {
+
+struct NodeDecl {
+  std::string name;
+  std::string plugin;
+  std::string process;            // empty: the default process "main"
+  nlohmann::json params = nlohmann::json::object();
+  std::map<std::string, std::string> param_origin;  // param -> "--set ..." when overridden on the command line
+};
+
+struct Endpoint {
+  std::string node, port;
+  std::string text() const { return node + "." + port; }
+};
+
+struct WireDecl {
+  Endpoint from, to;
+  std::size_t index = 0;  // position in /wires
+};
+
+struct ClockDecl {
+  bool sim = true;
+  double step_s = 0.001;
+  std::optional<double> duration_s;
+};
+
+struct TransportDecl {
+  int domain = 0;
+  std::vector<std::string> interfaces{"127.0.0.1"};  // UDP interfaces allowed; loopback only by default
+  std::vector<std::string> peers{"127.0.0.1"};       // unicast discovery peers
+};
+
+struct GraphDecl {
+  std::string file;          // path as given
+  std::string name;
+  std::string description;
+  std::map<std::string, NodeDecl> nodes;  // sorted by name: a deterministic order everywhere
+  std::vector<WireDecl> wires;
+  ClockDecl clock;
+  TransportDecl transport;
+  std::vector<std::string> plugin_path;  // resolved against the graph file's folder
+};
+
+inline const std::string kDefaultProcess = "main";
+
+// "<file>#<pointer>" — how every post-parse error names its place.
+std::string at(const std::string& file, const std::string& pointer);
+std::string pointer_escape(const std::string& token);
+
+// Parse and check a graph file; `sets` are --set node.param=value overrides. Throws InvalidInput.
+GraphDecl load_graph_file(const std::string& path, const std::vector<std::string>& sets = {});
+GraphDecl parse_graph_text(const std::string& text, const std::string& file, const std::vector<std::string>& sets = {});
+
+}  // namespace brickyard::fw

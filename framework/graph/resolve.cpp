@@ -1,0 +1,291 @@
+#include "graph/resolve.hpp"
+
+#include "graph/diagnostics.hpp"
+
+#include <cmath>
+#include <map>
+#include <queue>
+#include <sstream>
+
+namespace brickyard::fw {
+namespace {
+
+using nlohmann::json;
+
+std::string fmt_num(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+std::string range_error(const ParamSpec& spec, double v) {
+  if ((spec.min && v < *spec.min) || (spec.max && v > *spec.max) || !std::isfinite(v)) {
+    std::string r = spec.min && spec.max ? "from " + fmt_num(*spec.min) + " to " + fmt_num(*spec.max)
+                    : spec.min           ? "at least " + fmt_num(*spec.min)
+                    : spec.max           ? "at most " + fmt_num(*spec.max)
+                                         : "finite";
+    return "expected a value " + r + (spec.unit.empty() ? "" : " " + spec.unit) + ", found " + fmt_num(v);
+  }
+  return {};
+}
+
+std::string join(const std::vector<std::string>& v) {
+  std::string s;
+  for (const auto& x : v) s += (s.empty() ? "" : ", ") + x;
+  return s.empty() ? "none" : s;
+}
+
+}  // namespace
+
+std::string convert_param(const ParamSpec& spec, const json& v, ParamValue& out) {
+  auto found = [&] { return std::string(", found ") + v.dump(); };
+  switch (spec.type) {
+    case ParamType::boolean:
+      if (!v.is_boolean()) return "expected boolean" + found();
+      out = v.get<bool>();
+      return {};
+    case ParamType::integer: {
+      if (!v.is_number_integer()) return "expected integer" + found();
+      auto i = v.get<std::int64_t>();
+      if (auto e = range_error(spec, static_cast<double>(i)); !e.empty()) return e;
+      out = i;
+      return {};
+    }
+    case ParamType::number: {
+      if (!v.is_number()) return "expected number" + found();
+      double d = v.get<double>();
+      if (auto e = range_error(spec, d); !e.empty()) return e;
+      out = d;
+      return {};
+    }
+    case ParamType::string: {
+      if (!v.is_string()) return "expected string" + found();
+      auto s = v.get<std::string>();
+      if (!spec.choices.empty() && std::find(spec.choices.begin(), spec.choices.end(), s) == spec.choices.end())
+        return "expected one of " + join(spec.choices) + found();
+      out = s;
+      return {};
+    }
+    case ParamType::number_array: {
+      if (!v.is_array()) return "expected array of numbers" + found();
+      std::vector<double> a;
+      for (std::size_t i = 0; i < v.size(); ++i) {
+        if (!v[i].is_number()) return "expected array of numbers; element " + std::to_string(i) + " is " + v[i].dump();
+        double d = v[i].get<double>();
+        if (auto e = range_error(spec, d); !e.empty()) return "element " + std::to_string(i) + ": " + e;
+        a.push_back(d);
+      }
+      out = std::move(a);
+      return {};
+    }
+    case ParamType::json:
+      out = JsonText{v.dump()};
+      return {};
+  }
+  return "unsupported parameter type";
+}
+
+const ResolvedNode* ResolvedGraph::node(const std::string& name) const {
+  for (const auto& n : nodes)
+    if (n.decl->name == name) return &n;
+  return nullptr;
+}
+
+ResolvedGraph resolve_graph(const GraphDecl& g, const Registry& reg, const std::string& process) {
+  Diagnostics d;
+  auto err = [&](const std::string& ptr, const std::string& msg) { d.add(at(g.file, ptr), msg); };
+  ResolvedGraph rg;
+  rg.decl = &g;
+
+  // Libraries that failed to load are errors: a broken plugin install is never ignored.
+  for (const auto& lp : reg.problems()) {
+    std::string all;
+    for (const auto& p : lp.problems) all += (all.empty() ? "" : "; ") + p;
+    d.add(lp.library, all);
+  }
+
+  std::vector<std::string> known;
+  for (const auto& p : reg.plugins()) known.push_back(p.manifest.name);
+
+  std::map<std::string, ResolvedNode> by_name;
+  for (const auto& [name, nd] : g.nodes) {
+    const std::string ptr = "/nodes/" + pointer_escape(name);
+    rg.processes.insert(nd.process);
+    ResolvedNode rn;
+    rn.decl = &nd;
+    rn.plugin = reg.find(nd.plugin);
+    if (!rn.plugin) {
+      err(ptr + "/plugin", "unknown plugin \"" + nd.plugin + "\" (known: " + join(known) + "; searched " +
+                               join(reg.directories()) + ")");
+      continue;
+    }
+    const Manifest& m = rn.plugin->manifest;
+    // Params: unknown, wrong type, out of range, missing.
+    for (auto it = nd.params.begin(); it != nd.params.end(); ++it) {
+      std::string pptr = ptr + "/params/" + pointer_escape(it.key());
+      auto o = nd.param_origin.find(it.key());
+      std::string from = o == nd.param_origin.end() ? "" : " (from " + o->second + ")";
+      const ParamSpec* spec = m.param_spec(it.key());
+      if (!spec) {
+        std::vector<std::string> names;
+        for (const auto& p : m.params) names.push_back(p.name);
+        err(pptr, "unknown parameter \"" + it.key() + "\" of plugin " + m.name + " (parameters: " + join(names) + ")" + from);
+        continue;
+      }
+      ParamValue v;
+      if (auto e = convert_param(*spec, it.value(), v); !e.empty()) err(pptr, e + from);
+      else rn.params.set(spec->name, std::move(v));
+    }
+    for (const auto& spec : m.params) {
+      if (rn.params.has(spec.name)) continue;
+      if (spec.default_value) rn.params.set(spec.name, *spec.default_value);
+      else err(ptr + "/params", "missing required parameter \"" + spec.name + "\" (" + to_string(spec.type) + ") of plugin " + m.name);
+    }
+    for (const auto& t : m.triggers) {
+      if (t.kind == TriggerSpec::Kind::on_input) {
+        rn.trigger_inputs.insert(t.ref);
+      } else if (rn.params.has(t.ref)) {
+        double hz = rn.params.number(t.ref);
+        if (!(hz > 0) || !std::isfinite(hz)) {
+          err(ptr + "/params/" + t.ref, "rate must be positive, found " + fmt_num(hz));
+          continue;
+        }
+        // The sim clock runs in whole steps: a period is rounded to a multiple of clock.step_s.
+        double step_ns = g.clock.step_s * 1e9;
+        std::int64_t steps = std::max<std::int64_t>(1, std::llround(1e9 / hz / step_ns));
+        rn.period_ns = g.clock.sim ? static_cast<std::int64_t>(std::llround(steps * step_ns))
+                                   : static_cast<std::int64_t>(std::llround(1e9 / hz));
+      }
+    }
+    by_name.emplace(name, std::move(rn));
+  }
+
+  // Wires.
+  std::map<std::string, std::size_t> writer_of;  // "node.port" input -> wire index
+  std::map<std::string, std::set<std::string>> downstream_zero_delay;  // node -> data-triggered subscribers
+  std::map<std::string, std::set<std::string>> downstream;
+  for (const auto& w : g.wires) {
+    const std::string ptr = "/wires/" + std::to_string(w.index);
+    const PortSpec* ports[2] = {nullptr, nullptr};
+    const Endpoint* ends[2] = {&w.from, &w.to};
+    const char* keys[2] = {"from", "to"};
+    bool ok = true;
+    for (int k = 0; k < 2; ++k) {
+      auto nit = g.nodes.find(ends[k]->node);
+      if (nit == g.nodes.end()) {
+        err(ptr + "/" + keys[k], "no node named \"" + ends[k]->node + "\"");
+        ok = false;
+        continue;
+      }
+      auto rit = by_name.find(ends[k]->node);
+      if (rit == by_name.end()) { ok = false; continue; }  // its plugin is unknown: reported above
+      const Manifest& m = rit->second.plugin->manifest;
+      ports[k] = m.port(ends[k]->port);
+      if (!ports[k]) {
+        std::vector<std::string> names;
+        for (const auto& p : m.ports)
+          names.push_back(p.name + (p.direction == PortDirection::input ? " (input)" : " (output)"));
+        err(ptr + "/" + keys[k], "node \"" + ends[k]->node + "\" (" + m.name + ") has no port \"" + ends[k]->port +
+                                     "\" (ports: " + join(names) + ")");
+        ok = false;
+      }
+    }
+    if (!ok) continue;
+    if (ports[0]->direction != PortDirection::output) {
+      err(ptr + "/from", "\"" + w.from.text() + "\" is an input; a wire goes from an output");
+      ok = false;
+    }
+    if (ports[1]->direction != PortDirection::input) {
+      err(ptr + "/to", "\"" + w.to.text() + "\" is an output; a wire goes to an input");
+      ok = false;
+    }
+    if (!ok) continue;
+    if (ports[0]->type_name != ports[1]->type_name || ports[0]->type_hash != ports[1]->type_hash) {
+      err(ptr, "type mismatch: " + w.from.text() + " carries " + ports[0]->type_name + ", " + w.to.text() +
+                   " takes " + ports[1]->type_name);
+      continue;
+    }
+    auto [it, fresh] = writer_of.emplace(w.to.text(), w.index);
+    if (!fresh) {
+      err(ptr + "/to", "input \"" + w.to.text() + "\" already has a writer (/wires/" + std::to_string(it->second) +
+                           "); an input takes one wire");
+      continue;
+    }
+    downstream[w.from.node].insert(w.to.node);
+    if (by_name.at(w.to.node).trigger_inputs.count(w.to.port))
+      downstream_zero_delay[w.from.node].insert(w.to.node);
+  }
+
+  // Required inputs must be wired.
+  for (const auto& [name, rn] : by_name)
+    for (const auto& p : rn.plugin->manifest.ports)
+      if (p.direction == PortDirection::input && p.required && !writer_of.count(name + "." + p.name))
+        err("/nodes/" + pointer_escape(name), "required input \"" + p.name + "\" (" + p.type_name + ") of plugin " +
+                                                  rn.plugin->manifest.name + " is not wired");
+
+  // A cycle made only of input-triggered steps has no first step at one instant of sim time.
+  {
+    std::map<std::string, int> color;
+    std::vector<std::string> path;
+    std::function<bool(const std::string&)> dfs = [&](const std::string& n) -> bool {
+      color[n] = 1;
+      path.push_back(n);
+      for (const auto& m : downstream_zero_delay[n]) {
+        if (color[m] == 1) {
+          std::string cyc;
+          bool on = false;
+          for (const auto& p : path) {
+            if (p == m) on = true;
+            if (on) cyc += p + " -> ";
+          }
+          err("/wires", "zero-delay cycle " + cyc + m +
+                            ": every node in it steps on input, so nothing can go first (make one of them periodic)");
+          return true;
+        }
+        if (color[m] == 0 && dfs(m)) return true;
+      }
+      color[n] = 2;
+      path.pop_back();
+      return false;
+    };
+    for (const auto& [name, _] : by_name)
+      if (color[name] == 0 && dfs(name)) break;
+  }
+
+  if (!process.empty()) {
+    if (!rg.processes.count(process)) {
+      std::vector<std::string> ps(rg.processes.begin(), rg.processes.end());
+      d.add("--process " + process, "no node of the graph runs in process \"" + process + "\" (processes: " + join(ps) + ")");
+    } else if (g.clock.sim && rg.processes.size() > 1) {
+      d.add(at(g.file, "/clock/mode"), "the sim clock runs a whole graph in one process; a split run (--process) needs \"real\"");
+    }
+  }
+  d.raise_if_any();
+
+  // Schedule order: upstream before downstream (Kahn), ties and cycles broken by name.
+  std::map<std::string, int> indeg;
+  for (const auto& [n, _] : by_name) indeg[n] = 0;
+  for (const auto& [n, outs] : downstream)
+    for (const auto& m : outs)
+      if (m != n) ++indeg[m];
+  std::set<std::string> done;
+  while (done.size() < by_name.size()) {
+    std::string pick;
+    for (const auto& [n, k] : indeg)
+      if (!done.count(n) && k == 0) { pick = n; break; }
+    if (pick.empty())  // a (delayed) cycle: take the first remaining by name
+      for (const auto& [n, _] : indeg)
+        if (!done.count(n)) { pick = n; break; }
+    done.insert(pick);
+    for (const auto& m : downstream[pick])
+      if (m != pick) --indeg[m];
+    if (process.empty() || by_name.at(pick).decl->process == process) {
+      ResolvedNode rn = by_name.at(pick);
+      rn.order = rg.nodes.size();
+      rg.nodes.push_back(std::move(rn));
+    }
+  }
+  return rg;
+}
+
+}  // namespace brickyard::fw

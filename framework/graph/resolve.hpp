@@ -1,0 +1,34 @@
+#pragma once
+// A graph checked against the plugins' manifests: every error the user can fix, before any
+// plugin object exists.
+#include "graph/graph.hpp"
+#include "loader/registry.hpp"
+
+#include <set>
+
+namespace brickyard::fw {
+
+struct ResolvedNode {
+  const NodeDecl* decl = nullptr;
+  const PluginEntry* plugin = nullptr;
+  Params params;
+  std::int64_t period_ns = 0;             // 0: no periodic trigger
+  std::set<std::string> trigger_inputs;   // inputs whose arrival steps the node
+  std::size_t order = 0;                  // position in the deterministic schedule order
+};
+
+struct ResolvedGraph {
+  const GraphDecl* decl = nullptr;
+  std::vector<ResolvedNode> nodes;        // in schedule order: upstream first, then by name
+  std::set<std::string> processes;
+
+  const ResolvedNode* node(const std::string& name) const;
+};
+
+// `process`: empty to run every node here; else only that process's nodes (checked to exist).
+ResolvedGraph resolve_graph(const GraphDecl& g, const Registry& reg, const std::string& process = {});
+
+// Convert one JSON param value against its spec; returns an error text or empty.
+std::string convert_param(const ParamSpec& spec, const nlohmann::json& v, ParamValue& out);
+
+}  // namespace brickyard::fw

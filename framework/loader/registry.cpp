@@ -1,0 +1,200 @@
+#include "loader/registry.hpp"
+
+#include <brickyard/msgs/registry.hpp>
+
+#include <dlfcn.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <set>
+
+namespace fs = std::filesystem;
+
+namespace brickyard::fw {
+namespace {
+
+bool is_elf(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  char magic[4] = {};
+  f.read(magic, 4);
+  return f.gcount() == 4 && std::memcmp(magic, "\x7f" "ELF", 4) == 0;
+}
+
+bool value_matches(ParamType t, const ParamValue& v) {
+  switch (t) {
+    case ParamType::boolean: return std::holds_alternative<bool>(v);
+    case ParamType::integer: return std::holds_alternative<std::int64_t>(v);
+    case ParamType::number: return std::holds_alternative<double>(v) || std::holds_alternative<std::int64_t>(v);
+    case ParamType::string: return std::holds_alternative<std::string>(v);
+    case ParamType::number_array: return std::holds_alternative<std::vector<double>>(v);
+    case ParamType::json: return std::holds_alternative<JsonText>(v);
+  }
+  return false;
+}
+
+}  // namespace
+
+std::vector<std::string> check_manifest(const Manifest& m) {
+  static const std::regex kName("[a-z][a-z0-9_]*(\\.[a-z][a-z0-9_]*)+");
+  static const std::regex kIdent("[A-Za-z_][A-Za-z0-9_]*");
+  std::vector<std::string> p;
+  const std::string who = "plugin '" + m.name + "'";
+  if (!std::regex_match(m.name, kName))
+    p.push_back(who + ": name must look like area.name (lower case, digits, _)");
+  if (m.version.empty()) p.push_back(who + ": empty version");
+  std::set<std::string> ports;
+  for (const auto& port : m.ports) {
+    if (!std::regex_match(port.name, kIdent)) p.push_back(who + ": port name '" + port.name + "' is not an identifier");
+    if (!ports.insert(port.name).second) p.push_back(who + ": port '" + port.name + "' declared twice");
+    const auto* t = msgs::find_type(port.type_name.c_str());
+    if (!t) p.push_back(who + ": port '" + port.name + "' uses unknown message type " + port.type_name);
+    else if (port.type_hash != t->hash)
+      p.push_back(who + ": port '" + port.name + "' was built against another definition of " + port.type_name +
+                  " (hash " + port.type_hash + ", host has " + t->hash + ")");
+    if (port.direction == PortDirection::input && port.depth == 0)
+      p.push_back(who + ": input '" + port.name + "' has depth 0");
+  }
+  std::set<std::string> params;
+  for (const auto& ps : m.params) {
+    if (!std::regex_match(ps.name, kIdent)) p.push_back(who + ": param name '" + ps.name + "' is not an identifier");
+    if (!params.insert(ps.name).second) p.push_back(who + ": param '" + ps.name + "' declared twice");
+    if (ps.default_value && !value_matches(ps.type, *ps.default_value))
+      p.push_back(who + ": default of param '" + ps.name + "' is not a " + to_string(ps.type));
+  }
+  for (const auto& t : m.triggers) {
+    if (t.kind == TriggerSpec::Kind::periodic) {
+      const ParamSpec* ps = m.param_spec(t.ref);
+      if (!ps || (ps->type != ParamType::number && ps->type != ParamType::integer))
+        p.push_back(who + ": periodic trigger names '" + t.ref + "', which is not a number param");
+    } else {
+      const PortSpec* ps = m.port(t.ref);
+      if (!ps || ps->direction != PortDirection::input)
+        p.push_back(who + ": on_input trigger names '" + t.ref + "', which is not an input port");
+    }
+  }
+  return p;
+}
+
+void Registry::add_directory(const std::string& dir) {
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec)) {
+    problems_.push_back({dir, {"plugin folder does not exist or is not a folder"}});
+    return;
+  }
+  dirs_.push_back(dir);
+  std::vector<std::string> libs;
+  for (const auto& e : fs::directory_iterator(dir, ec))
+    if (e.path().extension() == ".so" && !e.is_directory()) libs.push_back(e.path().string());
+  std::sort(libs.begin(), libs.end());
+  for (const auto& l : libs) load_library(l);
+}
+
+void Registry::load_library(const std::string& path) {
+  std::error_code ec;
+  std::string canon = fs::weakly_canonical(path, ec).string();
+  if (std::find(loaded_.begin(), loaded_.end(), canon) != loaded_.end()) return;
+  loaded_.push_back(canon);
+
+  LibraryProblem lp{path, {}};
+  auto fail = [&](std::string msg) { lp.problems.push_back(std::move(msg)); };
+  if (!is_elf(path)) {
+    fail("not a shared object (no ELF header)");
+    problems_.push_back(lp);
+    return;
+  }
+  // RTLD_NOW: an unresolved symbol is an error now, not a crash mid-race. RTLD_LOCAL: plugins'
+  // symbols never interpose on each other.
+  void* h = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+  if (!h) {
+    const char* e = dlerror();
+    fail(std::string("dlopen failed: ") + (e ? e : "unknown error"));
+    problems_.push_back(lp);
+    return;
+  }
+  // Never dlclose: see the header.
+  auto entry = reinterpret_cast<brickyard_entry_point>(dlsym(h, BRICKYARD_ENTRY_POINT_NAME));
+  if (!entry) {
+    fail(std::string("missing entry point ") + BRICKYARD_ENTRY_POINT_NAME +
+         " (export it with BRICKYARD_PLUGINS(...))");
+    problems_.push_back(lp);
+    return;
+  }
+  const brickyard_library_info* info = entry();
+  if (!info) {
+    fail(std::string(BRICKYARD_ENTRY_POINT_NAME) + " returned null");
+  } else {
+    if (info->abi_major != BRICKYARD_ABI_MAJOR)
+      fail("ABI major version " + std::to_string(info->abi_major) + ", this host needs " +
+           std::to_string(BRICKYARD_ABI_MAJOR) + " (rebuild the plugin against this SDK)");
+    if (info->cxx_abi != BRICKYARD_CXX_ABI_TAG)
+      fail("built with another C++ standard library ABI (tag " + std::to_string(info->cxx_abi) + ", host " +
+           std::to_string(BRICKYARD_CXX_ABI_TAG) + ")");
+    if (info->plugin_count == 0) fail("declares no plugins");
+    if (!info->plugins && info->plugin_count) fail("plugin table is null");
+  }
+  if (!lp.problems.empty()) {
+    problems_.push_back(lp);
+    return;
+  }
+  const auto* descs = static_cast<const PluginDescriptor*>(info->plugins);
+  std::vector<PluginEntry> found;
+  for (std::uint32_t i = 0; i < info->plugin_count; ++i) {
+    PluginEntry e;
+    try {
+      e.manifest = descs[i].manifest();
+    } catch (const std::exception& ex) {
+      fail("manifest() of plugin #" + std::to_string(i) + " threw: " + ex.what());
+      continue;
+    }
+    for (auto& m : check_manifest(e.manifest)) fail(m);
+    if (const PluginEntry* other = find(e.manifest.name))
+      fail("plugin '" + e.manifest.name + "' is also provided by " + other->library);
+    for (const auto& f : found)
+      if (f.manifest.name == e.manifest.name) fail("plugin '" + e.manifest.name + "' declared twice");
+    e.descriptor = &descs[i];
+    e.library = path;
+    e.sdk_version = info->sdk_version ? info->sdk_version : "";
+    found.push_back(std::move(e));
+  }
+  if (!lp.problems.empty()) {
+    problems_.push_back(lp);
+    return;
+  }
+  for (auto& e : found) plugins_.push_back(std::move(e));
+}
+
+const PluginEntry* Registry::find(const std::string& name) const {
+  for (const auto& p : plugins_)
+    if (p.manifest.name == name) return &p;
+  return nullptr;
+}
+
+std::vector<std::string> default_plugin_dirs() {
+  std::vector<std::string> dirs;
+  if (const char* env = std::getenv("BRICKYARD_PLUGIN_PATH")) {
+    std::string s = env;
+    std::size_t start = 0;
+    while (start <= s.size()) {
+      auto colon = s.find(':', start);
+      std::string d = s.substr(start, colon == std::string::npos ? std::string::npos : colon - start);
+      if (!d.empty()) dirs.push_back(d);
+      if (colon == std::string::npos) break;
+      start = colon + 1;
+    }
+  }
+  std::error_code ec;
+  fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  if (!ec) {
+    fs::path d = exe.parent_path().parent_path() / "lib" / "brickyard" / "plugins";
+    if (fs::is_directory(d, ec)) dirs.push_back(d.string());
+  }
+  return dirs;
+}
+
+}  // namespace brickyard::fw

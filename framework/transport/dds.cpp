@@ -1,0 +1,166 @@
+#include "transport/dds.hpp"
+
+#include <brickyard/msgs/registry.hpp>
+
+#include <fastdds/dds/domain/DomainParticipant.hpp>
+#include <fastdds/dds/domain/DomainParticipantFactory.hpp>
+#include <fastdds/dds/publisher/DataWriter.hpp>
+#include <fastdds/dds/publisher/DataWriterListener.hpp>
+#include <fastdds/dds/publisher/Publisher.hpp>
+#include <fastdds/dds/subscriber/DataReader.hpp>
+#include <fastdds/dds/subscriber/DataReaderListener.hpp>
+#include <fastdds/dds/subscriber/SampleInfo.hpp>
+#include <fastdds/dds/subscriber/Subscriber.hpp>
+#include <fastdds/dds/topic/Topic.hpp>
+#include <fastdds/dds/topic/TypeSupport.hpp>
+#include <fastdds/rtps/transport/UDPv4TransportDescriptor.h>
+#include <fastdds/rtps/transport/shared_mem/SharedMemTransportDescriptor.h>
+#include <fastrtps/utils/IPLocator.h>
+
+#include <stdexcept>
+
+namespace brickyard::fw {
+
+using namespace eprosima::fastdds::dds;
+using eprosima::fastrtps::rtps::IPLocator;
+using eprosima::fastrtps::rtps::Locator_t;
+
+std::string topic_name(const std::string& node, const std::string& port) { return "brickyard/" + node + "/" + port; }
+
+struct WriterListener : DataWriterListener {
+  std::atomic<int>* matched;
+  void on_publication_matched(DataWriter*, const PublicationMatchedStatus& s) override {
+    matched->store(s.current_count);
+  }
+};
+
+struct ReaderListener : DataReaderListener {
+  TypeSupport type;
+  std::function<void(std::shared_ptr<const void>)> deliver;
+  void on_data_available(DataReader* r) override {
+    for (;;) {
+      void* data = type->createData();
+      SampleInfo info;
+      if (r->take_next_sample(data, &info) != ReturnCode_t::RETCODE_OK) {
+        type->deleteData(data);
+        return;
+      }
+      if (!info.valid_data) {
+        type->deleteData(data);
+        continue;
+      }
+      TypeSupport t = type;
+      deliver(std::shared_ptr<const void>(data, [t](const void* p) { t->deleteData(const_cast<void*>(p)); }));
+    }
+  }
+};
+
+bool DdsWriter::write(const void* sample) { return writer_->write(const_cast<void*>(sample)); }
+
+DdsTransport::DdsTransport(const DdsSettings& s) {
+  auto* factory = DomainParticipantFactory::get_instance();
+  // Profiles (FASTRTPS_DEFAULT_PROFILES_FILE) first, then read the defaults, then make them ours.
+  factory->load_profiles();
+  DomainParticipantQos q = factory->get_default_participant_qos();
+  q.name("brickyard");
+  q.transport().use_builtin_transports = false;
+  auto shm = std::make_shared<eprosima::fastdds::rtps::SharedMemTransportDescriptor>();
+  shm->segment_size(s.shm_segment_bytes);
+  q.transport().user_transports.push_back(shm);
+  auto udp = std::make_shared<eprosima::fastdds::rtps::UDPv4TransportDescriptor>();
+  for (const auto& i : s.interfaces) udp->interfaceWhiteList.push_back(i);
+  q.transport().user_transports.push_back(udp);
+  // Unicast discovery to the listed peers only: no multicast leaves the machine.
+  auto& b = q.wire_protocol().builtin;
+  b.initialPeersList.clear();
+  b.metatrafficMulticastLocatorList.clear();
+  for (const auto& p : s.peers) {
+    Locator_t l;
+    l.kind = LOCATOR_KIND_UDPv4;
+    IPLocator::setIPv4(l, p);
+    b.initialPeersList.push_back(l);
+  }
+  if (!s.interfaces.empty()) {
+    Locator_t meta;
+    meta.kind = LOCATOR_KIND_UDPv4;
+    IPLocator::setIPv4(meta, s.interfaces.front());
+    b.metatrafficUnicastLocatorList.push_back(meta);
+    Locator_t user = meta;
+    q.wire_protocol().default_unicast_locator_list.push_back(user);
+  }
+  participant_ = factory->create_participant(s.domain, q);
+  if (!participant_) throw std::runtime_error("Fast DDS could not create a participant on domain " + std::to_string(s.domain));
+  publisher_ = participant_->create_publisher(PUBLISHER_QOS_DEFAULT);
+  subscriber_ = participant_->create_subscriber(SUBSCRIBER_QOS_DEFAULT);
+  if (!publisher_ || !subscriber_) throw std::runtime_error("Fast DDS could not create a publisher/subscriber");
+}
+
+DdsTransport::~DdsTransport() {
+  close_readers();
+  if (!participant_) return;
+  for (auto& w : writers_) publisher_->delete_datawriter(w->writer_);
+  writers_.clear();
+  participant_->delete_contained_entities();
+  DomainParticipantFactory::get_instance()->delete_participant(participant_);
+}
+
+void DdsTransport::close_readers() {
+  for (auto& r : readers_) {
+    r->reader_->set_listener(nullptr);
+    subscriber_->delete_datareader(r->reader_);
+  }
+  readers_.clear();
+}
+
+Topic* DdsTransport::topic(const std::string& name, const std::string& type_name) {
+  // create_topic returns null for a topic that exists: get-or-create.
+  if (auto* d = participant_->lookup_topicdescription(name)) return static_cast<Topic*>(d);
+  if (!participant_->find_type(type_name)) {
+    const auto* entry = msgs::find_type(type_name.c_str());
+    if (!entry) throw std::runtime_error("no message type " + type_name);
+    TypeSupport ts(entry->make());
+    if (ts.register_type(participant_) != ReturnCode_t::RETCODE_OK)
+      throw std::runtime_error("cannot register type " + type_name);
+  }
+  Topic* t = participant_->create_topic(name, type_name, TOPIC_QOS_DEFAULT);
+  if (!t) throw std::runtime_error("cannot create topic " + name);
+  return t;
+}
+
+DdsWriter* DdsTransport::make_writer(const std::string& topic_n, const std::string& type_name) {
+  Topic* t = topic(topic_n, type_name);
+  DataWriterQos q = DATAWRITER_QOS_DEFAULT;
+  q.reliability().kind = RELIABLE_RELIABILITY_QOS;
+  q.history().kind = KEEP_LAST_HISTORY_QOS;
+  q.history().depth = 8;
+  q.durability().kind = VOLATILE_DURABILITY_QOS;
+  q.endpoint().history_memory_policy = eprosima::fastrtps::rtps::PREALLOCATED_WITH_REALLOC_MEMORY_MODE;
+  auto w = std::make_unique<DdsWriter>();
+  w->listener_ = std::make_unique<WriterListener>();
+  w->listener_->matched = &w->matched_;
+  w->writer_ = publisher_->create_datawriter(t, q, w->listener_.get());
+  if (!w->writer_) throw std::runtime_error("cannot create a writer on " + topic_n);
+  writers_.push_back(std::move(w));
+  return writers_.back().get();
+}
+
+DdsReader* DdsTransport::make_reader(const std::string& topic_n, const std::string& type_name, std::uint32_t depth,
+                                     std::function<void(std::shared_ptr<const void>)> deliver) {
+  Topic* t = topic(topic_n, type_name);
+  DataReaderQos q = DATAREADER_QOS_DEFAULT;
+  q.reliability().kind = RELIABLE_RELIABILITY_QOS;
+  q.history().kind = KEEP_LAST_HISTORY_QOS;
+  q.history().depth = static_cast<int32_t>(depth);
+  q.durability().kind = VOLATILE_DURABILITY_QOS;
+  q.endpoint().history_memory_policy = eprosima::fastrtps::rtps::PREALLOCATED_WITH_REALLOC_MEMORY_MODE;
+  auto r = std::make_unique<DdsReader>();
+  r->listener_ = std::make_unique<ReaderListener>();
+  r->listener_->type = TypeSupport(msgs::find_type(type_name.c_str())->make());
+  r->listener_->deliver = std::move(deliver);
+  r->reader_ = subscriber_->create_datareader(t, q, r->listener_.get());
+  if (!r->reader_) throw std::runtime_error("cannot create a reader on " + topic_n);
+  readers_.push_back(std::move(r));
+  return readers_.back().get();
+}
+
+}  // namespace brickyard::fw

@@ -1,0 +1,78 @@
+#pragma once
+// Fast DDS behind a small interface: one participant per process, a writer per output port,
+// a reader per input whose writer lives in another process.
+#include "graph/graph.hpp"
+
+#include <atomic>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace eprosima::fastdds::dds {
+class DomainParticipant;
+class Publisher;
+class Subscriber;
+class DataWriter;
+class DataReader;
+class Topic;
+}
+
+namespace brickyard::fw {
+
+// Topic of an output port: every wire is a DDS topic any DDS application can subscribe to.
+std::string topic_name(const std::string& node, const std::string& port);
+
+class DdsWriter {
+ public:
+  // Same-process readers take the pointer path; serialization is skipped while no reader in
+  // another participant is matched.
+  bool has_remote_readers() const { return matched_.load(std::memory_order_relaxed) > 0; }
+  int matched() const { return matched_.load(); }
+  bool write(const void* sample);
+
+ private:
+  friend class DdsTransport;
+  eprosima::fastdds::dds::DataWriter* writer_ = nullptr;
+  std::atomic<int> matched_{0};
+  std::unique_ptr<struct WriterListener> listener_;
+};
+
+class DdsReader {
+ private:
+  friend class DdsTransport;
+  eprosima::fastdds::dds::DataReader* reader_ = nullptr;
+  std::unique_ptr<struct ReaderListener> listener_;
+};
+
+struct DdsSettings {
+  int domain = 0;
+  std::vector<std::string> interfaces{"127.0.0.1"};
+  std::vector<std::string> peers{"127.0.0.1"};
+  std::uint32_t shm_segment_bytes = 16u << 20;  // 2 MiB samples between processes need >= 4 MiB
+};
+
+class DdsTransport {
+ public:
+  explicit DdsTransport(const DdsSettings& s);  // throws std::runtime_error
+  ~DdsTransport();
+  DdsTransport(const DdsTransport&) = delete;
+  DdsTransport& operator=(const DdsTransport&) = delete;
+
+  DdsWriter* make_writer(const std::string& topic, const std::string& type_name);
+  // `deliver` runs on a DDS thread with each received sample.
+  DdsReader* make_reader(const std::string& topic, const std::string& type_name, std::uint32_t depth,
+                         std::function<void(std::shared_ptr<const void>)> deliver);
+  // Stop deliveries before the objects they feed go away.
+  void close_readers();
+
+ private:
+  eprosima::fastdds::dds::Topic* topic(const std::string& name, const std::string& type_name);
+  eprosima::fastdds::dds::DomainParticipant* participant_ = nullptr;
+  eprosima::fastdds::dds::Publisher* publisher_ = nullptr;
+  eprosima::fastdds::dds::Subscriber* subscriber_ = nullptr;
+  std::vector<std::unique_ptr<DdsWriter>> writers_;
+  std::vector<std::unique_ptr<DdsReader>> readers_;
+};
+
+}  // namespace brickyard::fw

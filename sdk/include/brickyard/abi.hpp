@@ -1,0 +1,31 @@
+#pragma once
+// The binary boundary between the host and a plugin library. Only this C struct is read
+// before the ABI check passes; everything C++ is touched after it.
+#include <cstdint>
+
+#define BRICKYARD_ABI_MAJOR 1u
+#define BRICKYARD_ABI_MINOR 0u
+#define BRICKYARD_ENTRY_POINT_NAME "brickyard_plugin_library"
+#define BRICKYARD_EXPORT __attribute__((visibility("default")))
+
+// Host and plugins exchange std::string, std::vector and virtual classes after the check:
+// they must agree on the C++ standard library ABI too.
+#if defined(_GLIBCXX_USE_CXX11_ABI)
+#define BRICKYARD_CXX_ABI_TAG (0x10000u | (_GLIBCXX_USE_CXX11_ABI ? 1u : 0u))
+#else
+#define BRICKYARD_CXX_ABI_TAG 0x20000u
+#endif
+
+extern "C" {
+
+struct brickyard_library_info {
+  std::uint32_t abi_major;     // must equal the host's BRICKYARD_ABI_MAJOR
+  std::uint32_t abi_minor;     // may be lower than the host's
+  std::uint32_t cxx_abi;       // BRICKYARD_CXX_ABI_TAG of the plugin's build
+  std::uint32_t plugin_count;
+  const char* sdk_version;     // SDK version the library was built against
+  const void* plugins;         // const brickyard::PluginDescriptor[plugin_count]
+};
+
+typedef const brickyard_library_info* (*brickyard_entry_point)(void);
+}

@@ -1,0 +1,122 @@
+#pragma once
+// What a running node sees of the framework: time, parameters, typed ports, logs, metrics.
+// Plugins never read the wall clock: now() is the run's clock (sim or real).
+#include <brickyard/message_traits.hpp>
+#include <brickyard/params.hpp>
+
+#include <cstdint>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace brickyard {
+
+namespace detail {
+// Type-erased port endpoints implemented by the host.
+struct InputChannel {
+  virtual ~InputChannel() = default;
+  virtual const std::string& type_name() const = 0;
+  virtual std::vector<std::shared_ptr<const void>> take() = 0;   // new samples, oldest first
+  virtual std::shared_ptr<const void> latest() const = 0;        // last sample ever received
+  virtual bool connected() const = 0;
+};
+struct OutputChannel {
+  virtual ~OutputChannel() = default;
+  virtual const std::string& type_name() const = 0;
+  virtual void publish(std::shared_ptr<const void> sample) = 0;
+};
+}  // namespace detail
+
+template <class T> class Input {
+ public:
+  Input() = default;
+  explicit Input(detail::InputChannel* c) : ch_(c) {}
+  // Samples that arrived since the last take(), oldest first.
+  std::vector<std::shared_ptr<const T>> take() {
+    std::vector<std::shared_ptr<const T>> out;
+    if (!ch_) return out;
+    for (auto& s : ch_->take()) out.push_back(std::static_pointer_cast<const T>(std::move(s)));
+    return out;
+  }
+  // The most recent sample (null before the first one).
+  std::shared_ptr<const T> latest() const {
+    return ch_ ? std::static_pointer_cast<const T>(ch_->latest()) : nullptr;
+  }
+  bool connected() const { return ch_ && ch_->connected(); }
+
+ private:
+  detail::InputChannel* ch_ = nullptr;
+};
+
+template <class T> class Output {
+ public:
+  Output() = default;
+  explicit Output(detail::OutputChannel* c) : ch_(c) {}
+  void publish(T msg) { publish(std::make_shared<const T>(std::move(msg))); }
+  // Readers in the same process get this very object: do not modify it after publishing.
+  void publish(std::shared_ptr<const T> msg) {
+    if (ch_) ch_->publish(std::static_pointer_cast<const void>(std::move(msg)));
+  }
+
+ private:
+  detail::OutputChannel* ch_ = nullptr;
+};
+
+enum class LogLevel { debug, info, warn, error };
+
+struct Trigger {
+  enum class Kind { periodic, input };
+  Kind kind = Kind::periodic;
+  std::string port;  // for input triggers
+};
+
+class Context {
+ public:
+  virtual ~Context() = default;
+
+  virtual std::int64_t now_ns() const = 0;
+  double now_s() const { return static_cast<double>(now_ns()) * 1e-9; }
+  virtual bool sim_clock() const = 0;
+  virtual const std::string& node_name() const = 0;
+  virtual const Params& params() const = 0;
+  // Seed for this node's random sources: derived from the run's --seed and the node name.
+  virtual std::uint64_t seed() const = 0;
+  virtual const Trigger& trigger() const = 0;
+
+  virtual void log(LogLevel level, std::string_view message) = 0;
+  // Metrics end up in summary.json under nodes.<node>.metrics.<name>.
+  virtual void metric(std::string_view name, double value) = 0;
+  virtual void metric(std::string_view name, std::vector<double> values) = 0;
+  virtual void metric(std::string_view name, std::string value) = 0;
+
+  // The graph's own end condition: stop the run, successfully.
+  virtual void finish(std::string_view reason) = 0;
+  // The run failed (an assertion, a crash of the car): stop, exit code 1.
+  virtual void fail(std::string_view reason) = 0;
+
+  template <class T> Input<T> input(std::string_view port) {
+    auto* c = input_channel(port);
+    check_type(c->type_name(), message_traits<T>::name, port);
+    return Input<T>(c);
+  }
+  template <class T> Output<T> output(std::string_view port) {
+    auto* c = output_channel(port);
+    check_type(c->type_name(), message_traits<T>::name, port);
+    return Output<T>(c);
+  }
+
+ protected:
+  // Throw std::invalid_argument when the manifest declares no such port.
+  virtual detail::InputChannel* input_channel(std::string_view port) = 0;
+  virtual detail::OutputChannel* output_channel(std::string_view port) = 0;
+
+ private:
+  static void check_type(const std::string& declared, const char* requested, std::string_view port) {
+    if (declared != requested)
+      throw std::logic_error("port '" + std::string(port) + "' carries " + declared + ", not " + requested);
+  }
+};
+
+}  // namespace brickyard

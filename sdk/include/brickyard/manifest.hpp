@@ -1,0 +1,128 @@
+#pragma once
+// What a plugin declares about itself: ports, parameters, triggers. The host validates a
+// graph against manifests before it constructs any plugin.
+#include <brickyard/message_traits.hpp>
+#include <brickyard/params.hpp>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace brickyard {
+
+enum class PortDirection { input, output };
+
+struct PortSpec {
+  std::string name;
+  PortDirection direction = PortDirection::input;
+  std::string type_name;   // "brickyard::msgs::GnssFix"
+  std::string type_hash;   // message_traits<T>::hash at the plugin's build
+  std::string description;
+  bool required = true;    // inputs: must be wired
+  std::uint32_t depth = 16;  // inputs: samples kept before the oldest is dropped
+};
+
+struct ParamSpec {
+  std::string name;
+  ParamType type = ParamType::number;
+  std::optional<ParamValue> default_value;  // none: the graph must set it
+  std::string unit;
+  std::optional<double> min, max;           // numbers, integers and each array element
+  std::vector<std::string> choices;         // strings: allowed values (empty = any)
+  std::string description;
+
+  bool required() const { return !default_value.has_value(); }
+
+  static ParamSpec boolean(std::string n, bool d) { return make(std::move(n), ParamType::boolean, d); }
+  static ParamSpec integer(std::string n, std::int64_t d) { return make(std::move(n), ParamType::integer, d); }
+  static ParamSpec number(std::string n, double d) { return make(std::move(n), ParamType::number, d); }
+  static ParamSpec string(std::string n, std::string d) {
+    return make(std::move(n), ParamType::string, std::move(d));
+  }
+  static ParamSpec numbers(std::string n, std::vector<double> d) {
+    return make(std::move(n), ParamType::number_array, std::move(d));
+  }
+  static ParamSpec json(std::string n, std::string default_text) {
+    return make(std::move(n), ParamType::json, JsonText{std::move(default_text)});
+  }
+  // A parameter without a default: the graph has to give it.
+  static ParamSpec required_param(std::string n, ParamType t) {
+    ParamSpec p;
+    p.name = std::move(n);
+    p.type = t;
+    return p;
+  }
+
+  ParamSpec& in_unit(std::string u) { unit = std::move(u); return *this; }
+  ParamSpec& range(double lo, double hi) { min = lo; max = hi; return *this; }
+  ParamSpec& at_least(double lo) { min = lo; return *this; }
+  ParamSpec& one_of(std::vector<std::string> c) { choices = std::move(c); return *this; }
+  ParamSpec& doc(std::string d) { description = std::move(d); return *this; }
+
+ private:
+  static ParamSpec make(std::string n, ParamType t, ParamValue d) {
+    ParamSpec p;
+    p.name = std::move(n);
+    p.type = t;
+    p.default_value = std::move(d);
+    return p;
+  }
+};
+
+struct TriggerSpec {
+  enum class Kind { periodic, on_input };
+  Kind kind = Kind::periodic;
+  // periodic: name of the number parameter that holds the rate in Hz; on_input: the input port.
+  std::string ref;
+};
+
+struct Manifest {
+  std::string name;      // "area.plugin_name", unique among loaded libraries
+  std::string version;   // semantic version of the plugin
+  std::string description;
+  std::vector<PortSpec> ports;
+  std::vector<ParamSpec> params;
+  std::vector<TriggerSpec> triggers;
+
+  Manifest() = default;
+  Manifest(std::string n, std::string v) : name(std::move(n)), version(std::move(v)) {}
+
+  Manifest& describe(std::string d) { description = std::move(d); return *this; }
+
+  template <class T>
+  Manifest& input(std::string port, std::string doc = {}, bool required = true, std::uint32_t depth = 16) {
+    ports.push_back({std::move(port), PortDirection::input, message_traits<T>::name, message_traits<T>::hash,
+                     std::move(doc), required, depth});
+    return *this;
+  }
+  template <class T>
+  Manifest& output(std::string port, std::string doc = {}) {
+    ports.push_back({std::move(port), PortDirection::output, message_traits<T>::name, message_traits<T>::hash,
+                     std::move(doc), false, 0});
+    return *this;
+  }
+  Manifest& param(ParamSpec p) { params.push_back(std::move(p)); return *this; }
+  // Step the node at the rate (Hz) held by the named number parameter.
+  Manifest& periodic(std::string rate_param) {
+    triggers.push_back({TriggerSpec::Kind::periodic, std::move(rate_param)});
+    return *this;
+  }
+  // Step the node when a sample arrives on the named input.
+  Manifest& on_input(std::string port) {
+    triggers.push_back({TriggerSpec::Kind::on_input, std::move(port)});
+    return *this;
+  }
+
+  const PortSpec* port(const std::string& n) const {
+    for (const auto& p : ports)
+      if (p.name == n) return &p;
+    return nullptr;
+  }
+  const ParamSpec* param_spec(const std::string& n) const {
+    for (const auto& p : params)
+      if (p.name == n) return &p;
+    return nullptr;
+  }
+};
+
+}  // namespace brickyard
