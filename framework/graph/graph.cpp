@@ -35,7 +35,8 @@ struct Ctx {
   Diagnostics& d;
   void err(const std::string& ptr, const std::string& msg) { d.add(at(file, ptr), msg); }
   bool expect(const json& j, json::value_t t, const char* word, const std::string& ptr) {
-    bool ok = j.type() == t || (t == json::value_t::number_float && j.is_number());
+    bool ok = j.type() == t || (t == json::value_t::number_float && j.is_number()) ||
+              (t == json::value_t::number_integer && j.is_number_integer());
     if (!ok) err(ptr, std::string("expected ") + word + ", found " + type_word(j));
     return ok;
   }

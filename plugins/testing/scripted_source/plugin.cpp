@@ -5,6 +5,7 @@
 #include <brickyard/plugin.hpp>
 
 #include <optional>
+#include <random>
 
 namespace {
 
@@ -22,6 +23,7 @@ class ScriptedSource : public Plugin {
         .param(ParamSpec::number("start", 0.0).doc("first ramp value"))
         .param(ParamSpec::number("step", 1.0).doc("ramp increment per sample"))
         .param(ParamSpec::integer("count", -1).at_least(-1).doc("samples to publish; -1: unlimited"))
+        .param(ParamSpec::number("noise_std", 0.0).at_least(0).doc("Gaussian noise added to each value, seeded by --seed"))
         .periodic("rate_hz");
   }
 
@@ -29,6 +31,8 @@ class ScriptedSource : public Plugin {
     const Params& p = ctx.params();
     script_.emplace(p.numbers("values"), p.boolean("loop"), p.number("start"), p.number("step"), p.integer("count"));
     out_ = ctx.output<msgs::Scalar>("out");
+    noise_std_ = p.number("noise_std");
+    rng_.seed(ctx.seed());
   }
 
   void step(Context& ctx) override {
@@ -37,7 +41,7 @@ class ScriptedSource : public Plugin {
     msgs::Scalar m;
     m.header().stamp_ns(ctx.now_ns());
     m.header().seq(seq_++);
-    m.value(*v);
+    m.value(noise_std_ > 0 ? *v + noise_std_ * normal_(rng_) : *v);
     out_.publish(std::move(m));
   }
 
@@ -47,6 +51,9 @@ class ScriptedSource : public Plugin {
   std::optional<testing::ScalarScript> script_;
   Output<msgs::Scalar> out_;
   std::uint32_t seq_ = 0;
+  double noise_std_ = 0;
+  std::mt19937_64 rng_;
+  std::normal_distribution<double> normal_;
 };
 
 }  // namespace

@@ -1,0 +1,114 @@
+// Resolution against the real testing plugins, loaded the way the host loads them.
+#include "graph/diagnostics.hpp"
+#include "graph/resolve.hpp"
+
+#include <gtest/gtest.h>
+
+using namespace brickyard::fw;
+
+namespace {
+
+const Registry& registry() {
+  static Registry r = [] {
+    Registry x;
+    x.add_directory(BRICKYARD_TEST_PLUGIN_DIR);
+    return x;
+  }();
+  return r;
+}
+
+std::vector<Diagnostic> errors(const std::string& text, const std::vector<std::string>& sets = {}) {
+  static std::vector<GraphDecl> keep;  // resolve keeps pointers into the declaration
+  try {
+    keep.push_back(parse_graph_text(text, "g.json", sets));
+    resolve_graph(keep.back(), registry());
+  } catch (const InvalidInput& e) {
+    return e.diagnostics();
+  }
+  return {};
+}
+
+bool has(const std::vector<Diagnostic>& d, const std::string& where, const std::string& what) {
+  for (const auto& x : d)
+    if (x.where == where && x.message.find(what) != std::string::npos) return true;
+  return false;
+}
+
+std::string chain(const std::string& extra_nodes = "", const std::string& extra_wires = "") {
+  return R"({"nodes": {"src": {"plugin": "testing.scripted_source", "params": {"rate_hz": 50}},
+                       "t": {"plugin": "testing.transform"},
+                       "sink": {"plugin": "testing.assert_sink"})" +
+         extra_nodes + R"(},
+            "wires": [{"from": "src.out", "to": "t.in"}, {"from": "t.out", "to": "sink.in"})" +
+         extra_wires + "]}";
+}
+
+}  // namespace
+
+TEST(Resolve, RegistryLoadedTestingPlugins) {
+  EXPECT_TRUE(registry().problems().empty());
+  EXPECT_TRUE(registry().find("testing.scripted_source"));
+  EXPECT_TRUE(registry().find("testing.blob_source"));
+  EXPECT_TRUE(registry().find("testing.blob_sink"));
+}
+
+TEST(Resolve, ValidChainDefaultsAndScheduleOrder) {
+  auto g = parse_graph_text(chain(), "g.json");
+  auto rg = resolve_graph(g, registry());
+  ASSERT_EQ(rg.nodes.size(), 3u);
+  // Upstream first, whatever the names.
+  EXPECT_EQ(rg.nodes[0].decl->name, "src");
+  EXPECT_EQ(rg.nodes[1].decl->name, "t");
+  EXPECT_EQ(rg.nodes[2].decl->name, "sink");
+  EXPECT_EQ(rg.nodes[0].period_ns, 20'000'000);
+  EXPECT_DOUBLE_EQ(rg.nodes[1].params.number("gain"), 1.0);
+  EXPECT_TRUE(rg.nodes[1].trigger_inputs.count("in"));
+}
+
+TEST(Resolve, SimPeriodRoundedToStep) {
+  auto g = parse_graph_text(chain(), "g.json", {"src.rate_hz=3"});
+  auto rg = resolve_graph(g, registry());
+  EXPECT_EQ(rg.nodes[0].period_ns, 333'000'000);
+}
+
+TEST(Resolve, ParamErrors) {
+  EXPECT_TRUE(has(errors(chain(), {"src.rate_hz=\"fast\""}), "g.json#/nodes/src/params/rate_hz", "expected number"));
+  EXPECT_TRUE(has(errors(chain(), {"src.rate_hz=0"}), "g.json#/nodes/src/params/rate_hz", "expected a value from 0.001"));
+  EXPECT_TRUE(has(errors(chain(), {"src.rat_hz=1"}), "g.json#/nodes/src/params/rat_hz", "unknown parameter \"rat_hz\""));
+  EXPECT_TRUE(has(errors(chain(), {"t.fault=\"sometimes\""}), "g.json#/nodes/t/params/fault", "expected one of"));
+  EXPECT_TRUE(has(errors(chain(R"(, "b": {"plugin": "testing.blob_source"})")), "g.json#/nodes/b/params",
+                  "missing required parameter \"size_bytes\""));
+  EXPECT_TRUE(has(errors(chain(), {"src.count=1.5"}), "g.json#/nodes/src/params/count", "expected integer"));
+}
+
+TEST(Resolve, WireErrors) {
+  EXPECT_TRUE(has(errors(chain("", R"(, {"from": "src.outt", "to": "sink.in"})")), "g.json#/wires/2/from", "has no port \"outt\""));
+  EXPECT_TRUE(has(errors(chain("", R"(, {"from": "nope.out", "to": "sink.in"})")), "g.json#/wires/2/from", "no node named"));
+  EXPECT_TRUE(has(errors(chain("", R"(, {"from": "sink.in", "to": "t.in"})")), "g.json#/wires/2/from", "is an input"));
+  EXPECT_TRUE(has(errors(chain("", R"(, {"from": "src.out", "to": "sink.in"})")), "g.json#/wires/2/to", "already has a writer"));
+  EXPECT_TRUE(has(errors(chain(R"(, "b": {"plugin": "testing.blob_source", "params": {"size_bytes": 1}}, "s2": {"plugin": "testing.assert_sink"})",
+                               R"(, {"from": "b.out", "to": "s2.in"})")),
+                  "g.json#/wires/2", "type mismatch"));
+  EXPECT_TRUE(has(errors(chain(R"(, "s2": {"plugin": "testing.assert_sink"})")), "g.json#/nodes/s2", "is not wired"));
+}
+
+TEST(Resolve, ZeroDelayCycleRejectedDelayedCycleAccepted) {
+  const std::string cyc = R"({"nodes": {"a": {"plugin": "testing.transform"}, "b": {"plugin": "testing.transform"}},
+    "wires": [{"from": "a.out", "to": "b.in"}, {"from": "b.out", "to": "a.in"}]})";
+  EXPECT_TRUE(has(errors(cyc), "g.json#/wires", "zero-delay cycle"));
+}
+
+TEST(Resolve, ProcessSelection) {
+  std::string split = R"({"clock": {"mode": "real"}, "nodes": {"src": {"plugin": "testing.scripted_source", "process": "a"},
+    "sink": {"plugin": "testing.assert_sink", "process": "b"}}, "wires": [{"from": "src.out", "to": "sink.in"}]})";
+  auto g = parse_graph_text(split, "g.json");
+  auto rg = resolve_graph(g, registry(), "b");
+  ASSERT_EQ(rg.nodes.size(), 1u);
+  EXPECT_EQ(rg.nodes[0].decl->name, "sink");
+  try {
+    resolve_graph(g, registry(), "c");
+    FAIL();
+  } catch (const InvalidInput& e) {
+    EXPECT_EQ(e.diagnostics()[0].where, "--process c");
+  }
+}
