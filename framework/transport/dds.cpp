@@ -80,14 +80,8 @@ DdsTransport::DdsTransport(const DdsSettings& s) {
     IPLocator::setIPv4(l, p);
     b.initialPeersList.push_back(l);
   }
-  if (!s.interfaces.empty()) {
-    Locator_t meta;
-    meta.kind = LOCATOR_KIND_UDPv4;
-    IPLocator::setIPv4(meta, s.interfaces.front());
-    b.metatrafficUnicastLocatorList.push_back(meta);
-    Locator_t user = meta;
-    q.wire_protocol().default_unicast_locator_list.push_back(user);
-  }
+  // No explicit unicast locators: Fast DDS then offers shared memory to peers on this host and
+  // UDP only on the whitelisted interfaces (setting a UDP locator here would turn SHM off).
   participant_ = factory->create_participant(s.domain, q);
   if (!participant_) throw std::runtime_error("Fast DDS could not create a participant on domain " + std::to_string(s.domain));
   publisher_ = participant_->create_publisher(PUBLISHER_QOS_DEFAULT);

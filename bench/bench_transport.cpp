@@ -1,0 +1,327 @@
+// One-way latency through Brickyard ports against raw Fast DDS, measured in the same run.
+//   same process: publish -> the subscriber's input has the sample (ours: pointer hand-off with
+//                 the port's DDS writer present; raw: DataWriter::write -> listener take)
+//   two processes: ping-pong over DDS, one-way = round trip / 2 (ours: ports + our transport;
+//                 raw: plain DataWriter/DataReader with the same participant settings)
+// usage: bench_transport [--quick]
+#include "exec/channels.hpp"
+#include "transport/dds.hpp"
+
+#include <brickyard/msgs/BlobPubSubTypes.h>
+#include <brickyard/msgs/registry.hpp>
+
+#include <fastdds/dds/domain/DomainParticipant.hpp>
+#include <fastdds/dds/domain/DomainParticipantFactory.hpp>
+#include <fastdds/dds/publisher/DataWriter.hpp>
+#include <fastdds/dds/publisher/Publisher.hpp>
+#include <fastdds/dds/subscriber/DataReader.hpp>
+#include <fastdds/dds/subscriber/DataReaderListener.hpp>
+#include <fastdds/dds/subscriber/SampleInfo.hpp>
+#include <fastdds/dds/subscriber/Subscriber.hpp>
+#include <fastdds/dds/topic/TypeSupport.hpp>
+#include <fastdds/rtps/transport/UDPv4TransportDescriptor.h>
+#include <fastdds/rtps/transport/shared_mem/SharedMemTransportDescriptor.h>
+#include <fastrtps/utils/IPLocator.h>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <cstdio>
+#include <cstring>
+#include <mutex>
+#include <thread>
+
+using namespace brickyard;
+using namespace brickyard::fw;
+using namespace eprosima::fastdds::dds;
+using Clock = std::chrono::steady_clock;
+
+namespace {
+
+int g_domain = 0;
+
+std::int64_t now_ns() { return std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now().time_since_epoch()).count(); }
+
+struct Stats {
+  double median_us, p99_us;
+};
+Stats stats(std::vector<double> ns) {
+  std::sort(ns.begin(), ns.end());
+  auto at = [&](double q) { return ns[std::min(ns.size() - 1, static_cast<std::size_t>(q * (ns.size() - 1) + 0.5))] / 1e3; };
+  return {at(0.5), at(0.99)};
+}
+
+msgs::Blob make_blob(std::size_t bytes) {
+  msgs::Blob b;
+  b.data().assign(bytes, 7);
+  return b;
+}
+
+// A raw participant with the same settings as Brickyard's (SHM 16 MiB + UDP loopback).
+DomainParticipant* raw_participant(int domain) {
+  auto* f = DomainParticipantFactory::get_instance();
+  f->load_profiles();
+  DomainParticipantQos q = f->get_default_participant_qos();
+  q.transport().use_builtin_transports = false;
+  auto shm = std::make_shared<eprosima::fastdds::rtps::SharedMemTransportDescriptor>();
+  shm->segment_size(16u << 20);
+  q.transport().user_transports.push_back(shm);
+  auto udp = std::make_shared<eprosima::fastdds::rtps::UDPv4TransportDescriptor>();
+  udp->interfaceWhiteList.push_back("127.0.0.1");
+  q.transport().user_transports.push_back(udp);
+  eprosima::fastrtps::rtps::Locator_t peer;
+  peer.kind = LOCATOR_KIND_UDPv4;
+  eprosima::fastrtps::rtps::IPLocator::setIPv4(peer, "127.0.0.1");
+  q.wire_protocol().builtin.initialPeersList.push_back(peer);
+  return f->create_participant(domain, q);
+}
+
+DataWriterQos writer_qos() {
+  DataWriterQos q = DATAWRITER_QOS_DEFAULT;
+  q.reliability().kind = RELIABLE_RELIABILITY_QOS;
+  q.history().kind = KEEP_LAST_HISTORY_QOS;
+  q.history().depth = 8;
+  q.endpoint().history_memory_policy = eprosima::fastrtps::rtps::PREALLOCATED_WITH_REALLOC_MEMORY_MODE;
+  return q;
+}
+DataReaderQos reader_qos() {
+  DataReaderQos q = DATAREADER_QOS_DEFAULT;
+  q.reliability().kind = RELIABLE_RELIABILITY_QOS;
+  q.history().kind = KEEP_LAST_HISTORY_QOS;
+  q.history().depth = 8;
+  q.endpoint().history_memory_policy = eprosima::fastrtps::rtps::PREALLOCATED_WITH_REALLOC_MEMORY_MODE;
+  return q;
+}
+
+// Signals arrival of one sample to a waiting thread.
+struct Arrival {
+  std::mutex m;
+  std::condition_variable cv;
+  std::int64_t t = 0;
+  int count = 0;
+  void mark() {
+    std::int64_t tn = now_ns();
+    std::lock_guard<std::mutex> l(m);
+    t = tn;
+    ++count;
+    cv.notify_one();
+  }
+  std::int64_t wait_for(int n) {
+    std::unique_lock<std::mutex> l(m);
+    if (!cv.wait_for(l, std::chrono::seconds(5), [&] { return count >= n; })) {
+      std::fprintf(stderr, "timeout waiting for sample %d\n", n);
+      std::exit(1);
+    }
+    return t;
+  }
+};
+
+struct RawListener : DataReaderListener {
+  msgs::Blob sample;
+  Arrival arrival;
+  void on_data_available(DataReader* r) override {
+    SampleInfo info;
+    while (r->take_next_sample(&sample, &info) == ReturnCode_t::RETCODE_OK)
+      if (info.valid_data) arrival.mark();
+  }
+};
+
+// ---- same process ----
+Stats raw_same_process(std::size_t bytes, int n) {
+  auto* p = raw_participant(g_domain);
+  TypeSupport ts(new msgs::BlobPubSubType());
+  ts.register_type(p);
+  auto* t = p->create_topic("raw_same", ts.get_type_name(), TOPIC_QOS_DEFAULT);
+  auto* pub = p->create_publisher(PUBLISHER_QOS_DEFAULT);
+  auto* sub = p->create_subscriber(SUBSCRIBER_QOS_DEFAULT);
+  RawListener l;
+  auto* r = sub->create_datareader(t, reader_qos(), &l);
+  auto* w = pub->create_datawriter(t, writer_qos());
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  msgs::Blob msg = make_blob(bytes);
+  std::vector<double> lat;
+  for (int i = 0; i < n + 10; ++i) {
+    std::int64_t t0 = now_ns();
+    w->write(&msg);
+    std::int64_t t1 = l.arrival.wait_for(i + 1);
+    if (i >= 10) lat.push_back(static_cast<double>(t1 - t0));
+  }
+  sub->delete_datareader(r);
+  p->delete_contained_entities();
+  DomainParticipantFactory::get_instance()->delete_participant(p);
+  return stats(lat);
+}
+
+Stats ours_same_process(std::size_t bytes, int n) {
+  DdsSettings s;
+  s.domain = g_domain;
+  DdsTransport transport(s);
+  OutputPort out("out", "brickyard::msgs::Blob");
+  out.writer = transport.make_writer("brickyard/bench/out", "brickyard::msgs::Blob");
+  InputQueue in("in", "brickyard::msgs::Blob", 8, true);
+  Arrival arrival;
+  in.on_arrival = [&](const std::string&) {
+    in.take();
+    arrival.mark();
+  };
+  out.local.push_back(&in);
+  std::vector<double> lat;
+  for (int i = 0; i < n + 10; ++i) {
+    msgs::Blob msg = make_blob(bytes);  // built outside the timed region, like the raw case
+    std::int64_t t0 = now_ns();
+    out.publish(std::make_shared<const msgs::Blob>(std::move(msg)));
+    std::int64_t t1 = arrival.wait_for(i + 1);
+    if (i >= 10) lat.push_back(static_cast<double>(t1 - t0));
+  }
+  return stats(lat);
+}
+
+// ---- two processes: ping-pong, the child echoes ----
+// The echo side is this program started again (fork + exec): a child forked from a process that
+// has used Fast DDS inherits its threads' state and cannot discover anything.
+pid_t spawn_echo(const char* kind, std::size_t bytes, int total) {
+  pid_t child = fork();
+  if (child == 0) {
+    std::string b = std::to_string(bytes), t = std::to_string(total), d = std::to_string(g_domain);
+    execl("/proc/self/exe", "bench_transport", "--echo", kind, b.c_str(), t.c_str(), d.c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  return child;
+}
+
+void raw_echo_child(std::size_t bytes, int total) {
+  auto* p = raw_participant(g_domain);
+  TypeSupport ts(new msgs::BlobPubSubType());
+  ts.register_type(p);
+  auto* ping = p->create_topic("raw_ping", ts.get_type_name(), TOPIC_QOS_DEFAULT);
+  auto* pong = p->create_topic("raw_pong", ts.get_type_name(), TOPIC_QOS_DEFAULT);
+  auto* w = p->create_publisher(PUBLISHER_QOS_DEFAULT)->create_datawriter(pong, writer_qos());
+  RawListener l;
+  p->create_subscriber(SUBSCRIBER_QOS_DEFAULT)->create_datareader(ping, reader_qos(), &l);
+  for (int i = 0; i < total; ++i) {
+    l.arrival.wait_for(i + 1);
+    w->write(&l.sample);
+  }
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  p->delete_contained_entities();
+  DomainParticipantFactory::get_instance()->delete_participant(p);
+}
+
+Stats raw_two_process(std::size_t bytes, int n) {
+  const int total = n + 10;
+  pid_t child = spawn_echo("raw", bytes, total);
+  auto* p = raw_participant(g_domain);
+  TypeSupport ts(new msgs::BlobPubSubType());
+  ts.register_type(p);
+  auto* ping = p->create_topic("raw_ping", ts.get_type_name(), TOPIC_QOS_DEFAULT);
+  auto* pong = p->create_topic("raw_pong", ts.get_type_name(), TOPIC_QOS_DEFAULT);
+  auto* w = p->create_publisher(PUBLISHER_QOS_DEFAULT)->create_datawriter(ping, writer_qos());
+  RawListener l;
+  auto* r = p->create_subscriber(SUBSCRIBER_QOS_DEFAULT)->create_datareader(pong, reader_qos(), &l);
+  // Wait for both directions to match.
+  for (int k = 0; k < 500; ++k) {
+    PublicationMatchedStatus pm;
+    SubscriptionMatchedStatus sm;
+    w->get_publication_matched_status(pm);
+    r->get_subscription_matched_status(sm);
+    if (pm.current_count > 0 && sm.current_count > 0) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  msgs::Blob msg = make_blob(bytes);
+  std::vector<double> lat;
+  for (int i = 0; i < total; ++i) {
+    std::int64_t t0 = now_ns();
+    w->write(&msg);
+    std::int64_t t1 = l.arrival.wait_for(i + 1);
+    if (i >= 10) lat.push_back((t1 - t0) / 2.0);
+  }
+  waitpid(child, nullptr, 0);
+  p->delete_contained_entities();
+  DomainParticipantFactory::get_instance()->delete_participant(p);
+  return stats(lat);
+}
+
+void ours_echo_child(int total) {
+  DdsSettings s;
+  s.domain = g_domain;
+  DdsTransport transport(s);
+  OutputPort out("pong", "brickyard::msgs::Blob");
+  out.writer = transport.make_writer("brickyard/echo/pong", "brickyard::msgs::Blob");
+  InputQueue in("ping", "brickyard::msgs::Blob", 8, true);
+  in.on_arrival = [&](const std::string&) {
+    for (auto& smp : in.take()) out.publish(smp);  // the echo node republishes what it got
+  };
+  transport.make_reader("brickyard/bench/ping", "brickyard::msgs::Blob", 8, [&](std::shared_ptr<const void> smp) { in.push(std::move(smp)); });
+  while (static_cast<int>(in.received()) < total) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+}
+
+Stats ours_two_process(std::size_t bytes, int n) {
+  const int total = n + 10;
+  pid_t child = spawn_echo("ours", bytes, total);
+  DdsSettings s;
+  s.domain = g_domain;
+  DdsTransport transport(s);
+  OutputPort out("ping", "brickyard::msgs::Blob");
+  out.writer = transport.make_writer("brickyard/bench/ping", "brickyard::msgs::Blob");
+  InputQueue in("pong", "brickyard::msgs::Blob", 8, true);
+  Arrival arrival;
+  in.on_arrival = [&](const std::string&) {
+    in.take();
+    arrival.mark();
+  };
+  transport.make_reader("brickyard/echo/pong", "brickyard::msgs::Blob", 8, [&](std::shared_ptr<const void> smp) { in.push(std::move(smp)); });
+  while (!out.writer->has_remote_readers()) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));  // the reverse direction matches too
+  std::vector<double> lat;
+  for (int i = 0; i < total; ++i) {
+    msgs::Blob msg = make_blob(bytes);
+    std::int64_t t0 = now_ns();
+    out.publish(std::make_shared<const msgs::Blob>(std::move(msg)));
+    std::int64_t t1 = arrival.wait_for(i + 1);
+    if (i >= 10) lat.push_back((t1 - t0) / 2.0);
+  }
+  transport.close_readers();
+  waitpid(child, nullptr, 0);
+  return stats(lat);
+}
+
+void row(const char* path, const char* size, Stats ours, Stats raw, const char* target) {
+  std::printf("%-14s %-6s %10.2f %10.2f %10.2f %10.2f %8.2fx   %s\n", path, size, ours.median_us, ours.p99_us, raw.median_us,
+              raw.p99_us, ours.median_us / raw.median_us, target);
+  std::fflush(stdout);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc == 6 && std::strcmp(argv[1], "--echo") == 0) {
+    g_domain = std::atoi(argv[5]);
+    if (std::strcmp(argv[2], "raw") == 0) raw_echo_child(std::strtoul(argv[3], nullptr, 10), std::atoi(argv[4]));
+    else ours_echo_child(std::atoi(argv[4]));
+    return 0;
+  }
+  bool quick = argc > 1 && std::strcmp(argv[1], "--quick") == 0;
+  g_domain = 200 + static_cast<int>(getpid() % 30);
+  const int n_small = quick ? 200 : 2000, n_big = quick ? 30 : 200;
+  std::size_t big = 2u << 20;
+  const std::size_t small = 64;
+  if (argc > 3 && std::strcmp(argv[2], "--big") == 0) big = std::strtoul(argv[3], nullptr, 10);
+  std::printf("one-way latency, microseconds (median, p99); ratio = ours / raw median; domain %d\n", g_domain);
+  std::printf("%-14s %-6s %10s %10s %10s %10s %9s   %s\n", "path", "size", "ours med", "ours p99", "raw med", "raw p99",
+              "ratio", "target");
+  // Raw first, then ours, on each line (named variables: argument evaluation order is unspecified).
+  Stats raw = raw_same_process(small, n_small), ours = ours_same_process(small, n_small);
+  row("same process", "64 B", ours, raw, "ratio <= 2");
+  raw = raw_same_process(big, n_big), ours = ours_same_process(big, n_big);
+  row("same process", "2 MiB", ours, raw, "ours med <= 50 us");
+  raw = raw_two_process(small, n_small), ours = ours_two_process(small, n_small);
+  row("two processes", "64 B", ours, raw, "(reported)");
+  raw = raw_two_process(big, n_big), ours = ours_two_process(big, n_big);
+  row("two processes", "2 MiB", ours, raw, "ratio <= 1.2");
+  return 0;
+}
