@@ -373,7 +373,7 @@ RunSummary Executive::run() {
   RunSummary s;
   s.result = stop_result_.value_or(RunResult::success);
   s.reason = stop_result_ ? stop_reason_ : (sim() ? "sim clock reached the end" : "duration reached");
-  s.sim_time_s = sim() ? sim_now_ns_ * 1e-9 : 0.0;
+  s.sim_time_s = sim() ? static_cast<double>(sim_now_ns_) / 1e9 : 0.0;
   s.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   if (!sim()) s.sim_time_s = s.wall_time_s;
   auto& j = s.json;
