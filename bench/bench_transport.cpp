@@ -120,6 +120,23 @@ struct Arrival {
   }
 };
 
+constexpr int kWarmup = 10;
+
+// Sends n + kWarmup samples one at a time and times each until its arrival (or echo) is seen.
+// `prepare` runs outside the timed region; `divisor` 2 turns a round trip into one way.
+template <class Prepare, class Send>
+Stats time_samples(int n, Arrival& arrival, double divisor, Prepare prepare, Send send) {
+  std::vector<double> lat;
+  for (int i = 0; i < n + kWarmup; ++i) {
+    prepare();
+    std::int64_t t0 = now_ns();
+    send();
+    std::int64_t t1 = arrival.wait_for(i + 1);
+    if (i >= kWarmup) lat.push_back(static_cast<double>(t1 - t0) / divisor);
+  }
+  return stats(lat);
+}
+
 struct RawListener : DataReaderListener {
   msgs::Blob sample;
   Arrival arrival;
@@ -143,17 +160,11 @@ Stats raw_same_process(std::size_t bytes, int n) {
   auto* w = pub->create_datawriter(t, writer_qos());
   std::this_thread::sleep_for(std::chrono::milliseconds(200));
   msgs::Blob msg = make_blob(bytes);
-  std::vector<double> lat;
-  for (int i = 0; i < n + 10; ++i) {
-    std::int64_t t0 = now_ns();
-    w->write(&msg);
-    std::int64_t t1 = l.arrival.wait_for(i + 1);
-    if (i >= 10) lat.push_back(static_cast<double>(t1 - t0));
-  }
+  Stats st = time_samples(n, l.arrival, 1.0, [] {}, [&] { w->write(&msg); });
   sub->delete_datareader(r);
   p->delete_contained_entities();
   DomainParticipantFactory::get_instance()->delete_participant(p);
-  return stats(lat);
+  return st;
 }
 
 Stats ours_same_process(std::size_t bytes, int n) {
@@ -169,15 +180,9 @@ Stats ours_same_process(std::size_t bytes, int n) {
     arrival.mark();
   };
   out.local.push_back(&in);
-  std::vector<double> lat;
-  for (int i = 0; i < n + 10; ++i) {
-    msgs::Blob msg = make_blob(bytes);  // built outside the timed region, like the raw case
-    std::int64_t t0 = now_ns();
-    out.publish(std::make_shared<const msgs::Blob>(std::move(msg)));
-    std::int64_t t1 = arrival.wait_for(i + 1);
-    if (i >= 10) lat.push_back(static_cast<double>(t1 - t0));
-  }
-  return stats(lat);
+  msgs::Blob msg;  // built outside the timed region, like the raw case; moved in, not copied
+  return time_samples(n, arrival, 1.0, [&] { msg = make_blob(bytes); },
+                      [&] { out.publish(std::make_shared<const msgs::Blob>(std::move(msg))); });
 }
 
 // ---- two processes: ping-pong, the child echoes ----
@@ -212,7 +217,7 @@ void raw_echo_child(std::size_t bytes, int total) {
 }
 
 Stats raw_two_process(std::size_t bytes, int n) {
-  const int total = n + 10;
+  const int total = n + kWarmup;
   pid_t child = spawn_echo("raw", bytes, total);
   auto* p = raw_participant(g_domain);
   TypeSupport ts(new msgs::BlobPubSubType());
@@ -232,17 +237,11 @@ Stats raw_two_process(std::size_t bytes, int n) {
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   }
   msgs::Blob msg = make_blob(bytes);
-  std::vector<double> lat;
-  for (int i = 0; i < total; ++i) {
-    std::int64_t t0 = now_ns();
-    w->write(&msg);
-    std::int64_t t1 = l.arrival.wait_for(i + 1);
-    if (i >= 10) lat.push_back((t1 - t0) / 2.0);
-  }
+  Stats st = time_samples(n, l.arrival, 2.0, [] {}, [&] { w->write(&msg); });
   waitpid(child, nullptr, 0);
   p->delete_contained_entities();
   DomainParticipantFactory::get_instance()->delete_participant(p);
-  return stats(lat);
+  return st;
 }
 
 void ours_echo_child(int total) {
@@ -261,7 +260,7 @@ void ours_echo_child(int total) {
 }
 
 Stats ours_two_process(std::size_t bytes, int n) {
-  const int total = n + 10;
+  const int total = n + kWarmup;
   pid_t child = spawn_echo("ours", bytes, total);
   DdsSettings s;
   s.domain = g_domain;
@@ -277,17 +276,12 @@ Stats ours_two_process(std::size_t bytes, int n) {
   transport.make_reader("brickyard/echo/pong", "brickyard::msgs::Blob", 8, [&](std::shared_ptr<const void> smp) { in.push(std::move(smp)); });
   while (!out.writer->has_remote_readers()) std::this_thread::sleep_for(std::chrono::milliseconds(10));
   std::this_thread::sleep_for(std::chrono::milliseconds(200));  // the reverse direction matches too
-  std::vector<double> lat;
-  for (int i = 0; i < total; ++i) {
-    msgs::Blob msg = make_blob(bytes);
-    std::int64_t t0 = now_ns();
-    out.publish(std::make_shared<const msgs::Blob>(std::move(msg)));
-    std::int64_t t1 = arrival.wait_for(i + 1);
-    if (i >= 10) lat.push_back((t1 - t0) / 2.0);
-  }
+  msgs::Blob msg;
+  Stats st = time_samples(n, arrival, 2.0, [&] { msg = make_blob(bytes); },
+                          [&] { out.publish(std::make_shared<const msgs::Blob>(std::move(msg))); });
   transport.close_readers();
   waitpid(child, nullptr, 0);
-  return stats(lat);
+  return st;
 }
 
 void row(const char* path, const char* size, Stats ours, Stats raw, const char* target) {

@@ -365,6 +365,10 @@ RunSummary Executive::run() {
     else run_real();
   }
   if (transport_) transport_->close_readers();
+  // The run loop's wake-up hooks refer to its own state: samples published from here on (in
+  // deactivate) are queued, and step nothing.
+  for (auto& n : nodes_)
+    for (auto& in : n->inputs) in->on_arrival = nullptr;
   // Every node that was activated is deactivated, in reverse order, even after a failure:
   // sinks report their verdicts there.
   for (auto it = active.rbegin(); it != active.rend(); ++it)
