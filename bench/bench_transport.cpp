@@ -236,6 +236,9 @@ Stats raw_two_process(std::size_t bytes, int n) {
     if (pm.current_count > 0 && sm.current_count > 0) break;
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   }
+  // Matching is seen from each side separately: give the echo's writer time to match our reader
+  // (as in the ours case below), or the first echo can be lost.
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
   msgs::Blob msg = make_blob(bytes);
   Stats st = time_samples(n, l.arrival, 2.0, [] {}, [&] { w->write(&msg); });
   waitpid(child, nullptr, 0);
