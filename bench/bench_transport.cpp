@@ -167,22 +167,39 @@ Stats raw_same_process(std::size_t bytes, int n) {
   return st;
 }
 
-Stats ours_same_process(std::size_t bytes, int n) {
+const char* const kBlob = "brickyard::msgs::Blob";
+
+DdsSettings bench_settings() {
   DdsSettings s;
   s.domain = g_domain;
-  DdsTransport transport(s);
-  OutputPort out("out", "brickyard::msgs::Blob");
-  out.writer = transport.make_writer("brickyard/bench/out", "brickyard::msgs::Blob");
-  InputQueue in("in", "brickyard::msgs::Blob", 8, true);
+  return s;
+}
+
+// Our side of a measurement: an output port with its DDS writer, and an input that marks each
+// arrival. The message is built outside the timed region, like the raw case, and moved in.
+struct OursPorts {
+  explicit OursPorts(const std::string& out_topic) : transport(bench_settings()) {
+    out.writer = transport.make_writer(out_topic, kBlob);
+    in.on_arrival = [this](const std::string&) {
+      in.take();
+      arrival.mark();
+    };
+  }
+  Stats time(int n, std::size_t bytes, double divisor) {
+    msgs::Blob msg;
+    return time_samples(n, arrival, divisor, [&] { msg = make_blob(bytes); },
+                        [&] { out.publish(std::make_shared<const msgs::Blob>(std::move(msg))); });
+  }
+  DdsTransport transport;
+  OutputPort out{"out", kBlob};
+  InputQueue in{"in", kBlob, 8, true};
   Arrival arrival;
-  in.on_arrival = [&](const std::string&) {
-    in.take();
-    arrival.mark();
-  };
-  out.local.push_back(&in);
-  msgs::Blob msg;  // built outside the timed region, like the raw case; moved in, not copied
-  return time_samples(n, arrival, 1.0, [&] { msg = make_blob(bytes); },
-                      [&] { out.publish(std::make_shared<const msgs::Blob>(std::move(msg))); });
+};
+
+Stats ours_same_process(std::size_t bytes, int n) {
+  OursPorts ours("brickyard/bench/out");
+  ours.out.local.push_back(&ours.in);
+  return ours.time(n, bytes, 1.0);
 }
 
 // ---- two processes: ping-pong, the child echoes ----
@@ -248,16 +265,14 @@ Stats raw_two_process(std::size_t bytes, int n) {
 }
 
 void ours_echo_child(int total) {
-  DdsSettings s;
-  s.domain = g_domain;
-  DdsTransport transport(s);
-  OutputPort out("pong", "brickyard::msgs::Blob");
-  out.writer = transport.make_writer("brickyard/echo/pong", "brickyard::msgs::Blob");
-  InputQueue in("ping", "brickyard::msgs::Blob", 8, true);
+  DdsTransport transport(bench_settings());
+  OutputPort out("pong", kBlob);
+  out.writer = transport.make_writer("brickyard/echo/pong", kBlob);
+  InputQueue in("ping", kBlob, 8, true);
   in.on_arrival = [&](const std::string&) {
     for (auto& smp : in.take()) out.publish(smp);  // the echo node republishes what it got
   };
-  transport.make_reader("brickyard/bench/ping", "brickyard::msgs::Blob", 8, [&](std::shared_ptr<const void> smp) { in.push(std::move(smp)); });
+  transport.make_reader("brickyard/bench/ping", kBlob, 8, [&](std::shared_ptr<const void> smp) { in.push(std::move(smp)); });
   while (static_cast<int>(in.received()) < total) std::this_thread::sleep_for(std::chrono::milliseconds(1));
   std::this_thread::sleep_for(std::chrono::milliseconds(300));
 }
@@ -265,24 +280,12 @@ void ours_echo_child(int total) {
 Stats ours_two_process(std::size_t bytes, int n) {
   const int total = n + kWarmup;
   pid_t child = spawn_echo("ours", bytes, total);
-  DdsSettings s;
-  s.domain = g_domain;
-  DdsTransport transport(s);
-  OutputPort out("ping", "brickyard::msgs::Blob");
-  out.writer = transport.make_writer("brickyard/bench/ping", "brickyard::msgs::Blob");
-  InputQueue in("pong", "brickyard::msgs::Blob", 8, true);
-  Arrival arrival;
-  in.on_arrival = [&](const std::string&) {
-    in.take();
-    arrival.mark();
-  };
-  transport.make_reader("brickyard/echo/pong", "brickyard::msgs::Blob", 8, [&](std::shared_ptr<const void> smp) { in.push(std::move(smp)); });
-  while (!out.writer->has_remote_readers()) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  OursPorts ours("brickyard/bench/ping");
+  ours.transport.make_reader("brickyard/echo/pong", kBlob, 8, [&](std::shared_ptr<const void> smp) { ours.in.push(std::move(smp)); });
+  while (!ours.out.writer->has_remote_readers()) std::this_thread::sleep_for(std::chrono::milliseconds(10));
   std::this_thread::sleep_for(std::chrono::milliseconds(200));  // the reverse direction matches too
-  msgs::Blob msg;
-  Stats st = time_samples(n, arrival, 2.0, [&] { msg = make_blob(bytes); },
-                          [&] { out.publish(std::make_shared<const msgs::Blob>(std::move(msg))); });
-  transport.close_readers();
+  Stats st = ours.time(n, bytes, 2.0);
+  ours.transport.close_readers();
   waitpid(child, nullptr, 0);
   return st;
 }
