@@ -150,6 +150,7 @@ int cmd_run(const Args& a, bool validate_only) {
       return 1;
     }
   }
+  if (s.result == RunResult::invalid_input) return 2;
   return s.result == RunResult::failed ? 1 : 0;
 }
 

@@ -3,7 +3,9 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <deque>
+#include <filesystem>
 #include <queue>
 #include <thread>
 
@@ -16,6 +18,7 @@ const char* to_string(RunResult r) {
     case RunResult::success: return "success";
     case RunResult::failed: return "failed";
     case RunResult::interrupted: return "interrupted";
+    case RunResult::invalid_input: return "invalid_input";
   }
   return "?";
 }
@@ -93,6 +96,7 @@ class NodeContext final : public Context {
   void finish(std::string_view reason) override {
     e_.request_stop(RunResult::success, "node '" + n_.name + "' finished the run: " + std::string(reason));
   }
+  std::string find_file(std::string_view path) const override { return e_.find_file(path); }
   void fail(std::string_view reason) override {
     e_.request_stop(RunResult::failed, "node '" + n_.name + "' (" + n_.plugin_name() + "): " + std::string(reason));
   }
@@ -154,6 +158,8 @@ bool Executive::call(NodeRuntime& n, const char* phase, const std::function<void
   try {
     f();
     return true;
+  } catch (const BadInput& e) {
+    request_stop(RunResult::invalid_input, "node '" + n.name + "' (" + n.plugin_name() + "): " + e.what());
   } catch (const std::exception& e) {
     request_stop(RunResult::failed, "node '" + n.name + "' (" + n.plugin_name() + ") failed in " + phase + ": " + e.what());
   } catch (...) {
@@ -161,6 +167,45 @@ bool Executive::call(NodeRuntime& n, const char* phase, const std::function<void
                                         ": unknown exception");
   }
   return false;
+}
+
+std::vector<std::string> data_dirs() {
+  std::vector<std::string> dirs;
+  if (const char* env = std::getenv("BRICKYARD_DATA_PATH")) {
+    std::string s = env;
+    for (std::size_t start = 0;;) {
+      auto colon = s.find(':', start);
+      std::string d = s.substr(start, colon == std::string::npos ? std::string::npos : colon - start);
+      if (!d.empty()) dirs.push_back(d);
+      if (colon == std::string::npos) break;
+      start = colon + 1;
+    }
+  }
+  std::error_code ec;
+  std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (!ec) dirs.push_back((exe.parent_path().parent_path() / "share" / "brickyard" / "data").string());
+  return dirs;
+}
+
+std::string Executive::find_file(std::string_view path) const {
+  namespace fs = std::filesystem;
+  fs::path p(path);
+  std::error_code ec;
+  if (p.is_absolute()) {
+    if (fs::is_regular_file(p, ec)) return p.string();
+    throw BadInput("file not found: " + p.string());
+  }
+  std::vector<fs::path> tried;
+  const std::string& graph_file = graph_.decl->file;
+  if (!graph_file.empty()) tried.push_back(fs::path(graph_file).parent_path() / p);
+  tried.push_back(fs::current_path(ec) / p);
+  for (const auto& d : data_dirs()) tried.push_back(fs::path(d) / p);
+  std::string where;
+  for (const auto& t : tried) {
+    if (fs::is_regular_file(t, ec)) return t.lexically_normal().string();
+    where += "\n  " + t.lexically_normal().string();
+  }
+  throw BadInput("file '" + std::string(path) + "' not found; looked in:" + where);
 }
 
 void Executive::build() {

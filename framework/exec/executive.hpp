@@ -20,7 +20,7 @@ struct RunOptions {
   bool quiet = false;
 };
 
-enum class RunResult { success, failed, interrupted };
+enum class RunResult { success, failed, interrupted, invalid_input };
 const char* to_string(RunResult r);
 
 struct RunSummary {
@@ -43,6 +43,7 @@ class Executive {
 
   // For NodeContext.
   std::int64_t now_ns() const;
+  std::string find_file(std::string_view path) const;
   bool sim() const { return graph_.decl->clock.sim; }
   std::uint64_t seed() const { return opt_.seed; }
   void log(const NodeRuntime& n, LogLevel level, std::string_view msg);

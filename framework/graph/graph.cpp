@@ -219,8 +219,17 @@ GraphDecl parse_graph_text(const std::string& text, const std::string& file, con
       if (!w.contains("to")) c.err(ptr, "missing key \"to\"");
       if (!w.contains("from") || !w.contains("to")) continue;
       auto from = parse_endpoint(w["from"], ptr + "/from", c);
-      auto to = parse_endpoint(w["to"], ptr + "/to", c);
-      if (from && to) g.wires.push_back({*from, *to, i});
+      // "to" is one endpoint or a list of them (fan-out from one output).
+      if (w["to"].is_array()) {
+        if (w["to"].empty()) c.err(ptr + "/to", "empty list: name at least one \"node.port\"");
+        for (std::size_t k = 0; k < w["to"].size(); ++k) {
+          auto to = parse_endpoint(w["to"][k], ptr + "/to/" + std::to_string(k), c);
+          if (from && to) g.wires.push_back({*from, *to, i, "/" + std::to_string(k)});
+        }
+      } else {
+        auto to = parse_endpoint(w["to"], ptr + "/to", c);
+        if (from && to) g.wires.push_back({*from, *to, i, ""});
+      }
     }
   }
   if (root.contains("clock")) parse_clock(root["clock"], g, c);

@@ -25,6 +25,8 @@ struct Endpoint {
 struct WireDecl {
   Endpoint from, to;
   std::size_t index = 0;  // position in /wires
+  std::string to_item;    // "" when "to" is one endpoint; "/K" for item K of a "to" list
+  std::string to_ptr() const { return "/wires/" + std::to_string(index) + "/to" + to_item; }
 };
 
 struct ClockDecl {

@@ -161,19 +161,18 @@ ResolvedGraph resolve_graph(const GraphDecl& g, const Registry& reg, const std::
   }
 
   // Wires.
-  std::map<std::string, std::size_t> writer_of;  // "node.port" input -> wire index
+  std::map<std::string, std::string> writer_of;  // "node.port" input -> pointer of its wire
   std::map<std::string, std::set<std::string>> downstream_zero_delay;  // node -> data-triggered subscribers
   std::map<std::string, std::set<std::string>> downstream;
   for (const auto& w : g.wires) {
     const std::string ptr = "/wires/" + std::to_string(w.index);
     const PortSpec* ports[2] = {nullptr, nullptr};
     const Endpoint* ends[2] = {&w.from, &w.to};
-    const char* keys[2] = {"from", "to"};
     bool ok = true;
     for (int k = 0; k < 2; ++k) {
       auto nit = g.nodes.find(ends[k]->node);
       if (nit == g.nodes.end()) {
-        err(ptr + "/" + keys[k], "no node named \"" + ends[k]->node + "\"");
+        err(k ? w.to_ptr() : ptr + "/from", "no node named \"" + ends[k]->node + "\"");
         ok = false;
         continue;
       }
@@ -185,7 +184,7 @@ ResolvedGraph resolve_graph(const GraphDecl& g, const Registry& reg, const std::
         std::vector<std::string> names;
         for (const auto& p : m.ports)
           names.push_back(p.name + (p.direction == PortDirection::input ? " (input)" : " (output)"));
-        err(ptr + "/" + keys[k], "node \"" + ends[k]->node + "\" (" + m.name + ") has no port \"" + ends[k]->port +
+        err(k ? w.to_ptr() : ptr + "/from", "node \"" + ends[k]->node + "\" (" + m.name + ") has no port \"" + ends[k]->port +
                                      "\" (ports: " + join(names) + ")");
         ok = false;
       }
@@ -196,19 +195,18 @@ ResolvedGraph resolve_graph(const GraphDecl& g, const Registry& reg, const std::
       ok = false;
     }
     if (ports[1]->direction != PortDirection::input) {
-      err(ptr + "/to", "\"" + w.to.text() + "\" is an output; a wire goes to an input");
+      err(w.to_ptr(), "\"" + w.to.text() + "\" is an output; a wire goes to an input");
       ok = false;
     }
     if (!ok) continue;
     if (ports[0]->type_name != ports[1]->type_name || ports[0]->type_hash != ports[1]->type_hash) {
-      err(ptr, "type mismatch: " + w.from.text() + " carries " + ports[0]->type_name + ", " + w.to.text() +
+      err(w.to_item.empty() ? ptr : w.to_ptr(), "type mismatch: " + w.from.text() + " carries " + ports[0]->type_name + ", " + w.to.text() +
                    " takes " + ports[1]->type_name);
       continue;
     }
-    auto [it, fresh] = writer_of.emplace(w.to.text(), w.index);
+    auto [it, fresh] = writer_of.emplace(w.to.text(), w.to_ptr());
     if (!fresh) {
-      err(ptr + "/to", "input \"" + w.to.text() + "\" already has a writer (/wires/" + std::to_string(it->second) +
-                           "); an input takes one wire");
+      err(w.to_ptr(), "input \"" + w.to.text() + "\" already has a writer (" + it->second + "); an input takes one wire");
       continue;
     }
     downstream[w.from.node].insert(w.to.node);

@@ -132,6 +132,9 @@ void Registry::load_library(const std::string& path) {
     if (info->abi_major != BRICKYARD_ABI_MAJOR)
       fail("ABI major version " + std::to_string(info->abi_major) + ", this host needs " +
            std::to_string(BRICKYARD_ABI_MAJOR) + " (rebuild the plugin against this SDK)");
+    else if (info->abi_minor > BRICKYARD_ABI_MINOR)
+      fail("built against a newer SDK (ABI " + std::to_string(info->abi_major) + "." + std::to_string(info->abi_minor) +
+           ") than this host (" + std::to_string(BRICKYARD_ABI_MAJOR) + "." + std::to_string(BRICKYARD_ABI_MINOR) + ")");
     if (info->cxx_abi != BRICKYARD_CXX_ABI_TAG)
       fail("built with another C++ standard library ABI (tag " + std::to_string(info->cxx_abi) + ", host " +
            std::to_string(BRICKYARD_CXX_ABI_TAG) + ")");

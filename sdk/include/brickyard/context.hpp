@@ -1,6 +1,7 @@
 #pragma once
 // What a running node sees of the framework: time, parameters, typed ports, logs, metrics.
 // Plugins never read the wall clock: now() is the run's clock (sim or real).
+#include <brickyard/abi.hpp>
 #include <brickyard/message_traits.hpp>
 #include <brickyard/params.hpp>
 
@@ -66,6 +67,14 @@ template <class T> class Output {
 
 enum class LogLevel { debug, info, warn, error };
 
+// Throw from configure() when a parameter, or a file a parameter names, is wrong: the host stops
+// before any node runs and exits with code 2 (bad input), printing the node and this message.
+// Name the culprit in the message: the file and line, the parameter, the offending value.
+class BRICKYARD_EXPORT BadInput : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 struct Trigger {
   enum class Kind { periodic, input };
   Kind kind = Kind::periodic;
@@ -95,6 +104,12 @@ class Context {
   virtual void finish(std::string_view reason) = 0;
   // The run failed (an assertion, a crash of the car): stop, exit code 1.
   virtual void fail(std::string_view reason) = 0;
+
+  // A file named in a parameter. Absolute paths are taken as they are; a relative one is looked
+  // for next to the graph file, in the working directory, then in the data folders
+  // ($BRICKYARD_DATA_PATH, then <prefix>/share/brickyard/data). Throws BadInput naming every
+  // place it looked when none has it.
+  virtual std::string find_file(std::string_view path) const = 0;
 
   template <class T> Input<T> input(std::string_view port) {
     auto* c = input_channel(port);

@@ -1,0 +1,263 @@
+#include "lidar.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace brickyard::sim {
+namespace {
+constexpr double kInf = std::numeric_limits<double>::infinity();
+}
+
+std::vector<double> row_elevations(int rows, double lo_deg, double hi_deg, const std::string& spacing,
+                                   double exponent) {
+  std::vector<double> e(rows);
+  const double lo = lo_deg * M_PI / 180, hi = hi_deg * M_PI / 180;
+  for (int i = 0; i < rows; ++i) {
+    double u = rows == 1 ? 0.5 : static_cast<double>(i) / (rows - 1);  // 0..1, bottom to top
+    if (spacing == "horizon") {
+      double w = 2 * u - 1;  // -1..1
+      double m = std::pow(std::abs(w), exponent);
+      e[i] = w < 0 ? lo * m : hi * m;
+    } else {
+      e[i] = lo + (hi - lo) * u;
+    }
+  }
+  return e;
+}
+
+LidarCaster::LidarCaster(const Track& track, LidarSpec spec) : track_(track), spec_(std::move(spec)) {
+  const auto& w = track.spec();
+  const int n = track.size();
+  pylons_ = w.pylons;
+  std::vector<int> pseg(pylons_.size());
+  for (std::size_t i = 0; i < pylons_.size(); ++i) pseg[i] = track.project(pylons_[i].x, pylons_[i].y).seg;
+  std::vector<std::size_t> order(pylons_.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](auto a, auto b) { return pseg[a] < pseg[b]; });
+  std::vector<Pylon> sorted;
+  std::vector<int> sorted_seg;
+  for (auto i : order) { sorted.push_back(pylons_[i]); sorted_seg.push_back(pseg[i]); }
+  pylons_ = sorted;
+  seg_.resize(n);
+  for (int i = 0; i < n; ++i) {
+    const auto& s = track.segments()[i];
+    int j = track.wrap(i + 1);
+    Seg& g = seg_[i];
+    g.px = s.p.x(); g.py = s.p.y(); g.tx = s.t.x(); g.ty = s.t.y(); g.len = s.length;
+    g.wl0 = w.line.width_left[i]; g.dwl = (w.line.width_left[j] - g.wl0) / s.length;
+    g.wr0 = w.line.width_right[i]; g.dwr = (w.line.width_right[j] - g.wr0) / s.length;
+    g.tb0 = std::tan(w.bank[i]); g.dtb = (std::tan(w.bank[j]) - g.tb0) / s.length;
+    g.wall_l = w.walls.left ? g.wl0 + w.walls.left_offset : kInf;
+    g.wall_r = w.walls.right ? -(g.wr0 + w.walls.right_offset) : -kInf;
+    g.pylon_begin = static_cast<int>(std::lower_bound(sorted_seg.begin(), sorted_seg.end(), i) - sorted_seg.begin());
+    g.pylon_end = static_cast<int>(std::upper_bound(sorted_seg.begin(), sorted_seg.end(), i) - sorted_seg.begin());
+  }
+  const int nb = (n + kBlock - 1) / kBlock;
+  blocks_.resize(nb);
+  for (int b = 0; b < nb; ++b) {
+    const int first = b * kBlock, last = std::min(n, first + kBlock) - 1;
+    const auto& S = track.segments();
+    Block& B = blocks_[b];
+    const Eigen::Vector2d p0 = S[first].p, p1 = S[last].p + S[last].t * S[last].length;
+    B.sx = p0.x(); B.sy = p0.y(); B.stx = S[first].t.x(); B.sty = S[first].t.y();
+    B.ex = p1.x(); B.ey = p1.y(); B.etx = S[last].t.x(); B.ety = S[last].t.y();
+    const Eigen::Vector2d chord = (p1 - p0).normalized();
+    B.cx = p0.x(); B.cy = p0.y(); B.ctx = chord.x(); B.cty = chord.y();
+    auto chord_d = [&](const Eigen::Vector2d& q) { return (q.y() - p0.y()) * chord.x() - (q.x() - p0.x()) * chord.y(); };
+    B.z_max = -kInf;
+    B.dl_safe = kInf;
+    B.dr_safe = -kInf;
+    for (int i = first; i <= last + 1; ++i) {
+      const int ii = track.wrap(i);
+      const int sg = std::min(i, last);  // the normal of the segment the point belongs to
+      const Eigen::Vector2d P = S[ii].p, nrm = S[sg].n;
+      const double wl = w.line.width_left[ii], wr = w.line.width_right[ii], tb = std::tan(w.bank[ii]);
+      B.z_max = std::max({B.z_max, wl * tb, -wr * tb});
+      if (w.walls.left) B.dl_safe = std::min(B.dl_safe, chord_d(P + nrm * (wl + w.walls.left_offset)));
+      if (w.walls.right) B.dr_safe = std::max(B.dr_safe, chord_d(P - nrm * (wr + w.walls.right_offset)));
+    }
+    // Margins for what lies between the sampled points (wall lines are straight between them).
+    B.dl_safe -= 0.25;
+    B.dr_safe += 0.25;
+    B.z_max += 0.01;
+  }
+  for (std::size_t i = 0; i < pylons_.size(); ++i) {
+    Block& B = blocks_[sorted_seg[i] / kBlock];
+    B.z_max = std::max(B.z_max, pylons_[i].z + pylons_[i].height + 0.01);
+  }
+  wall_left_ = w.walls.left;
+  wall_right_ = w.walls.right;
+  wall_left_off_ = w.walls.left_offset;
+  wall_right_off_ = w.walls.right_offset;
+  wall_h_ = w.walls.height;
+  body_from_sensor_ = Eigen::Translation3d(spec_.mount) * Eigen::AngleAxisd(spec_.yaw, Eigen::Vector3d::UnitZ()) *
+                      Eigen::AngleAxisd(spec_.pitch, Eigen::Vector3d::UnitY()) *
+                      Eigen::AngleAxisd(spec_.roll, Eigen::Vector3d::UnitX());
+  for (int c = 0; c < spec_.columns; ++c) {
+    double a = spec_.columns == 1 ? 0.0 : spec_.h_fov / 2 - spec_.h_fov * c / (spec_.columns - 1);
+    col_c_.push_back(std::cos(a));
+    col_s_.push_back(std::sin(a));
+  }
+  for (double e : spec_.elevations) {
+    row_c_.push_back(std::cos(e));
+    row_s_.push_back(std::sin(e));
+  }
+}
+
+RayHit LidarCaster::cast(const Eigen::Vector3d& o, const Eigen::Vector3d& v, int k) const {
+  // March from slab to slab (the region of a segment between the planes normal to it at its
+  // ends). Within a slab, the ray's along (a) and across (d) coordinates are linear in t, so the
+  // wall lines are crossed at a t found in closed form and the road (a straight cross-section
+  // whose bank varies linearly) by a few regula falsi steps.
+  const double max_t = spec_.max_range;
+  const int n = static_cast<int>(seg_.size());
+  const double ox = o.x(), oy = o.y(), oz = o.z(), vx = v.x(), vy = v.y(), vz = v.z();
+  RayHit best;
+  double best_t = max_t;
+  int dir = 0;
+  double t0 = 0;
+  for (int steps = 0; steps < n; ++steps) {
+    // Entering a block: cross it in one step when nothing in it can be reached.
+    if (steps > 0 && (dir > 0 ? k % kBlock == 0 : (k % kBlock == kBlock - 1 || k == n - 1))) {
+      const Block& B = blocks_[k / kBlock];
+      const double px = dir > 0 ? B.ex : B.sx, py = dir > 0 ? B.ey : B.sy;
+      const double nx = dir > 0 ? B.etx : B.stx, ny = dir > 0 ? B.ety : B.sty;
+      const double vn = vx * nx + vy * ny;
+      if (dir > 0 ? vn > 1e-12 : vn < -1e-12) {
+        const double t_out = ((px - ox) * nx + (py - oy) * ny) / vn;
+        if (t_out > t0 && std::min(oz + vz * t0, oz + vz * std::min(t_out, max_t)) > B.z_max) {
+          auto cd = [&](double t) { return (oy + vy * t - B.cy) * B.ctx - (ox + vx * t - B.cx) * B.cty; };
+          const double di = cd(t0), de = cd(t_out);
+          if (std::max(di, de) < B.dl_safe && std::min(di, de) > B.dr_safe) {
+            if (t_out >= max_t) break;
+            t0 = t_out;
+            k = dir > 0 ? std::min(n, (k / kBlock + 1) * kBlock) % n
+                        : ((k / kBlock) * kBlock - 1 + n) % n;
+            steps += kBlock - 1;
+            continue;
+          }
+        }
+      }
+    }
+    const Seg& g = seg_[k];
+    const double rx = ox - g.px, ry = oy - g.py;
+    const double a0 = rx * g.tx + ry * g.ty, va = vx * g.tx + vy * g.ty;
+    const double d0 = ry * g.tx - rx * g.ty, vd = vy * g.tx - vx * g.ty;
+    if (dir == 0) dir = va >= 0 ? 1 : -1;
+    double t1 = kInf;
+    if (dir > 0 ? va > 1e-12 : va < -1e-12) t1 = std::max((dir > 0 ? g.len - a0 : -a0) / va, t0);
+    // Height of the ray above the road at t.
+    auto above = [&](double t) {
+      const double a = std::clamp(a0 + va * t, 0.0, g.len), d = d0 + vd * t;
+      return oz + vz * t - std::clamp(d, -(g.wr0 + g.dwr * a), g.wl0 + g.dwl * a) * (g.tb0 + g.dtb * a);
+    };
+    double te = std::min(t1, best_t);
+    // Pylons standing in this segment: vertical cylinders.
+    for (int p = g.pylon_begin; p < g.pylon_end; ++p) {
+      const Pylon& c = pylons_[p];
+      const double cx = ox - c.x, cy = oy - c.y;
+      const double A = vx * vx + vy * vy, B = cx * vx + cy * vy, C = cx * cx + cy * cy - c.radius * c.radius;
+      const double disc = B * B - A * C;
+      if (A < 1e-12 || disc < 0) continue;
+      const double t = (-B - std::sqrt(disc)) / A;
+      if (t < t0 || t >= te) continue;
+      const double z = oz + vz * t;
+      if (z < c.z || z > c.z + c.height) continue;
+      te = best_t = t;
+      best.surface = Surface::pylon;
+      best.cos_incidence = std::abs((cx + vx * t) * vx + (cy + vy * t) * vy) / (c.radius * std::sqrt(A) + 1e-12);
+    }
+    // Walls: is the ray beyond a wall line at the end of its stretch in this slab?
+    double t_wall = kInf;
+    if (std::isfinite(te)) {
+      const double ae = std::clamp(a0 + va * te, 0.0, g.len), de = d0 + vd * te;
+      if (de >= g.wall_l + g.dwl * ae) {
+        const double den = vd - g.dwl * va;  // d0 + vd t = wall_l + dwl (a0 + va t)
+        if (den > 1e-12) t_wall = std::clamp((g.wall_l + g.dwl * a0 - d0) / den, t0, te);
+      } else if (de <= g.wall_r - g.dwr * ae) {
+        const double den = vd + g.dwr * va;  // d0 + vd t = wall_r - dwr (a0 + va t)
+        if (den < -1e-12) t_wall = std::clamp((g.wall_r - g.dwr * a0 - d0) / den, t0, te);
+      }
+    } else {
+      // The ray runs along this slab for ever (parallel to its end planes): it leaves by a wall.
+      if (vd > 1e-12 && std::isfinite(g.wall_l)) t_wall = std::max((g.wall_l + g.dwl * a0 - d0) / (vd - g.dwl * va), t0);
+      if (vd < -1e-12 && std::isfinite(g.wall_r)) t_wall = std::max((g.wall_r - g.dwr * a0 - d0) / (vd + g.dwr * va), t0);
+      if (t_wall > max_t) t_wall = kInf;
+    }
+    const double tf = std::min({te, t_wall, max_t});
+    const double f1 = above(tf);
+    if (f1 <= 0) {
+      double lo = t0, hi = tf, flo = above(t0), fhi = f1, t = hi;
+      if (flo > 0) {
+        for (int it = 0; it < 4; ++it) {
+          t = lo + (hi - lo) * flo / (flo - fhi);
+          const double f = above(t);
+          if (std::abs(f) < 1e-5) break;
+          if (f > 0) { lo = t; flo = f; } else { hi = t; fhi = f; }
+        }
+      } else {
+        t = t0;
+      }
+      best_t = t;
+      best.surface = Surface::road;
+      const double a = std::clamp(a0 + va * t, 0.0, g.len), d = d0 + vd * t;
+      const bool on_road = d <= g.wl0 + g.dwl * a && d >= -(g.wr0 + g.dwr * a);
+      // Surface normal (-grad z, 1): grad z = tan(bank) * (left normal) on the road, 0 beyond.
+      const double tb = on_road ? g.tb0 + g.dtb * a : 0.0;
+      const double gx = -tb * g.ty, gy = tb * g.tx;
+      best.cos_incidence = std::abs(-gx * vx - gy * vy + vz) / std::sqrt(1 + tb * tb);
+      break;
+    }
+    if (best.surface == Surface::pylon && best_t <= tf) break;
+    if (t_wall <= tf) {
+      // The wall stands on the road edge; over its top the world ends: nothing beyond returns.
+      if (f1 <= wall_h_) {
+        best_t = t_wall;
+        best.surface = Surface::wall;
+        best.cos_incidence = std::abs(vd);
+      }
+      break;
+    }
+    if (tf >= max_t || t1 >= best_t) break;
+    t0 = t1;
+    k = dir > 0 ? (k + 1 == n ? 0 : k + 1) : (k == 0 ? n - 1 : k - 1);
+  }
+  best.range = best.surface == Surface::none ? 0 : best_t;
+  return best;
+}
+
+std::size_t LidarCaster::scan(const Eigen::Isometry3d& world_from_body, int seg_hint, Rng& rng, double noise_factor,
+                              PointBuffers& out) const {
+  const Eigen::Isometry3d ws = world_from_body * body_from_sensor_;
+  const Eigen::Vector3d o = ws.translation();
+  const Eigen::Matrix3d R = ws.linear();
+  const int seg = track_.project(o.x(), o.y(), seg_hint).seg;
+  const double sigma = spec_.range_noise * noise_factor;
+  const std::size_t rays = static_cast<std::size_t>(spec_.columns) * row_c_.size();
+  out.x.reserve(out.x.size() + rays);
+  out.y.reserve(out.y.size() + rays);
+  out.z.reserve(out.z.size() + rays);
+  out.intensity.reserve(out.intensity.size() + rays);
+  for (int c = 0; c < spec_.columns; ++c) {
+    for (std::size_t r = 0; r < row_c_.size(); ++r) {
+      const Eigen::Vector3d ds(row_c_[r] * col_c_[c], row_c_[r] * col_s_[c], row_s_[r]);
+      const Eigen::Vector3d dw = R * ds;
+      RayHit h = cast(o, dw, seg);
+      if (h.surface == Surface::none) continue;
+      double range = h.range + (sigma > 0 ? rng.normal(sigma) : 0.0);
+      if (spec_.dropout > 0 && rng.uniform() < spec_.dropout) continue;
+      if (range < spec_.min_range || range > spec_.max_range) continue;
+      double refl = h.surface == Surface::road ? spec_.reflectivity_road
+                    : h.surface == Surface::wall ? spec_.reflectivity_wall
+                                                 : spec_.reflectivity_pylon;
+      out.x.push_back(static_cast<float>(range * ds.x()));
+      out.y.push_back(static_cast<float>(range * ds.y()));
+      out.z.push_back(static_cast<float>(range * ds.z()));
+      out.intensity.push_back(static_cast<float>(refl * h.cos_incidence));
+    }
+  }
+  return rays;
+}
+
+}  // namespace brickyard::sim

@@ -1,0 +1,90 @@
+#pragma once
+// Ray casting LiDAR against the track world: the banked road surface, the walls and the pylons.
+// Framework-free. Rays march segment by segment along the centre line from the sensor's segment,
+// so a ray costs a few segment steps whatever the size of the track (see docs/simulator.md).
+#include "rng.hpp"
+#include "track.hpp"
+
+#include <Eigen/Geometry>
+
+#include <string>
+#include <vector>
+
+namespace brickyard::sim {
+
+enum class Surface : unsigned char { none = 0, road = 1, wall = 2, pylon = 3 };
+
+struct RayHit {
+  double range = 0;  // m along the ray
+  Surface surface = Surface::none;
+  double cos_incidence = 1;
+};
+
+struct LidarSpec {
+  Eigen::Vector3d mount = Eigen::Vector3d::Zero();  // m, vehicle (base_link) frame
+  double roll = 0, pitch = 0, yaw = 0;              // rad, mount orientation
+  double h_fov = 120 * M_PI / 180;                  // rad, centred on the sensor's x axis
+  int columns = 850;
+  std::vector<double> elevations;                   // rad, one per row
+  double min_range = 1.0, max_range = 200.0;        // m
+  double range_noise = 0.02;                        // m, 1 sigma
+  double dropout = 0.0;                             // probability a return is lost
+  double reflectivity_road = 0.15, reflectivity_wall = 0.6, reflectivity_pylon = 0.9;
+};
+
+// Row elevations: "uniform" spacing, or "horizon": rows concentrated near 0 deg as the Hydra
+// does (elevation = limit * |u|^exponent, u evenly spaced in [-1, 1]).
+std::vector<double> row_elevations(int rows, double lo_deg, double hi_deg, const std::string& spacing,
+                                   double exponent);
+
+// Points of one frame, sensor frame.
+struct PointBuffers {
+  std::vector<float> x, y, z, intensity;
+  void clear() { x.clear(); y.clear(); z.clear(); intensity.clear(); }
+};
+
+class LidarCaster {
+ public:
+  LidarCaster(const Track& track, LidarSpec spec);
+  const LidarSpec& spec() const { return spec_; }
+
+  // First hit of the ray o + t v (world frame, v unit) within max_range; `seg` is the centre-line
+  // segment o lies on (Track::project).
+  RayHit cast(const Eigen::Vector3d& o, const Eigen::Vector3d& v, int seg) const;
+
+  // One frame from a vehicle pose (world_from_body). Noise sigma is multiplied by noise_factor.
+  // Returns the number of rays cast.
+  std::size_t scan(const Eigen::Isometry3d& world_from_body, int seg_hint, Rng& rng, double noise_factor,
+                   PointBuffers& out) const;
+
+ private:
+  // Per segment, everything as a function of a (m along the segment from its start).
+  struct Seg {
+    double px, py, tx, ty, len;
+    double wl0, dwl, wr0, dwr;     // road edges: d = +wl (left), -wr (right)
+    double tb0, dtb;               // tan(bank)
+    double wall_l, wall_r;         // wall lines at a = 0: d (+inf / -inf when absent); same slope as the edges
+    int pylon_begin, pylon_end;    // into pylons_
+  };
+  // Runs of kBlock segments a ray may cross in one step when it stays above everything in them
+  // and inside their walls (long rays near the horizon would otherwise walk every slab).
+  static constexpr int kBlock = 8;
+  struct Block {
+    double sx, sy, stx, sty;  // start point and the normal of the entry plane (first segment's tangent)
+    double ex, ey, etx, ety;  // end point and the normal of the exit plane (last segment's tangent)
+    double cx, cy, ctx, cty;  // chord frame: origin and unit direction
+    double z_max;             // highest road, edge or pylon top in the block
+    double dl_safe, dr_safe;  // chord-frame d between which no wall can be reached
+  };
+  std::vector<Block> blocks_;
+  const Track& track_;
+  LidarSpec spec_;
+  std::vector<Seg> seg_;
+  std::vector<Pylon> pylons_;      // sorted by segment
+  double wall_left_off_, wall_right_off_, wall_h_;
+  bool wall_left_, wall_right_;
+  Eigen::Isometry3d body_from_sensor_;
+  std::vector<double> col_c_, col_s_, row_c_, row_s_;
+};
+
+}  // namespace brickyard::sim

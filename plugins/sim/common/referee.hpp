@@ -1,0 +1,69 @@
+#pragma once
+// The referee's bookkeeping from ground truth and the track: laps and lap times, speed, wall
+// contacts, track-limit violations, clearances to walls and pylons, and localization error.
+// Framework-free; the referee node feeds it and reports its figures as metrics.
+#include "track.hpp"
+
+#include <deque>
+#include <limits>
+#include <vector>
+
+namespace brickyard::sim {
+
+// The car's plan-view rectangle relative to base_link (rear-axle centre).
+struct Footprint {
+  double front = 3.9;       // m ahead of the rear axle (Dallara AV-21 is 4.9 m long)
+  double rear = 1.0;        // m behind it
+  double half_width = 0.97; // m
+};
+
+struct TruthSample {
+  double t = 0, x = 0, y = 0, yaw = 0, speed = 0;
+};
+
+class Referee {
+ public:
+  Referee(const Track& track, Footprint fp);
+
+  struct Events {
+    bool lap_completed = false, wall_contact = false, track_violation = false, obstacle_hit = false;
+  };
+  Events update(const TruthSample& s);
+  // An estimate of the position at time t: compared with the truth interpolated at t.
+  // Returns false (and counts nothing) when t is outside the truth history.
+  bool localization(double t, double x, double y);
+
+  int laps_completed() const { return static_cast<int>(lap_times_.size()); }
+  const std::vector<double>& lap_times() const { return lap_times_; }
+  double max_speed() const { return max_speed_; }
+  int wall_contacts() const { return wall_contacts_; }
+  int track_violations() const { return track_violations_; }
+  double min_wall_clearance() const { return min_wall_clearance_; }
+  int obstacles_hit() const { return obstacles_hit_; }
+  double obstacle_min_clearance() const { return obstacle_min_clearance_; }  // +inf: no pylons
+  double localization_rmse() const;                                           // NaN: no samples
+  double localization_max_error() const;
+  std::size_t localization_samples() const { return loc_n_; }
+  double last_wall_clearance() const { return last_wall_clearance_; }
+  double s() const { return last_s_; }
+
+ private:
+  const Track& track_;
+  Footprint fp_;
+  int hint_ = -1;
+  bool started_ = false, timing_ = false;
+  double last_s_ = 0, last_t_ = 0, lap_start_ = 0;
+  std::vector<double> lap_times_;
+  double max_speed_ = 0;
+  int wall_contacts_ = 0, track_violations_ = 0, obstacles_hit_ = 0;
+  bool in_contact_ = false, in_violation_ = false;
+  std::vector<bool> pylon_hit_;
+  double min_wall_clearance_ = std::numeric_limits<double>::infinity();
+  double last_wall_clearance_ = std::numeric_limits<double>::infinity();
+  double obstacle_min_clearance_ = std::numeric_limits<double>::infinity();
+  std::deque<TruthSample> history_;
+  double loc_sq_ = 0, loc_max_ = 0;
+  std::size_t loc_n_ = 0;
+};
+
+}  // namespace brickyard::sim

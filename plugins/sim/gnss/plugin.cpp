@@ -1,0 +1,99 @@
+// sim.gnss: one GNSS receiver. Samples the ground truth at its antenna (lever arm from base_link),
+// adds RTK noise, reports a sigma, and applies the fault windows of its `faults` parameter.
+#include <brickyard/msgs/GnssFix.h>
+#include <brickyard/plugin.hpp>
+
+#include "../common/rng.hpp"
+#include "../sensor_faults.hpp"
+#include "../world_msg.hpp"
+
+namespace {
+
+using namespace brickyard;
+using namespace brickyard::sim;
+
+class Gnss : public Plugin {
+ public:
+  static Manifest manifest() {
+    return Manifest("sim.gnss", "1.0.0")
+        .describe("GNSS receiver (NovAtel PwrPak7 on the AV-21): antenna position with RTK noise and fault windows")
+        .input<msgs::VehicleState>("truth", "ground truth", true, 1)
+        .output<msgs::GnssFix>("fix", "position fixes in the map frame")
+        .param(ParamSpec::integer("receiver_id", 0).range(0, 255))
+        .param(ParamSpec::number("rate_hz", 20).in_unit("Hz").at_least(0.1))
+        .param(ParamSpec::numbers("antenna", {1.606, 0.05, 1.0}).doc("antenna position in base_link, m (x, y, z)"))
+        .param(ParamSpec::number("sigma_m", 0.015).in_unit("m").at_least(0).doc("horizontal noise, 1 sigma (RTK fixed: 1-2 cm)"))
+        .param(ParamSpec::number("sigma_z_m", 0.03).in_unit("m").at_least(0))
+        .param(ParamSpec::number("reported_sigma_m", -1).in_unit("m").doc("sigma the receiver reports; < 0: sigma_m"))
+        .param(ParamSpec::integer("fix_type", 3).range(0, 3).doc("0 none, 1 single, 2 float RTK, 3 fixed RTK"))
+        .param(ParamSpec::json("faults", "[]").doc("fault windows: bias, drift, noise, freeze, dropout, spikes, sigma (see docs/simulator.md)"))
+        .periodic("rate_hz");
+  }
+
+  void configure(Context& ctx) override {
+    const Params& p = ctx.params();
+    id_ = static_cast<std::uint8_t>(p.integer("receiver_id"));
+    const auto& a = p.numbers("antenna");
+    if (a.size() != 3) throw BadInput("parameter 'antenna': needs 3 numbers (x, y, z), has " + std::to_string(a.size()));
+    antenna_ = {a[0], a[1], a[2]};
+    sigma_ = p.number("sigma_m");
+    sigma_z_ = p.number("sigma_z_m");
+    reported_ = p.number("reported_sigma_m") < 0 ? sigma_ : p.number("reported_sigma_m");
+    fix_type_ = static_cast<int>(p.integer("fix_type"));
+    faults_ = read_faults(p, 3, {"bias", "drift", "noise", "freeze", "dropout", "spikes", "sigma"});
+    rng_ = Rng(ctx.seed());
+    truth_ = ctx.input<msgs::VehicleState>("truth");
+    out_ = ctx.output<msgs::GnssFix>("fix");
+  }
+
+  void step(Context& ctx) override {
+    auto s = newest(truth_);
+    if (!s) return;
+    const double t = ctx.now_s();
+    // Noise is drawn every epoch, faulty or not, so a fault window leaves the rest of the run's
+    // noise sequence as it would have been.
+    const double n[3] = {rng_.normal(), rng_.normal(), rng_.normal()};
+    FaultEffect e = faults_.at(t, rng_);
+    if (e.drop) return;
+    if (e.freeze && last_) {
+      msgs::GnssFix m = *last_;
+      m.header().stamp_ns(ctx.now_ns());
+      m.header().seq(seq_++);
+      out_.publish(std::move(m));
+      return;
+    }
+    const Eigen::Vector3d p = body_pose(*s) * antenna_;
+    msgs::GnssFix m;
+    m.header().stamp_ns(ctx.now_ns());
+    m.header().seq(seq_++);
+    m.header().frame_id("map");
+    m.receiver_id(id_);
+    m.x(p.x() + e.offset[0] + sigma_ * e.noise_factor * n[0]);
+    m.y(p.y() + e.offset[1] + sigma_ * e.noise_factor * n[1]);
+    m.z(p.z() + e.offset[2] + sigma_z_ * e.noise_factor * n[2]);
+    m.sigma_x(reported_ * e.sigma_factor);
+    m.sigma_y(reported_ * e.sigma_factor);
+    m.sigma_z(reported_ * e.sigma_factor * (sigma_ > 0 ? sigma_z_ / sigma_ : 1.0));
+    int ft = e.fix_type.value_or(fix_type_);
+    m.fix_type(static_cast<std::uint8_t>(ft));
+    m.valid(ft > 0);
+    last_ = std::make_shared<msgs::GnssFix>(m);
+    out_.publish(std::move(m));
+  }
+
+ private:
+  std::uint8_t id_ = 0;
+  Eigen::Vector3d antenna_;
+  double sigma_ = 0, sigma_z_ = 0, reported_ = 0;
+  int fix_type_ = 3;
+  FaultSchedule faults_;
+  Rng rng_;
+  std::uint32_t seq_ = 0;
+  std::shared_ptr<msgs::GnssFix> last_;
+  Input<msgs::VehicleState> truth_;
+  Output<msgs::GnssFix> out_;
+};
+
+}  // namespace
+
+BRICKYARD_PLUGINS(Gnss)

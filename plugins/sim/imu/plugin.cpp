@@ -1,0 +1,86 @@
+// sim.imu: specific force and angular rate in the vehicle frame, with white noise, constant bias
+// and fault windows. Mounted at base_link (lever-arm effects are not modelled).
+#include <brickyard/msgs/Imu.h>
+#include <brickyard/plugin.hpp>
+
+#include "../common/rng.hpp"
+#include "../sensor_faults.hpp"
+#include "../world_msg.hpp"
+
+namespace {
+
+using namespace brickyard;
+using namespace brickyard::sim;
+
+class ImuSensor : public Plugin {
+ public:
+  static Manifest manifest() {
+    return Manifest("sim.imu", "1.0.0")
+        .describe("IMU: specific force (accelerometer) and angular rate (gyro) with noise, bias and fault windows")
+        .input<msgs::VehicleState>("truth", "ground truth", true, 1)
+        .output<msgs::Imu>("imu", "measurements in the vehicle frame (x forward, y left, z up)")
+        .param(ParamSpec::number("rate_hz", 125).in_unit("Hz").at_least(1))
+        .param(ParamSpec::number("accel_noise", 0.05).in_unit("m/s^2").at_least(0))
+        .param(ParamSpec::number("gyro_noise", 0.002).in_unit("rad/s").at_least(0))
+        .param(ParamSpec::numbers("accel_bias", {0.02, -0.01, 0.0}).doc("m/s^2, x y z"))
+        .param(ParamSpec::numbers("gyro_bias", {0.0005, -0.0003, 0.0002}).doc("rad/s, x y z"))
+        .param(ParamSpec::json("faults", "[]").doc("windows over (ax, ay, az, gx, gy, gz): bias, drift, noise, freeze, dropout, spikes"))
+        .periodic("rate_hz");
+  }
+
+  void configure(Context& ctx) override {
+    const Params& p = ctx.params();
+    an_ = p.number("accel_noise");
+    gn_ = p.number("gyro_noise");
+    for (const char* k : {"accel_bias", "gyro_bias"})
+      if (p.numbers(k).size() != 3) throw BadInput(std::string("parameter '") + k + "': needs 3 numbers");
+    for (int i = 0; i < 3; ++i) {
+      bias_[i] = p.numbers("accel_bias")[i];
+      bias_[3 + i] = p.numbers("gyro_bias")[i];
+    }
+    faults_ = read_faults(p, 6, {"bias", "drift", "noise", "freeze", "dropout", "spikes"});
+    rng_ = Rng(ctx.seed());
+    truth_ = ctx.input<msgs::VehicleState>("truth");
+    out_ = ctx.output<msgs::Imu>("imu");
+  }
+
+  void step(Context& ctx) override {
+    auto s = newest(truth_);
+    if (!s) return;
+    double n[6];
+    for (double& v : n) v = rng_.normal();
+    FaultEffect e = faults_.at(ctx.now_s(), rng_);
+    if (e.drop) return;
+    msgs::Imu m;
+    if (e.freeze && last_) {
+      m = *last_;
+    } else {
+      // Specific force = acceleration - gravity, in body axes; the car moves in the road plane.
+      const Eigen::Matrix3d R = body_pose(*s).linear();
+      const Eigen::Vector3d f = Eigen::Vector3d(s->ax(), s->ay(), 0.0) - R.transpose() * Eigen::Vector3d(0, 0, -9.81);
+      const double truth[6] = {f.x(), f.y(), f.z(), 0.0, 0.0, s->yaw_rate()};
+      double v[6];
+      for (int i = 0; i < 6; ++i) v[i] = truth[i] + bias_[i] + e.offset[i] + (i < 3 ? an_ : gn_) * e.noise_factor * n[i];
+      m.accel_x(v[0]); m.accel_y(v[1]); m.accel_z(v[2]);
+      m.gyro_x(v[3]); m.gyro_y(v[4]); m.gyro_z(v[5]);
+    }
+    m.header().stamp_ns(ctx.now_ns());
+    m.header().seq(seq_++);
+    m.header().frame_id("vehicle");
+    last_ = std::make_shared<msgs::Imu>(m);
+    out_.publish(std::move(m));
+  }
+
+ private:
+  double an_ = 0, gn_ = 0, bias_[6] = {};
+  FaultSchedule faults_;
+  Rng rng_;
+  std::uint32_t seq_ = 0;
+  std::shared_ptr<msgs::Imu> last_;
+  Input<msgs::VehicleState> truth_;
+  Output<msgs::Imu> out_;
+};
+
+}  // namespace
+
+BRICKYARD_PLUGINS(ImuSensor)

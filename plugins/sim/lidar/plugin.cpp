@@ -1,0 +1,138 @@
+// sim.lidar: one LiDAR (Luminar Hydra on the AV-21 by default) ray casting the world from the
+// vehicle's ground-truth pose; points in the sensor frame, the sensor's mount in the message.
+#include <brickyard/msgs/PointCloud.h>
+#include <brickyard/plugin.hpp>
+
+#include "../common/lidar.hpp"
+#include "../sensor_faults.hpp"
+#include "../world_msg.hpp"
+
+namespace {
+
+using namespace brickyard;
+using namespace brickyard::sim;
+
+constexpr double kDeg = M_PI / 180.0;
+
+class Lidar : public Plugin {
+ public:
+  static Manifest manifest() {
+    return Manifest("sim.lidar", "1.0.0")
+        .describe("LiDAR by ray casting against the banked road, walls and pylons; range noise, dropout, frame loss")
+        .input<msgs::TrackWorld>("world", "the world to scan", true, 1)
+        .input<msgs::VehicleState>("truth", "vehicle pose", true, 1)
+        .output<msgs::PointCloud>("cloud", "points in the sensor frame")
+        .param(ParamSpec::integer("sensor_id", 0).range(0, 255))
+        .param(ParamSpec::number("rate_hz", 20).in_unit("Hz").at_least(0.1))
+        .param(ParamSpec::numbers("mount", {2.342, 0.0, 0.448}).doc("sensor position in base_link, m (AV-21 front Hydra)"))
+        .param(ParamSpec::numbers("mount_rpy_deg", {0.0, 0.0, 0.0}).doc("sensor roll, pitch, yaw in base_link, deg"))
+        .param(ParamSpec::number("h_fov_deg", 120).in_unit("deg").range(1, 360))
+        .param(ParamSpec::integer("columns", 850).range(1, 100000))
+        .param(ParamSpec::integer("rows", 32).range(1, 1024))
+        .param(ParamSpec::number("v_min_deg", -15).in_unit("deg").range(-90, 90))
+        .param(ParamSpec::number("v_max_deg", 15).in_unit("deg").range(-90, 90))
+        .param(ParamSpec::string("row_spacing", "horizon").one_of({"horizon", "uniform"})
+                   .doc("horizon: rows concentrated near 0 deg as on the Hydra; uniform: evenly spaced"))
+        .param(ParamSpec::number("horizon_exponent", 2.0).at_least(1).doc("horizon spacing: elevation ~ |u|^exponent"))
+        .param(ParamSpec::numbers("row_angles_deg", {}).doc("explicit row elevations, deg; overrides rows and spacing"))
+        .param(ParamSpec::number("min_range", 1.0).in_unit("m").at_least(0))
+        .param(ParamSpec::number("max_range", 200.0).in_unit("m").at_least(1))
+        .param(ParamSpec::number("range_noise", 0.02).in_unit("m").at_least(0).doc("1 sigma"))
+        .param(ParamSpec::number("dropout", 0.0).range(0, 1).doc("probability that a return is lost"))
+        .param(ParamSpec::json("faults", "[]").doc("windows: noise (range sigma x factor), frame_loss, freeze, dropout"))
+        .periodic("rate_hz");
+  }
+
+  void configure(Context& ctx) override {
+    const Params& p = ctx.params();
+    id_ = static_cast<std::uint8_t>(p.integer("sensor_id"));
+    const auto& m = p.numbers("mount");
+    const auto& r = p.numbers("mount_rpy_deg");
+    if (m.size() != 3) throw BadInput("parameter 'mount': needs 3 numbers (x, y, z)");
+    if (r.size() != 3) throw BadInput("parameter 'mount_rpy_deg': needs 3 numbers (roll, pitch, yaw)");
+    if (p.number("v_min_deg") >= p.number("v_max_deg")) throw BadInput("parameter 'v_min_deg': must be below v_max_deg");
+    spec_.mount = {m[0], m[1], m[2]};
+    spec_.roll = r[0] * kDeg;
+    spec_.pitch = r[1] * kDeg;
+    spec_.yaw = r[2] * kDeg;
+    spec_.h_fov = p.number("h_fov_deg") * kDeg;
+    spec_.columns = static_cast<int>(p.integer("columns"));
+    if (!p.numbers("row_angles_deg").empty()) {
+      for (double a : p.numbers("row_angles_deg")) spec_.elevations.push_back(a * kDeg);
+    } else {
+      spec_.elevations = row_elevations(static_cast<int>(p.integer("rows")), p.number("v_min_deg"), p.number("v_max_deg"),
+                                        p.string("row_spacing"), p.number("horizon_exponent"));
+    }
+    spec_.min_range = p.number("min_range");
+    spec_.max_range = p.number("max_range");
+    spec_.range_noise = p.number("range_noise");
+    spec_.dropout = p.number("dropout");
+    faults_ = read_faults(p, 1, {"noise", "frame_loss", "freeze", "dropout"});
+    rng_ = Rng(ctx.seed());
+    world_ = ctx.input<msgs::TrackWorld>("world");
+    truth_ = ctx.input<msgs::VehicleState>("truth");
+    out_ = ctx.output<msgs::PointCloud>("cloud");
+  }
+
+  void step(Context& ctx) override {
+    if (!caster_) {
+      auto w = newest(world_);
+      if (!w) return;
+      track_ = std::make_unique<Track>(from_message(*w));
+      caster_ = std::make_unique<LidarCaster>(*track_, spec_);
+    }
+    auto s = newest(truth_);
+    if (!s) return;
+    FaultEffect e = faults_.at(ctx.now_s(), rng_);
+    if (e.drop) { ++lost_; return; }
+    if (e.freeze && last_) {
+      auto m = std::make_shared<msgs::PointCloud>(*last_);
+      m->header().stamp_ns(ctx.now_ns());
+      m->header().seq(seq_++);
+      out_.publish(std::shared_ptr<const msgs::PointCloud>(m));
+      return;
+    }
+    auto m = std::make_shared<msgs::PointCloud>();
+    m->header().stamp_ns(ctx.now_ns());
+    m->header().seq(seq_++);
+    m->header().frame_id("lidar_" + std::to_string(id_));
+    m->sensor_id(id_);
+    m->sensor_x(spec_.mount.x()); m->sensor_y(spec_.mount.y()); m->sensor_z(spec_.mount.z());
+    m->sensor_roll(spec_.roll); m->sensor_pitch(spec_.pitch); m->sensor_yaw(spec_.yaw);
+    buf_.clear();
+    hint_ = track_->project(s->x(), s->y(), hint_).seg;
+    rays_ += caster_->scan(body_pose(*s), hint_, rng_, e.noise_factor, buf_);
+    m->x(buf_.x); m->y(buf_.y); m->z(buf_.z); m->intensity(buf_.intensity);
+    points_ += buf_.x.size();
+    ++frames_;
+    last_ = m;
+    out_.publish(std::shared_ptr<const msgs::PointCloud>(m));
+  }
+
+  void deactivate(Context& ctx) override {
+    ctx.metric("frames", static_cast<double>(frames_));
+    ctx.metric("frames_lost", static_cast<double>(lost_));
+    ctx.metric("rays", static_cast<double>(rays_));
+    ctx.metric("points_per_frame", frames_ ? static_cast<double>(points_) / frames_ : 0.0);
+  }
+
+ private:
+  std::uint8_t id_ = 0;
+  LidarSpec spec_;
+  FaultSchedule faults_;
+  Rng rng_;
+  std::unique_ptr<Track> track_;
+  std::unique_ptr<LidarCaster> caster_;
+  PointBuffers buf_;
+  int hint_ = -1;
+  std::uint32_t seq_ = 0;
+  std::uint64_t frames_ = 0, lost_ = 0, rays_ = 0, points_ = 0;
+  std::shared_ptr<const msgs::PointCloud> last_;
+  Input<msgs::TrackWorld> world_;
+  Input<msgs::VehicleState> truth_;
+  Output<msgs::PointCloud> out_;
+};
+
+}  // namespace
+
+BRICKYARD_PLUGINS(Lidar)

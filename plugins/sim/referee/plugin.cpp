@@ -1,0 +1,112 @@
+// sim.referee: judges the run from ground truth. Its metrics (names fixed by contract) are what
+// later issues and their checks read from summary.json under the node named `referee`.
+#include <brickyard/msgs/LocalizationEstimate.h>
+#include <brickyard/plugin.hpp>
+
+#include <cmath>
+#include <cstdio>
+
+#include "../common/referee.hpp"
+#include "../world_msg.hpp"
+
+namespace {
+
+using namespace brickyard;
+using namespace brickyard::sim;
+
+class RefereeNode : public Plugin {
+ public:
+  static Manifest manifest() {
+    Footprint f;
+    return Manifest("sim.referee", "1.0.0")
+        .describe("Laps, lap times, speed, wall contacts, track limits, clearances and localization error")
+        .input<msgs::TrackWorld>("world", "the world", true, 1)
+        .input<msgs::VehicleState>("truth", "ground truth", true, 1024)
+        .input<msgs::LocalizationEstimate>("estimate", "a localization estimate to score (optional)", false, 1024)
+        .param(ParamSpec::boolean("crash_ends_run", true).doc("a wall contact fails the run (exit 1)"))
+        .param(ParamSpec::integer("laps", 0).at_least(0).doc("finish the run after this many laps; 0: never"))
+        .param(ParamSpec::number("car_front", f.front).in_unit("m").at_least(0).doc("from the rear axle"))
+        .param(ParamSpec::number("car_rear", f.rear).in_unit("m").at_least(0))
+        .param(ParamSpec::number("car_half_width", f.half_width).in_unit("m").at_least(0))
+        .on_input("truth");
+  }
+
+  void configure(Context& ctx) override {
+    const Params& p = ctx.params();
+    crash_ends_ = p.boolean("crash_ends_run");
+    laps_ = p.integer("laps");
+    fp_.front = p.number("car_front");
+    fp_.rear = p.number("car_rear");
+    fp_.half_width = p.number("car_half_width");
+    world_ = ctx.input<msgs::TrackWorld>("world");
+    truth_ = ctx.input<msgs::VehicleState>("truth");
+    est_ = ctx.input<msgs::LocalizationEstimate>("estimate");
+  }
+
+  void step(Context& ctx) override {
+    if (!ref_) {
+      auto w = newest(world_);
+      if (!w) return;
+      track_ = std::make_unique<Track>(from_message(*w));
+      ref_ = std::make_unique<Referee>(*track_, fp_);
+    }
+    for (const auto& s : truth_.take()) {
+      TruthSample t{static_cast<double>(stamp(*s)) * 1e-9, s->x(), s->y(), s->yaw(), std::hypot(s->vx(), s->vy())};
+      auto ev = ref_->update(t);
+      char buf[160];
+      if (ev.lap_completed) {
+        std::snprintf(buf, sizeof buf, "lap %d: %.3f s", ref_->laps_completed(), ref_->lap_times().back());
+        ctx.log(LogLevel::info, buf);
+        if (laps_ > 0 && ref_->laps_completed() >= laps_) ctx.finish(std::to_string(laps_) + " laps completed");
+      }
+      if (ev.track_violation) {
+        std::snprintf(buf, sizeof buf, "track limits: car left the track at s = %.1f m", ref_->s());
+        ctx.log(LogLevel::warn, buf);
+      }
+      if (ev.obstacle_hit) {
+        std::snprintf(buf, sizeof buf, "obstacle hit at s = %.1f m", ref_->s());
+        ctx.log(LogLevel::warn, buf);
+      }
+      if (ev.wall_contact) {
+        std::snprintf(buf, sizeof buf, "wall contact at s = %.1f m, t = %.3f s, %.1f m/s", ref_->s(), t.t, t.speed);
+        if (crash_ends_) ctx.fail(std::string("crash: ") + buf);
+        else ctx.log(LogLevel::warn, buf);
+      }
+    }
+    score_estimates();
+  }
+
+  void deactivate(Context& ctx) override {
+    if (!ref_) return;
+    score_estimates();
+    ctx.metric("laps_completed", static_cast<double>(ref_->laps_completed()));
+    ctx.metric("lap_times_s", ref_->lap_times());
+    ctx.metric("max_speed_mps", ref_->max_speed());
+    ctx.metric("wall_contacts", static_cast<double>(ref_->wall_contacts()));
+    ctx.metric("track_violations", static_cast<double>(ref_->track_violations()));
+    ctx.metric("min_wall_clearance_m", ref_->min_wall_clearance());
+    ctx.metric("obstacles_hit", static_cast<double>(ref_->obstacles_hit()));
+    ctx.metric("obstacle_min_clearance_m", ref_->obstacle_min_clearance());
+    ctx.metric("localization_rmse_m", ref_->localization_rmse());
+    ctx.metric("localization_max_error_m", ref_->localization_max_error());
+    ctx.metric("localization_samples", static_cast<double>(ref_->localization_samples()));
+  }
+
+ private:
+  void score_estimates() {
+    for (const auto& e : est_.take()) ref_->localization(static_cast<double>(e->header().stamp_ns()) * 1e-9, e->x(), e->y());
+  }
+
+  bool crash_ends_ = true;
+  std::int64_t laps_ = 0;
+  Footprint fp_;
+  std::unique_ptr<Track> track_;
+  std::unique_ptr<Referee> ref_;
+  Input<msgs::TrackWorld> world_;
+  Input<msgs::VehicleState> truth_;
+  Input<msgs::LocalizationEstimate> est_;
+};
+
+}  // namespace
+
+BRICKYARD_PLUGINS(RefereeNode)

@@ -1,0 +1,146 @@
+// sim.vehicle: the race car. Integrates the dynamic single-track model at rate_hz on the road of
+// the world it is given and publishes the ground truth every step.
+#include <brickyard/msgs/ControlCommand.h>
+#include <brickyard/plugin.hpp>
+
+#include <cmath>
+
+#include "../common/vehicle_model.hpp"
+#include "../world_msg.hpp"
+
+namespace {
+
+using namespace brickyard;
+using namespace brickyard::sim;
+
+class Vehicle : public Plugin {
+ public:
+  static Manifest manifest() {
+    VehicleParams d;
+    return Manifest("sim.vehicle", "1.0.0")
+        .describe("Dynamic single-track race car (AV-21 defaults) on the world's banked road; publishes ground truth")
+        .input<msgs::TrackWorld>("world", "the world to drive in", true, 1)
+        .input<msgs::ControlCommand>("command", "steer, throttle, brake (latest one holds)", false, 1)
+        .output<msgs::VehicleState>("truth", "ground truth at base_link (rear-axle centre), every step")
+        .param(ParamSpec::number("rate_hz", 500).in_unit("Hz").at_least(100).doc("integration rate"))
+        .param(ParamSpec::number("start_s", 0).in_unit("m").doc("start position along the centre line"))
+        .param(ParamSpec::number("start_d", 0).in_unit("m").doc("start lateral offset, left positive"))
+        .param(ParamSpec::number("start_speed", 0).in_unit("m/s").at_least(0))
+        .param(ParamSpec::number("mass", d.mass).in_unit("kg").at_least(1))
+        .param(ParamSpec::number("yaw_inertia", d.yaw_inertia).in_unit("kg m^2").at_least(1))
+        .param(ParamSpec::number("lf", d.lf).in_unit("m").at_least(0.1).doc("CG to front axle"))
+        .param(ParamSpec::number("lr", d.lr).in_unit("m").at_least(0.1).doc("CG to rear axle"))
+        .param(ParamSpec::string("tyre", d.tyre).one_of({"linear", "pacejka"}))
+        .param(ParamSpec::number("cornering_front", d.cornering_front).in_unit("N/rad").at_least(1))
+        .param(ParamSpec::number("cornering_rear", d.cornering_rear).in_unit("N/rad").at_least(1))
+        .param(ParamSpec::number("mu", d.mu).at_least(0.1))
+        .param(ParamSpec::number("drag_area", d.drag_area).in_unit("m^2").at_least(0))
+        .param(ParamSpec::number("lift_area", d.lift_area).in_unit("m^2").at_least(0).doc("downforce Cl*A"))
+        .param(ParamSpec::number("max_power", d.max_power).in_unit("W").at_least(0))
+        .param(ParamSpec::number("max_brake_force", d.max_brake_force).in_unit("N").at_least(0))
+        .param(ParamSpec::number("max_steer", d.max_steer).in_unit("rad").at_least(0.01).doc("road wheel"))
+        .param(ParamSpec::number("max_steer_rate", d.max_steer_rate).in_unit("rad/s").at_least(0.01))
+        .param(ParamSpec::number("steer_delay", d.steer_delay).in_unit("s").at_least(0))
+        .periodic("rate_hz");
+  }
+
+  void configure(Context& ctx) override {
+    const Params& p = ctx.params();
+    VehicleParams v;
+    v.mass = p.number("mass");
+    v.yaw_inertia = p.number("yaw_inertia");
+    v.lf = p.number("lf");
+    v.lr = p.number("lr");
+    v.tyre = p.string("tyre");
+    v.cornering_front = p.number("cornering_front");
+    v.cornering_rear = p.number("cornering_rear");
+    v.mu = p.number("mu");
+    v.drag_area = p.number("drag_area");
+    v.lift_area = p.number("lift_area");
+    v.max_power = p.number("max_power");
+    v.max_brake_force = p.number("max_brake_force");
+    v.max_steer = p.number("max_steer");
+    v.max_steer_rate = p.number("max_steer_rate");
+    v.steer_delay = p.number("steer_delay");
+    model_ = std::make_unique<VehicleModel>(v);
+    dt_ = 1.0 / p.number("rate_hz");
+    start_s_ = p.number("start_s");
+    start_d_ = p.number("start_d");
+    start_speed_ = p.number("start_speed");
+    world_in_ = ctx.input<msgs::TrackWorld>("world");
+    cmd_in_ = ctx.input<msgs::ControlCommand>("command");
+    out_ = ctx.output<msgs::VehicleState>("truth");
+  }
+
+  void step(Context& ctx) override {
+    if (!track_) {
+      auto w = newest(world_in_);
+      if (!w) return;  // no world yet: the car does not exist
+      track_ = std::make_unique<Track>(from_message(*w));
+      Frenet f = track_->at(start_s_, start_d_);
+      Eigen::Vector2d base = track_->position(f);
+      double yaw = track_->heading(f);
+      auto& s = model_->state();
+      s.yaw = yaw;
+      s.x = base.x() + model_->params().lr * std::cos(yaw);
+      s.y = base.y() + model_->params().lr * std::sin(yaw);
+      s.vx = start_speed_;
+      hint_ = f.seg;
+      publish(ctx);
+      return;
+    }
+    Command c;
+    if (auto m = newest(cmd_in_)) {
+      c.steer = m->steer();
+      c.throttle = m->throttle();
+      c.brake = m->brake();
+    }
+    const auto& s = model_->state();
+    Frenet f = track_->project(s.x, s.y, hint_);
+    model_->step(dt_, c, track_->road_gradient(f));
+    if (!std::isfinite(s.x) || !std::isfinite(s.vx)) throw std::runtime_error("vehicle state is not finite");
+    publish(ctx);
+  }
+
+ private:
+  void publish(Context& ctx) {
+    const auto& s = model_->state();
+    const double lr = model_->params().lr, c = std::cos(s.yaw), sn = std::sin(s.yaw);
+    const double bx = s.x - lr * c, by = s.y - lr * sn;
+    Frenet f = track_->project(bx, by, hint_);
+    hint_ = f.seg;
+    Eigen::Vector2d g = track_->road_gradient(f);
+    msgs::VehicleState m;
+    m.header().stamp_ns(ctx.now_ns());
+    m.header().seq(seq_++);
+    m.header().frame_id("map");
+    m.x(bx);
+    m.y(by);
+    m.z(track_->road_z(f));
+    m.yaw(s.yaw);
+    m.pitch(-std::atan(g.x() * c + g.y() * sn));
+    m.roll(std::atan(-g.x() * sn + g.y() * c));
+    m.vx(s.vx);
+    m.vy(s.vy - lr * s.r);
+    m.yaw_rate(s.r);
+    m.ax(s.ax);
+    m.ay(s.ay);
+    m.steer(s.steer);
+    m.s(f.s);
+    m.d(f.d);
+    out_.publish(std::move(m));
+  }
+
+  std::unique_ptr<VehicleModel> model_;
+  std::unique_ptr<Track> track_;
+  double dt_ = 0.002, start_s_ = 0, start_d_ = 0, start_speed_ = 0;
+  int hint_ = -1;
+  std::uint32_t seq_ = 0;
+  Input<msgs::TrackWorld> world_in_;
+  Input<msgs::ControlCommand> cmd_in_;
+  Output<msgs::VehicleState> out_;
+};
+
+}  // namespace
+
+BRICKYARD_PLUGINS(Vehicle)

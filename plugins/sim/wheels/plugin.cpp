@@ -1,0 +1,87 @@
+// sim.wheels: four wheel speeds (linear speed at the tyre) from the ground truth, with a scale
+// error (tyre radius), noise and fault windows.
+#include <brickyard/msgs/WheelSpeeds.h>
+#include <brickyard/plugin.hpp>
+
+#include <cmath>
+
+#include "../common/rng.hpp"
+#include "../sensor_faults.hpp"
+#include "../world_msg.hpp"
+
+namespace {
+
+using namespace brickyard;
+using namespace brickyard::sim;
+
+class Wheels : public Plugin {
+ public:
+  static Manifest manifest() {
+    return Manifest("sim.wheels", "1.0.0")
+        .describe("Wheel speed sensors: speed of each wheel centre along the wheel's heading, with noise and faults")
+        .input<msgs::VehicleState>("truth", "ground truth", true, 1)
+        .output<msgs::WheelSpeeds>("speeds", "m/s at the tyre")
+        .param(ParamSpec::number("rate_hz", 100).in_unit("Hz").at_least(1))
+        .param(ParamSpec::number("noise", 0.05).in_unit("m/s").at_least(0))
+        .param(ParamSpec::number("scale", 1.0).at_least(0.5).doc("tyre radius error as a factor"))
+        .param(ParamSpec::number("wheelbase", 2.97).in_unit("m").at_least(0.5))
+        .param(ParamSpec::number("track_width", 1.64).in_unit("m").at_least(0.5))
+        .param(ParamSpec::json("faults", "[]").doc("windows over (fl, fr, rl, rr): bias, drift, noise, freeze, dropout, spikes"))
+        .periodic("rate_hz");
+  }
+
+  void configure(Context& ctx) override {
+    const Params& p = ctx.params();
+    noise_ = p.number("noise");
+    scale_ = p.number("scale");
+    wb_ = p.number("wheelbase");
+    half_track_ = p.number("track_width") / 2;
+    faults_ = read_faults(p, 4, {"bias", "drift", "noise", "freeze", "dropout", "spikes"});
+    rng_ = Rng(ctx.seed());
+    truth_ = ctx.input<msgs::VehicleState>("truth");
+    out_ = ctx.output<msgs::WheelSpeeds>("speeds");
+  }
+
+  void step(Context& ctx) override {
+    auto s = newest(truth_);
+    if (!s) return;
+    double n[4];
+    for (double& v : n) v = rng_.normal();
+    FaultEffect e = faults_.at(ctx.now_s(), rng_);
+    if (e.drop) return;
+    msgs::WheelSpeeds m;
+    if (e.freeze && last_) {
+      m = *last_;
+    } else {
+      // Wheel-centre velocity = base_link velocity + yaw rate x lever arm; fronts are steered.
+      const double vx = s->vx(), vy = s->vy(), r = s->yaw_rate(), d = s->steer();
+      auto along = [&](double lx, double ly, double heading) {
+        double wx = vx - r * ly, wy = vy + r * lx;
+        return wx * std::cos(heading) + wy * std::sin(heading);
+      };
+      const double truth[4] = {along(wb_, half_track_, d), along(wb_, -half_track_, d), along(0, half_track_, 0),
+                               along(0, -half_track_, 0)};
+      double v[4];
+      for (int i = 0; i < 4; ++i) v[i] = scale_ * truth[i] + e.offset[i] + noise_ * e.noise_factor * n[i];
+      m.front_left(v[0]); m.front_right(v[1]); m.rear_left(v[2]); m.rear_right(v[3]);
+    }
+    m.header().stamp_ns(ctx.now_ns());
+    m.header().seq(seq_++);
+    m.header().frame_id("vehicle");
+    last_ = std::make_shared<msgs::WheelSpeeds>(m);
+    out_.publish(std::move(m));
+  }
+
+ private:
+  double noise_ = 0, scale_ = 1, wb_ = 2.97, half_track_ = 0.82;
+  FaultSchedule faults_;
+  Rng rng_;
+  std::uint32_t seq_ = 0;
+  std::shared_ptr<msgs::WheelSpeeds> last_;
+  Input<msgs::VehicleState> truth_;
+  Output<msgs::WheelSpeeds> out_;
+};
+
+}  // namespace
+
+BRICKYARD_PLUGINS(Wheels)
