@@ -82,7 +82,10 @@ LidarCaster::LidarCaster(const Track& track, LidarSpec spec) : track_(track), sp
     B.dr_safe += 0.25;
     B.z_max += 0.01;
   }
+  z_top_ = -kInf;
+  for (const auto& B : blocks_) z_top_ = std::max(z_top_, B.z_max + (w.walls.left || w.walls.right ? w.walls.height : 0.0));
   for (std::size_t i = 0; i < pylons_.size(); ++i) {
+    z_top_ = std::max(z_top_, pylons_[i].z + pylons_[i].height + 0.01);
     Block& B = blocks_[sorted_seg[i] / kBlock];
     B.z_max = std::max(B.z_max, pylons_[i].z + pylons_[i].height + 0.01);
   }
@@ -118,8 +121,9 @@ RayHit LidarCaster::cast(const Eigen::Vector3d& o, const Eigen::Vector3d& v, int
   int dir = 0;
   double t0 = 0;
   for (int steps = 0; steps < n; ++steps) {
+    if (vz >= 0 && oz + vz * t0 > z_top_) break;  // rising above everything there is
     // Entering a block: cross it in one step when nothing in it can be reached.
-    if (steps > 0 && (dir > 0 ? k % kBlock == 0 : (k % kBlock == kBlock - 1 || k == n - 1))) {
+    if (spec_.use_blocks && steps > 0 && (dir > 0 ? k % kBlock == 0 : (k % kBlock == kBlock - 1 || k == n - 1))) {
       const Block& B = blocks_[k / kBlock];
       const double px = dir > 0 ? B.ex : B.sx, py = dir > 0 ? B.ey : B.sy;
       const double nx = dir > 0 ? B.etx : B.stx, ny = dir > 0 ? B.ety : B.sty;

@@ -29,6 +29,7 @@ struct LidarSpec {
   double min_range = 1.0, max_range = 200.0;        // m
   double range_noise = 0.02;                        // m, 1 sigma
   double dropout = 0.0;                             // probability a return is lost
+  bool use_blocks = true;                           // off: walk every slab (benchmark baseline)
   double reflectivity_road = 0.15, reflectivity_wall = 0.6, reflectivity_pylon = 0.9;
 };
 
@@ -77,6 +78,7 @@ class LidarCaster {
     double dl_safe, dr_safe;  // chord-frame d between which no wall can be reached
   };
   std::vector<Block> blocks_;
+  double z_top_ = 0;  // highest point of the world: a rising ray above it meets nothing
   const Track& track_;
   LidarSpec spec_;
   std::vector<Seg> seg_;

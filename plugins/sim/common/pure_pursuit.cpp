@@ -5,6 +5,24 @@
 
 namespace brickyard::sim {
 
+CenterLine keep_inside(const CenterLine& line, const Track& track, double margin) {
+  CenterLine out = line;
+  int hint = -1;
+  for (std::size_t i = 0; i < line.x.size(); ++i) {
+    Frenet f = track.project(line.x[i], line.y[i], hint);
+    hint = f.seg;
+    const double lo = -track.width_right(f.seg, f.u) + margin, hi = track.width_left(f.seg, f.u) - margin;
+    const double d = lo < hi ? std::clamp(f.d, lo, hi) : 0.5 * (lo + hi);
+    if (d == f.d) continue;
+    Frenet g = f;
+    g.d = d;
+    Eigen::Vector2d p = track.position(g);
+    out.x[i] = p.x();
+    out.y[i] = p.y();
+  }
+  return out;
+}
+
 RacingLine make_racing_line(const CenterLine& xy, const SpeedLimits& lim, double smooth_m) {
   RacingLine r;
   r.x = xy.x;

@@ -21,6 +21,10 @@ struct RacingLine {
   double length = 0;
 };
 
+// Pull the line's points toward the centre line where they come closer than `margin` to a track
+// edge (the racing line's files put the car's centre up to 0.6 m from the edge on IMS).
+CenterLine keep_inside(const CenterLine& line, const Track& track, double margin);
+
 // Speed profile by the usual forward/backward passes over the curvature-limited speeds (closed loop).
 RacingLine make_racing_line(const CenterLine& xy, const SpeedLimits& lim, double curvature_smooth_m = 30);
 

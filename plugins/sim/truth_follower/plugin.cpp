@@ -19,6 +19,7 @@ class TruthFollower : public Plugin {
     return Manifest("sim.truth_follower", "1.0.0")
         .describe("Pure pursuit on a racing line from ground truth (a stand-in driver for simulator graphs)")
         .input<msgs::VehicleState>("truth", "ground truth", true, 1)
+        .input<msgs::TrackWorld>("world", "when wired, the line is kept edge_margin inside the track", false, 1)
         .output<msgs::ControlCommand>("command", "steer, throttle, brake")
         .param(ParamSpec::string("raceline", "racelines/IMS.csv").doc("x_m,y_m file of the line to follow"))
         .param(ParamSpec::number("rate_hz", 100).in_unit("Hz").at_least(1))
@@ -26,6 +27,8 @@ class TruthFollower : public Plugin {
         .param(ParamSpec::number("a_lat", l.a_lat).in_unit("m/s^2").at_least(0.5))
         .param(ParamSpec::number("a_accel", l.a_accel).in_unit("m/s^2").at_least(0.1))
         .param(ParamSpec::number("a_decel", l.a_decel).in_unit("m/s^2").at_least(0.1))
+        .param(ParamSpec::number("edge_margin", 2.5).in_unit("m").at_least(0)
+                   .doc("closest the line's points may come to a track edge (needs the world input)"))
         .param(ParamSpec::number("lookahead_min", pp.lookahead_min).in_unit("m").at_least(0.5))
         .param(ParamSpec::number("lookahead_time", pp.lookahead_time).in_unit("s").at_least(0))
         .param(ParamSpec::number("speed_gain", pp.speed_gain).at_least(0))
@@ -41,21 +44,34 @@ class TruthFollower : public Plugin {
     } catch (const TrackFileError& e) {
       throw BadInput(std::string("raceline file ") + e.what());
     }
-    SpeedLimits l;
+    line_ = xy;
+    margin_ = p.number("edge_margin");
+    SpeedLimits& l = limits_;
     l.v_max = p.number("v_max");
     l.a_lat = p.number("a_lat");
     l.a_accel = p.number("a_accel");
     l.a_decel = p.number("a_decel");
-    PursuitParams pp;
+    PursuitParams& pp = pursuit_params_;
     pp.lookahead_min = p.number("lookahead_min");
     pp.lookahead_time = p.number("lookahead_time");
     pp.speed_gain = p.number("speed_gain");
-    pursuit_ = std::make_unique<PurePursuit>(make_racing_line(xy, l), pp);
+    world_ = ctx.input<msgs::TrackWorld>("world");
     truth_ = ctx.input<msgs::VehicleState>("truth");
     out_ = ctx.output<msgs::ControlCommand>("command");
   }
 
   void step(Context& ctx) override {
+    if (!pursuit_) {
+      // With a world wired, wait for it and keep the line inside the track; without, use the file.
+      CenterLine line = line_;
+      if (world_.connected()) {
+        auto w = newest(world_);
+        if (!w) return;
+        Track t(from_message(*w));
+        line = keep_inside(line_, t, margin_);
+      }
+      pursuit_ = std::make_unique<PurePursuit>(make_racing_line(line, limits_), pursuit_params_);
+    }
     auto s = newest(truth_);
     if (!s) return;
     double target = 0;
@@ -72,7 +88,12 @@ class TruthFollower : public Plugin {
   }
 
  private:
+  CenterLine line_;
+  double margin_ = 2.5;
+  SpeedLimits limits_;
+  PursuitParams pursuit_params_;
   std::unique_ptr<PurePursuit> pursuit_;
+  Input<msgs::TrackWorld> world_;
   std::uint32_t seq_ = 0;
   Input<msgs::VehicleState> truth_;
   Output<msgs::ControlCommand> out_;

@@ -1,0 +1,128 @@
+// Simulator speed. Two parts, each beside its baseline measured in the same run:
+//  1. LiDAR ray casting on IMS (three AV-21 Hydras, 32 x 850 rays each, poses all around the
+//     track): ours (slab march with block skipping) vs the plain slab march (every slab walked).
+//     Prints rays per second and the LiDAR-only real-time factor (one frame = 1/20 s).
+//  2. The full simulator graph configs/sim_truth_lap.json (car at 500 Hz, 2 GNSS, IMU, wheels,
+//     3 LiDARs, referee, driver) on the sim clock: sim_time_s / wall_time_s against real time (1x).
+// usage: bench_sim [--quick]
+#include "common/lidar.hpp"
+#include "common/track.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <string>
+#include <vector>
+
+using namespace brickyard::sim;
+
+namespace {
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+struct Pose {
+  Eigen::Isometry3d T;
+  int seg;
+};
+
+std::vector<Pose> poses_around(const Track& t, int count, double d) {
+  std::vector<Pose> out;
+  for (int i = 0; i < count; ++i) {
+    Frenet f = t.at(t.length() * i / count, d);
+    Eigen::Vector2d p = t.position(f), g = t.road_gradient(f);
+    double yaw = t.heading(f), c = std::cos(yaw), s = std::sin(yaw);
+    double pitch = -std::atan(g.x() * c + g.y() * s), roll = std::atan(-g.x() * s + g.y() * c);
+    Eigen::Isometry3d T = Eigen::Translation3d(p.x(), p.y(), t.road_z(f)) * Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) *
+                          Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()) * Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX());
+    out.push_back({T, f.seg});
+  }
+  return out;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const bool quick = argc > 1 && std::strcmp(argv[1], "--quick") == 0;
+  const std::string src = BRICKYARD_SOURCE_DIR;
+  WorldSpec w;
+  w.line = load_centerline_csv(src + "/data/tracks/IMS.csv");
+  w.name = "IMS";
+  BankSpec b;
+  b.mode = "curvature";
+  b.degrees = 9.2;
+  b.curvature_threshold = 0.002;
+  w.bank = bank_profile(w.line, b);
+  w.walls.right = true;  // the outside of the counter-clockwise loop
+  w.walls.height = 1.2;
+  Track track(w);
+  const auto poses = poses_around(track, quick ? 40 : 200, -2.0);
+
+  std::printf("LiDAR ray casting, IMS, 3 sensors x 32 x 850 rays, %zu poses around the track\n", poses.size());
+  std::printf("%-34s %14s %12s %14s\n", "caster", "Mrays/s", "ms/frame", "LiDAR x RT");
+  double ours_rate = 0, base_rate = 0;
+  for (bool blocks : {true, false}) {
+    std::vector<LidarCaster> casters;
+    const double mounts[3][4] = {{2.342, 0, 0.448, 0}, {1.549, 0.267, 0.543, 120}, {1.549, -0.267, 0.543, -120}};
+    for (const auto& m : mounts) {
+      LidarSpec s;
+      s.mount = {m[0], m[1], m[2]};
+      s.yaw = m[3] * M_PI / 180;
+      s.elevations = row_elevations(32, -15, 15, "horizon", 2.0);
+      s.use_blocks = blocks;
+      casters.emplace_back(track, s);
+    }
+    std::vector<double> rates, frame_ms;
+    PointBuffers buf;
+    Rng rng(1);
+    for (int round = 0; round < (quick ? 3 : 5); ++round) {
+      std::size_t rays = 0;
+      auto t0 = std::chrono::steady_clock::now();
+      for (const auto& p : poses)
+        for (const auto& c : casters) {
+          buf.clear();
+          rays += c.scan(p.T, p.seg, rng, 1.0, buf);
+        }
+      double dt = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      rates.push_back(static_cast<double>(rays) / dt);
+      frame_ms.push_back(dt * 1e3 / (poses.size() * casters.size()));
+    }
+    double r = median(rates), ms = median(frame_ms);
+    // 3 frames (one per sensor) every 1/20 s of sim time.
+    double rt = (1.0 / 20) / (3 * ms * 1e-3);
+    std::printf("%-34s %14.1f %12.3f %14.1f\n", blocks ? "ours: slab march + block skipping" : "baseline: slab march only",
+                r / 1e6, ms, rt);
+    (blocks ? ours_rate : base_rate) = r;
+  }
+  std::printf("ratio ours / baseline: %.2f\n\n", ours_rate / base_rate);
+
+  // The full simulator graph, run by the host.
+  const std::string by = BRICKYARD_HOST;
+  const double duration = quick ? 20 : 60;
+  std::vector<double> factors;
+  for (int i = 0; i < (quick ? 1 : 3); ++i) {
+    const std::string out = "/tmp/bench_sim_run";
+    std::string cmd = by + " run " + src + "/configs/sim_truth_lap.json --duration " + std::to_string(duration) +
+                      " --set referee.laps=0 --out " + out + " > /dev/null 2>&1";
+    int rc = std::system(cmd.c_str());
+    std::ifstream f(out + "/summary.json");
+    if (rc != 0 || !f) {
+      std::printf("full simulator run failed (exit %d): %s\n", rc, cmd.c_str());
+      return 1;
+    }
+    auto j = nlohmann::json::parse(f);
+    factors.push_back(j["sim_time_s"].get<double>() / j["wall_time_s"].get<double>());
+  }
+  std::printf("full simulator (configs/sim_truth_lap.json, %.0f s of sim time, %zu runs)\n", duration, factors.size());
+  std::printf("%-34s %14s\n", "", "x real time");
+  std::printf("%-34s %14.1f\n", "ours: sim clock, one thread", median(factors));
+  std::printf("%-34s %14.1f\n", "baseline: real time", 1.0);
+  return 0;
+}
