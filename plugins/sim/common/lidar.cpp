@@ -82,12 +82,28 @@ LidarCaster::LidarCaster(const Track& track, LidarSpec spec) : track_(track), sp
     B.dr_safe += 0.25;
     B.z_max += 0.01;
   }
-  z_top_ = -kInf;
-  for (const auto& B : blocks_) z_top_ = std::max(z_top_, B.z_max + (w.walls.left || w.walls.right ? w.walls.height : 0.0));
   for (std::size_t i = 0; i < pylons_.size(); ++i) {
-    z_top_ = std::max(z_top_, pylons_[i].z + pylons_[i].height + 0.01);
     Block& B = blocks_[sorted_seg[i] / kBlock];
     B.z_max = std::max(B.z_max, pylons_[i].z + pylons_[i].height + 0.01);
+  }
+  // Highest point within reach of a block: of every block that may come within max range of it.
+  // Two points of blocks b and c are at least (distance of their nearest end points - length of
+  // b - length of c) apart, so that bound decides.
+  std::vector<double> top(nb), blen(nb, 0.0);
+  for (int i = 0; i < n; ++i) blen[i / kBlock] += seg_[i].len;
+  const double wall_h = (w.walls.left || w.walls.right) ? w.walls.height : 0.0;
+  for (int b = 0; b < nb; ++b) top[b] = blocks_[b].z_max + wall_h;
+  z_top_ = *std::max_element(top.begin(), top.end());
+  for (int b = 0; b < nb; ++b) {
+    const Block& B = blocks_[b];
+    double zt = top[b];
+    for (int c = 0; c < nb; ++c) {
+      const Block& C = blocks_[c];
+      double gap = std::min({std::hypot(B.sx - C.sx, B.sy - C.sy), std::hypot(B.ex - C.ex, B.ey - C.ey),
+                             std::hypot(B.sx - C.ex, B.sy - C.ey), std::hypot(B.ex - C.sx, B.ey - C.sy)});
+      if (gap <= spec_.max_range + blen[b] + blen[c]) zt = std::max(zt, top[c]);
+    }
+    blocks_[b].z_top_near = zt;
   }
   wall_left_ = w.walls.left;
   wall_right_ = w.walls.right;
@@ -121,7 +137,7 @@ RayHit LidarCaster::cast(const Eigen::Vector3d& o, const Eigen::Vector3d& v, int
   int dir = 0;
   double t0 = 0;
   for (int steps = 0; steps < n; ++steps) {
-    if (vz >= 0 && oz + vz * t0 > z_top_) break;  // rising above everything there is
+    if (vz >= 0 && oz + vz * t0 > blocks_[k / kBlock].z_top_near) break;  // rising above all in reach
     // Entering a block: cross it in one step when nothing in it can be reached.
     if (spec_.use_blocks && steps > 0 && (dir > 0 ? k % kBlock == 0 : (k % kBlock == kBlock - 1 || k == n - 1))) {
       const Block& B = blocks_[k / kBlock];

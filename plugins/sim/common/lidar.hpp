@@ -76,6 +76,7 @@ class LidarCaster {
     double cx, cy, ctx, cty;  // chord frame: origin and unit direction
     double z_max;             // highest road, edge or pylon top in the block
     double dl_safe, dr_safe;  // chord-frame d between which no wall can be reached
+    double z_top_near;        // highest point (walls included) of the blocks within max range
   };
   std::vector<Block> blocks_;
   double z_top_ = 0;  // highest point of the world: a rising ray above it meets nothing

@@ -3,6 +3,7 @@
 #include <brickyard/msgs/GnssFix.h>
 #include <brickyard/plugin.hpp>
 
+#include "../common/digest.hpp"
 #include "../common/rng.hpp"
 #include "../sensor_faults.hpp"
 #include "../world_msg.hpp"
@@ -77,12 +78,21 @@ class Gnss : public Plugin {
     int ft = e.fix_type.value_or(fix_type_);
     m.fix_type(static_cast<std::uint8_t>(ft));
     m.valid(ft > 0);
+    for (double v : {m.x(), m.y(), m.z(), m.sigma_x()}) digest_.add(v);
     last_ = std::make_shared<msgs::GnssFix>(m);
+    ++fixes_;
     out_.publish(std::move(m));
+  }
+
+  void deactivate(Context& ctx) override {
+    ctx.metric("fixes", static_cast<double>(fixes_));
+    ctx.metric("digest", digest_.hex());
   }
 
  private:
   std::uint8_t id_ = 0;
+  Digest digest_;
+  std::uint64_t fixes_ = 0;
   Eigen::Vector3d antenna_;
   double sigma_ = 0, sigma_z_ = 0, reported_ = 0;
   int fix_type_ = 3;

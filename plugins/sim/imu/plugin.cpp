@@ -3,6 +3,7 @@
 #include <brickyard/msgs/Imu.h>
 #include <brickyard/plugin.hpp>
 
+#include "../common/digest.hpp"
 #include "../common/rng.hpp"
 #include "../sensor_faults.hpp"
 #include "../world_msg.hpp"
@@ -67,11 +68,15 @@ class ImuSensor : public Plugin {
     m.header().stamp_ns(ctx.now_ns());
     m.header().seq(seq_++);
     m.header().frame_id("vehicle");
+    for (double v : {m.accel_x(), m.accel_y(), m.accel_z(), m.gyro_z()}) digest_.add(v);
     last_ = std::make_shared<msgs::Imu>(m);
     out_.publish(std::move(m));
   }
 
+  void deactivate(Context& ctx) override { ctx.metric("digest", digest_.hex()); }
+
  private:
+  Digest digest_;
   double an_ = 0, gn_ = 0, bias_[6] = {};
   FaultSchedule faults_;
   Rng rng_;

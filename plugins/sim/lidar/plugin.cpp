@@ -3,6 +3,7 @@
 #include <brickyard/msgs/PointCloud.h>
 #include <brickyard/plugin.hpp>
 
+#include "../common/digest.hpp"
 #include "../common/lidar.hpp"
 #include "../sensor_faults.hpp"
 #include "../world_msg.hpp"
@@ -104,6 +105,7 @@ class Lidar : public Plugin {
     rays_ += caster_->scan(body_pose(*s), hint_, rng_, e.noise_factor, buf_);
     m->x(buf_.x); m->y(buf_.y); m->z(buf_.z); m->intensity(buf_.intensity);
     points_ += buf_.x.size();
+    for (const auto* v : {&buf_.x, &buf_.y, &buf_.z, &buf_.intensity}) digest_.add(v->data(), v->size() * sizeof(float));
     ++frames_;
     last_ = m;
     out_.publish(std::shared_ptr<const msgs::PointCloud>(m));
@@ -113,11 +115,13 @@ class Lidar : public Plugin {
     ctx.metric("frames", static_cast<double>(frames_));
     ctx.metric("frames_lost", static_cast<double>(lost_));
     ctx.metric("rays", static_cast<double>(rays_));
+    ctx.metric("digest", digest_.hex());
     ctx.metric("points_per_frame", frames_ ? static_cast<double>(points_) / frames_ : 0.0);
   }
 
  private:
   std::uint8_t id_ = 0;
+  Digest digest_;
   LidarSpec spec_;
   FaultSchedule faults_;
   Rng rng_;

@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "../common/digest.hpp"
 #include "../common/rng.hpp"
 #include "../sensor_faults.hpp"
 #include "../world_msg.hpp"
@@ -68,11 +69,15 @@ class Wheels : public Plugin {
     m.header().stamp_ns(ctx.now_ns());
     m.header().seq(seq_++);
     m.header().frame_id("vehicle");
+    for (double v : {m.front_left(), m.front_right(), m.rear_left(), m.rear_right()}) digest_.add(v);
     last_ = std::make_shared<msgs::WheelSpeeds>(m);
     out_.publish(std::move(m));
   }
 
+  void deactivate(Context& ctx) override { ctx.metric("digest", digest_.hex()); }
+
  private:
+  Digest digest_;
   double noise_ = 0, scale_ = 1, wb_ = 2.97, half_track_ = 0.82;
   FaultSchedule faults_;
   Rng rng_;

@@ -1,0 +1,92 @@
+// sim.gnss_checker: an assertion node for tests. Checks every GNSS fix against the ground truth
+// at the same instant: fix = antenna position + the expected fault offset (bias / drift windows,
+// same syntax as sim.gnss faults), within a tolerance. Fails the run on the first mismatch.
+#include <brickyard/msgs/GnssFix.h>
+#include <brickyard/plugin.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <map>
+
+#include "../common/rng.hpp"
+#include "../sensor_faults.hpp"
+#include "../world_msg.hpp"
+
+namespace {
+
+using namespace brickyard;
+using namespace brickyard::sim;
+
+class GnssChecker : public Plugin {
+ public:
+  static Manifest manifest() {
+    return Manifest("sim.gnss_checker", "1.0.0")
+        .describe("Test assertion: GNSS fixes equal the antenna's true position plus the expected fault offset")
+        .input<msgs::VehicleState>("truth", "ground truth", true, 4096)
+        .input<msgs::GnssFix>("fix", "fixes to check", true, 64)
+        .param(ParamSpec::numbers("antenna", {1.606, 0.05, 1.0}).doc("the receiver's antenna in base_link, m"))
+        .param(ParamSpec::json("faults", "[]").doc("expected offsets: bias and drift windows as given to sim.gnss"))
+        .param(ParamSpec::number("tolerance_m", 1e-9).in_unit("m").at_least(0))
+        .param(ParamSpec::integer("min_checked", 1).at_least(0))
+        .on_input("fix");
+  }
+
+  void configure(Context& ctx) override {
+    const Params& p = ctx.params();
+    const auto& a = p.numbers("antenna");
+    if (a.size() != 3) throw BadInput("parameter 'antenna': needs 3 numbers");
+    antenna_ = {a[0], a[1], a[2]};
+    expect_ = read_faults(p, 3, {"bias", "drift"});
+    tol_ = p.number("tolerance_m");
+    min_checked_ = p.integer("min_checked");
+    truth_ = ctx.input<msgs::VehicleState>("truth");
+    fix_ = ctx.input<msgs::GnssFix>("fix");
+  }
+
+  void step(Context& ctx) override {
+    for (const auto& s : truth_.take()) {
+      truth_at_[stamp(*s)] = s;
+      if (truth_at_.size() > 512) truth_at_.erase(truth_at_.begin());
+    }
+    for (const auto& f : fix_.take()) {
+      auto it = truth_at_.find(f->header().stamp_ns());
+      if (it == truth_at_.end()) continue;
+      const double t = static_cast<double>(f->header().stamp_ns()) * 1e-9;
+      Rng unused;
+      FaultEffect e = expect_.at(t, unused);
+      const Eigen::Vector3d want = body_pose(*it->second) * antenna_ + Eigen::Vector3d(e.offset[0], e.offset[1], e.offset[2]);
+      const double err = (Eigen::Vector3d(f->x(), f->y(), f->z()) - want).norm();
+      max_err_ = std::max(max_err_, err);
+      ++checked_;
+      bool in_window = false;
+      for (const auto& w : expect_.windows()) in_window = in_window || w.active(t);
+      if (in_window) ++in_window_;
+      if (err > tol_) {
+        char b[200];
+        std::snprintf(b, sizeof b, "fix at t = %.3f s is %.3g m from the expected position (tolerance %.3g m)", t, err, tol_);
+        ctx.fail(b);
+      }
+    }
+  }
+
+  void deactivate(Context& ctx) override {
+    ctx.metric("checked", static_cast<double>(checked_));
+    ctx.metric("checked_in_windows", static_cast<double>(in_window_));
+    ctx.metric("max_error_m", max_err_);
+    if (checked_ < min_checked_)
+      ctx.fail("checked " + std::to_string(checked_) + " fixes, expected at least " + std::to_string(min_checked_));
+  }
+
+ private:
+  Eigen::Vector3d antenna_;
+  FaultSchedule expect_;
+  double tol_ = 1e-9, max_err_ = 0;
+  std::int64_t min_checked_ = 1, checked_ = 0, in_window_ = 0;
+  std::map<std::int64_t, std::shared_ptr<const msgs::VehicleState>> truth_at_;
+  Input<msgs::VehicleState> truth_;
+  Input<msgs::GnssFix> fix_;
+};
+
+}  // namespace
+
+BRICKYARD_PLUGINS(GnssChecker)
