@@ -1,0 +1,346 @@
+// The simulator's algorithms, called directly (no framework): track files, banking, the vehicle
+// model against the analytical bicycle model, LiDAR ray casting, fault windows, the referee.
+#include "common/faults.hpp"
+#include "common/lidar.hpp"
+#include "common/referee.hpp"
+#include "common/track.hpp"
+#include "common/vehicle_model.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <sstream>
+
+using namespace brickyard::sim;
+
+namespace {
+
+// A stadium oval, counter-clockwise: straights of `straight` m along x, half circles of radius r.
+CenterLine oval(double straight = 1000, double r = 200, double half_width = 7.5) {
+  CenterLine c;
+  auto add = [&](double x, double y) {
+    c.x.push_back(x); c.y.push_back(y); c.width_left.push_back(half_width); c.width_right.push_back(half_width);
+  };
+  const double step = 5;
+  for (double s = 0; s < straight; s += step) add(s, 0);
+  int n = static_cast<int>(std::round(M_PI * r / step));
+  for (int i = 0; i < n; ++i) {
+    double a = -M_PI / 2 + M_PI * i / n;
+    add(straight + r * std::cos(a), r + r * std::sin(a));
+  }
+  for (double s = 0; s < straight; s += step) add(straight - s, 2 * r);
+  for (int i = 0; i < n; ++i) {
+    double a = M_PI / 2 + M_PI * i / n;
+    add(r * std::cos(a), r + r * std::sin(a));
+  }
+  return c;
+}
+
+Eigen::Isometry3d pose_on(const Track& t, double s, double d, double yaw_offset = 0) {
+  Frenet f = t.at(s, d);
+  Eigen::Vector2d p = t.position(f), g = t.road_gradient(f);
+  double yaw = t.heading(f) + yaw_offset, c = std::cos(yaw), sn = std::sin(yaw);
+  double pitch = -std::atan(g.x() * c + g.y() * sn), roll = std::atan(-g.x() * sn + g.y() * c);
+  return Eigen::Translation3d(p.x(), p.y(), t.road_z(f)) * Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) *
+         Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()) * Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX());
+}
+
+std::string ims_path() { return std::string(BRICKYARD_SOURCE_DIR) + "/data/tracks/IMS.csv"; }
+
+}  // namespace
+
+TEST(TrackFile, BadRowNamesFileAndLine) {
+  std::istringstream in("# x_m,y_m,w_tr_right_m,w_tr_left_m\n0,0,7,7\n0,-5,7,7\n\n0,-10,7\n0,-15,7,7\n");
+  try {
+    parse_centerline_csv(in, "t.csv");
+    FAIL() << "no error";
+  } catch (const TrackFileError& e) {
+    EXPECT_STREQ(e.what(), "t.csv:5: 3 fields, expected 4");
+  }
+  std::istringstream neg("0,0,7,7\n0,-5,-1,7\n");
+  EXPECT_THROW(parse_centerline_csv(neg, "n.csv"), TrackFileError);
+}
+
+TEST(TrackFile, ImsLoadsClosedCounterClockwise) {
+  WorldSpec w;
+  w.line = load_centerline_csv(ims_path());
+  Track t(w);
+  EXPECT_NEAR(t.length(), 4022, 5);
+  EXPECT_TRUE(t.counter_clockwise());
+}
+
+TEST(Banking, CurvatureModeRaisesTheOutsideOfImsTurns) {
+  CenterLine c = load_centerline_csv(ims_path());
+  BankSpec b;
+  b.mode = "curvature";
+  b.degrees = 9.2;
+  b.curvature_threshold = 0.002;
+  auto bank = bank_profile(c, b);
+  auto k = signed_curvature(c, 50);
+  int turn = 0, straight = 0;
+  for (std::size_t i = 0; i < bank.size(); ++i) {
+    if (k[i] > 0.003) {  // inside a left turn: the right (outside) edge is raised, fully past the ramps
+      EXPECT_LT(bank[i], 0) << i;
+      turn += std::abs(bank[i] + 9.2 * M_PI / 180) < 1e-9;
+    }
+    if (std::abs(k[i]) < 1e-4 && bank[i] == 0) ++straight;
+  }
+  EXPECT_GT(turn, 100);
+  EXPECT_GT(straight, 100);
+}
+
+TEST(Track, ProjectionRoundTrip) {
+  WorldSpec w;
+  w.line = oval();
+  Track t(w);
+  for (double s : {3.0, 500.0, 1100.0, 1700.0, 2500.0})
+    for (double d : {-5.0, 0.0, 6.0}) {
+      Frenet f = t.at(s, d);
+      Eigen::Vector2d p = t.position(f);
+      Frenet g = t.project(p.x(), p.y());
+      EXPECT_NEAR(g.s, s, 1e-6);
+      EXPECT_NEAR(g.d, d, 1e-6);
+    }
+}
+
+// Steady-state cornering of the linear single-track model: yaw rate r = v delta / (L + K v^2)
+// with the understeer gradient K = m (lr / Cf - lf / Cr) / L.
+TEST(Vehicle, SteadyStateCorneringMatchesTheBicycleModel) {
+  VehicleParams p;
+  p.tyre = "linear";
+  p.mu = 100;  // no saturation
+  p.drag_area = p.lift_area = p.rolling_resistance = 0;
+  p.steer_delay = 0;
+  p.max_steer_rate = 10;
+  const double L = p.wheelbase();
+  const double K = p.mass * (p.lr / p.cornering_front - p.lf / p.cornering_rear) / L;
+  for (double v : {15.0, 30.0, 50.0}) {
+    VehicleModel m(p);
+    m.state().vx = v;
+    const double delta = 0.02;
+    for (int i = 0; i < 500 * 20; ++i) {
+      Command c;
+      c.steer = delta;
+      double e = v - m.state().vx;  // hold the speed
+      c.throttle = std::clamp(0.5 * e, 0.0, 1.0);
+      c.brake = std::clamp(-0.5 * e, 0.0, 1.0);
+      m.step(0.002, c, Eigen::Vector2d::Zero());
+    }
+    const double r_expected = v * delta / (L + K * v * v);
+    EXPECT_NEAR(m.state().vx, v, 0.05 * v);
+    EXPECT_NEAR(m.state().r, m.state().vx * delta / (L + K * m.state().vx * m.state().vx), 0.02 * r_expected) << v;
+  }
+}
+
+TEST(Vehicle, BankedRoadPullsTheCarDownhill) {
+  VehicleParams p;
+  VehicleModel m(p);
+  m.state().vx = 0;
+  // Standing still on a road sloping up to the left (grad along +y with yaw 0): drifts right? The
+  // kinematic model keeps it on its wheels: longitudinal slope instead, nose uphill, rolls back.
+  for (int i = 0; i < 100; ++i) m.step(0.002, Command{}, Eigen::Vector2d(0.1, 0));
+  EXPECT_LT(m.state().ax, -0.9);
+}
+
+TEST(Lidar, RayToAWallAtAKnownDistance) {
+  WorldSpec w;
+  w.line = oval();
+  w.walls.left = w.walls.right = true;
+  w.walls.left_offset = 0.5;
+  w.walls.right_offset = 1.0;
+  Track t(w);
+  LidarSpec s;
+  s.mount = {0, 0, 0.5};
+  s.elevations = {0.0};
+  s.columns = 1;
+  s.range_noise = 0.02;
+  LidarCaster c(t, s);
+  // Car on the straight at s = 400, d = 1, level road: left wall at d = 8, right wall at d = -8.5.
+  Frenet f = t.at(400, 1.0);
+  Eigen::Vector3d o(t.position(f).x(), t.position(f).y(), 0.5);
+  RayHit left = c.cast(o, Eigen::Vector3d(0, 1, 0), f.seg);
+  EXPECT_EQ(left.surface, Surface::wall);
+  EXPECT_NEAR(left.range, 7.0, 1e-9);
+  RayHit right = c.cast(o, Eigen::Vector3d(0, -1, 0), f.seg);
+  EXPECT_NEAR(right.range, 9.5, 1e-9);
+  // A slanted ray: 45 deg to the left and forward crosses 7 m of lateral distance in 7 sqrt(2).
+  RayHit slant = c.cast(o, Eigen::Vector3d(1, 1, 0).normalized(), f.seg);
+  EXPECT_NEAR(slant.range, 7 * std::sqrt(2.0), 1e-9);
+  // Through scan(): the sensor looking left (yaw 90 deg) with noise: within 4 sigma.
+  Rng rng(3);
+  PointBuffers out;
+  int within = 0;
+  for (int i = 0; i < 200; ++i) {
+    out.clear();
+    c.scan(Eigen::Translation3d(o.x(), o.y(), 0) * Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()), f.seg, rng, 1.0, out);
+    ASSERT_EQ(out.x.size(), 1u);
+    within += std::abs(out.x[0] - 7.0) < 4 * 0.02;
+  }
+  EXPECT_EQ(within, 200);
+  // A ray above the wall (1.2 m high) meets nothing; one aimed at the road ahead hits it.
+  EXPECT_EQ(c.cast(o, Eigen::Vector3d(0, 1, 0.3).normalized(), f.seg).surface, Surface::none);
+  RayHit road = c.cast(o, Eigen::Vector3d(1, 0, -0.05).normalized(), f.seg);
+  EXPECT_EQ(road.surface, Surface::road);
+  EXPECT_NEAR(road.range, 0.5 / std::sin(std::atan(0.05)), 1e-4);
+}
+
+TEST(Lidar, PointsOnTheBankedTurnLieOnTheBankedSurface) {
+  WorldSpec w;
+  w.line = load_centerline_csv(ims_path());
+  BankSpec b;
+  b.mode = "constant";
+  b.degrees = 9.2;
+  w.bank = bank_profile(w.line, b);
+  w.walls.right = true;
+  Track t(w);
+  LidarSpec s;
+  s.mount = {2.342, 0, 0.448};
+  s.elevations = row_elevations(32, -15, 15, "horizon", 2);
+  s.range_noise = 0;
+  LidarCaster c(t, s);
+  // In turn 1 of IMS (about 1/4 of the way round), on the low side of the track.
+  Eigen::Isometry3d body = pose_on(t, 700, 3.0);
+  Eigen::Isometry3d sensor = body * Eigen::Translation3d(s.mount);
+  Rng rng(1);
+  PointBuffers out;
+  c.scan(body, t.project(body.translation().x(), body.translation().y()).seg, rng, 1.0, out);
+  int road = 0;
+  double worst = 0;
+  for (std::size_t i = 0; i < out.x.size(); ++i) {
+    Eigen::Vector3d p = sensor * Eigen::Vector3d(out.x[i], out.y[i], out.z[i]);
+    Frenet f = t.project(p.x(), p.y());
+    if (f.d < -t.width_right(f.seg, f.u) + 0.05 || f.d > t.width_left(f.seg, f.u) - 0.05) continue;  // walls
+    if (std::abs(p.z() - t.road_z(f)) > 0.3) continue;                                               // walls
+    worst = std::max(worst, std::abs(p.z() - t.road_z(f)));
+    ++road;
+  }
+  EXPECT_GT(road, 5000);
+  // The caster's surface is defined slab by slab (d across the slab's segment); the projection
+  // here takes the nearest segment. On the turn's outside the two differ by up to ~2 cm.
+  EXPECT_LT(worst, 0.03);
+  // The banked surface is not level: points well across the track differ in height by metres.
+  double zmin = 1e9, zmax = -1e9;
+  for (std::size_t i = 0; i < out.x.size(); ++i) {
+    Eigen::Vector3d p = sensor * Eigen::Vector3d(out.x[i], out.y[i], out.z[i]);
+    zmin = std::min(zmin, p.z());
+    zmax = std::max(zmax, p.z());
+  }
+  EXPECT_GT(zmax - zmin, 2.0);
+}
+
+TEST(Lidar, BlockSkippingReturnsWhatTheSlabMarchReturns) {
+  WorldSpec w;
+  w.line = load_centerline_csv(ims_path());
+  BankSpec b;
+  b.mode = "curvature";
+  b.degrees = 9.2;
+  b.curvature_threshold = 0.002;
+  w.bank = bank_profile(w.line, b);
+  w.walls.right = true;
+  w.pylons = {Pylon{300, 2, 0.2, 0.7}, Pylon{1200, -1, 0.3, 1.0}};
+  Track t(w);
+  LidarSpec s;
+  s.elevations = row_elevations(32, -15, 15, "horizon", 2);
+  s.columns = 200;
+  s.range_noise = 0;
+  LidarSpec plain = s;
+  plain.use_blocks = false;
+  LidarCaster fast(t, s), slow(t, plain);
+  std::size_t n = 0, differ = 0;
+  for (double at = 0; at < t.length(); at += 97) {
+    Eigen::Isometry3d body = pose_on(t, at, -2.0);
+    int seg = t.project(body.translation().x(), body.translation().y()).seg;
+    Rng r1(1), r2(1);
+    PointBuffers a, c;
+    fast.scan(body, seg, r1, 1.0, a);
+    slow.scan(body, seg, r2, 1.0, c);
+    n += c.x.size();
+    if (a.x.size() != c.x.size()) { differ += 1000; continue; }
+    for (std::size_t i = 0; i < a.x.size(); ++i)
+      differ += std::abs(a.x[i] - c.x[i]) + std::abs(a.y[i] - c.y[i]) + std::abs(a.z[i] - c.z[i]) > 1e-3;
+  }
+  EXPECT_GT(n, 40000u);
+  EXPECT_EQ(differ, 0u);
+}
+
+TEST(Faults, WindowsGiveExactlyTheConfiguredError) {
+  FaultSchedule f(R"([{"type": "bias", "start_s": 498, "end_s": 505, "offset": [0.4, -0.2, 0]},
+                      {"type": "drift", "start_s": 500, "end_s": 510, "rate": [0.1, 0, 0]},
+                      {"type": "sigma", "start_s": 498, "end_s": 505, "factor": 0.1, "fix_type": 2}])",
+                  3, {"bias", "drift", "sigma"});
+  Rng rng(1);
+  auto e = f.at(497.9, rng);
+  EXPECT_EQ(e.offset, (std::vector<double>{0, 0, 0}));
+  e = f.at(499, rng);
+  EXPECT_DOUBLE_EQ(e.offset[0], 0.4);
+  EXPECT_DOUBLE_EQ(e.offset[1], -0.2);
+  EXPECT_DOUBLE_EQ(e.sigma_factor, 0.1);
+  EXPECT_EQ(e.fix_type, 2);
+  e = f.at(503, rng);
+  EXPECT_DOUBLE_EQ(e.offset[0], 0.4 + 0.1 * 3);
+  e = f.at(507, rng);
+  EXPECT_DOUBLE_EQ(e.offset[0], 0.1 * 7);
+  EXPECT_FALSE(e.fix_type);
+  e = f.at(510, rng);
+  EXPECT_DOUBLE_EQ(e.offset[0], 0.0);
+}
+
+TEST(Faults, ErrorsNameTheJsonPointer) {
+  auto msg = [](const std::string& j) {
+    try {
+      FaultSchedule(j, 3, {"bias", "noise"});
+    } catch (const FaultError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(msg(R"([{"type": "bias", "start_s": 1, "end_s": 2, "offset": [1, 2]}])"),
+            "/0/offset: must be an array of 3 numbers");
+  EXPECT_EQ(msg(R"([{"type": "noise", "start_s": 1, "end_s": 2, "factor": 2}, {"type": "freeze", "start_s": 1, "end_s": 2}])"),
+            "/1/type: 'freeze' is not one of: bias, noise");
+  EXPECT_EQ(msg(R"([{"type": "noise", "start_s": 1, "end_s": 2, "factr": 2}])"), "/0/factr: unknown key");
+}
+
+TEST(Referee, DetectsAWallContactAndCountsLaps) {
+  WorldSpec w;
+  w.line = oval();
+  w.walls.right = true;
+  Track t(w);
+  Referee r(t, Footprint{});
+  // Drive the centre line twice round at 50 m/s, then drift into the right wall.
+  const double v = 50, dt = 0.01;
+  double s = 0, time = 0;
+  int laps = 0;
+  while (s < 2 * t.length() + 10) {
+    Frenet f = t.at(s, 0);
+    Eigen::Vector2d p = t.position(f);
+    auto ev = r.update({time, p.x(), p.y(), t.heading(f), v});
+    laps += ev.lap_completed;
+    EXPECT_FALSE(ev.wall_contact);
+    s += v * dt;
+    time += dt;
+  }
+  EXPECT_EQ(laps, 2);
+  ASSERT_EQ(r.lap_times().size(), 2u);
+  EXPECT_NEAR(r.lap_times()[0], t.length() / v, 0.02);
+  // The corners of a 4.9 m car on a 200 m radius stick out a little: 0.15 m allowance.
+  EXPECT_NEAR(r.min_wall_clearance(), 7.5 - 0.97, 0.15);
+  bool contact = false;
+  for (double d = 0; d > -8 && !contact; d -= 0.1) {
+    Frenet f = t.at(s, d);
+    Eigen::Vector2d p = t.position(f);
+    contact = r.update({time, p.x(), p.y(), t.heading(f), v}).wall_contact;
+    time += dt;
+  }
+  EXPECT_TRUE(contact);
+  EXPECT_EQ(r.wall_contacts(), 1);
+  EXPECT_LE(r.min_wall_clearance(), 0);
+  // Localization error against the truth interpolated at the estimate's time: 2 m off the car.
+  Frenet f = t.at(s, -0.1);
+  Eigen::Vector2d p = t.position(f);
+  r.update({time, p.x(), p.y(), t.heading(f), v});
+  EXPECT_TRUE(r.localization(time, p.x() + 2.0, p.y()));
+  EXPECT_FALSE(r.localization(time + 1.0, p.x(), p.y()));  // no truth yet for that time
+  EXPECT_NEAR(r.localization_rmse(), 2.0, 1e-9);
+  EXPECT_NEAR(r.localization_max_error(), 2.0, 1e-9);
+}
