@@ -1,4 +1,5 @@
 #include "exec/executive.hpp"
+#include "loader/registry.hpp"
 
 #include <chrono>
 #include <cmath>
@@ -170,20 +171,9 @@ bool Executive::call(NodeRuntime& n, const char* phase, const std::function<void
 }
 
 std::vector<std::string> data_dirs() {
-  std::vector<std::string> dirs;
-  if (const char* env = std::getenv("BRICKYARD_DATA_PATH")) {
-    std::string s = env;
-    for (std::size_t start = 0;;) {
-      auto colon = s.find(':', start);
-      std::string d = s.substr(start, colon == std::string::npos ? std::string::npos : colon - start);
-      if (!d.empty()) dirs.push_back(d);
-      if (colon == std::string::npos) break;
-      start = colon + 1;
-    }
-  }
-  std::error_code ec;
-  std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
-  if (!ec) dirs.push_back((exe.parent_path().parent_path() / "share" / "brickyard" / "data").string());
+  std::vector<std::string> dirs = env_path_list("BRICKYARD_DATA_PATH");
+  const std::string prefix = install_prefix();
+  if (!prefix.empty()) dirs.push_back((std::filesystem::path(prefix) / "share" / "brickyard" / "data").string());
   return dirs;
 }
 

@@ -178,12 +178,11 @@ const PluginEntry* Registry::find(const std::string& name) const {
   return nullptr;
 }
 
-std::vector<std::string> default_plugin_dirs() {
+std::vector<std::string> env_path_list(const char* var) {
   std::vector<std::string> dirs;
-  if (const char* env = std::getenv("BRICKYARD_PLUGIN_PATH")) {
+  if (const char* env = std::getenv(var)) {
     std::string s = env;
-    std::size_t start = 0;
-    while (start <= s.size()) {
+    for (std::size_t start = 0;;) {
       auto colon = s.find(':', start);
       std::string d = s.substr(start, colon == std::string::npos ? std::string::npos : colon - start);
       if (!d.empty()) dirs.push_back(d);
@@ -191,10 +190,21 @@ std::vector<std::string> default_plugin_dirs() {
       start = colon + 1;
     }
   }
+  return dirs;
+}
+
+std::string install_prefix() {
   std::error_code ec;
   fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-  if (!ec) {
-    fs::path d = exe.parent_path().parent_path() / "lib" / "brickyard" / "plugins";
+  return ec ? std::string() : exe.parent_path().parent_path().string();
+}
+
+std::vector<std::string> default_plugin_dirs() {
+  std::vector<std::string> dirs = env_path_list("BRICKYARD_PLUGIN_PATH");
+  const std::string prefix = install_prefix();
+  std::error_code ec;
+  if (!prefix.empty()) {
+    fs::path d = fs::path(prefix) / "lib" / "brickyard" / "plugins";
     if (fs::is_directory(d, ec)) dirs.push_back(d.string());
   }
   return dirs;

@@ -44,5 +44,9 @@ std::vector<std::string> check_manifest(const Manifest& m);
 // Plugin folders in search order: explicit ones (--plugin-path, the graph's plugin_path), then
 // $BRICKYARD_PLUGIN_PATH, then the folder beside the executable (build tree and install tree alike).
 std::vector<std::string> default_plugin_dirs();
+// The directories of a colon-separated environment variable (empty entries skipped).
+std::vector<std::string> env_path_list(const char* var);
+// <prefix> of this executable (<prefix>/bin/brickyard), or "" when unknown.
+std::string install_prefix();
 
 }  // namespace brickyard::fw
