@@ -160,7 +160,10 @@ bool Executive::call(NodeRuntime& n, const char* phase, const std::function<void
     f();
     return true;
   } catch (const BadInput& e) {
-    request_stop(RunResult::invalid_input, "node '" + n.name + "' (" + n.plugin_name() + "): " + e.what());
+    // Bad input only while nothing runs yet; thrown later it is a failure of the run like any other.
+    const bool setup = std::string_view(phase) == "configure";
+    request_stop(setup ? RunResult::invalid_input : RunResult::failed,
+                 "node '" + n.name + "' (" + n.plugin_name() + ")" + (setup ? ": " : std::string(" failed in ") + phase + ": ") + e.what());
   } catch (const std::exception& e) {
     request_stop(RunResult::failed, "node '" + n.name + "' (" + n.plugin_name() + ") failed in " + phase + ": " + e.what());
   } catch (...) {

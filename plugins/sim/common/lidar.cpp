@@ -93,7 +93,6 @@ LidarCaster::LidarCaster(const Track& track, LidarSpec spec) : track_(track), sp
   for (int i = 0; i < n; ++i) blen[i / kBlock] += seg_[i].len;
   const double wall_h = (w.walls.left || w.walls.right) ? w.walls.height : 0.0;
   for (int b = 0; b < nb; ++b) top[b] = blocks_[b].z_max + wall_h;
-  z_top_ = *std::max_element(top.begin(), top.end());
   for (int b = 0; b < nb; ++b) {
     const Block& B = blocks_[b];
     double zt = top[b];

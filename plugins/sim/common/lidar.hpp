@@ -79,7 +79,6 @@ class LidarCaster {
     double z_top_near;        // highest point (walls included) of the blocks within max range
   };
   std::vector<Block> blocks_;
-  double z_top_ = 0;  // highest point of the world: a rising ray above it meets nothing
   const Track& track_;
   LidarSpec spec_;
   std::vector<Seg> seg_;

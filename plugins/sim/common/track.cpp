@@ -83,7 +83,6 @@ Track::Track(WorldSpec spec) : spec_(std::move(spec)) {
   if (spec_.bank.empty()) spec_.bank.assign(n, 0.0);
   if (static_cast<int>(spec_.bank.size()) != n) throw std::invalid_argument("bank profile has the wrong length");
   seg_.resize(n);
-  double area = 0;
   for (int i = 0; i < n; ++i) {
     int j = (i + 1) % n;
     Segment& s = seg_[i];
@@ -95,9 +94,8 @@ Track::Track(WorldSpec spec) : spec_(std::move(spec)) {
     s.n = {-s.t.y(), s.t.x()};
     s.s0 = length_;
     length_ += s.length;
-    area += c.x[i] * c.y[j] - c.x[j] * c.y[i];
   }
-  ccw_ = area > 0;
+  ccw_ = sim::counter_clockwise(c);
   for (auto& p : spec_.pylons) {
     Frenet f = at(p.s, p.d);
     Eigen::Vector2d q = position(f);
@@ -195,6 +193,13 @@ Eigen::Vector2d Track::position(const Frenet& f) const {
 
 double Track::heading(const Frenet& f) const { return std::atan2(seg_[f.seg].t.y(), seg_[f.seg].t.x()); }
 
+bool counter_clockwise(const CenterLine& c) {
+  const std::size_t n = c.x.size();
+  double area = 0;
+  for (std::size_t i = 0; i < n; ++i) area += c.x[i] * c.y[(i + 1) % n] - c.x[(i + 1) % n] * c.y[i];
+  return area > 0;
+}
+
 std::vector<double> signed_curvature(const CenterLine& c, double smooth_m) {
   const int n = static_cast<int>(c.x.size());
   std::vector<double> k(n), len(n);
@@ -224,10 +229,8 @@ std::vector<double> bank_profile(const CenterLine& c, const BankSpec& spec) {
   const int n = static_cast<int>(c.x.size());
   std::vector<double> target(n, 0.0);
   const double rad = spec.degrees * M_PI / 180.0;
-  double area = 0;
-  for (int i = 0; i < n; ++i) area += c.x[i] * c.y[(i + 1) % n] - c.x[(i + 1) % n] * c.y[i];
   // The outside of a counter-clockwise loop is on the right: raising it lowers the left edge.
-  const double loop_sign = area > 0 ? -1.0 : 1.0;
+  const double loop_sign = counter_clockwise(c) ? -1.0 : 1.0;
   std::vector<double> s(n, 0.0);
   for (int i = 1; i < n; ++i) s[i] = s[i - 1] + std::hypot(c.x[i] - c.x[i - 1], c.y[i] - c.y[i - 1]);
   if (spec.mode == "none") return target;

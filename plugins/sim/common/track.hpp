@@ -105,6 +105,10 @@ class Track {
   bool ccw_ = true;
 };
 
+// Whether the closed line runs counter-clockwise (positive shoelace area): its outside is then on
+// the right.
+bool counter_clockwise(const CenterLine& line);
+
 // Signed curvature (1/m, left turns positive) per point, averaged over `smooth_m` of track.
 std::vector<double> signed_curvature(const CenterLine& line, double smooth_m);
 

@@ -96,13 +96,8 @@ class World : public Plugin {
     b.transition_m = p.number("bank_transition_m");
     b.segments = parse_bank_segments(p.json("bank_segments"));
     w.bank = bank_profile(w.line, b);
-    double area = 0;
-    const auto& x = w.line.x;
-    const auto& y = w.line.y;
-    for (std::size_t i = 0; i < x.size(); ++i)
-      area += x[i] * y[(i + 1) % x.size()] - x[(i + 1) % x.size()] * y[i];
     std::string outer = p.string("outer_side");
-    if (outer == "auto") outer = area > 0 ? "right" : "left";  // counter-clockwise: outside is right
+    if (outer == "auto") outer = counter_clockwise(w.line) ? "right" : "left";
     const bool outer_left = outer == "left";
     w.walls.height = p.number("wall_height_m");
     auto set_side = [&](bool left, bool on, double off) {
