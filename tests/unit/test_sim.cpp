@@ -244,6 +244,7 @@ TEST(Lidar, BlockSkippingReturnsWhatTheSlabMarchReturns) {
   s.elevations = row_elevations(32, -15, 15, "horizon", 2);
   s.columns = 200;
   s.range_noise = 0;
+  s.coherent_columns = false;
   LidarSpec plain = s;
   plain.use_blocks = false;
   LidarCaster fast(t, s), slow(t, plain);
@@ -262,6 +263,55 @@ TEST(Lidar, BlockSkippingReturnsWhatTheSlabMarchReturns) {
   }
   EXPECT_GT(n, 40000u);
   EXPECT_EQ(differ, 0u);
+}
+
+// A column's rows resume where the row below left off, and stop once one escapes; every ray
+// cast alone from the sensor must return the same (to a millimetre: the root is found from
+// another start). Poses on the banking (tilted columns), all three mounts, pylons in view.
+TEST(Lidar, CoherentColumnsReturnWhatEveryRayAloneReturns) {
+  WorldSpec w;
+  w.line = load_centerline_csv(ims_path());
+  BankSpec b;
+  b.mode = "curvature";
+  b.degrees = 9.2;
+  b.curvature_threshold = 0.002;
+  w.bank = bank_profile(w.line, b);
+  w.walls.right = true;
+  w.pylons = {Pylon{300, 2, 0.2, 0.7}, Pylon{1200, -1, 0.3, 1.0}};
+  Track t(w);
+  std::size_t n = 0, differ = 0, pylon_points = 0;
+  double worst = 0;
+  for (double yaw : {0.0, 120.0, -120.0}) {
+    LidarSpec s;
+    s.mount = {1.5, 0, 0.5};
+    s.yaw = yaw * M_PI / 180;
+    s.elevations = row_elevations(32, -15, 15, "horizon", 2);
+    s.columns = 300;
+    s.range_noise = 0;
+    LidarSpec alone = s;
+    alone.coherent_columns = false;
+    LidarCaster coherent(t, s), single(t, alone);
+    for (double at = 0; at < t.length(); at += 97) {
+      Eigen::Isometry3d body = pose_on(t, at, -2.0);
+      int seg = t.project(body.translation().x(), body.translation().y()).seg;
+      Rng r1(1), r2(1);
+      PointBuffers a, c;
+      coherent.scan(body, seg, r1, 1.0, a);
+      single.scan(body, seg, r2, 1.0, c);
+      n += c.x.size();
+      ASSERT_EQ(a.x.size(), c.x.size()) << "at s = " << at << ", yaw " << yaw;
+      for (std::size_t i = 0; i < a.x.size(); ++i) {
+        const double e = std::abs(a.x[i] - c.x[i]) + std::abs(a.y[i] - c.y[i]) + std::abs(a.z[i] - c.z[i]);
+        worst = std::max(worst, e);
+        differ += e > 1e-3;
+        pylon_points += c.intensity[i] > 0.5f * s.reflectivity_pylon;
+      }
+    }
+  }
+  EXPECT_GT(n, 100000u);
+  EXPECT_GT(pylon_points, 10u);
+  EXPECT_LT(worst, 0.005);
+  EXPECT_LT(differ, n / 10000);
 }
 
 TEST(Faults, WindowsGiveExactlyTheConfiguredError) {

@@ -117,13 +117,30 @@ LidarCaster::LidarCaster(const Track& track, LidarSpec spec) : track_(track), sp
     col_c_.push_back(std::cos(a));
     col_s_.push_back(std::sin(a));
   }
-  for (double e : spec_.elevations) {
+  std::vector<double> rows = spec_.elevations;
+  std::sort(rows.begin(), rows.end());
+  for (double e : rows) {
     row_c_.push_back(std::cos(e));
     row_s_.push_back(std::sin(e));
   }
+  // Steepest the road can be, in the slab frame the march uses: tan(bank) across, d * d(tan
+  // bank)/da and the edges' slope along; along-track distances on a curve's outside are
+  // stretched by 1 / (1 - curvature * d) against a.
+  for (int i = 0; i < n; ++i) {
+    const Seg& g = seg_[i];
+    const Seg& h = seg_[track.wrap(i + 1)];
+    const double tb = std::max(std::abs(g.tb0), std::abs(g.tb0 + g.dtb * g.len));
+    const double wide = std::max({g.wl0, g.wl0 + g.dwl * g.len, g.wr0, g.wr0 + g.dwr * g.len});
+    const double turn = std::abs(g.tx * h.ty - g.ty * h.tx) / g.len;  // ~ curvature
+    const double reach = wide + std::max(w.walls.left_offset, w.walls.right_offset) + 1.0;
+    const double stretch = turn * reach < 0.9 ? 1.0 / (1.0 - turn * reach) : 10.0;
+    const double along = reach * std::abs(g.dtb) + std::max(std::abs(g.dwl), std::abs(g.dwr)) * tb;
+    slope_max_ = std::max(slope_max_, tb + along * stretch);
+  }
 }
 
-RayHit LidarCaster::cast(const Eigen::Vector3d& o, const Eigen::Vector3d& v, int k) const {
+RayHit LidarCaster::cast(const Eigen::Vector3d& o, const Eigen::Vector3d& v, int k, const Resume* from, double shift,
+                         double shift_rest, Resume* checkpoint) const {
   // March from slab to slab (the region of a segment between the planes normal to it at its
   // ends). Within a slab, the ray's along (a) and across (d) coordinates are linear in t, so the
   // wall lines are crossed at a t found in closed form and the road (a straight cross-section
@@ -135,8 +152,31 @@ RayHit LidarCaster::cast(const Eigen::Vector3d& o, const Eigen::Vector3d& v, int
   double best_t = max_t;
   int dir = 0;
   double t0 = 0;
+  // For the checkpoint: the least distance to a wall line along the path so far, and whether a
+  // slab with pylons has been entered (past it, no checkpoint: pylons are not in the margin).
+  double margin = kInf;
+  bool checkpoints = checkpoint != nullptr;
+  if (checkpoint) *checkpoint = Resume{0, -1, 0, false};
+  // This ray escapes at t: so do the rays above it when the path up to t kept clear of the walls.
+  auto escape = [&](double t) {
+    if (checkpoints && shift_rest >= 0 && margin - t * shift_rest > 0) checkpoint->rest_escape = true;
+  };
+  if (from && from->seg >= 0) {
+    t0 = from->t;
+    k = from->seg;
+    margin = from->margin;
+  }
   for (int steps = 0; steps < n; ++steps) {
-    if (vz >= 0 && oz + vz * t0 > blocks_[k / kBlock].z_top_near) break;  // rising above all in reach
+    if (checkpoints) {
+      // Not into a slab with pylons: the next ray enters it at another t, and the pylon's face
+      // may lie between the two.
+      if (seg_[k].pylon_begin < seg_[k].pylon_end) checkpoints = false;
+      else if (margin - t0 * shift > 0) *checkpoint = Resume{t0, k, margin - t0 * shift};
+    }
+    if (vz >= 0 && oz + vz * t0 > blocks_[k / kBlock].z_top_near) {  // rising above all in reach
+      escape(t0);
+      break;
+    }
     // Entering a block: cross it in one step when nothing in it can be reached.
     if (spec_.use_blocks && steps > 0 && (dir > 0 ? k % kBlock == 0 : (k % kBlock == kBlock - 1 || k == n - 1))) {
       const Block& B = blocks_[k / kBlock];
@@ -149,7 +189,11 @@ RayHit LidarCaster::cast(const Eigen::Vector3d& o, const Eigen::Vector3d& v, int
           auto cd = [&](double t) { return (oy + vy * t - B.cy) * B.ctx - (ox + vx * t - B.cx) * B.cty; };
           const double di = cd(t0), de = cd(t_out);
           if (std::max(di, de) < B.dl_safe && std::min(di, de) > B.dr_safe) {
-            if (t_out >= max_t) break;
+            margin = std::min({margin, B.dl_safe - std::max(di, de), std::min(di, de) - B.dr_safe});
+            if (t_out >= max_t) {
+              escape(max_t);
+              break;
+            }
             t0 = t_out;
             k = dir > 0 ? std::min(n, (k / kBlock + 1) * kBlock) % n
                         : ((k / kBlock) * kBlock - 1 + n) % n;
@@ -205,15 +249,32 @@ RayHit LidarCaster::cast(const Eigen::Vector3d& o, const Eigen::Vector3d& v, int
       if (t_wall > max_t) t_wall = kInf;
     }
     const double tf = std::min({te, t_wall, max_t});
+    if (checkpoints) {
+      for (double t : {t0, tf}) {
+        const double a = std::clamp(a0 + va * t, 0.0, g.len), d = d0 + vd * t;
+        margin = std::min({margin, g.wall_l + g.dwl * a - d, d - (g.wall_r - g.dwr * a)});
+      }
+    }
     const double f1 = above(tf);
     if (f1 <= 0) {
       double lo = t0, hi = tf, flo = above(t0), fhi = f1, t = hi;
       if (flo > 0) {
-        for (int it = 0; it < 4; ++it) {
+        // Regula falsi, Illinois variant: the height over the road has a kink at the road edge,
+        // where plain regula falsi keeps one end fixed and crawls.
+        int side = 0;
+        for (int it = 0; it < 30; ++it) {
           t = lo + (hi - lo) * flo / (flo - fhi);
           const double f = above(t);
-          if (std::abs(f) < 1e-5) break;
-          if (f > 0) { lo = t; flo = f; } else { hi = t; fhi = f; }
+          if (std::abs(f) < 1e-6 || hi - lo < 1e-6) break;
+          if (f > 0) {
+            lo = t; flo = f;
+            if (side > 0) fhi *= 0.5;
+            side = 1;
+          } else {
+            hi = t; fhi = f;
+            if (side < 0) flo *= 0.5;
+            side = -1;
+          }
         }
       } else {
         t = t0;
@@ -238,7 +299,11 @@ RayHit LidarCaster::cast(const Eigen::Vector3d& o, const Eigen::Vector3d& v, int
       }
       break;
     }
-    if (tf >= max_t || t1 >= best_t) break;
+    if (tf >= max_t) {
+      if (best.surface == Surface::none) escape(max_t);
+      break;
+    }
+    if (t1 >= best_t) break;
     t0 = t1;
     k = dir > 0 ? (k + 1 == n ? 0 : k + 1) : (k == 0 ? n - 1 : k - 1);
   }
@@ -258,21 +323,46 @@ std::size_t LidarCaster::scan(const Eigen::Isometry3d& world_from_body, int seg_
   out.y.reserve(out.y.size() + rays);
   out.z.reserve(out.z.size() + rays);
   out.intensity.reserve(out.intensity.size() + rays);
+  // Rows go from the lowest up. The next row's ray lies within `shift` * t of this one
+  // horizontally and higher by more than the road can rise over that distance, so it passes
+  // over all road this one passed over; if this one also kept more than shift * t from the walls
+  // and met no pylon, the next starts where this one's last slab began (`checkpoint`), and when
+  // this one escapes (to max range, or above everything), so do all above it.
+  const int rows = static_cast<int>(row_c_.size());
+  std::vector<Eigen::Vector3d> ds(rows), dw(rows);
+  std::vector<double> shift(rows), rest(rows);
   for (int c = 0; c < spec_.columns; ++c) {
-    for (std::size_t r = 0; r < row_c_.size(); ++r) {
-      const Eigen::Vector3d ds(row_c_[r] * col_c_[c], row_c_[r] * col_s_[c], row_s_[r]);
-      const Eigen::Vector3d dw = R * ds;
-      RayHit h = cast(o, dw, seg);
-      if (h.surface == Surface::none) continue;
+    for (int r = 0; r < rows; ++r) {
+      ds[r] = Eigen::Vector3d(row_c_[r] * col_c_[c], row_c_[r] * col_s_[c], row_s_[r]);
+      dw[r] = R * ds[r];
+    }
+    for (int r = rows - 1; r >= 0; --r) {
+      shift[r] = rest[r] = -1;
+      if (r + 1 == rows || !spec_.coherent_columns) continue;
+      const double ax = dw[r + 1].x() - dw[r].x(), ay = dw[r + 1].y() - dw[r].y(), apart = std::sqrt(ax * ax + ay * ay);
+      if (dw[r + 1].z() - dw[r].z() <= slope_max_ * apart) continue;
+      shift[r] = apart;
+      rest[r] = r + 2 == rows ? apart : rest[r + 1] >= 0 ? apart + rest[r + 1] : -1;
+    }
+    Resume from, checkpoint;
+    bool resume = false;
+    for (int r = 0; r < rows; ++r) {
+      RayHit h = cast(o, dw[r], seg, resume ? &from : nullptr, shift[r], rest[r], shift[r] >= 0 ? &checkpoint : nullptr);
+      resume = shift[r] >= 0 && checkpoint.seg >= 0;
+      from = checkpoint;
+      if (h.surface == Surface::none) {
+        if (shift[r] >= 0 && checkpoint.rest_escape) break;
+        continue;
+      }
       double range = h.range + (sigma > 0 ? rng.normal(sigma) : 0.0);
       if (spec_.dropout > 0 && rng.uniform() < spec_.dropout) continue;
       if (range < spec_.min_range || range > spec_.max_range) continue;
       double refl = h.surface == Surface::road ? spec_.reflectivity_road
                     : h.surface == Surface::wall ? spec_.reflectivity_wall
                                                  : spec_.reflectivity_pylon;
-      out.x.push_back(static_cast<float>(range * ds.x()));
-      out.y.push_back(static_cast<float>(range * ds.y()));
-      out.z.push_back(static_cast<float>(range * ds.z()));
+      out.x.push_back(static_cast<float>(range * ds[r].x()));
+      out.y.push_back(static_cast<float>(range * ds[r].y()));
+      out.z.push_back(static_cast<float>(range * ds[r].z()));
       out.intensity.push_back(static_cast<float>(refl * h.cos_incidence));
     }
   }

@@ -30,6 +30,7 @@ struct LidarSpec {
   double range_noise = 0.02;                        // m, 1 sigma
   double dropout = 0.0;                             // probability a return is lost
   bool use_blocks = true;                           // off: walk every slab (benchmark baseline)
+  bool coherent_columns = true;                     // off: every ray marches from the sensor
   double reflectivity_road = 0.15, reflectivity_wall = 0.6, reflectivity_pylon = 0.9;
 };
 
@@ -49,9 +50,27 @@ class LidarCaster {
   LidarCaster(const Track& track, LidarSpec spec);
   const LidarSpec& spec() const { return spec_; }
 
+  // Where a ray may start its march instead of at the sensor: the next row up in a column is
+  // known to pass everything the row below it passed, up to a point (see scan and
+  // docs/simulator.md). `margin`: how far the path before t stays from any wall.
+  struct Resume {
+    double t = 0;
+    int seg = -1;
+    double margin = 0;
+    bool rest_escape = false;  // the rays above this one return nothing either
+  };
+
   // First hit of the ray o + t v (world frame, v unit) within max_range; `seg` is the centre-line
   // segment o lies on (Track::project).
-  RayHit cast(const Eigen::Vector3d& o, const Eigen::Vector3d& v, int seg) const;
+  RayHit cast(const Eigen::Vector3d& o, const Eigen::Vector3d& v, int seg) const {
+    return cast(o, v, seg, nullptr, -1, -1, nullptr);
+  }
+  // The same, starting at `from` (when not null). When `checkpoint` is not null, also: the last
+  // slab entry up to which a ray whose points lie within shift * t of this one's, and above them,
+  // is sure to meet nothing (checkpoint->seg < 0: none past the start); and whether every ray
+  // within shift_rest * t, and above, escapes as this one did (to max range or above all).
+  RayHit cast(const Eigen::Vector3d& o, const Eigen::Vector3d& v, int seg, const Resume* from, double shift,
+              double shift_rest, Resume* checkpoint) const;
 
   // One frame from a vehicle pose (world_from_body). Noise sigma is multiplied by noise_factor.
   // Returns the number of rays cast.
@@ -86,7 +105,8 @@ class LidarCaster {
   double wall_left_off_, wall_right_off_, wall_h_;
   bool wall_left_, wall_right_;
   Eigen::Isometry3d body_from_sensor_;
-  std::vector<double> col_c_, col_s_, row_c_, row_s_;
+  std::vector<double> col_c_, col_s_, row_c_, row_s_;  // rows sorted by elevation, lowest first
+  double slope_max_ = 0;                               // bound on the road surface's gradient
 };
 
 }  // namespace brickyard::sim
