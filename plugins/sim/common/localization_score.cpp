@@ -1,0 +1,54 @@
+#include "localization_score.hpp"
+
+#include <cmath>
+#include <limits>
+
+namespace brickyard::sim {
+
+void LocalizationScore::truth(double t, double x, double y) {
+  truth_.push_back({t, {x, y}});
+  while (truth_.size() > 4096) truth_.pop_front();
+}
+
+bool LocalizationScore::in_window(double t, double grace) const {
+  for (const auto& [a, b] : p_.windows)
+    if (t >= a && t < b + grace) return true;
+  return false;
+}
+
+bool LocalizationScore::estimate(double t, double x, double y, int status) {
+  if (truth_.empty() || t < truth_.front().first || t > truth_.back().first) return false;
+  // Truth at t, linear between the samples around it.
+  std::size_t i = truth_.size() - 1;
+  while (i > 0 && truth_[i - 1].first > t) --i;
+  double tx = truth_[i].second.first, ty = truth_[i].second.second;
+  if (i > 0 && truth_[i].first > t) {
+    const auto& a = truth_[i - 1];
+    const double u = (t - a.first) / (truth_[i].first - a.first);
+    tx = a.second.first + u * (tx - a.second.first);
+    ty = a.second.second + u * (ty - a.second.second);
+  }
+  if (t < p_.warmup_s) {
+    last_status_ = status;
+    return true;
+  }
+  const double e = std::hypot(x - tx, y - ty);
+  ++n_;
+  sq_ += e * e;
+  max_ = std::max(max_, e);
+  if (status == 0) max_normal_ = std::max(max_normal_, e);
+  for (const auto& [a, b] : p_.windows) {
+    if (t < a || t >= b + p_.grace_s) continue;
+    if (status >= 1 && flag_ < 0) flag_ = t - a;
+    if (status >= 2 && emergency_ < 0) emergency_ = t - a;
+  }
+  if (last_status_ == 0 && status != 0 && !in_window(t, p_.grace_s)) ++false_alarms_;
+  last_status_ = status;
+  return true;
+}
+
+double LocalizationScore::rmse() const {
+  return n_ ? std::sqrt(sq_ / static_cast<double>(n_)) : std::numeric_limits<double>::quiet_NaN();
+}
+
+}  // namespace brickyard::sim

@@ -1,0 +1,181 @@
+// Resilient localization: every branch of the paper's update selection with numbers worked out
+// by hand, the metre-valued distance, the filter, the baselines' behaviour and the manager.
+#include "common/localization_manager.hpp"
+#include "common/localization_score.hpp"
+#include "common/update_selection.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace brickyard::estimation;
+
+TEST(UpdateSelection, AllWithinEpsilonUsesOneFixTheClosest) {
+  Selection s = select_updates({0.10, 0.05}, 0.2, 5.0);
+  EXPECT_EQ(s.which, UpdateCase::single);
+  EXPECT_EQ(s.weight, (std::vector<double>{0, 1}));
+}
+
+TEST(UpdateSelection, AllWithinDeltaIsTheWeightedSum) {
+  // ΣΔ = 4: λ = 1 - 1/4 = 0.75 and 1 - 3/4 = 0.25 (they already sum to 1 for two fixes).
+  Selection s = select_updates({1.0, 3.0}, 0.2, 5.0);
+  EXPECT_EQ(s.which, UpdateCase::weighted);
+  EXPECT_DOUBLE_EQ(s.weight[0], 0.75);
+  EXPECT_DOUBLE_EQ(s.weight[1], 0.25);
+  // One within ε and one not is still "not all within ε": weighted. ΣΔ = 0.5: 0.8 / 0.2.
+  s = select_updates({0.1, 0.4}, 0.2, 5.0);
+  EXPECT_EQ(s.which, UpdateCase::weighted);
+  EXPECT_DOUBLE_EQ(s.weight[0], 0.8);
+  EXPECT_DOUBLE_EQ(s.weight[1], 0.2);
+}
+
+TEST(UpdateSelection, ThreeFixesNormaliseTheWeights) {
+  // ΣΔ = 6: λ = 5/6, 4/6, 3/6, sum 2 -> 5/12, 4/12, 3/12.
+  Selection s = select_updates({1, 2, 3}, 0.2, 5.0);
+  EXPECT_EQ(s.which, UpdateCase::weighted);
+  EXPECT_NEAR(s.weight[0], 5.0 / 12, 1e-12);
+  EXPECT_NEAR(s.weight[1], 4.0 / 12, 1e-12);
+  EXPECT_NEAR(s.weight[2], 3.0 / 12, 1e-12);
+}
+
+TEST(UpdateSelection, SomeWithinDeltaUsesOnlyThose) {
+  Selection s = select_updates({2.0, 7.0}, 0.2, 5.0);
+  EXPECT_EQ(s.which, UpdateCase::partial);
+  EXPECT_EQ(s.weight, (std::vector<double>{1, 0}));
+  // Two of three feasible: weighted among them, ΣΔ = 4 -> 0.75 / 0.25.
+  s = select_updates({1, 3, 8}, 0.2, 5.0);
+  EXPECT_EQ(s.which, UpdateCase::partial);
+  EXPECT_DOUBLE_EQ(s.weight[0], 0.75);
+  EXPECT_DOUBLE_EQ(s.weight[1], 0.25);
+  EXPECT_DOUBLE_EQ(s.weight[2], 0);
+}
+
+TEST(UpdateSelection, NoneWithinDeltaRejectsAll) {
+  Selection s = select_updates({6, 9}, 0.2, 5.0);
+  EXPECT_EQ(s.which, UpdateCase::rejected);
+  EXPECT_EQ(s.weight, (std::vector<double>{0, 0}));
+  EXPECT_EQ(select_updates({}, 0.2, 5.0).which, UpdateCase::predict_only);
+  // A lone fix within δ is used as it is.
+  s = select_updates({3}, 0.2, 5.0);
+  EXPECT_EQ(s.which, UpdateCase::single);
+  EXPECT_EQ(s.weight, (std::vector<double>{1}));
+}
+
+TEST(UpdateSelection, DeltaIsInMetres) {
+  // Isotropic S: Δ is the Euclidean distance, whatever S's size.
+  EXPECT_NEAR(metric_delta({0.3, 0.4}, Eigen::Matrix2d::Identity() * 0.01), 0.5, 1e-12);
+  EXPECT_NEAR(metric_delta({0.3, 0.4}, Eigen::Matrix2d::Identity() * 100), 0.5, 1e-12);
+  // S = diag(0.04, 0.01), e = (0.2, 0) along the unsure axis: Mahalanobis 1, times the largest
+  // sigma 0.2 -> 0.2 m, the Euclidean distance.
+  EXPECT_NEAR(metric_delta({0.2, 0}, Eigen::Vector2d(0.04, 0.01).asDiagonal().toDenseMatrix()), 0.2, 1e-12);
+  // Across the sure axis it counts double: e = (0, 0.2) -> Mahalanobis 2 -> 0.4 m.
+  EXPECT_NEAR(metric_delta({0, 0.2}, Eigen::Vector2d(0.04, 0.01).asDiagonal().toDenseMatrix()), 0.4, 1e-12);
+}
+
+TEST(PoseFilter, DeadReckonsStraightAndRound) {
+  PoseFilter f;
+  f.init(0, 0, 0, 0.1, 0.01);
+  for (int i = 0; i < 125; ++i) f.predict(0.008, 20.0, 0.0);
+  EXPECT_NEAR(f.state()(PoseFilter::X), 20.0, 1e-9);
+  EXPECT_NEAR(f.state()(PoseFilter::Y), 0.0, 1e-9);
+  // A quarter circle of radius 100 m at 20 m/s (no sideslip learnt yet: K = 0).
+  PoseFilter g;
+  g.init(0, 0, 0, 0.1, 0.01);
+  const double w = 0.2, T = M_PI / 2 / w;
+  const int n = static_cast<int>(std::round(T / 0.001));
+  for (int i = 0; i < n; ++i) g.predict(T / n, 20.0, w);
+  EXPECT_NEAR(g.state()(PoseFilter::X), 100.0, 1e-3);
+  EXPECT_NEAR(g.state()(PoseFilter::Y), 100.0, 1e-3);
+  EXPECT_GT(g.cov()(0, 0), f.cov()(0, 0) * 0.5);  // uncertainty grows with travel
+}
+
+TEST(PoseFilter, LeverArmIsTakenOut) {
+  PoseFilter f;
+  f.init(10, 20, M_PI / 2, 0.1, 0.01);  // facing north: the antenna 1.606 m ahead is north
+  Eigen::Vector2d base = f.base_from_antenna({10.05, 21.606}, {1.606, -0.05});
+  EXPECT_NEAR(base.x(), 10.0, 1e-12);
+  EXPECT_NEAR(base.y(), 20.0, 1e-12);
+}
+
+namespace {
+PoseFilter after_outage(double seconds) {
+  PoseFilter f;
+  f.init(0, 0, 0, 0.02, 0.002);
+  const int n = static_cast<int>(seconds / 0.008);
+  for (int i = 0; i < n; ++i) f.predict(0.008, 70.0, 0.0);
+  return f;
+}
+}  // namespace
+
+TEST(Policies, ResilientWeighsTheCloseFixAndGatedLetsBadFixesInAfterALongRejection) {
+  PolicyParams p;
+  // Fresh filter, one receiver 0.4 m off: the weighted sum leans on the good one.
+  PoseFilter r;
+  r.init(0, 0, 0, 0.02, 0.002);
+  std::vector<Fix> fixes = {{0, {1.606 + 0.4, 0.05}, {1.606, 0.05}, 0.015}, {1, {1.606 + 0.01, -0.05}, {1.606, -0.05}, 0.015}};
+  EpochResult e = apply_fixes(r, fixes, Policy::resilient, p);
+  EXPECT_EQ(e.which, UpdateCase::weighted);
+  EXPECT_LT(std::abs(r.position().x()), 0.05);
+  // After a 10 s outage at 70 m/s the covariance has grown: 8 m off passes the chi-square gate,
+  // while Δ, in metres, still rejects it.
+  PoseFilter g = after_outage(10), rs = g;
+  const double x = g.position().x();
+  std::vector<Fix> bad = {{0, {x + 1.606, 8.05}, {1.606, 0.05}, 0.015}, {1, {x + 1.606, 7.95}, {1.606, -0.05}, 0.015}};
+  EpochResult eg = apply_fixes(g, bad, Policy::gated, p);
+  EXPECT_EQ(eg.which, UpdateCase::weighted) << "gated should accept both after the outage";
+  EpochResult er = apply_fixes(rs, bad, Policy::resilient, p);
+  EXPECT_EQ(er.which, UpdateCase::rejected);
+  EXPECT_GT(er.delta[0], 5.0);
+  EXPECT_NEAR(rs.position().y(), 0.0, 1e-9);
+  // The same bad fixes on a fresh filter: the gate holds.
+  PoseFilter fresh = after_outage(0.1);
+  bad[0].antenna.x() = bad[1].antenna.x() = fresh.position().x() + 1.606;
+  EXPECT_EQ(apply_fixes(fresh, bad, Policy::gated, p).which, UpdateCase::rejected);
+  // Naive takes everything.
+  PoseFilter nv = after_outage(0.1);
+  EXPECT_EQ(apply_fixes(nv, bad, Policy::naive, p).which, UpdateCase::weighted);
+  EXPECT_GT(nv.position().y(), 3.0);
+}
+
+TEST(LocalizationManager, WarningEmergencyAndHysteresis) {
+  ManagerParams mp;  // 2 receivers, EMERGENCY after 0.3 s, recover after 1 s, timeout 0.25 s
+  LocalizationManager m(mp);
+  int k = 0;  // epochs of 0.05 s
+  auto epoch = [&](bool ok0, bool ok1) {
+    const double t = 0.05 * k++;
+    m.on_fix(0, t, ok0);
+    m.on_fix(1, t, ok1);
+    return m.update(t);
+  };
+  for (int i = 0; i < 20; ++i) EXPECT_EQ(epoch(true, true), Status::normal);
+  EXPECT_EQ(epoch(false, true), Status::warning);  // one rejected
+  EXPECT_EQ(epoch(true, true), Status::warning);   // hysteresis: not back yet
+  for (int i = 0; i < 6; ++i) EXPECT_EQ(epoch(false, false), Status::warning) << i;  // 0 .. 0.25 s
+  EXPECT_EQ(epoch(false, false), Status::emergency);                                 // 0.30 s
+  for (int i = 0; i < 20; ++i) EXPECT_EQ(epoch(true, true), Status::emergency) << i;  // 0 .. 0.95 s
+  for (int i = 0; i < 20; ++i) EXPECT_EQ(epoch(true, true), Status::warning) << i;    // 1.0 .. 1.95 s
+  EXPECT_EQ(epoch(true, true), Status::normal);                                       // 2.0 s
+  // Silence counts as rejection once it lasts fix_timeout_s: both silent from t0.
+  const double t0 = 0.05 * (k - 1);
+  EXPECT_EQ(m.update(t0 + 0.2), Status::normal);
+  EXPECT_EQ(m.update(t0 + 0.3), Status::warning);    // both silent since t0 + 0.25 (seen at 0.3)
+  EXPECT_EQ(m.update(t0 + 0.55), Status::warning);
+  EXPECT_EQ(m.update(t0 + 0.61), Status::emergency);  // 0.31 s after it was first seen
+}
+
+TEST(LocalizationScore, FlagTimesAndFalseAlarms) {
+  brickyard::sim::ScoreParams p;
+  p.windows = {{10, 12}};
+  p.warmup_s = 1;
+  brickyard::sim::LocalizationScore s(p);
+  for (int i = 0; i <= 2000; ++i) s.truth(i * 0.01, i * 0.01, 0);
+  s.estimate(5.0, 5.0, 0.3, 1);   // an alarm outside the window: false alarm
+  s.estimate(6.0, 6.0, 0.0, 0);
+  s.estimate(10.2, 10.2, 2.0, 0);  // NORMAL with 2 m error
+  s.estimate(10.4, 10.4, 0.0, 2);  // flagged and EMERGENCY 0.4 s in
+  EXPECT_EQ(s.false_alarms(), 1);
+  EXPECT_NEAR(s.time_to_flag(), 0.4, 1e-9);
+  EXPECT_NEAR(s.time_to_emergency(), 0.4, 1e-9);
+  EXPECT_NEAR(s.max_error_normal(), 2.0, 1e-12);
+  EXPECT_NEAR(s.max_error(), 2.0, 1e-12);
+}
