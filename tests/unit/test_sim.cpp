@@ -47,6 +47,20 @@ Eigen::Isometry3d pose_on(const Track& t, double s, double d, double yaw_offset 
 
 std::string ims_path() { return std::string(BRICKYARD_SOURCE_DIR) + "/data/tracks/IMS.csv"; }
 
+// IMS banked by curvature, the outer wall on, two pylons: the world of the caster comparisons.
+WorldSpec ims_banked_with_pylons() {
+  WorldSpec w;
+  w.line = load_centerline_csv(ims_path());
+  BankSpec b;
+  b.mode = "curvature";
+  b.degrees = 9.2;
+  b.curvature_threshold = 0.002;
+  w.bank = bank_profile(w.line, b);
+  w.walls.right = true;
+  w.pylons = {Pylon{300, 2, 0.2, 0.7}, Pylon{1200, -1, 0.3, 1.0}};
+  return w;
+}
+
 }  // namespace
 
 TEST(TrackFile, BadRowNamesFileAndLine) {
@@ -230,16 +244,7 @@ TEST(Lidar, PointsOnTheBankedTurnLieOnTheBankedSurface) {
 }
 
 TEST(Lidar, BlockSkippingReturnsWhatTheSlabMarchReturns) {
-  WorldSpec w;
-  w.line = load_centerline_csv(ims_path());
-  BankSpec b;
-  b.mode = "curvature";
-  b.degrees = 9.2;
-  b.curvature_threshold = 0.002;
-  w.bank = bank_profile(w.line, b);
-  w.walls.right = true;
-  w.pylons = {Pylon{300, 2, 0.2, 0.7}, Pylon{1200, -1, 0.3, 1.0}};
-  Track t(w);
+  Track t(ims_banked_with_pylons());
   LidarSpec s;
   s.elevations = row_elevations(32, -15, 15, "horizon", 2);
   s.columns = 200;
@@ -269,16 +274,7 @@ TEST(Lidar, BlockSkippingReturnsWhatTheSlabMarchReturns) {
 // cast alone from the sensor must return the same (to a millimetre: the root is found from
 // another start). Poses on the banking (tilted columns), all three mounts, pylons in view.
 TEST(Lidar, CoherentColumnsReturnWhatEveryRayAloneReturns) {
-  WorldSpec w;
-  w.line = load_centerline_csv(ims_path());
-  BankSpec b;
-  b.mode = "curvature";
-  b.degrees = 9.2;
-  b.curvature_threshold = 0.002;
-  w.bank = bank_profile(w.line, b);
-  w.walls.right = true;
-  w.pylons = {Pylon{300, 2, 0.2, 0.7}, Pylon{1200, -1, 0.3, 1.0}};
-  Track t(w);
+  Track t(ims_banked_with_pylons());
   std::size_t n = 0, differ = 0, pylon_points = 0;
   double worst = 0;
   for (double yaw : {0.0, 120.0, -120.0}) {
