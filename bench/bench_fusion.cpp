@@ -27,8 +27,8 @@ void BM_Update(benchmark::State& st) {
   const Policy policy = static_cast<Policy>(st.range(0));
   PoseFilter f = ready();
   std::vector<Fix> fixes(2);
-  fixes[0] = {0, {1.55, 0.52}, {1.606, 0.05}, 0.015};
-  fixes[1] = {1, {1.52, 0.45}, {1.606, -0.05}, 0.015};
+  fixes[0] = {0, {1.55, 0.52}, {1.606, 0.05, 1.0}, 0.015};
+  fixes[1] = {1, {1.52, 0.45}, {1.606, -0.05, 1.0}, 0.015};
   PolicyParams p;
   for (auto _ : st) {
     PoseFilter g = f;  // the same prior every time

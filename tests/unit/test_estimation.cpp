@@ -10,10 +10,18 @@
 
 using namespace brickyard::estimation;
 
-TEST(UpdateSelection, AllWithinEpsilonUsesOneFixTheClosest) {
-  Selection s = select_updates({0.10, 0.05}, 0.2, 5.0);
+TEST(UpdateSelection, AllWithinEpsilonUsesTheClosestOrAllByLikelihood) {
+  Selection s = select_updates({0.10, 0.05}, 0.2, 5.0);  // the paper's weighting
   EXPECT_EQ(s.which, UpdateCase::single);
   EXPECT_EQ(s.weight, (std::vector<double>{0, 1}));
+  // Both consistent (within 3 sigma): equal weights.
+  s = select_updates({0.10, 0.05}, 0.2, 5.0, Weighting::likelihood, {2.0, 1.0});
+  EXPECT_EQ(s.which, UpdateCase::single);
+  EXPECT_EQ(s.weight, (std::vector<double>{0.5, 0.5}));
+  // 4 and 1 sigma: excess 16 - 9 = 7 and 0 -> e^-3.5 / (1 + e^-3.5) and 1 / (1 + e^-3.5).
+  s = select_updates({0.15, 0.05}, 0.2, 5.0, Weighting::likelihood, {4.0, 1.0});
+  EXPECT_NEAR(s.weight[0], std::exp(-3.5) / (1 + std::exp(-3.5)), 1e-12);
+  EXPECT_NEAR(s.weight[1], 1 / (1 + std::exp(-3.5)), 1e-12);
 }
 
 TEST(UpdateSelection, AllWithinDeltaIsTheWeightedSum) {
@@ -27,6 +35,17 @@ TEST(UpdateSelection, AllWithinDeltaIsTheWeightedSum) {
   EXPECT_EQ(s.which, UpdateCase::weighted);
   EXPECT_DOUBLE_EQ(s.weight[0], 0.8);
   EXPECT_DOUBLE_EQ(s.weight[1], 0.2);
+}
+
+TEST(UpdateSelection, LikelihoodWeightingPrefersTheConsistentFix) {
+  // d = 1 and 5 sigma: excess 0 and 25 - 9 = 16 -> 1 / (1 + e^-8) and e^-8 / (1 + e^-8).
+  Selection s = select_updates({0.3, 0.4}, 0.2, 5.0, Weighting::likelihood, {1.0, 5.0});
+  EXPECT_EQ(s.which, UpdateCase::weighted);
+  EXPECT_NEAR(s.weight[0], 1 / (1 + std::exp(-8.0)), 1e-12);
+  EXPECT_NEAR(s.weight[1], std::exp(-8.0) / (1 + std::exp(-8.0)), 1e-12);
+  // Far apart in sigma, no underflow: 30 and 40 sigma -> all on the first.
+  s = select_updates({1.0, 2.0}, 0.2, 5.0, Weighting::likelihood, {30.0, 40.0});
+  EXPECT_NEAR(s.weight[0], 1.0, 1e-12);
 }
 
 TEST(UpdateSelection, ThreeFixesNormaliseTheWeights) {
@@ -92,7 +111,7 @@ TEST(PoseFilter, DeadReckonsStraightAndRound) {
 TEST(PoseFilter, LeverArmIsTakenOut) {
   PoseFilter f;
   f.init(10, 20, M_PI / 2, 0.1, 0.01);  // facing north: the antenna 1.606 m ahead is north
-  Eigen::Vector2d base = f.base_from_antenna({10.05, 21.606}, {1.606, -0.05});
+  Eigen::Vector2d base = f.base_from_antenna({10.05, 21.606}, {1.606, -0.05, 1.0});
   EXPECT_NEAR(base.x(), 10.0, 1e-12);
   EXPECT_NEAR(base.y(), 20.0, 1e-12);
 }
@@ -112,7 +131,7 @@ TEST(Policies, ResilientWeighsTheCloseFixAndGatedLetsBadFixesInAfterALongRejecti
   // Fresh filter, one receiver 0.4 m off: the weighted sum leans on the good one.
   PoseFilter r;
   r.init(0, 0, 0, 0.02, 0.002);
-  std::vector<Fix> fixes = {{0, {1.606 + 0.4, 0.05}, {1.606, 0.05}, 0.015}, {1, {1.606 + 0.01, -0.05}, {1.606, -0.05}, 0.015}};
+  std::vector<Fix> fixes = {{0, {1.606 + 0.4, 0.05}, {1.606, 0.05, 1.0}, 0.015}, {1, {1.606 + 0.01, -0.05}, {1.606, -0.05, 1.0}, 0.015}};
   EpochResult e = apply_fixes(r, fixes, Policy::resilient, p);
   EXPECT_EQ(e.which, UpdateCase::weighted);
   EXPECT_LT(std::abs(r.position().x()), 0.05);
@@ -120,7 +139,7 @@ TEST(Policies, ResilientWeighsTheCloseFixAndGatedLetsBadFixesInAfterALongRejecti
   // while Δ, in metres, still rejects it.
   PoseFilter g = after_outage(10), rs = g;
   const double x = g.position().x();
-  std::vector<Fix> bad = {{0, {x + 1.606, 8.05}, {1.606, 0.05}, 0.015}, {1, {x + 1.606, 7.95}, {1.606, -0.05}, 0.015}};
+  std::vector<Fix> bad = {{0, {x + 1.606, 8.05}, {1.606, 0.05, 1.0}, 0.015}, {1, {x + 1.606, 7.95}, {1.606, -0.05, 1.0}, 0.015}};
   EpochResult eg = apply_fixes(g, bad, Policy::gated, p);
   EXPECT_EQ(eg.which, UpdateCase::weighted) << "gated should accept both after the outage";
   EpochResult er = apply_fixes(rs, bad, Policy::resilient, p);

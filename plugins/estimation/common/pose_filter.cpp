@@ -57,9 +57,11 @@ void PoseFilter::predict(double dt, double speed, double yaw_rate) {
   P_(SLIP, SLIP) += noise_.slip_gain * noise_.slip_gain * dt;
 }
 
-Eigen::Vector2d PoseFilter::base_from_antenna(const Eigen::Vector2d& antenna, const Eigen::Vector2d& lever) const {
+Eigen::Vector2d PoseFilter::base_from_antenna(const Eigen::Vector2d& antenna, const Eigen::Vector3d& lever) const {
   const double c = std::cos(x_(YAW)), s = std::sin(x_(YAW));
-  return antenna - Eigen::Vector2d(c * lever.x() - s * lever.y(), s * lever.x() + c * lever.y());
+  // The lever arm's horizontal part after the roll (pitch is left out: under a degree here).
+  const double lx = lever.x(), ly = lever.y() * std::cos(roll_) - lever.z() * std::sin(roll_);
+  return antenna - Eigen::Vector2d(c * lx - s * ly, s * lx + c * ly);
 }
 
 void PoseFilter::update_position(const Eigen::Vector2d& z, const Eigen::Matrix2d& R) {

@@ -35,11 +35,13 @@ class PoseFilter {
   // Advance by dt with the control input (wheel speed, gyro yaw rate).
   void predict(double dt, double speed, double yaw_rate);
 
-  // A fix of an antenna at `lever` (body frame, m, horizontal part) as a measurement of
-  // base_link: the position it implies for base_link at the current yaw, and the innovation's
-  // covariance P_xy + R. Roll is not modelled: an antenna 1 m up moves 16 cm sideways on IMS's
-  // 9.2 deg banking (docs/algorithms.md).
-  Eigen::Vector2d base_from_antenna(const Eigen::Vector2d& antenna, const Eigen::Vector2d& lever) const;
+  // The body's roll (rad), for the lever arm: an antenna 1 m up moves 16 cm sideways on IMS's
+  // 9.2 deg banking. Not a state: the plugin derives it from the IMU (docs/algorithms.md).
+  void set_roll(double roll) { roll_ = roll; }
+  double roll() const { return roll_; }
+  // A fix of an antenna at `lever` (body frame, m) as a measurement of base_link: the position it
+  // implies for base_link at the current yaw and roll, and the innovation's covariance P_xy + R.
+  Eigen::Vector2d base_from_antenna(const Eigen::Vector2d& antenna, const Eigen::Vector3d& lever) const;
   Eigen::Matrix2d innovation_cov(const Eigen::Matrix2d& R) const { return P_.topLeftCorner<2, 2>() + R; }
   // Kalman update with a base_link position z and its covariance R.
   void update_position(const Eigen::Vector2d& z, const Eigen::Matrix2d& R);
@@ -56,6 +58,7 @@ class PoseFilter {
  private:
   FilterNoise noise_;
   bool initialized_ = false;
+  double roll_ = 0;
   Vec x_ = Vec::Zero();
   Mat P_ = Mat::Identity();
 };

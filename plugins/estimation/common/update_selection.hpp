@@ -19,21 +19,32 @@ enum class UpdateCase : std::uint8_t { predict_only = 0, single = 1, weighted = 
 double metric_delta(const Eigen::Vector2d& e, const Eigen::Matrix2d& S);
 
 // The paper's four cases over the Δk of one epoch (ε < δ):
-//   every Δk <= ε           -> single: the fix with the smallest Δ, weight 1;
+//   every Δk <= ε           -> single: paper weighting: the closest fix alone, as the paper does;
+//                              likelihood: all of them, weighted by likelihood;
 //   every Δk <= δ           -> weighted: λk = 1 - Δk / ΣΔ, normalised to sum 1;
 //   some Δk <= δ            -> partial: those (weighted as above among them when several);
 //   none                    -> rejected: predict only.
 // One fix alone within δ is used as it is (case single). Weights are 0 for unused fixes.
+// How the weighted cases weigh the fixes they use.
+//   likelihood: λk ∝ exp(-max(0, d_k^2 - 9) / 2), d_k the Mahalanobis distance of fix k: the
+//               paper's own p(θk | x) ≜ -Δk read as a log-likelihood, flat within 3 sigma so
+//               consistent receivers count equally (the plugin's default);
+//   paper:      λk = 1 - Δk / ΣΔ, the paper's formula. Between two disagreeing receivers it has
+//               no preference and drifts to the faulty one (docs/algorithms.md).
+enum class Weighting { paper, likelihood };
+
 struct Selection {
   UpdateCase which = UpdateCase::predict_only;
   std::vector<double> weight;
 };
-Selection select_updates(const std::vector<double>& delta, double epsilon, double delta_max);
+// `mahalanobis` (d_k, unitless) is needed for Weighting::likelihood only.
+Selection select_updates(const std::vector<double>& delta, double epsilon, double delta_max,
+                         Weighting weighting = Weighting::paper, const std::vector<double>& mahalanobis = {});
 
 struct Fix {
   int receiver = 0;
   Eigen::Vector2d antenna;  // m, map frame
-  Eigen::Vector2d lever;    // m, antenna in base_link (x, y)
+  Eigen::Vector3d lever;    // m, antenna in base_link
   double sigma = 0;         // reported 1 sigma, m
 };
 
@@ -42,6 +53,7 @@ struct PolicyParams {
   double epsilon = 0.2;       // m
   double delta = 5.0;         // m
   double gate_chi2 = 13.816;  // gated: chi-square, 2 dof, 99.9 %
+  Weighting weighting = Weighting::likelihood;
 };
 
 struct EpochResult {

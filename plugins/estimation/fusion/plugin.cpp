@@ -33,8 +33,9 @@ Manifest common_manifest(Manifest m) {
       .input<msgs::GnssFix>("gnss1", "fixes of the second receiver (optional)", false, 64)
       .output<msgs::LocalizationEstimate>("estimate", "pose, covariance, the update case, delta per receiver, status")
       .output<msgs::ModeStatus>("mode", "the localization manager's status, on change and at 10 Hz")
-      .param(ParamSpec::numbers("antenna0", {1.606, 0.05}).doc("first receiver's antenna in base_link, m (x, y)"))
-      .param(ParamSpec::numbers("antenna1", {1.606, -0.05}).doc("second receiver's antenna in base_link, m (x, y)"))
+      .param(ParamSpec::numbers("antenna0", {1.606, 0.05, 1.0}).doc("first receiver's antenna in base_link, m (x, y, z)"))
+      .param(ParamSpec::numbers("antenna1", {1.606, -0.05, 1.0}).doc("second receiver's antenna in base_link, m (x, y, z)"))
+      .param(ParamSpec::number("roll_filter_s", 1.0).in_unit("s").at_least(0).doc("time constant of the roll taken from the IMU; 0: roll not used"))
       .param(ParamSpec::number("speed_sigma", 0.05).in_unit("m/s").at_least(0).doc("wheel speed input noise"))
       .param(ParamSpec::number("gyro_sigma", 0.002).in_unit("rad/s").at_least(0).doc("yaw rate input noise"))
       .param(ParamSpec::number("process_position", 0.05).in_unit("m/sqrt(s)").at_least(0))
@@ -54,7 +55,9 @@ template <Policy P> class Estimator : public Plugin {
       return common_manifest(Manifest("estimation.resilient_fusion", "1.0.0")
                                  .describe("multi-GNSS Kalman filter with the paper's Bayesian update selection (eps, delta) and the localization manager"))
           .param(ParamSpec::number("epsilon_m", 0.2).in_unit("m").at_least(0).doc("every fix within this: use one"))
-          .param(ParamSpec::number("delta_m", 5.0).in_unit("m").at_least(0).doc("fixes beyond this are rejected"));
+          .param(ParamSpec::number("delta_m", 5.0).in_unit("m").at_least(0).doc("fixes beyond this are rejected"))
+          .param(ParamSpec::string("weighting", "likelihood").one_of({"likelihood", "paper"})
+                     .doc("weighted cases: likelihood (exp(-d^2/2), d Mahalanobis) or paper (1 - delta/sum); see docs/algorithms.md"));
     else if constexpr (P == Policy::gated)
       return common_manifest(Manifest("estimation.ekf_gated", "1.0.0")
                                  .describe("baseline: the same filter with a per-receiver chi-square gate (robot_localization style)"))
@@ -67,8 +70,8 @@ template <Policy P> class Estimator : public Plugin {
     const Params& p = ctx.params();
     for (int r = 0; r < 2; ++r) {
       const auto& a = p.numbers(r == 0 ? "antenna0" : "antenna1");
-      if (a.size() != 2) throw BadInput(std::string("parameter 'antenna") + char('0' + r) + "': needs 2 numbers (x, y)");
-      lever_[r] = {a[0], a[1]};
+      if (a.size() != 3) throw BadInput(std::string("parameter 'antenna") + char('0' + r) + "': needs 3 numbers (x, y, z)");
+      lever_[r] = {a[0], a[1], a[2]};
     }
     FilterNoise n;
     n.speed = p.number("speed_sigma");
@@ -78,9 +81,11 @@ template <Policy P> class Estimator : public Plugin {
     n.slip_gain = p.number("process_slip_gain");
     filter_ = PoseFilter(n);
     init_distance_ = p.number("init_distance");
+    roll_tau_ = p.number("roll_filter_s");
     if constexpr (P == Policy::resilient) {
       policy_.epsilon = p.number("epsilon_m");
       policy_.delta = p.number("delta_m");
+      policy_.weighting = p.string("weighting") == "likelihood" ? Weighting::likelihood : Weighting::paper;
       if (policy_.epsilon > policy_.delta)
         throw BadInput("parameter 'epsilon_m' (" + std::to_string(policy_.epsilon) + ") must not exceed 'delta_m' (" +
                        std::to_string(policy_.delta) + ")");
@@ -123,6 +128,7 @@ template <Policy P> class Estimator : public Plugin {
         advance(t);
         yaw_rate_ = e.imu->gyro_z();
         have_imu_ = true;
+        update_roll(*e.imu, t);
       } else {
         if (!epoch.empty() && t != epoch_t) flush();
         epoch_t = t;
@@ -162,6 +168,17 @@ template <Policy P> class Estimator : public Plugin {
     t_ = std::max(t_, t);
   }
 
+  // Roll from the lateral specific force of a car cornering in the plane of a banked road:
+  // f_y = v * yaw rate + dvy/dt + g sin(roll). dvy/dt is not measured and swings by metres per
+  // second squared through a turn's entry and exit, so the estimate is low-passed (roll_filter_s).
+  void update_roll(const msgs::Imu& m, double t) {
+    if (roll_tau_ <= 0) return;
+    const double s = std::clamp((m.accel_y() - speed_ * yaw_rate_) / 9.81, -0.5, 0.5);
+    sin_roll_ += (s - sin_roll_) * std::min(1.0, (t - roll_t_) / roll_tau_);
+    roll_t_ = t;
+    filter_.set_roll(std::asin(sin_roll_));
+  }
+
   void apply(const std::vector<Fix>& epoch, double t) {
     if (!filter_.initialized()) {
       initialize(epoch);
@@ -193,7 +210,7 @@ template <Policy P> class Estimator : public Plugin {
     if (d.norm() < init_distance_) return;
     const double yaw = std::atan2(d.y(), d.x());
     filter_.init(p.x(), p.y(), yaw, 0.1, 0.05);
-    const Eigen::Vector2d lever = 0.5 * (lever_[0] + lever_[receivers_ - 1]);
+    const Eigen::Vector3d lever = 0.5 * (lever_[0] + lever_[receivers_ - 1]);
     const Eigen::Vector2d base = filter_.base_from_antenna(p, lever);
     filter_.init(base.x(), base.y(), yaw, 0.1, 0.05);
   }
@@ -239,9 +256,9 @@ template <Policy P> class Estimator : public Plugin {
   PoseFilter filter_;
   PolicyParams policy_;
   std::optional<LocalizationManager> manager_;
-  Eigen::Vector2d lever_[2];
+  Eigen::Vector3d lever_[2];
   int receivers_ = 2;
-  double init_distance_ = 5;
+  double init_distance_ = 5, roll_tau_ = 1, sin_roll_ = 0, roll_t_ = 0;
   std::optional<Eigen::Vector2d> first_;
   double t_ = -1, speed_ = 0, yaw_rate_ = 0;
   bool have_imu_ = false;
