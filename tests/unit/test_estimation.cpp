@@ -1,6 +1,7 @@
 // Resilient localization: every branch of the paper's update selection with numbers worked out
 // by hand, the metre-valued distance, the filter, the baselines' behaviour and the manager.
 #include "common/localization_manager.hpp"
+#include "common/localizer.hpp"
 #include "common/localization_score.hpp"
 #include "common/update_selection.hpp"
 
@@ -197,4 +198,30 @@ TEST(LocalizationScore, FlagTimesAndFalseAlarms) {
   EXPECT_NEAR(s.time_to_emergency(), 0.4, 1e-9);
   EXPECT_NEAR(s.max_error_normal(), 2.0, 1e-12);
   EXPECT_NEAR(s.max_error(), 2.0, 1e-12);
+}
+
+TEST(Localizer, HeadingFromTravelThenRollFromTheImu) {
+  LocalizerParams p;
+  p.manager.receivers = 1;
+  p.lever[0] = {1.606, 0.05, 1.0};
+  Localizer loc(p);
+  loc.speed(20);
+  // Driving north-east at 20 m/s, a fix every 0.05 s: the heading is taken after 5 m.
+  const double yaw = M_PI / 4;
+  int k = 0;
+  for (; k < 20 && !loc.filter().initialized(); ++k) {
+    const double t = 0.05 * k, s = 20 * t;
+    EXPECT_EQ(loc.status(t), Status::warning);  // not localized yet
+    loc.imu(t, 0.0, 0.0);
+    Fix f{0, {s * std::cos(yaw) + 1.606 * std::cos(yaw), s * std::sin(yaw) + 1.606 * std::sin(yaw)}, p.lever[0], 0.015};
+    loc.fixes(t, {f});
+  }
+  ASSERT_TRUE(loc.filter().initialized());
+  EXPECT_NEAR(loc.filter().state()(PoseFilter::YAW), yaw, 1e-9);
+  EXPECT_EQ(k, 6);  // 5 m at 20 m/s: the fix at 0.25 s
+  // Steady turn on a banked road: f_y = v w + g sin(roll). After a few time constants the
+  // roll estimate is the banking's.
+  const double roll = -0.16, w = 0.2;
+  for (int i = 0; i < 2000; ++i) loc.imu(0.3 + 0.008 * i, w, 20 * w + 9.81 * std::sin(roll));  // 16 time constants
+  EXPECT_NEAR(loc.filter().roll(), roll, 1e-6);
 }

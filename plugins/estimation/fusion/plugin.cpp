@@ -10,8 +10,7 @@
 #include <brickyard/msgs/WheelSpeeds.h>
 #include <brickyard/plugin.hpp>
 
-#include "../common/localization_manager.hpp"
-#include "../common/update_selection.hpp"
+#include "../common/localizer.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -68,90 +67,84 @@ template <Policy P> class Estimator : public Plugin {
 
   void configure(Context& ctx) override {
     const Params& p = ctx.params();
+    LocalizerParams lp;
+    lp.policy = P;
     for (int r = 0; r < 2; ++r) {
       const auto& a = p.numbers(r == 0 ? "antenna0" : "antenna1");
       if (a.size() != 3) throw BadInput(std::string("parameter 'antenna") + char('0' + r) + "': needs 3 numbers (x, y, z)");
-      lever_[r] = {a[0], a[1], a[2]};
+      lp.lever[r] = {a[0], a[1], a[2]};
     }
-    FilterNoise n;
-    n.speed = p.number("speed_sigma");
-    n.yaw_rate = p.number("gyro_sigma");
-    n.position = p.number("process_position");
-    n.yaw = p.number("process_yaw");
-    n.slip_gain = p.number("process_slip_gain");
-    filter_ = PoseFilter(n);
-    init_distance_ = p.number("init_distance");
-    roll_tau_ = p.number("roll_filter_s");
+    lp.noise.speed = p.number("speed_sigma");
+    lp.noise.yaw_rate = p.number("gyro_sigma");
+    lp.noise.position = p.number("process_position");
+    lp.noise.yaw = p.number("process_yaw");
+    lp.noise.slip_gain = p.number("process_slip_gain");
+    lp.init_distance = p.number("init_distance");
+    lp.roll_filter_s = p.number("roll_filter_s");
     if constexpr (P == Policy::resilient) {
-      policy_.epsilon = p.number("epsilon_m");
-      policy_.delta = p.number("delta_m");
-      policy_.weighting = p.string("weighting") == "likelihood" ? Weighting::likelihood : Weighting::paper;
-      if (policy_.epsilon > policy_.delta)
-        throw BadInput("parameter 'epsilon_m' (" + std::to_string(policy_.epsilon) + ") must not exceed 'delta_m' (" +
-                       std::to_string(policy_.delta) + ")");
+      lp.selection.epsilon = p.number("epsilon_m");
+      lp.selection.delta = p.number("delta_m");
+      if (lp.selection.epsilon > lp.selection.delta)
+        throw BadInput("parameter 'epsilon_m' (" + std::to_string(lp.selection.epsilon) + ") must not exceed 'delta_m' (" +
+                       std::to_string(lp.selection.delta) + ")");
+      lp.selection.weighting = p.string("weighting") == "paper" ? Weighting::paper : Weighting::likelihood;
     }
-    if constexpr (P == Policy::gated) policy_.gate_chi2 = p.number("gate_chi2");
+    if constexpr (P == Policy::gated) lp.selection.gate_chi2 = p.number("gate_chi2");
     imu_ = ctx.input<msgs::Imu>("imu");
     wheels_ = ctx.input<msgs::WheelSpeeds>("wheels");
     gnss_[0] = ctx.input<msgs::GnssFix>("gnss0");
     gnss_[1] = ctx.input<msgs::GnssFix>("gnss1");
     receivers_ = gnss_[1].connected() ? 2 : 1;
-    ManagerParams mp;
-    mp.receivers = receivers_;
-    mp.emergency_after_s = p.number("emergency_after_s");
-    mp.recover_after_s = p.number("recover_after_s");
-    mp.fix_timeout_s = p.number("fix_timeout_s");
-    manager_.emplace(mp);
+    lp.manager.receivers = receivers_;
+    lp.manager.emergency_after_s = p.number("emergency_after_s");
+    lp.manager.recover_after_s = p.number("recover_after_s");
+    lp.manager.fix_timeout_s = p.number("fix_timeout_s");
+    loc_.emplace(lp);
+    for (int r = 0; r < 2; ++r) lever_[r] = lp.lever[r];
     estimate_ = ctx.output<msgs::LocalizationEstimate>("estimate");
     mode_ = ctx.output<msgs::ModeStatus>("mode");
   }
 
   void step(Context& ctx) override {
-    // Events in time order: an IMU sample moves the filter to its stamp and sets the yaw rate;
-    // an epoch of fixes (one stamp) is applied at its stamp.
+    // Events in time order: IMU samples and epochs of fixes (one stamp each).
     std::multimap<double, Event> events;
     for (auto& m : imu_.take()) events.emplace(stamp_s(*m), Event{m, {}});
     for (int r = 0; r < receivers_; ++r)
       for (auto& f : gnss_[r].take()) events.emplace(stamp_s(*f), Event{nullptr, f});
-    for (auto& w : wheels_.take()) speed_ = 0.5 * (w->rear_left() + w->rear_right());
+    for (auto& w : wheels_.take()) loc_->speed(0.5 * (w->rear_left() + w->rear_right()));
     std::vector<Fix> epoch;
     double epoch_t = -1;
-    auto flush = [&] {
-      if (epoch.empty()) return;
-      advance(epoch_t);
-      apply(epoch, epoch_t);
-      epoch.clear();
-    };
     for (auto& [t, e] : events) {
       if (e.imu) {
-        flush();
-        advance(t);
-        yaw_rate_ = e.imu->gyro_z();
-        have_imu_ = true;
-        update_roll(*e.imu, t);
-      } else {
-        if (!epoch.empty() && t != epoch_t) flush();
-        epoch_t = t;
-        if (!e.fix->valid()) continue;  // "no fix": the receiver counts as silent
-        Fix f;
-        f.receiver = e.fix->receiver_id() < 2 && receivers_ == 2 ? e.fix->receiver_id() : 0;
-        f.antenna = {e.fix->x(), e.fix->y()};
-        f.lever = lever_[f.receiver];
-        f.sigma = std::max(e.fix->sigma_x(), e.fix->sigma_y());
-        epoch.push_back(f);
+        loc_->fixes(epoch_t, epoch);
+        epoch.clear();
+        loc_->imu(t, e.imu->gyro_z(), e.imu->accel_y());
+        continue;
       }
+      if (t != epoch_t) {
+        loc_->fixes(epoch_t, epoch);
+        epoch.clear();
+      }
+      epoch_t = t;
+      if (!e.fix->valid()) continue;  // "no fix": the receiver counts as silent
+      Fix f;
+      f.receiver = e.fix->receiver_id() < 2 && receivers_ == 2 ? e.fix->receiver_id() : 0;
+      f.antenna = {e.fix->x(), e.fix->y()};
+      f.lever = lever_[f.receiver];
+      f.sigma = std::max(e.fix->sigma_x(), e.fix->sigma_y());
+      epoch.push_back(f);
     }
-    flush();
+    loc_->fixes(epoch_t, epoch);
     publish(ctx);
   }
 
   void deactivate(Context& ctx) override {
-    ctx.metric("epochs", static_cast<double>(epochs_));
-    ctx.metric("fixes_rejected", static_cast<double>(rejected_));
-    ctx.metric("epochs_single", static_cast<double>(cases_[1]));
-    ctx.metric("epochs_weighted", static_cast<double>(cases_[2]));
-    ctx.metric("epochs_partial", static_cast<double>(cases_[3]));
-    ctx.metric("epochs_rejected", static_cast<double>(cases_[4]));
+    ctx.metric("epochs", static_cast<double>(loc_->epochs()));
+    ctx.metric("fixes_rejected", static_cast<double>(loc_->rejected()));
+    ctx.metric("epochs_single", static_cast<double>(loc_->epochs_of(UpdateCase::single)));
+    ctx.metric("epochs_weighted", static_cast<double>(loc_->epochs_of(UpdateCase::weighted)));
+    ctx.metric("epochs_partial", static_cast<double>(loc_->epochs_of(UpdateCase::partial)));
+    ctx.metric("epochs_rejected", static_cast<double>(loc_->epochs_of(UpdateCase::rejected)));
     ctx.metric("time_warning_s", time_in_[1]);
     ctx.metric("time_emergency_s", time_in_[2]);
   }
@@ -162,62 +155,10 @@ template <Policy P> class Estimator : public Plugin {
     std::shared_ptr<const msgs::GnssFix> fix;
   };
 
-  void advance(double t) {
-    if (t_ < 0) t_ = t;
-    if (t > t_ && have_imu_) filter_.predict(t - t_, speed_, yaw_rate_);
-    t_ = std::max(t_, t);
-  }
-
-  // Roll from the lateral specific force of a car cornering in the plane of a banked road:
-  // f_y = v * yaw rate + dvy/dt + g sin(roll). dvy/dt is not measured and swings by metres per
-  // second squared through a turn's entry and exit, so the estimate is low-passed (roll_filter_s).
-  void update_roll(const msgs::Imu& m, double t) {
-    if (roll_tau_ <= 0) return;
-    const double s = std::clamp((m.accel_y() - speed_ * yaw_rate_) / 9.81, -0.5, 0.5);
-    sin_roll_ += (s - sin_roll_) * std::min(1.0, (t - roll_t_) / roll_tau_);
-    roll_t_ = t;
-    filter_.set_roll(std::asin(sin_roll_));
-  }
-
-  void apply(const std::vector<Fix>& epoch, double t) {
-    if (!filter_.initialized()) {
-      initialize(epoch);
-      for (const auto& f : epoch) manager_->on_fix(f.receiver, t, true);
-      return;
-    }
-    EpochResult r = apply_fixes(filter_, epoch, P, policy_);
-    ++epochs_;
-    ++cases_[static_cast<int>(r.which)];
-    last_case_ = r.which;
-    last_delta_.assign(receivers_, -1.0);
-    for (std::size_t i = 0; i < epoch.size(); ++i) {
-      last_delta_[epoch[i].receiver] = r.delta[i];
-      manager_->on_fix(epoch[i].receiver, t, r.accepted[i]);
-      rejected_ += !r.accepted[i];
-    }
-  }
-
-  // Position from the fixes; heading from the direction of travel once the car has moved.
-  void initialize(const std::vector<Fix>& epoch) {
-    Eigen::Vector2d p = Eigen::Vector2d::Zero();
-    for (const auto& f : epoch) p += f.antenna;
-    p /= static_cast<double>(epoch.size());
-    if (!first_) {
-      first_ = p;
-      return;
-    }
-    const Eigen::Vector2d d = p - *first_;
-    if (d.norm() < init_distance_) return;
-    const double yaw = std::atan2(d.y(), d.x());
-    filter_.init(p.x(), p.y(), yaw, 0.1, 0.05);
-    const Eigen::Vector3d lever = 0.5 * (lever_[0] + lever_[receivers_ - 1]);
-    const Eigen::Vector2d base = filter_.base_from_antenna(p, lever);
-    filter_.init(base.x(), base.y(), yaw, 0.1, 0.05);
-  }
-
   void publish(Context& ctx) {
     const double now = ctx.now_s();
-    const Status s = filter_.initialized() ? manager_->update(now) : Status::warning;
+    const Status s = loc_->status(now);
+    const PoseFilter& filter = loc_->filter();
     if (last_publish_ >= 0) time_in_[static_cast<int>(s)] += now - last_publish_;
     last_publish_ = now;
     if (s != last_status_ || now - last_mode_ >= 0.1 - 1e-9) {
@@ -226,18 +167,18 @@ template <Policy P> class Estimator : public Plugin {
       m.header().seq(mode_seq_++);
       m.mode(static_cast<std::uint8_t>(s));
       m.mode_name(status_name(s));
-      m.reason(filter_.initialized() ? manager_->reason() : "initializing: waiting for the car to move");
+      m.reason(filter.initialized() ? loc_->manager().reason() : "initializing: waiting for the car to move");
       mode_.publish(std::move(m));
       last_mode_ = now;
       last_status_ = s;
     }
-    if (!filter_.initialized()) return;
+    if (!filter.initialized()) return;
     msgs::LocalizationEstimate e;
     e.header().stamp_ns(ctx.now_ns());
     e.header().seq(seq_++);
     e.header().frame_id("map");
-    const auto& x = filter_.state();
-    const auto& cov = filter_.cov();
+    const auto& x = filter.state();
+    const auto& cov = filter.cov();
     e.x(x(PoseFilter::X));
     e.y(x(PoseFilter::Y));
     e.yaw(x(PoseFilter::YAW));
@@ -245,26 +186,16 @@ template <Policy P> class Estimator : public Plugin {
     e.yaw_rate(x(PoseFilter::YAW_RATE));
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 3; ++j) e.covariance()[3 * i + j] = cov(i, j);
-    e.update_case(static_cast<std::uint8_t>(last_case_));
-    e.delta(last_delta_);
+    auto [which, delta] = loc_->take_epoch_summary();
+    e.update_case(static_cast<std::uint8_t>(which));
+    e.delta(delta);
     e.status(static_cast<std::uint8_t>(s));
-    last_case_ = UpdateCase::predict_only;
-    last_delta_.assign(receivers_, -1.0);
     estimate_.publish(std::move(e));
   }
 
-  PoseFilter filter_;
-  PolicyParams policy_;
-  std::optional<LocalizationManager> manager_;
+  std::optional<Localizer> loc_;
   Eigen::Vector3d lever_[2];
   int receivers_ = 2;
-  double init_distance_ = 5, roll_tau_ = 1, sin_roll_ = 0, roll_t_ = 0;
-  std::optional<Eigen::Vector2d> first_;
-  double t_ = -1, speed_ = 0, yaw_rate_ = 0;
-  bool have_imu_ = false;
-  UpdateCase last_case_ = UpdateCase::predict_only;
-  std::vector<double> last_delta_;
-  std::uint64_t epochs_ = 0, rejected_ = 0, cases_[5] = {0, 0, 0, 0, 0};
   double time_in_[3] = {0, 0, 0}, last_publish_ = -1, last_mode_ = -1;
   Status last_status_ = Status::normal;
   std::uint32_t seq_ = 0, mode_seq_ = 0;

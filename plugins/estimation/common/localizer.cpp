@@ -1,0 +1,83 @@
+#include "localizer.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace brickyard::estimation {
+
+Localizer::Localizer(LocalizerParams p)
+    : p_(p), filter_(p.noise), manager_(p.manager), last_delta_(std::max(p.manager.receivers, 1), -1.0) {}
+
+void Localizer::advance(double t) {
+  if (t_ < 0) t_ = t;
+  if (t > t_ && have_imu_) filter_.predict(t - t_, speed_, yaw_rate_);
+  t_ = std::max(t_, t);
+}
+
+void Localizer::imu(double t, double gyro_z, double accel_y) {
+  advance(t);
+  yaw_rate_ = gyro_z;
+  have_imu_ = true;
+  if (p_.roll_filter_s <= 0) return;
+  // Roll from the lateral specific force of a car cornering in the plane of a banked road:
+  // f_y = v * yaw rate + dvy/dt + g sin(roll). dvy/dt is not measured and swings by metres per
+  // second squared through a turn's entry and exit, so the estimate is low-passed.
+  const double s = std::clamp((accel_y - speed_ * yaw_rate_) / 9.81, -0.5, 0.5);
+  sin_roll_ += (s - sin_roll_) * (roll_t_ < 0 ? 1.0 : std::min(1.0, (t - roll_t_) / p_.roll_filter_s));
+  roll_t_ = t;
+  filter_.set_roll(std::asin(sin_roll_));
+}
+
+void Localizer::fixes(double t, const std::vector<Fix>& epoch) {
+  if (epoch.empty()) return;
+  advance(t);
+  if (!filter_.initialized()) {
+    initialize(epoch);
+    for (const auto& f : epoch) manager_.on_fix(f.receiver, t, true);
+    return;
+  }
+  EpochResult r = apply_fixes(filter_, epoch, p_.policy, p_.selection);
+  ++epochs_;
+  ++cases_[static_cast<int>(r.which)];
+  last_case_ = r.which;
+  std::fill(last_delta_.begin(), last_delta_.end(), -1.0);
+  for (std::size_t i = 0; i < epoch.size(); ++i) {
+    if (epoch[i].receiver >= 0 && epoch[i].receiver < static_cast<int>(last_delta_.size()))
+      last_delta_[epoch[i].receiver] = r.delta[i];
+    manager_.on_fix(epoch[i].receiver, t, r.accepted[i]);
+    rejected_ += !r.accepted[i];
+  }
+}
+
+// Position from the fixes; heading from the direction of travel once the car has moved.
+void Localizer::initialize(const std::vector<Fix>& epoch) {
+  Eigen::Vector2d p = Eigen::Vector2d::Zero();
+  Eigen::Vector3d lever = Eigen::Vector3d::Zero();
+  for (const auto& f : epoch) {
+    p += f.antenna;
+    lever += f.lever;
+  }
+  p /= static_cast<double>(epoch.size());
+  lever /= static_cast<double>(epoch.size());
+  if (!first_) {
+    first_ = p;
+    return;
+  }
+  const Eigen::Vector2d d = p - *first_;
+  if (d.norm() < p_.init_distance) return;
+  const double yaw = std::atan2(d.y(), d.x());
+  filter_.init(p.x(), p.y(), yaw, 0.1, 0.05);
+  const Eigen::Vector2d base = filter_.base_from_antenna(p, lever);
+  filter_.init(base.x(), base.y(), yaw, 0.1, 0.05);
+}
+
+Status Localizer::status(double t) { return filter_.initialized() ? manager_.update(t) : Status::warning; }
+
+std::pair<UpdateCase, std::vector<double>> Localizer::take_epoch_summary() {
+  auto out = std::make_pair(last_case_, last_delta_);
+  last_case_ = UpdateCase::predict_only;
+  std::fill(last_delta_.begin(), last_delta_.end(), -1.0);
+  return out;
+}
+
+}  // namespace brickyard::estimation

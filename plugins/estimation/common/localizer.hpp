@@ -1,0 +1,62 @@
+#pragma once
+// One estimator, framework-free: the pose filter, its update policy and the localization manager,
+// fed in time order with IMU samples, rear-axle speeds and epochs of fixes. The plugin
+// (fusion/plugin.cpp) only turns messages into these calls and the state into messages.
+#include "localization_manager.hpp"
+#include "update_selection.hpp"
+
+#include <optional>
+#include <vector>
+
+namespace brickyard::estimation {
+
+struct LocalizerParams {
+  Policy policy = Policy::resilient;
+  PolicyParams selection;
+  FilterNoise noise;
+  ManagerParams manager;                           // manager.receivers: 1 or 2
+  Eigen::Vector3d lever[2] = {{1.606, 0.05, 1.0}, {1.606, -0.05, 1.0}};  // antennas in base_link, m
+  double init_distance = 5;                        // m of travel before the heading is taken
+  double roll_filter_s = 1;                        // s; 0: roll not used
+};
+
+class Localizer {
+ public:
+  explicit Localizer(LocalizerParams p);
+
+  // An IMU sample at time t: the filter moves to t, then takes its yaw rate; the roll for the
+  // lever arm follows the lateral specific force.
+  void imu(double t, double gyro_z, double accel_y);
+  // The rear axle's speed (mean of the rear wheels), used from the next prediction on.
+  void speed(double v) { speed_ = v; }
+  // One epoch of fixes, all stamped t (receiver ids 0 .. receivers - 1).
+  void fixes(double t, const std::vector<Fix>& epoch);
+  // The manager's status at t (WARNING while the heading is not known yet).
+  Status status(double t);
+
+  const PoseFilter& filter() const { return filter_; }
+  const LocalizationManager& manager() const { return manager_; }
+  // What happened since the last take_epoch_summary(): the last epoch's case and Δ per receiver
+  // (-1: no fix), then reset to "predict only".
+  std::pair<UpdateCase, std::vector<double>> take_epoch_summary();
+
+  std::uint64_t epochs() const { return epochs_; }
+  std::uint64_t rejected() const { return rejected_; }
+  std::uint64_t epochs_of(UpdateCase c) const { return cases_[static_cast<int>(c)]; }
+
+ private:
+  void advance(double t);
+  void initialize(const std::vector<Fix>& epoch);
+
+  LocalizerParams p_;
+  PoseFilter filter_;
+  LocalizationManager manager_;
+  std::optional<Eigen::Vector2d> first_;
+  double t_ = -1, speed_ = 0, yaw_rate_ = 0, sin_roll_ = 0, roll_t_ = -1;
+  bool have_imu_ = false;
+  UpdateCase last_case_ = UpdateCase::predict_only;
+  std::vector<double> last_delta_;
+  std::uint64_t epochs_ = 0, rejected_ = 0, cases_[5] = {0, 0, 0, 0, 0};
+};
+
+}  // namespace brickyard::estimation
