@@ -53,10 +53,10 @@ template <Policy P> class Estimator : public Plugin {
     if constexpr (P == Policy::resilient)
       return common_manifest(Manifest("estimation.resilient_fusion", "1.0.0")
                                  .describe("multi-GNSS Kalman filter with the paper's Bayesian update selection (eps, delta) and the localization manager"))
-          .param(ParamSpec::number("epsilon_m", 0.2).in_unit("m").at_least(0).doc("every fix within this: use one"))
+          .param(ParamSpec::number("epsilon_m", 0.2).in_unit("m").at_least(0).doc("every fix within this: all qualified (weighting paper: the closest one alone)"))
           .param(ParamSpec::number("delta_m", 5.0).in_unit("m").at_least(0).doc("fixes beyond this are rejected"))
           .param(ParamSpec::string("weighting", "likelihood").one_of({"likelihood", "paper"})
-                     .doc("weighted cases: likelihood (exp(-d^2/2), d Mahalanobis) or paper (1 - delta/sum); see docs/algorithms.md"));
+                     .doc("weights: likelihood (exp(-max(0, d^2 - 9)/2), d Mahalanobis) or paper (1 - delta/sum); docs/algorithms.md"));
     else if constexpr (P == Policy::gated)
       return common_manifest(Manifest("estimation.ekf_gated", "1.0.0")
                                  .describe("baseline: the same filter with a per-receiver chi-square gate (robot_localization style)"))
