@@ -1,0 +1,74 @@
+// perception.clustering: Euclidean clustering of the vertical features (common/clustering.hpp).
+#include <brickyard/msgs/ClusterList.h>
+#include <brickyard/msgs/PointCloud.h>
+#include <brickyard/plugin.hpp>
+
+#include "../messages.hpp"
+#include "common/clustering.hpp"
+
+namespace {
+
+using namespace brickyard;
+using namespace brickyard::perception;
+
+class ClusteringNode : public Plugin {
+ public:
+  static Manifest manifest() {
+    return Manifest("perception.clustering", "1.0.0")
+        .describe("Euclidean clustering (hash grid + union-find; the same partition as PCL's EuclideanClusterExtraction)")
+        .input<msgs::PointCloud>("points", "points to cluster (any frame the message's sensor pose maps to the vehicle's)", true, 4)
+        .output<msgs::ClusterList>("clusters", "clusters in the vehicle frame, in order of their first point")
+        .param(ParamSpec::number("tolerance", 0.5).in_unit("m").range(0.01, 100).doc("points closer than this are connected"))
+        .param(ParamSpec::integer("min_size", 3).at_least(1).doc("smaller clusters are dropped"))
+        .param(ParamSpec::integer("max_size", 100000).at_least(1).doc("larger clusters are dropped, not split (as PCL)"))
+        .on_input("points");
+  }
+
+  void configure(Context& ctx) override {
+    const Params& p = ctx.params();
+    ClusterParams c;
+    c.tolerance = static_cast<float>(p.number("tolerance"));
+    c.min_size = static_cast<int>(p.integer("min_size"));
+    c.max_size = static_cast<int>(p.integer("max_size"));
+    if (c.min_size > c.max_size)
+      throw BadInput("parameter 'min_size' (" + std::to_string(c.min_size) + ") exceeds 'max_size' (" + std::to_string(c.max_size) + ")");
+    clustering_ = EuclideanClustering(c);
+    in_ = ctx.input<msgs::PointCloud>("points");
+    out_ = ctx.output<msgs::ClusterList>("clusters");
+  }
+
+  void step(Context& ctx) override {
+    for (auto& m : in_.take()) {
+      pts_.clear();
+      try {
+        append_vehicle_points(*m, pts_);
+      } catch (const std::runtime_error& e) {
+        if (malformed_++ == 0) ctx.log(LogLevel::warn, std::string(e.what()) + ": cloud skipped");
+        continue;
+      }
+      clustering_.run(pts_, clusters_);
+      out_.publish(cluster_list(pts_, clusters_, m->header().stamp_ns(), seq_++));
+      ++frames_;
+      total_ += clusters_.size();
+    }
+  }
+
+  void deactivate(Context& ctx) override {
+    ctx.metric("frames", static_cast<double>(frames_));
+    ctx.metric("malformed_clouds", static_cast<double>(malformed_));
+    ctx.metric("clusters_per_frame", frames_ ? static_cast<double>(total_) / frames_ : 0.0);
+  }
+
+ private:
+  EuclideanClustering clustering_;
+  Points pts_;
+  std::vector<std::vector<int>> clusters_;
+  Input<msgs::PointCloud> in_;
+  Output<msgs::ClusterList> out_;
+  std::uint32_t seq_ = 0;
+  std::uint64_t frames_ = 0, malformed_ = 0, total_ = 0;
+};
+
+}  // namespace
+
+BRICKYARD_PLUGINS(ClusteringNode)

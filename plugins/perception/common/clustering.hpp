@@ -1,0 +1,39 @@
+#pragma once
+// Euclidean clustering, framework-free: the connected components of "closer than the tolerance",
+// found with a hash grid of tolerance-sized cells (each point looks at its own and the 26
+// neighbouring cells) and a union-find, then filtered by size. Same partition as PCL's
+// EuclideanClusterExtraction on the same points (tested): clusters ordered by their first point,
+// points in each ascending; a component larger than max_size is dropped, not split.
+#include "cell_map.hpp"
+#include "points.hpp"
+
+#include <vector>
+
+namespace brickyard::perception {
+
+struct ClusterParams {
+  float tolerance = 0.5f;  // m
+  int min_size = 3;
+  int max_size = 100000;
+};
+
+class EuclideanClustering {
+ public:
+  explicit EuclideanClustering(ClusterParams p = {}) : p_(p) {}
+  const ClusterParams& params() const { return p_; }
+  // Clusters as lists of indices into `points`. Reuses its tables between calls.
+  void run(const Points& points, std::vector<std::vector<int>>& clusters);
+
+ private:
+  int find(int i);
+  ClusterParams p_;
+  static constexpr std::uint32_t kUnplaced = ~std::uint32_t{0};
+  struct Span {
+    std::uint32_t begin = kUnplaced, count = 0, filled = 0;
+  };
+  CellMap<Span> cells_;
+  std::vector<std::uint64_t> key_;
+  std::vector<int> order_, parent_, root_slot_;
+};
+
+}  // namespace brickyard::perception

@@ -1,0 +1,55 @@
+#pragma once
+// The paper's vertical-feature ground filter (§III-B), framework-free.
+//  1. Voxel filter: one point per occupied voxel (the centroid of its points), in the order the
+//     voxels are first met.
+//  2. z-vote: the voxels are projected to a 2-D grid and each votes for its cell through a hash
+//     table of occupied cells only. A cell with fewer than `min_votes` voxels, or whose voxels
+//     span less than `min_height` in z, is ground: the road, banked or not, gives a cell one or
+//     two voxels; a wall, a pylon or a car stacks several. No plane is fitted, so no slope limit.
+//     In a vertical cell, the voxels within `ground_band` of its lowest are still ground: the road
+//     at a wall's foot or under a pylon.
+#include "cell_map.hpp"
+#include "points.hpp"
+
+namespace brickyard::perception {
+
+struct GroundParams {
+  float leaf = 0.2f;        // m, voxel size
+  float cell = 0.5f;        // m, 2-D vote grid
+  int min_votes = 3;        // voxels in a cell for it to be a vertical feature
+  float min_height = 0.3f;  // m, z extent of those voxels
+  float ground_band = 0.2f; // m: in a vertical cell, voxels this close to its lowest are the road it stands on
+};
+
+struct GroundResult {
+  Points voxels;                  // voxel centroids
+  std::vector<std::uint8_t> ground;  // per voxel: 1 ground, 0 vertical feature
+  Points obstacles() const;       // the non-ground voxels
+};
+
+class GroundFilter {
+ public:
+  explicit GroundFilter(GroundParams p = {}) : p_(p) {}
+  const GroundParams& params() const { return p_; }
+  // Classifies a cloud (vehicle frame). Reuses its tables between calls.
+  void run(const Points& in, GroundResult& out);
+
+ private:
+  struct Voxel {
+    Eigen::Vector3f sum;
+    std::uint32_t n, index;
+  };
+  struct Cell {
+    std::uint32_t votes;
+    float zmin, zmax;
+  };
+  GroundParams p_;
+  CellMap<std::uint32_t> voxel_index_;
+  std::vector<Voxel> voxels_;
+  CellMap<Cell> cells_;
+};
+
+// The voxel filter alone: centroids of the occupied voxels, in first-met order.
+Points voxel_filter(const Points& in, float leaf);
+
+}  // namespace brickyard::perception

@@ -1,0 +1,22 @@
+#pragma once
+// Points for the perception algorithms, framework-free: plain float triples in the vehicle frame.
+#include <Eigen/Core>
+
+#include <cstdint>
+#include <vector>
+
+namespace brickyard::perception {
+
+using Point = Eigen::Vector3f;
+using Points = std::vector<Point, Eigen::aligned_allocator<Point>>;
+
+// Integer cell of a point on a grid of the given size (floor division).
+inline std::int32_t cell_of(float v, float inv_size) { return static_cast<std::int32_t>(std::floor(v * inv_size)); }
+
+// A 64-bit key of an (x, y, z) cell: 21 bits each (±1M cells: ±100 km at 0.1 m).
+inline std::uint64_t cell_key(std::int32_t x, std::int32_t y, std::int32_t z) {
+  constexpr std::uint64_t m = (1u << 21) - 1;
+  return ((static_cast<std::uint64_t>(x) & m) << 42) | ((static_cast<std::uint64_t>(y) & m) << 21) | (static_cast<std::uint64_t>(z) & m);
+}
+
+}  // namespace brickyard::perception

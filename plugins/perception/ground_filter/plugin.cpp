@@ -1,0 +1,112 @@
+// perception.ground_filter: merges the car's LiDARs into the vehicle frame and splits the voxels
+// into ground and vertical features (the paper's hashed z-vote, common/ground_filter.hpp).
+#include <brickyard/msgs/PointCloud.h>
+#include <brickyard/plugin.hpp>
+
+#include "../messages.hpp"
+#include "common/ground_filter.hpp"
+
+#include <array>
+
+namespace {
+
+using namespace brickyard;
+using namespace brickyard::perception;
+
+using CloudPtr = std::shared_ptr<const msgs::PointCloud>;
+
+class GroundFilterNode : public Plugin {
+ public:
+  static Manifest manifest() {
+    return Manifest("perception.ground_filter", "1.0.0")
+        .describe("merges up to 3 LiDARs into the vehicle frame, voxel filter, then the paper's hashed z-vote: "
+                  "cells of few voxels or little height are ground (no slope limit: holds on banked turns)")
+        .input<msgs::PointCloud>("lidar0", "a LiDAR's cloud (sensor frame, its pose in the message)", true, 4)
+        .input<msgs::PointCloud>("lidar1", "a second LiDAR (optional)", false, 4)
+        .input<msgs::PointCloud>("lidar2", "a third LiDAR (optional)", false, 4)
+        .output<msgs::PointCloud>("points", "vertical features: the non-ground voxel centroids, vehicle frame")
+        .output<msgs::PointCloud>("ground", "the ground voxel centroids, vehicle frame")
+        .param(ParamSpec::number("leaf", 0.2).in_unit("m").range(0.01, 10).doc("voxel size"))
+        .param(ParamSpec::number("cell", 0.5).in_unit("m").range(0.01, 10).doc("2-D vote grid"))
+        .param(ParamSpec::integer("min_votes", 3).range(1, 1000).doc("voxels in a cell for a vertical feature"))
+        .param(ParamSpec::number("min_height", 0.3).in_unit("m").at_least(0).doc("z extent of a vertical feature's voxels"))
+        .param(ParamSpec::number("ground_band", 0.2).in_unit("m").at_least(0)
+                   .doc("in a vertical cell, voxels this close to its lowest are the road it stands on"))
+        .param(ParamSpec::number("sync_window_s", 0.025).in_unit("s").range(0, 1)
+                   .doc("clouds stamped within this of the frame's first belong to one frame"))
+        .on_input("lidar0")
+        .on_input("lidar1")
+        .on_input("lidar2");
+  }
+
+  void configure(Context& ctx) override {
+    const Params& p = ctx.params();
+    GroundParams g;
+    g.leaf = static_cast<float>(p.number("leaf"));
+    g.cell = static_cast<float>(p.number("cell"));
+    g.min_votes = static_cast<int>(p.integer("min_votes"));
+    g.min_height = static_cast<float>(p.number("min_height"));
+    g.ground_band = static_cast<float>(p.number("ground_band"));
+    filter_ = GroundFilter(g);
+    int sensors = 0;
+    for (int i = 0; i < 3; ++i) {
+      in_[i] = ctx.input<msgs::PointCloud>("lidar" + std::to_string(i));
+      if (in_[i].connected()) slot_[i] = sensors++;
+    }
+    sets_.emplace(sensors, static_cast<std::int64_t>(p.number("sync_window_s") * 1e9));
+    points_ = ctx.output<msgs::PointCloud>("points");
+    ground_ = ctx.output<msgs::PointCloud>("ground");
+  }
+
+  void step(Context& ctx) override {
+    for (int i = 0; i < 3; ++i) {
+      if (slot_[i] < 0) continue;
+      for (auto& c : in_[i].take())
+        for (auto& set : sets_->offer(slot_[i], c->header().stamp_ns(), c)) process(ctx, set);
+    }
+  }
+
+  void deactivate(Context& ctx) override {
+    ctx.metric("frames", static_cast<double>(frames_));
+    ctx.metric("partial_frames", static_cast<double>(sets_->partial()));
+    ctx.metric("malformed_clouds", static_cast<double>(malformed_));
+    ctx.metric("points_per_frame", frames_ ? static_cast<double>(points_in_) / frames_ : 0.0);
+    ctx.metric("voxels_per_frame", frames_ ? static_cast<double>(voxels_) / frames_ : 0.0);
+    ctx.metric("feature_voxels_per_frame", frames_ ? static_cast<double>(features_) / frames_ : 0.0);
+  }
+
+ private:
+  void process(Context& ctx, const std::vector<CloudPtr>& set) {
+    merged_.clear();
+    for (const auto& c : set) {
+      try {
+        append_vehicle_points(*c, merged_);
+      } catch (const std::runtime_error& e) {
+        if (malformed_++ == 0) ctx.log(LogLevel::warn, std::string(e.what()) + ": cloud skipped");
+      }
+    }
+    filter_.run(merged_, result_);
+    const std::int64_t stamp = set.front()->header().stamp_ns();
+    points_.publish(vehicle_cloud(result_.voxels, &result_.ground, 0, stamp, seq_));
+    ground_.publish(vehicle_cloud(result_.voxels, &result_.ground, 1, stamp, seq_));
+    ++seq_;
+    ++frames_;
+    points_in_ += merged_.size();
+    voxels_ += result_.voxels.size();
+    for (auto g : result_.ground) features_ += g == 0;
+  }
+
+  GroundFilter filter_;
+  GroundResult result_;
+  Points merged_;
+  std::array<Input<msgs::PointCloud>, 3> in_;
+  std::array<int, 3> slot_{-1, -1, -1};
+  std::optional<FrameSet<CloudPtr>> sets_;
+  Output<msgs::PointCloud> points_, ground_;
+  std::uint32_t seq_ = 0;
+  std::uint64_t frames_ = 0, malformed_ = 0, points_in_ = 0, voxels_ = 0, features_ = 0;
+};
+
+}  // namespace
+
+BRICKYARD_PLUGINS(GroundFilterNode)

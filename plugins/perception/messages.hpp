@@ -1,0 +1,81 @@
+#pragma once
+// Conversions between the perception algorithms' types and the wire messages, shared by the
+// perception plugins.
+#include <brickyard/msgs/ClusterList.h>
+#include <brickyard/msgs/PointCloud.h>
+
+#include "common/frame_set.hpp"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace brickyard::perception {
+
+inline SensorPose sensor_pose(const msgs::PointCloud& c) {
+  return {c.sensor_x(), c.sensor_y(), c.sensor_z(), c.sensor_roll(), c.sensor_pitch(), c.sensor_yaw()};
+}
+
+// The cloud's points in the vehicle frame, appended to `out`. Throws std::runtime_error when its
+// coordinate sequences differ in length (a malformed message names itself, it does not crash us).
+inline void append_vehicle_points(const msgs::PointCloud& c, Points& out) {
+  const std::size_t n = c.x().size();
+  if (c.y().size() != n || c.z().size() != n)
+    throw std::runtime_error("PointCloud from '" + c.header().frame_id() + "': x, y, z have " + std::to_string(n) + ", " +
+                             std::to_string(c.y().size()) + ", " + std::to_string(c.z().size()) + " values");
+  append_in_vehicle_frame(sensor_pose(c), c.x().data(), c.y().data(), c.z().data(), n, out);
+}
+
+// A vehicle-frame cloud of the chosen points (all when `keep` is null).
+inline msgs::PointCloud vehicle_cloud(const Points& pts, const std::vector<std::uint8_t>* keep, std::uint8_t keep_value,
+                                      std::int64_t stamp_ns, std::uint32_t seq) {
+  msgs::PointCloud m;
+  m.header().stamp_ns(stamp_ns);
+  m.header().seq(seq);
+  m.header().frame_id("vehicle");
+  std::vector<float> x, y, z;
+  x.reserve(pts.size()); y.reserve(pts.size()); z.reserve(pts.size());
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    if (keep && (*keep)[i] != keep_value) continue;
+    x.push_back(pts[i].x()); y.push_back(pts[i].y()); z.push_back(pts[i].z());
+  }
+  m.x(std::move(x)); m.y(std::move(y)); m.z(std::move(z));
+  return m;
+}
+
+inline msgs::ClusterList cluster_list(const Points& pts, const std::vector<std::vector<int>>& clusters, std::int64_t stamp_ns,
+                                      std::uint32_t seq) {
+  msgs::ClusterList m;
+  m.header().stamp_ns(stamp_ns);
+  m.header().seq(seq);
+  m.header().frame_id("vehicle");
+  std::vector<float> x, y, z;
+  std::vector<std::uint32_t> sizes;
+  for (const auto& c : clusters) {
+    sizes.push_back(static_cast<std::uint32_t>(c.size()));
+    for (int i : c) { x.push_back(pts[i].x()); y.push_back(pts[i].y()); z.push_back(pts[i].z()); }
+  }
+  m.x(std::move(x)); m.y(std::move(y)); m.z(std::move(z)); m.sizes(std::move(sizes));
+  return m;
+}
+
+// The clusters of a message as points plus index lists. Throws on inconsistent lengths.
+inline void read_clusters(const msgs::ClusterList& m, Points& pts, std::vector<std::vector<int>>& clusters) {
+  const std::size_t n = m.x().size();
+  std::size_t total = 0;
+  for (auto s : m.sizes()) total += s;
+  if (m.y().size() != n || m.z().size() != n || total != n)
+    throw std::runtime_error("ClusterList: " + std::to_string(n) + " x values, " + std::to_string(m.y().size()) + " y, " +
+                             std::to_string(m.z().size()) + " z, sizes summing to " + std::to_string(total));
+  pts.clear();
+  clusters.clear();
+  for (std::size_t i = 0; i < n; ++i) pts.emplace_back(m.x()[i], m.y()[i], m.z()[i]);
+  int next = 0;
+  for (auto s : m.sizes()) {
+    std::vector<int> c(s);
+    for (auto& i : c) i = next++;
+    clusters.push_back(std::move(c));
+  }
+}
+
+}  // namespace brickyard::perception

@@ -1,0 +1,130 @@
+// perception.obstacle_detector: clusters inside the drivable corridor that are not wall
+// (common/obstacles.hpp). Each frame of clusters is matched with the wall estimates of the same
+// stamp, so the result does not depend on which detector the executive steps first.
+#include <brickyard/msgs/ClusterList.h>
+#include <brickyard/msgs/ObstacleList.h>
+#include <brickyard/msgs/WallEstimate.h>
+#include <brickyard/plugin.hpp>
+
+#include "../messages.hpp"
+#include "../wall.hpp"
+#include "common/obstacles.hpp"
+
+#include <array>
+#include <deque>
+
+namespace {
+
+using namespace brickyard;
+using namespace brickyard::perception;
+
+using WallPtr = std::shared_ptr<const msgs::WallEstimate>;
+
+class ObstacleDetectorNode : public Plugin {
+ public:
+  static Manifest manifest() {
+    return Manifest("perception.obstacle_detector", "1.0.0")
+        .describe("clusters inside the drivable corridor (|y| limit, cut by the fitted walls) that are not wall -> obstacles")
+        .input<msgs::ClusterList>("clusters", "clusters, vehicle frame", true, 8)
+        .input<msgs::WallEstimate>("wall_right", "the right wall fit of the same frames (optional)", false, 8)
+        .input<msgs::WallEstimate>("wall_left", "the left wall fit of the same frames (optional)", false, 8)
+        .output<msgs::ObstacleList>("obstacles", "obstacles, vehicle frame, every frame")
+        .param(ParamSpec::number("max_lateral", 15).in_unit("m").at_least(0).doc("corridor half width when no wall cuts it"))
+        .param(ParamSpec::number("max_range", 200).in_unit("m").at_least(0).doc("|x| limit"))
+        .param(ParamSpec::number("wall_margin", 0.5).in_unit("m").at_least(0).doc("a cluster this close to a fitted wall is wall"))
+        .param(ParamSpec::number("max_length", 8).in_unit("m").at_least(0).doc("longer clusters are structure, not obstacles"))
+        .param(ParamSpec::integer("min_points", 3).at_least(1))
+        .on_input("clusters")
+        .on_input("wall_right")
+        .on_input("wall_left");
+  }
+
+  void configure(Context& ctx) override {
+    const Params& p = ctx.params();
+    op_.max_lateral = p.number("max_lateral");
+    op_.max_range = p.number("max_range");
+    op_.wall_margin = p.number("wall_margin");
+    op_.max_length = p.number("max_length");
+    op_.min_points = static_cast<int>(p.integer("min_points"));
+    in_ = ctx.input<msgs::ClusterList>("clusters");
+    walls_in_[0] = ctx.input<msgs::WallEstimate>("wall_right");
+    walls_in_[1] = ctx.input<msgs::WallEstimate>("wall_left");
+    out_ = ctx.output<msgs::ObstacleList>("obstacles");
+  }
+
+  void step(Context& ctx) override {
+    for (auto& m : in_.take()) pending_.push_back(m);
+    for (int s = 0; s < 2; ++s)
+      for (auto& w : walls_in_[s].take()) {
+        walls_[s].push_back(w);
+        if (walls_[s].size() > 16) walls_[s].pop_front();
+      }
+    while (!pending_.empty()) {
+      const std::int64_t t = pending_.front()->header().stamp_ns();
+      std::vector<std::pair<WallFit, int>> walls;
+      bool wait = false;
+      for (int s = 0; s < 2; ++s) {
+        if (!walls_in_[s].connected()) continue;
+        WallPtr same;
+        bool newer = false;
+        for (auto& w : walls_[s]) {
+          if (w->header().stamp_ns() == t) same = w;
+          newer = newer || w->header().stamp_ns() > t;
+        }
+        if (same) walls.emplace_back(wall_fit(*same), s == 0 ? -1 : 1);
+        else if (!newer) wait = true;  // the fit of this frame is still to come
+      }
+      // A wall detector that stopped answering must not hold the obstacles back for long.
+      if (wait && pending_.size() <= 3) break;
+      if (wait) ++unmatched_;
+      process(ctx, *pending_.front(), walls);
+      pending_.pop_front();
+    }
+  }
+
+  void deactivate(Context& ctx) override {
+    ctx.metric("frames", static_cast<double>(frames_));
+    ctx.metric("frames_without_wall_fit", static_cast<double>(unmatched_));
+    ctx.metric("malformed_frames", static_cast<double>(malformed_));
+    ctx.metric("obstacles_per_frame", frames_ ? static_cast<double>(total_) / frames_ : 0.0);
+  }
+
+ private:
+  void process(Context& ctx, const msgs::ClusterList& m, const std::vector<std::pair<WallFit, int>>& walls) {
+    try {
+      read_clusters(m, pts_, clusters_);
+    } catch (const std::runtime_error& e) {
+      if (malformed_++ == 0) ctx.log(LogLevel::warn, std::string(e.what()) + ": frame skipped");
+      return;
+    }
+    msgs::ObstacleList out;
+    out.header().stamp_ns(m.header().stamp_ns());
+    out.header().seq(seq_++);
+    out.header().frame_id("vehicle");
+    for (const Obstacle& o : find_obstacles(pts_, clusters_, walls, op_)) {
+      msgs::Obstacle x;
+      x.x(o.centroid.x()); x.y(o.centroid.y()); x.z(o.centroid.z());
+      x.size_x(o.size.x()); x.size_y(o.size.y()); x.size_z(o.size.z());
+      x.point_count(static_cast<std::uint32_t>(o.points));
+      out.obstacles().push_back(x);
+    }
+    total_ += out.obstacles().size();
+    ++frames_;
+    out_.publish(std::move(out));
+  }
+
+  ObstacleParams op_;
+  Points pts_;
+  std::vector<std::vector<int>> clusters_;
+  std::deque<std::shared_ptr<const msgs::ClusterList>> pending_;
+  std::array<std::deque<WallPtr>, 2> walls_;
+  Input<msgs::ClusterList> in_;
+  std::array<Input<msgs::WallEstimate>, 2> walls_in_;
+  Output<msgs::ObstacleList> out_;
+  std::uint32_t seq_ = 0;
+  std::uint64_t frames_ = 0, unmatched_ = 0, malformed_ = 0, total_ = 0;
+};
+
+}  // namespace
+
+BRICKYARD_PLUGINS(ObstacleDetectorNode)
