@@ -21,6 +21,7 @@ inline msgs::WallEstimate wall_message(const WallFit& w, double lookahead, std::
   m.x_min(w.x_min);
   m.x_max(w.x_max);
   m.point_count(static_cast<std::uint32_t>(w.points));
+  for (int c : w.members) m.clusters().push_back(static_cast<std::uint32_t>(c));
   m.valid(w.valid);
   return m;
 }
@@ -36,6 +37,7 @@ inline WallFit wall_fit(const msgs::WallEstimate& m) {
   w.x_min = m.x_min();
   w.x_max = m.x_max();
   w.points = m.point_count();
+  for (auto c : m.clusters()) w.members.push_back(static_cast<int>(c));
   w.valid = m.valid() && !w.coefficients.empty();
   return w;
 }

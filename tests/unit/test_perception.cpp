@@ -1,9 +1,13 @@
 // Perception algorithms on synthetic clouds with known answers.
 #include "common/clustering.hpp"
+#include "common/frame_set.hpp"
 #include "common/ground_filter.hpp"
+#include "common/obstacles.hpp"
+#include "common/wall_fit.hpp"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <set>
@@ -105,4 +109,225 @@ TEST(Clustering, TwoBlobsAndANoisePointAndTheSizeLimits) {
   small.run(p, out);
   ASSERT_EQ(out.size(), 1u);
   EXPECT_EQ(out[0].size(), 5u);
+}
+
+// A wall y = -8 + 0.01 x + 0.002 x^2 leaning by k (a rolled car) is fitted at z = 0: the
+// distance, heading and curvature come back, the lean too; without the lean term the distance
+// is off by k times the wall returns' mean height.
+TEST(WallFit, QuadraticWallWithLeanIsRecovered) {
+  const double c0 = -8, c1 = 0.01, c2 = 0.002, k = 0.162;
+  Points p;
+  std::vector<std::vector<int>> clusters(3);
+  for (double x = -5; x < 60; x += 0.3)
+    for (double z = 0.3; z < 1.2; z += 0.2) {
+      clusters[1].push_back(static_cast<int>(p.size()));
+      p.emplace_back(x, c0 + c1 * x + c2 * x * x + k * z, z);
+    }
+  for (int i = 0; i < 40; ++i) {  // a longer structure on the left: not the right wall
+    clusters[0].push_back(static_cast<int>(p.size()));
+    p.emplace_back(-10 + 2.0f * i, 9, 0.5f);
+  }
+  for (int i = 0; i < 5; ++i) {  // a small object on the right
+    clusters[2].push_back(static_cast<int>(p.size()));
+    p.emplace_back(30, -3, 0.1f * i);
+  }
+  WallParams wp;
+  const WallFit w = fit_wall(p, clusters, wp);
+  ASSERT_TRUE(w.valid);
+  EXPECT_EQ(w.cluster, 1);
+  EXPECT_NEAR(w.distance, c0, 1e-6);
+  EXPECT_NEAR(w.lean, k, 1e-6);
+  ASSERT_EQ(w.coefficients.size(), 3u);
+  EXPECT_NEAR(w.coefficients[1], c1, 1e-8);
+  EXPECT_NEAR(w.coefficients[2], c2, 1e-9);
+  const double d1 = c1 + 2 * c2 * wp.lookahead;
+  EXPECT_NEAR(w.heading, std::atan(d1), 1e-8);
+  EXPECT_NEAR(w.curvature, 2 * c2 / std::pow(1 + d1 * d1, 1.5), 1e-8);
+  EXPECT_LT(w.residual, 1e-5);
+  EXPECT_NEAR(poly_value(w.coefficients, 20.0), c0 + c1 * 20 + c2 * 400, 1e-6);
+  wp.lean = false;
+  EXPECT_NEAR(fit_wall(p, clusters, wp).distance - c0, k * 0.7, 0.02);
+  // The left side finds the left structure.
+  wp.side = 1;
+  EXPECT_EQ(fit_wall(p, clusters, wp).cluster, 0);
+}
+
+TEST(WallFit, TooFewOrTooShortIsNotValid) {
+  Points p;
+  std::vector<std::vector<int>> clusters(1);
+  for (int i = 0; i < 50; ++i) {
+    clusters[0].push_back(i);
+    p.emplace_back(0.05f * i, -5, 0.02f * (i % 10));  // 2.5 m long
+  }
+  WallParams wp;
+  WallFit w = fit_wall(p, clusters, wp);
+  EXPECT_EQ(w.cluster, 0);
+  EXPECT_FALSE(w.valid);
+  wp.min_length = 2;
+  EXPECT_TRUE(fit_wall(p, clusters, wp).valid);
+  wp.min_points = 51;
+  EXPECT_FALSE(fit_wall(p, clusters, wp).valid);
+  EXPECT_EQ(fit_wall(p, {}, wp).cluster, -1);
+}
+
+// A pylon on the road is an obstacle; the wall, a cluster hugging it, and things beyond it or
+// outside the corridor are not.
+TEST(Obstacles, InsideTheCorridorAndNotWall) {
+  Points p;
+  std::vector<std::vector<int>> clusters;
+  auto add = [&](std::initializer_list<Point> q) {
+    clusters.emplace_back();
+    for (const Point& x : q) {
+      clusters.back().push_back(static_cast<int>(p.size()));
+      p.push_back(x);
+    }
+  };
+  add({{40, 1, 0.1f}, {40.2f, 1.2f, 0.4f}, {40.1f, 0.9f, 0.6f}});   // pylon: obstacle
+  add({{20, -7.8f, 0.2f}, {21, -7.8f, 0.5f}, {22, -7.7f, 0.3f}});  // on the right wall's face
+  add({{30, -12, 0.2f}, {30, -12, 0.5f}, {30.2f, -12, 0.3f}});     // beyond the right wall
+  add({{50, 20, 0.2f}, {50, 20, 0.5f}, {50.2f, 20, 0.3f}});        // outside the corridor
+  add({{0, 6, 0.2f}, {12, 6, 0.5f}, {6, 6, 0.3f}});                // 12 m long: structure
+  add({{150, -3, 0.2f}, {150, -3, 0.5f}, {150.1f, -3, 0.3f}});     // far beyond the fit: tangent line
+  WallFit right;
+  right.coefficients = {-8, 0, 0};
+  right.x_min = -5;
+  right.x_max = 100;
+  right.valid = true;
+  const auto obstacles = find_obstacles(p, clusters, {{right, -1}}, ObstacleParams{});
+  ASSERT_EQ(obstacles.size(), 2u);
+  EXPECT_NEAR(obstacles[0].centroid.x(), 40.1f, 1e-4);
+  EXPECT_EQ(obstacles[0].points, 3u);
+  EXPECT_NEAR(obstacles[0].size.y(), 0.3f, 1e-5);
+  EXPECT_NEAR(obstacles[1].centroid.x(), 150.033f, 1e-3);
+  // Without a wall fit, the clusters on and beyond the wall are inside the 15 m corridor.
+  EXPECT_EQ(find_obstacles(p, clusters, {}, ObstacleParams{}).size(), 4u);
+  // A fit that is not valid cuts nothing.
+  right.valid = false;
+  EXPECT_EQ(find_obstacles(p, clusters, {{right, -1}}, ObstacleParams{}).size(), 4u);
+}
+
+TEST(FrameSet, CompleteSetsAndALostFrame) {
+  FrameSet<int> sets(3, 25'000'000);
+  EXPECT_TRUE(sets.offer(0, 100'000'000, 10).empty());
+  EXPECT_TRUE(sets.offer(2, 101'000'000, 12).empty());
+  auto done = sets.offer(1, 100'000'000, 11);
+  ASSERT_EQ(done.size(), 1u);
+  EXPECT_EQ(done[0], (std::vector<int>{10, 11, 12}));  // in sensor order
+  // Sensor 1 loses its frame: the next frame's first cloud closes the set as it is.
+  EXPECT_TRUE(sets.offer(0, 150'000'000, 20).empty());
+  EXPECT_TRUE(sets.offer(2, 150'000'000, 22).empty());
+  done = sets.offer(0, 200'000'000, 30);
+  ASSERT_EQ(done.size(), 1u);
+  EXPECT_EQ(done[0], (std::vector<int>{20, 22}));
+  EXPECT_EQ(sets.partial(), 1u);
+  // One sensor alone completes every set at once.
+  FrameSet<int> one(1, 25'000'000);
+  EXPECT_EQ(one.offer(0, 0, 1).size(), 1u);
+}
+
+TEST(FrameSet, SensorPoseMovesPointsIntoTheVehicleFrame) {
+  SensorPose pose{1.5, 0.3, 0.5, 0, 0, M_PI / 2};  // facing left
+  const float x[] = {10, NAN}, y[] = {0, 0}, z[] = {1, 0};
+  Points out;
+  append_in_vehicle_frame(pose, x, y, z, 2, out);
+  ASSERT_EQ(out.size(), 1u);  // the NaN point is skipped
+  EXPECT_TRUE(out[0].isApprox(Point(1.5f, 10.3f, 1.5f), 1e-5f));
+}
+
+// The refinements at the edges of vertical features (ground_filter.hpp, step 3).
+TEST(GroundFilter, AWallStripeWithNoRoadInItsCellIsVerticalThrough) {
+  // A far wall's column: voxels 0.3 to 0.9 m up at (80.25, -7.75), road nowhere near.
+  Points p;
+  for (float z = 0.3f; z < 1.0f; z += 0.2f) p.emplace_back(80.25f, -7.75f, z);
+  GroundFilter f;
+  GroundResult r;
+  f.run(p, r);
+  ASSERT_EQ(r.voxels.size(), 4u);
+  for (auto g : r.ground) EXPECT_EQ(g, 0);
+  // The same stripe with road beside it: the road confirms its foot, the lowest voxel is road.
+  for (float x = 79.05f; x < 81.5f; x += 0.2f)
+    for (float y = -7.45f; y < -6.0f; y += 0.2f) p.emplace_back(x, y, 0.25f);
+  f.run(p, r);
+  for (std::size_t i = 0; i < r.voxels.size(); ++i)
+    EXPECT_EQ(r.ground[i], r.voxels[i].z() < 0.4f ? 1 : 0) << r.voxels[i].transpose();
+}
+
+TEST(GroundFilter, AWallsTopLeaningIntoTheNextCellIsNotGround) {
+  // A wall leaning 20 deg (a rolled car on a banked turn): its foot in one 0.5 m cell, its top
+  // 0.4 m over, in the next cell, alone there (one voxel: no vote of its own).
+  Points p;
+  for (float x = 10.05f; x < 12; x += 0.2f) {
+    for (float z = 0.05f; z < 1.2f; z += 0.2f) p.emplace_back(x, -7.9f + 0.36f * z, z);
+    for (float y = -7.85f; y < -5; y += 0.2f) p.emplace_back(x, y, 0.0f);  // the road up to it
+  }
+  GroundFilter f;
+  GroundResult r;
+  f.run(p, r);
+  int top_ground = 0, road_not_ground = 0;
+  for (std::size_t i = 0; i < r.voxels.size(); ++i) {
+    top_ground += r.voxels[i].z() > 0.8f && r.ground[i];
+    road_not_ground += r.voxels[i].z() < 0.01f && r.voxels[i].y() > -7.0f && !r.ground[i];
+  }
+  EXPECT_EQ(top_ground, 0);
+  EXPECT_EQ(road_not_ground, 0);
+}
+
+// A wall seen far ahead in stripes (one column each, 2 m apart) is grown through them; a pylon
+// 1.5 m off the wall's line is not joined.
+TEST(WallFit, FarStripesContinueTheWallAPylonBesideItDoesNot) {
+  Points p;
+  std::vector<std::vector<int>> clusters(1);
+  auto wall_y = [](double x) { return -8 + 0.004 * x * x / 2; };  // curving left, R 250 m
+  for (double x = -20; x < 25; x += 0.25)
+    for (double z = 0.2; z < 1.2; z += 0.25) {
+      clusters[0].push_back(static_cast<int>(p.size()));
+      p.emplace_back(x, wall_y(x), z);
+    }
+  for (double x = 27; x < 80; x += 2) {  // stripes
+    clusters.emplace_back();
+    for (double z = 0.3; z < 1.2; z += 0.3) {
+      clusters.back().push_back(static_cast<int>(p.size()));
+      p.emplace_back(x, wall_y(x), z);
+    }
+  }
+  clusters.emplace_back();  // a pylon 1.5 m inside the wall at x = 50
+  for (double z = 0.1; z < 0.7; z += 0.2) {
+    clusters.back().push_back(static_cast<int>(p.size()));
+    p.emplace_back(50, wall_y(50) + 1.5, z);
+  }
+  const WallFit w = fit_wall(p, clusters, WallParams{});
+  ASSERT_TRUE(w.valid);
+  EXPECT_EQ(w.members.size(), clusters.size() - 1);
+  EXPECT_EQ(std::count(w.members.begin(), w.members.end(), static_cast<int>(clusters.size() - 1)), 0);
+  EXPECT_NEAR(w.distance, -8, 0.01);
+  // The obstacle detector keeps the pylon and drops every stripe.
+  const auto obstacles = find_obstacles(p, clusters, {{w, -1}}, ObstacleParams{});
+  ASSERT_EQ(obstacles.size(), 1u);
+  EXPECT_NEAR(obstacles[0].centroid.x(), 50, 1e-3);
+  // Without growing (no gap allowed) the stripes beyond 25 m pass for obstacles.
+  WallParams short_reach;
+  short_reach.join_gap = 0;
+  EXPECT_GT(find_obstacles(p, clusters, {{fit_wall(p, clusters, short_reach), -1}}, ObstacleParams{}).size(), 10u);
+}
+
+TEST(Obstacles, AFlatPatchAndARowsStreakAreNotObstacles) {
+  Points p;
+  std::vector<std::vector<int>> clusters(3);
+  for (float x = 0; x < 1.2f; x += 0.2f)  // a patch of road tilted 20 deg, missed by the filter
+    for (float y = 0; y < 0.5f; y += 0.2f) {
+      clusters[0].push_back(static_cast<int>(p.size()));
+      p.emplace_back(20 + x, 4 + y, 0.36f * y);
+    }
+  for (float x = 0; x < 0.8f; x += 0.2f) {  // one scan row across something: no height
+    clusters[1].push_back(static_cast<int>(p.size()));
+    p.emplace_back(60 + x, -2, 1.2f);
+  }
+  for (float z = 0.1f; z < 0.7f; z += 0.2f)  // a pylon seen by one column: a vertical line
+    for (float y = 0; y < 0.3f; y += 0.15f) {
+      clusters[2].push_back(static_cast<int>(p.size()));
+      p.emplace_back(40, 1 + y, z);
+    }
+  const auto obstacles = find_obstacles(p, clusters, {}, ObstacleParams{});
+  ASSERT_EQ(obstacles.size(), 1u);
+  EXPECT_NEAR(obstacles[0].centroid.x(), 40, 1e-4);
 }

@@ -14,13 +14,14 @@ using namespace brickyard::perception;
 class ClusteringNode : public Plugin {
  public:
   static Manifest manifest() {
+    const ClusterParams d;
     return Manifest("perception.clustering", "1.0.0")
         .describe("Euclidean clustering (hash grid + union-find; the same partition as PCL's EuclideanClusterExtraction)")
         .input<msgs::PointCloud>("points", "points to cluster (any frame the message's sensor pose maps to the vehicle's)", true, 4)
         .output<msgs::ClusterList>("clusters", "clusters in the vehicle frame, in order of their first point")
-        .param(ParamSpec::number("tolerance", 0.5).in_unit("m").range(0.01, 100).doc("points closer than this are connected"))
-        .param(ParamSpec::integer("min_size", 3).at_least(1).doc("smaller clusters are dropped"))
-        .param(ParamSpec::integer("max_size", 100000).at_least(1).doc("larger clusters are dropped, not split (as PCL)"))
+        .param(ParamSpec::number("tolerance", d.tolerance).in_unit("m").range(0.01, 100).doc("points closer than this are connected"))
+        .param(ParamSpec::integer("min_size", d.min_size).at_least(1).doc("smaller clusters are dropped"))
+        .param(ParamSpec::integer("max_size", d.max_size).at_least(1).doc("larger clusters are dropped, not split (as PCL)"))
         .on_input("points");
   }
 

@@ -36,6 +36,7 @@ template <class V> class CellMap {
     return values_[i];
   }
   // Null when absent.
+  V* find_mutable(std::uint64_t key) { return const_cast<V*>(find(key)); }
   const V* find(std::uint64_t key) const {
     std::size_t i = slot(key);
     while (keys_[i] != kEmpty) {

@@ -13,7 +13,7 @@ namespace brickyard::perception {
 
 struct ClusterParams {
   float tolerance = 0.5f;  // m
-  int min_size = 3;
+  int min_size = 2;
   int max_size = 100000;
 };
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace brickyard::perception {
 
@@ -33,17 +34,43 @@ void GroundFilter::run(const Points& in, GroundResult& out) {
   cells_.reset(out.voxels.size());
   for (const Point& v : out.voxels) {
     bool inserted;
-    Cell& c = cells_.find_or_insert(cell_key(cell_of(v.x(), inv_cell), cell_of(v.y(), inv_cell), 0), Cell{0, v.z(), v.z()}, inserted);
+    Cell& c = cells_.find_or_insert(cell_key(cell_of(v.x(), inv_cell), cell_of(v.y(), inv_cell), 0), Cell{0, v.z(), v.z(), 0.0f, false}, inserted);
     ++c.votes;
     c.zmin = std::min(c.zmin, v.z());
     c.zmax = std::max(c.zmax, v.z());
   }
+  // 3. Per cell, once: the height below which its voxels are ground (see the header).
+  const std::uint32_t min_votes = static_cast<std::uint32_t>(p_.min_votes);
+  auto vertical = [&](const Cell& c) { return c.votes >= min_votes && c.zmax - c.zmin >= p_.min_height; };
+  constexpr float kInf = std::numeric_limits<float>::infinity();
   out.ground.resize(out.voxels.size());
   for (std::size_t i = 0; i < out.voxels.size(); ++i) {
     const Point& v = out.voxels[i];
-    const Cell* c = cells_.find(cell_key(cell_of(v.x(), inv_cell), cell_of(v.y(), inv_cell), 0));
-    const bool vertical = c->votes >= static_cast<std::uint32_t>(p_.min_votes) && c->zmax - c->zmin >= p_.min_height;
-    out.ground[i] = !vertical || v.z() - c->zmin < p_.ground_band;
+    const std::int32_t cx = cell_of(v.x(), inv_cell), cy = cell_of(v.y(), inv_cell);
+    Cell* c = cells_.find_mutable(cell_key(cx, cy, 0));
+    if (!c->resolved) {
+      c->resolved = true;
+      const bool vert = vertical(*c);
+      // Vertical: ground up to ground_band above the road it stands on, when a ground neighbour
+      // confirms that height (the one nearest in height; the band starts from the lower of the
+      // two, so a cell whose lowest voxel is a wall's bottom measures from the road beside it);
+      // none: vertical through. Not vertical: ground, except what stands min_height above a
+      // vertical neighbour's foot (a wall leaning into this cell).
+      float best = p_.ground_band;
+      c->limit = vert ? -kInf : kInf;
+      for (int dx = -1; dx <= 1; ++dx)
+        for (int dy = -1; dy <= 1; ++dy) {
+          const Cell* n = (dx || dy) ? cells_.find(cell_key(cx + dx, cy + dy, 0)) : nullptr;
+          if (!n) continue;
+          if (!vert) {
+            if (vertical(*n)) c->limit = std::min(c->limit, n->zmin + p_.min_height);
+          } else if (!vertical(*n) && std::abs(n->zmin - c->zmin) <= best) {
+            best = std::abs(n->zmin - c->zmin);
+            c->limit = std::min(c->zmin, n->zmin) + p_.ground_band;
+          }
+        }
+    }
+    out.ground[i] = v.z() < c->limit;
   }
 }
 

@@ -6,8 +6,17 @@
 //     table of occupied cells only. A cell with fewer than `min_votes` voxels, or whose voxels
 //     span less than `min_height` in z, is ground: the road, banked or not, gives a cell one or
 //     two voxels; a wall, a pylon or a car stacks several. No plane is fitted, so no slope limit.
-//     In a vertical cell, the voxels within `ground_band` of its lowest are still ground: the road
-//     at a wall's foot or under a pylon.
+//  3. Two refinements at the edges of vertical features, each looking one cell around only (so a
+//     banked road, 0.5 m x tan 20 deg = 0.18 m per cell, is never mistaken for a step):
+//     - In a vertical cell, the voxels within `ground_band` of the road it stands on are road
+//       (the asphalt at a wall's foot, under a pylon). That road height is the cell's lowest
+//       voxel, confirmed by a ground neighbour within ground_band (the one nearest in height;
+//       the lower of the two counts, so a cell holding only a wall's bottom measures from the
+//       road beside it). Unconfirmed (a distant wall's stripe, hit a few rows up with no road in
+//       its cell): vertical through.
+//     - In a ground cell, voxels standing `min_height` above a vertical neighbour's lowest voxel
+//       are not ground: on a banked turn the car is rolled, so in its frame a wall leans by the
+//       bank angle and its top spills into the next cell (0.4 m for 1.2 m of wall at 20 deg).
 #include "cell_map.hpp"
 #include "points.hpp"
 
@@ -16,9 +25,9 @@ namespace brickyard::perception {
 struct GroundParams {
   float leaf = 0.2f;        // m, voxel size
   float cell = 0.5f;        // m, 2-D vote grid
-  int min_votes = 3;        // voxels in a cell for it to be a vertical feature
-  float min_height = 0.3f;  // m, z extent of those voxels
-  float ground_band = 0.2f; // m: in a vertical cell, voxels this close to its lowest are the road it stands on
+  int min_votes = 2;         // voxels in a cell for it to be a vertical feature
+  float min_height = 0.2f;   // m, z extent of those voxels
+  float ground_band = 0.15f; // m: in a vertical cell, voxels this close to the road it stands on are road
 };
 
 struct GroundResult {
@@ -42,6 +51,8 @@ class GroundFilter {
   struct Cell {
     std::uint32_t votes;
     float zmin, zmax;
+    float limit;    // its voxels below this are ground; found on first use
+    bool resolved;
   };
   GroundParams p_;
   CellMap<std::uint32_t> voxel_index_;

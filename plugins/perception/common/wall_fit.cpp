@@ -3,6 +3,7 @@
 #include <Eigen/Dense>
 
 #include <algorithm>
+#include <utility>
 #include <cmath>
 #include <limits>
 
@@ -37,45 +38,183 @@ double poly_value(const std::vector<double>& c, double x, int derivative) {
   return y;
 }
 
+namespace {
+
+// Least squares y = sum_k s_k u^k (+ k z), u = (x - mid) / half: x is scaled to [-1, 1] over the
+// points so the problem stays well conditioned at any degree. `sel` picks the points.
+// With a `fixed_lean` the lean is not fitted but taken as given: y - fixed_lean z is fitted.
+struct LocalFit {
+  Eigen::VectorXd sol;
+  double mid = 0, half = 1, rms = 0, fixed_lean = 0;
+  int degree = 0;
+  bool lean = false, ok = false;
+  double lean_value() const { return lean ? sol(degree + 1) : fixed_lean; }
+  double y(double x, double z) const {
+    const double u = (x - mid) / half;
+    double v = 0;
+    for (int k = degree; k >= 0; --k) v = v * u + sol(k);
+    return v + lean_value() * z;
+  }
+};
+
+LocalFit least_squares(const Points& pts, const std::vector<int>& sel, int degree, bool lean, double fixed_lean = 0) {
+  LocalFit f;
+  f.degree = degree;
+  f.lean = lean;
+  f.fixed_lean = fixed_lean;
+  const int n = static_cast<int>(sel.size()), terms = degree + 1 + (lean ? 1 : 0);
+  if (n < terms) return f;
+  double lo = std::numeric_limits<double>::max(), hi = std::numeric_limits<double>::lowest();
+  for (int i : sel) {
+    lo = std::min(lo, static_cast<double>(pts[i].x()));
+    hi = std::max(hi, static_cast<double>(pts[i].x()));
+  }
+  f.mid = 0.5 * (lo + hi);
+  f.half = std::max(0.5 * (hi - lo), 1e-3);
+  Eigen::MatrixXd a(n, terms);
+  Eigen::VectorXd b(n);
+  for (int r = 0; r < n; ++r) {
+    const Point& q = pts[sel[r]];
+    const double u = (q.x() - f.mid) / f.half;
+    double pw = 1;
+    for (int k = 0; k <= degree; ++k, pw *= u) a(r, k) = pw;
+    if (lean) a(r, degree + 1) = q.z();
+    b(r) = q.y() - (lean ? 0.0 : fixed_lean * q.z());
+  }
+  f.sol = a.colPivHouseholderQr().solve(b);
+  f.rms = std::sqrt((a * f.sol - b).squaredNorm() / n);
+  f.ok = f.sol.allFinite();
+  return f;
+}
+
+struct Extent {
+  float lo = std::numeric_limits<float>::max(), hi = std::numeric_limits<float>::lowest(), ysum = 0;
+};
+
+float far_end_of(const Extent& e, int dir) { return dir > 0 ? e.hi : e.lo; }
+
+}  // namespace
+
 WallFit fit_wall(const Points& points, const std::vector<std::vector<int>>& clusters, const WallParams& p) {
   WallFit w;
   w.cluster = longest_cluster_on_side(points, clusters, p.side);
   if (w.cluster < 0) return w;
-  const std::vector<int>& idx = clusters[w.cluster];
-  w.points = idx.size();
-  const int n = static_cast<int>(idx.size()), terms = p.degree + 1 + (p.lean ? 1 : 0);
-  if (n < std::max(p.min_points, terms)) return w;
-  // x is scaled to [-1, 1] over the points' extent so the normal matrix stays well conditioned at
-  // any degree; the coefficients are mapped back to metres below.
-  w.x_min = std::numeric_limits<double>::max();
-  w.x_max = std::numeric_limits<double>::lowest();
-  for (int i : idx) {
-    w.x_min = std::min(w.x_min, static_cast<double>(points[i].x()));
-    w.x_max = std::max(w.x_max, static_cast<double>(points[i].x()));
+  std::vector<Extent> ext(clusters.size());
+  for (std::size_t c = 0; c < clusters.size(); ++c)
+    for (int i : clusters[c]) {
+      ext[c].lo = std::min(ext[c].lo, points[i].x());
+      ext[c].hi = std::max(ext[c].hi, points[i].x());
+      ext[c].ysum += points[i].y();
+    }
+  std::vector<char> member(clusters.size(), 0);
+  member[w.cluster] = 1;
+  w.members = {w.cluster};
+  float lo = ext[w.cluster].lo, hi = ext[w.cluster].hi;
+  // Grow forward (+1) and backward (-1), one join_gap at a time, refitting the end each time. The
+  // lean is the car's roll, one value for the whole wall: taken from the longest cluster near the
+  // car and held fixed, so the short local fits need not find it (extrapolated up a wall seen
+  // from afar, a poorly found lean throws the fit off by metres).
+  const int local_degree = std::min(2, p.degree);
+  std::vector<int> sel;
+  double lean = 0;
+  if (p.lean) {
+    for (int i : clusters[w.cluster])
+      if (std::abs(points[i].x()) <= p.fit_range) sel.push_back(i);
+    if (static_cast<int>(sel.size()) < 20) sel = clusters[w.cluster];
+    const LocalFit seed = least_squares(points, sel, local_degree, true);
+    if (seed.ok) lean = seed.lean_value();
   }
-  const double mid = 0.5 * (w.x_min + w.x_max), half = std::max(0.5 * (w.x_max - w.x_min), 1e-3);
-  Eigen::MatrixXd a(n, terms);
-  Eigen::VectorXd b(n);
-  for (int r = 0; r < n; ++r) {
-    const Point& q = points[idx[r]];
-    const double u = (q.x() - mid) / half;
-    double pw = 1;
-    for (int k = 0; k <= p.degree; ++k, pw *= u) a(r, k) = pw;
-    if (p.lean) a(r, p.degree + 1) = q.z();
-    b(r) = q.y();
+  std::vector<std::pair<float, int>> candidates;
+  for (int dir : {1, -1}) {
+    const float sgn = static_cast<float>(dir);
+    for (int pass = 0; pass < 1000; ++pass) {
+      float end = dir > 0 ? hi : lo;
+      const float fitted_end = end;
+      sel.clear();
+      for (int c : w.members)
+        for (int i : clusters[c])
+          if ((points[i].x() - end) * sgn >= -30.0f) sel.push_back(i);
+      const LocalFit f = least_squares(points, sel, local_degree, false, lean);
+      if (!f.ok) break;
+      // Candidates nearest first, each judged from the end as it stands then, so a stripe is
+      // measured from the stripe before it, not from where the fit was made.
+      candidates.clear();
+      for (std::size_t c = 0; c < clusters.size(); ++c) {
+        if (member[c]) continue;  // any side: far round a turn the wall crosses the car's axis
+        const float near_end = dir > 0 ? ext[c].lo : ext[c].hi, far_end = dir > 0 ? ext[c].hi : ext[c].lo;
+        if ((far_end - end) * sgn <= 0 || (near_end - end) * sgn > p.join_gap) continue;
+        candidates.emplace_back((near_end - end) * sgn, static_cast<int>(c));
+      }
+      std::sort(candidates.begin(), candidates.end());
+      bool added = false;
+      for (const auto& [gap, c] : candidates) {
+        if (member[c] || (far_end_of(ext[c], dir) - end) * sgn <= 0) continue;
+        const float near_end = dir > 0 ? std::max(ext[c].lo, end) : std::min(ext[c].hi, end);
+        if ((near_end - end) * sgn > p.join_gap) break;
+        // Judged on its first 2 m past the end, against the local fit extrapolated there, which
+        // is trusted less the further it reaches: nine in ten points within join_margin +
+        // join_slope * (distance past the fit's end).
+        int near = 0, on = 0;
+        for (int i : clusters[c]) {
+          const float x = points[i].x();
+          if ((x - near_end) * sgn > 2.0f || (x - end) * sgn < 0) continue;
+          ++near;
+          const float past = (x - fitted_end) * sgn;
+          on += std::abs(points[i].y() - f.y(x, points[i].z())) <= p.join_margin + p.join_slope * past;
+        }
+        if (near == 0 || on * 10 < near * 9) continue;
+        member[c] = 1;
+        w.members.push_back(c);
+        lo = std::min(lo, ext[c].lo);
+        hi = std::max(hi, ext[c].hi);
+        end = dir > 0 ? hi : lo;
+        added = true;
+        if ((end - fitted_end) * sgn > 5.0f) break;  // refit before reaching further
+      }
+      if (!added) break;
+    }
   }
-  const Eigen::VectorXd sol = a.colPivHouseholderQr().solve(b);
-  w.residual = std::sqrt((a * sol - b).squaredNorm() / n);
-  w.lean = p.lean ? sol(p.degree + 1) : 0.0;
-  // p(u) with u = (x - mid) / half, expanded into powers of x: sum_k s_k ((x - mid)/half)^k.
+  // Clusters within the wall's extent but not joined to it (a row's streak along the wall's foot
+  // far round a turn): judged against the wall's piece where they are, fitted over 30 m.
+  for (float b = lo; b < hi; b += 20.0f) {
+    sel.clear();
+    for (int c : w.members)
+      for (int i : clusters[c])
+        if (points[i].x() >= b - 5.0f && points[i].x() < b + 25.0f) sel.push_back(i);
+    const LocalFit f = least_squares(points, sel, local_degree, false, lean);
+    if (!f.ok) continue;
+    for (std::size_t c = 0; c < clusters.size(); ++c) {
+      if (member[c] || ext[c].hi < b || ext[c].lo >= b + 20.0f || ext[c].lo < lo || ext[c].hi > hi) continue;
+      int on = 0;
+      for (int i : clusters[c]) on += std::abs(points[i].y() - f.y(points[i].x(), points[i].z())) <= p.join_margin;
+      if (on * 10 < static_cast<int>(clusters[c].size()) * 9) continue;
+      member[c] = 1;
+      w.members.push_back(static_cast<int>(c));
+    }
+  }
+  // The published fit: the wall's points near the car.
+  sel.clear();
+  for (int c : w.members)
+    for (int i : clusters[c])
+      if (std::abs(points[i].x()) <= p.fit_range) sel.push_back(i);
+  w.points = sel.size();
+  const int terms = p.degree + 1 + (p.lean ? 1 : 0);
+  if (static_cast<int>(sel.size()) < std::max(p.min_points, terms)) return w;
+  const LocalFit f = least_squares(points, sel, p.degree, p.lean);
+  if (!f.ok) return w;
+  w.x_min = f.mid - f.half;
+  w.x_max = f.mid + f.half;
+  w.residual = f.rms;
+  w.lean = p.lean ? f.sol(p.degree + 1) : 0.0;
+  // sum_k s_k ((x - mid)/half)^k expanded into powers of x.
   w.coefficients.assign(p.degree + 1, 0.0);
   std::vector<double> term(1, 1.0);  // coefficients of ((x - mid)/half)^k in powers of x
   for (int k = 0; k <= p.degree; ++k) {
-    for (std::size_t j = 0; j < term.size(); ++j) w.coefficients[j] += sol(k) * term[j];
+    for (std::size_t j = 0; j < term.size(); ++j) w.coefficients[j] += f.sol(k) * term[j];
     std::vector<double> next(term.size() + 1, 0.0);
     for (std::size_t j = 0; j < term.size(); ++j) {
-      next[j + 1] += term[j] / half;
-      next[j] -= term[j] * mid / half;
+      next[j + 1] += term[j] / f.half;
+      next[j] -= term[j] * f.mid / f.half;
     }
     term = std::move(next);
   }

@@ -18,6 +18,7 @@ using CloudPtr = std::shared_ptr<const msgs::PointCloud>;
 class GroundFilterNode : public Plugin {
  public:
   static Manifest manifest() {
+    const GroundParams d;  // the defaults live with the algorithm
     return Manifest("perception.ground_filter", "1.0.0")
         .describe("merges up to 3 LiDARs into the vehicle frame, voxel filter, then the paper's hashed z-vote: "
                   "cells of few voxels or little height are ground (no slope limit: holds on banked turns)")
@@ -26,12 +27,12 @@ class GroundFilterNode : public Plugin {
         .input<msgs::PointCloud>("lidar2", "a third LiDAR (optional)", false, 4)
         .output<msgs::PointCloud>("points", "vertical features: the non-ground voxel centroids, vehicle frame")
         .output<msgs::PointCloud>("ground", "the ground voxel centroids, vehicle frame")
-        .param(ParamSpec::number("leaf", 0.2).in_unit("m").range(0.01, 10).doc("voxel size"))
-        .param(ParamSpec::number("cell", 0.5).in_unit("m").range(0.01, 10).doc("2-D vote grid"))
-        .param(ParamSpec::integer("min_votes", 3).range(1, 1000).doc("voxels in a cell for a vertical feature"))
-        .param(ParamSpec::number("min_height", 0.3).in_unit("m").at_least(0).doc("z extent of a vertical feature's voxels"))
-        .param(ParamSpec::number("ground_band", 0.2).in_unit("m").at_least(0)
-                   .doc("in a vertical cell, voxels this close to its lowest are the road it stands on"))
+        .param(ParamSpec::number("leaf", d.leaf).in_unit("m").range(0.01, 10).doc("voxel size"))
+        .param(ParamSpec::number("cell", d.cell).in_unit("m").range(0.01, 10).doc("2-D vote grid"))
+        .param(ParamSpec::integer("min_votes", d.min_votes).range(1, 1000).doc("voxels in a cell for a vertical feature"))
+        .param(ParamSpec::number("min_height", d.min_height).in_unit("m").at_least(0).doc("z extent of a vertical feature's voxels"))
+        .param(ParamSpec::number("ground_band", d.ground_band).in_unit("m").at_least(0)
+                   .doc("in a vertical cell, voxels this close to the road it stands on are road"))
         .param(ParamSpec::number("sync_window_s", 0.025).in_unit("s").range(0, 1)
                    .doc("clouds stamped within this of the frame's first belong to one frame"))
         .on_input("lidar0")

@@ -23,17 +23,22 @@ using WallPtr = std::shared_ptr<const msgs::WallEstimate>;
 class ObstacleDetectorNode : public Plugin {
  public:
   static Manifest manifest() {
+    const ObstacleParams d;
     return Manifest("perception.obstacle_detector", "1.0.0")
         .describe("clusters inside the drivable corridor (|y| limit, cut by the fitted walls) that are not wall -> obstacles")
         .input<msgs::ClusterList>("clusters", "clusters, vehicle frame", true, 8)
         .input<msgs::WallEstimate>("wall_right", "the right wall fit of the same frames (optional)", false, 8)
         .input<msgs::WallEstimate>("wall_left", "the left wall fit of the same frames (optional)", false, 8)
         .output<msgs::ObstacleList>("obstacles", "obstacles, vehicle frame, every frame")
-        .param(ParamSpec::number("max_lateral", 15).in_unit("m").at_least(0).doc("corridor half width when no wall cuts it"))
-        .param(ParamSpec::number("max_range", 200).in_unit("m").at_least(0).doc("|x| limit"))
-        .param(ParamSpec::number("wall_margin", 0.5).in_unit("m").at_least(0).doc("a cluster this close to a fitted wall is wall"))
-        .param(ParamSpec::number("max_length", 8).in_unit("m").at_least(0).doc("longer clusters are structure, not obstacles"))
-        .param(ParamSpec::integer("min_points", 3).at_least(1))
+        .param(ParamSpec::number("max_lateral", d.max_lateral).in_unit("m").at_least(0).doc("corridor half width when no wall cuts it"))
+        .param(ParamSpec::number("max_range", d.max_range).in_unit("m").at_least(0).doc("|x| limit"))
+        .param(ParamSpec::number("wall_margin", d.wall_margin).in_unit("m").at_least(0).doc("a cluster this close to a fitted wall is wall"))
+        .param(ParamSpec::number("max_length", d.max_length).in_unit("m").at_least(0).doc("longer clusters are structure, not obstacles"))
+        .param(ParamSpec::number("min_height", d.min_height).in_unit("m").at_least(0).doc("less z extent: a scan row's streak, not an obstacle"))
+        .param(ParamSpec::number("flat_thickness", d.flat_thickness).in_unit("m").at_least(0)
+                   .doc("a cluster thinner than this across its best plane, lying within flat_tilt_deg of level, is ground"))
+        .param(ParamSpec::number("flat_tilt_deg", d.flat_tilt_deg).in_unit("deg").range(0, 90))
+        .param(ParamSpec::integer("min_points", d.min_points).at_least(1))
         .on_input("clusters")
         .on_input("wall_right")
         .on_input("wall_left");
@@ -46,6 +51,9 @@ class ObstacleDetectorNode : public Plugin {
     op_.wall_margin = p.number("wall_margin");
     op_.max_length = p.number("max_length");
     op_.min_points = static_cast<int>(p.integer("min_points"));
+    op_.min_height = p.number("min_height");
+    op_.flat_thickness = p.number("flat_thickness");
+    op_.flat_tilt_deg = p.number("flat_tilt_deg");
     in_ = ctx.input<msgs::ClusterList>("clusters");
     walls_in_[0] = ctx.input<msgs::WallEstimate>("wall_right");
     walls_in_[1] = ctx.input<msgs::WallEstimate>("wall_left");

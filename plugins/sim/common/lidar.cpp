@@ -364,6 +364,7 @@ std::size_t LidarCaster::scan(const Eigen::Isometry3d& world_from_body, int seg_
       out.y.push_back(static_cast<float>(range * ds[r].y()));
       out.z.push_back(static_cast<float>(range * ds[r].z()));
       out.intensity.push_back(static_cast<float>(refl * h.cos_incidence));
+      if (out.record_surface) out.surface.push_back(h.surface);
     }
   }
   return rays;

@@ -39,10 +39,13 @@ struct LidarSpec {
 std::vector<double> row_elevations(int rows, double lo_deg, double hi_deg, const std::string& spacing,
                                    double exponent);
 
-// Points of one frame, sensor frame.
+// Points of one frame, sensor frame. With record_surface, also what each point hit (the ground
+// truth perception is scored against; off in the plugin).
 struct PointBuffers {
   std::vector<float> x, y, z, intensity;
-  void clear() { x.clear(); y.clear(); z.clear(); intensity.clear(); }
+  std::vector<Surface> surface;
+  bool record_surface = false;
+  void clear() { x.clear(); y.clear(); z.clear(); intensity.clear(); surface.clear(); }
 };
 
 class LidarCaster {
