@@ -23,7 +23,7 @@ struct Frame {
 
 struct ImsOptions {
   double bank_deg = 9.2;             // turns (curvature mode)
-  bool inner_wall = true;            // 2 m beyond the inside edge; the outer wall at the edge
+  bool inner_wall = false;           // 2 m beyond the inside edge (the outer wall, at the edge, always)
   std::vector<sim::Pylon> pylons;    // s, d, radius, height
 };
 

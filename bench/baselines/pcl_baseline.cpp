@@ -92,7 +92,8 @@ Points voxel_grid(const Points& points, float leaf) {
 
 std::vector<std::uint8_t> ransac_plane(const Points& points, float distance_threshold, int max_iterations) {
   std::vector<std::uint8_t> mask(points.size(), 0);
-  for (int i : plane_inliers(to_pcl(points), distance_threshold, max_iterations)->indices) mask[i] = 1;
+  const auto inliers = plane_inliers(to_pcl(points), distance_threshold, max_iterations);  // held: the loop reads into it
+  for (int i : inliers->indices) mask[i] = 1;
   return mask;
 }
 

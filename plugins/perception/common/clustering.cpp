@@ -5,6 +5,14 @@
 
 namespace brickyard::perception {
 
+namespace {
+
+// The 13 neighbour offsets that come after (0, 0, 0) in lexicographic order.
+constexpr int kForward[13][3] = {{0, 0, 1},  {0, 1, -1}, {0, 1, 0},  {0, 1, 1},  {1, -1, -1}, {1, -1, 0}, {1, -1, 1},
+                                 {1, 0, -1}, {1, 0, 0},  {1, 0, 1},  {1, 1, -1}, {1, 1, 0},   {1, 1, 1}};
+
+}  // namespace
+
 int EuclideanClustering::find(int i) {
   while (parent_[i] != i) {
     parent_[i] = parent_[parent_[i]];  // path halving
@@ -17,46 +25,63 @@ void EuclideanClustering::run(const Points& pts, std::vector<std::vector<int>>& 
   clusters.clear();
   const int n = static_cast<int>(pts.size());
   const float inv = 1.0f / p_.tolerance, tol2 = p_.tolerance * p_.tolerance;
-  // Bucket the points by cell: count, then offsets, then fill (points of a cell contiguous).
+  // Bucket the points by cell, cells numbered in first-met order (so nothing depends on the hash
+  // table's slots): a cell's points are contiguous in order_.
   cells_.reset(static_cast<std::size_t>(n));
-  key_.resize(n);
-  for (int i = 0; i < n; ++i) {
-    const Point& q = pts[i];
-    key_[i] = cell_key(cell_of(q.x(), inv), cell_of(q.y(), inv), cell_of(q.z(), inv));
-    bool inserted;
-    ++cells_.find_or_insert(key_[i], Span{}, inserted).count;
-  }
-  // Spans placed in first-met order, so the layout does not depend on the table's slots.
-  std::uint32_t offset = 0;
-  order_.resize(n);
-  for (int i = 0; i < n; ++i) {
-    bool inserted;
-    Span& s = cells_.find_or_insert(key_[i], Span{}, inserted);
-    if (s.begin == kUnplaced) {
-      s.begin = offset;
-      offset += s.count;
-    }
-    order_[s.begin + s.filled++] = i;
-  }
-  // Union every pair closer than the tolerance.
-  parent_.resize(n);
-  for (int i = 0; i < n; ++i) parent_[i] = i;
+  cell_of_point_.resize(n);
+  cell_xyz_.clear();
   for (int i = 0; i < n; ++i) {
     const Point& q = pts[i];
     const std::int32_t cx = cell_of(q.x(), inv), cy = cell_of(q.y(), inv), cz = cell_of(q.z(), inv);
-    for (int dx = -1; dx <= 1; ++dx)
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dz = -1; dz <= 1; ++dz) {
-          const Span* s = cells_.find(cell_key(cx + dx, cy + dy, cz + dz));
-          if (!s) continue;
-          for (std::uint32_t k = 0; k < s->count; ++k) {
-            const int j = order_[s->begin + k];
-            if (j <= i) continue;  // each pair once
-            if (!((pts[j] - q).squaredNorm() < tol2)) continue;  // strict, as a radius search
-            const int a = find(i), b = find(j);
-            if (a != b) parent_[std::max(a, b)] = std::min(a, b);
+    bool inserted;
+    const std::uint32_t c = cells_.find_or_insert(cell_key(cx, cy, cz), static_cast<std::uint32_t>(cell_xyz_.size()), inserted);
+    if (inserted) cell_xyz_.push_back({cx, cy, cz});
+    cell_of_point_[i] = c;
+  }
+  const std::size_t m = cell_xyz_.size();
+  begin_.assign(m + 1, 0);
+  for (int i = 0; i < n; ++i) ++begin_[cell_of_point_[i] + 1];
+  for (std::size_t c = 0; c < m; ++c) begin_[c + 1] += begin_[c];
+  order_.resize(n);
+  fill_.assign(begin_.begin(), begin_.end() - 1);
+  for (int i = 0; i < n; ++i) order_[fill_[cell_of_point_[i]]++] = i;
+  // Union every pair closer than the tolerance (strictly, as a radius search): within a cell, and
+  // between a cell and each of its 13 "forward" neighbours (the other 13 see it from their side).
+  parent_.resize(n);
+  for (int i = 0; i < n; ++i) parent_[i] = i;
+  auto link = [&](int a, int b) {  // true when a and b are within the tolerance
+    if (!((pts[a] - pts[b]).squaredNorm() < tol2)) return false;
+    const int ra = find(a), rb = find(b);
+    if (ra != rb) parent_[std::max(ra, rb)] = std::min(ra, rb);
+    return true;
+  };
+  for (std::size_t c = 0; c < m; ++c)
+    for (std::uint32_t a = begin_[c]; a < begin_[c + 1]; ++a)
+      for (std::uint32_t b = a + 1; b < begin_[c + 1]; ++b) link(order_[a], order_[b]);
+  // A cell whose points are already one component ("whole") needs one link to a whole neighbour,
+  // and none when the two are already joined: along a dense wall most are, by then.
+  whole_.assign(m, 1);
+  for (std::size_t c = 0; c < m; ++c) {
+    const int r = find(order_[begin_[c]]);
+    for (std::uint32_t a = begin_[c] + 1; a < begin_[c + 1] && whole_[c]; ++a) whole_[c] = find(order_[a]) == r;
+  }
+  for (std::size_t c = 0; c < m; ++c) {
+    const std::uint32_t b0 = begin_[c], e0 = begin_[c + 1];
+    const auto& [cx, cy, cz] = cell_xyz_[c];
+    for (int k = 0; k < 13; ++k) {
+      const std::uint32_t* nb = cells_.find(cell_key(cx + kForward[k][0], cy + kForward[k][1], cz + kForward[k][2]));
+      if (!nb) continue;
+      const std::uint32_t b1 = begin_[*nb], e1 = begin_[*nb + 1];
+      const bool both_whole = whole_[c] && whole_[*nb];
+      if (both_whole && find(order_[b0]) == find(order_[b1])) continue;
+      bool linked = false;
+      for (std::uint32_t a = b0; a < e0 && !(both_whole && linked); ++a)
+        for (std::uint32_t b = b1; b < e1; ++b)
+          if (link(order_[a], order_[b]) && both_whole) {
+            linked = true;
+            break;
           }
-        }
+    }
   }
   // Components in order of their first point; sizes filtered.
   root_slot_.assign(n, -1);

@@ -1,12 +1,14 @@
 #pragma once
 // Euclidean clustering, framework-free: the connected components of "closer than the tolerance",
-// found with a hash grid of tolerance-sized cells (each point looks at its own and the 26
-// neighbouring cells) and a union-find, then filtered by size. Same partition as PCL's
+// found with a hash grid of tolerance-sized cells (each cell's points are compared with its own
+// and those of its 13 forward neighbours, so each pair of cells is visited once) and a
+// union-find, then filtered by size. Same partition as PCL's
 // EuclideanClusterExtraction on the same points (tested): clusters ordered by their first point,
 // points in each ascending; a component larger than max_size is dropped, not split.
 #include "cell_map.hpp"
 #include "points.hpp"
 
+#include <array>
 #include <vector>
 
 namespace brickyard::perception {
@@ -27,12 +29,10 @@ class EuclideanClustering {
  private:
   int find(int i);
   ClusterParams p_;
-  static constexpr std::uint32_t kUnplaced = ~std::uint32_t{0};
-  struct Span {
-    std::uint32_t begin = kUnplaced, count = 0, filled = 0;
-  };
-  CellMap<Span> cells_;
-  std::vector<std::uint64_t> key_;
+  CellMap<std::uint32_t> cells_;  // cell key -> cell number, first-met order
+  std::vector<std::array<std::int32_t, 3>> cell_xyz_;
+  std::vector<std::uint32_t> cell_of_point_, begin_, fill_;
+  std::vector<char> whole_;
   std::vector<int> order_, parent_, root_slot_;
 };
 

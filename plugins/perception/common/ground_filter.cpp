@@ -16,62 +16,89 @@ Points GroundResult::obstacles() const {
 void GroundFilter::run(const Points& in, GroundResult& out) {
   const float inv_leaf = 1.0f / p_.leaf, inv_cell = 1.0f / p_.cell;
   // 1. Voxels: accumulate each point into its voxel's sum.
-  voxel_index_.reset(in.size());
+  // The table maps a voxel's key to its number (first-met order); the sums are in a dense array.
+  voxel_index_.reset(voxels_.size());  // last frame's count: the table grows if this one has more
   voxels_.clear();
-  for (const Point& q : in) {
+  // Keys are computed kAhead points early, into a ring, and their slots prefetched: the loads
+  // that a scattered hash makes of every point overlap instead of queueing.
+  constexpr std::size_t kAhead = 8;
+  std::uint64_t ring[kAhead];
+  const std::size_t n = in.size();
+  auto key_of = [&](std::size_t j) {
+    const Point& q = in[j];
+    if (!q.allFinite()) return std::uint64_t{0};  // skipped below; a NaN must not reach an int cast
+    return cell_key(cell_of(q.x(), inv_leaf), cell_of(q.y(), inv_leaf), cell_of(q.z(), inv_leaf));
+  };
+  for (std::size_t j = 0; j < kAhead && j < n; ++j) {
+    ring[j] = key_of(j);
+    voxel_index_.prefetch(ring[j]);
+  }
+  for (std::size_t j = 0; j < n; ++j) {
+    const std::uint64_t key = ring[j % kAhead];
+    if (j + kAhead < n) {
+      ring[j % kAhead] = key_of(j + kAhead);
+      voxel_index_.prefetch(ring[j % kAhead]);
+    }
+    const Point& q = in[j];
     if (!q.allFinite()) continue;
     bool inserted;
-    std::uint32_t& v = voxel_index_.find_or_insert(
-        cell_key(cell_of(q.x(), inv_leaf), cell_of(q.y(), inv_leaf), cell_of(q.z(), inv_leaf)),
-        static_cast<std::uint32_t>(voxels_.size()), inserted);
-    if (inserted) voxels_.push_back({Eigen::Vector3f::Zero(), 0, v});
-    voxels_[v].sum += q;
-    ++voxels_[v].n;
+    const std::uint32_t i = voxel_index_.find_or_insert(key, static_cast<std::uint32_t>(voxels_.size()), inserted);
+    if (inserted) voxels_.push_back(Voxel{0, 0, 0, 0});
+    Voxel& v = voxels_[i];
+    v.x += q.x();
+    v.y += q.y();
+    v.z += q.z();
+    ++v.n;
   }
-  out.voxels.resize(voxels_.size());
-  for (std::size_t i = 0; i < voxels_.size(); ++i) out.voxels[i] = voxels_[i].sum / static_cast<float>(voxels_[i].n);
-  // 2. Votes per 2-D cell, over the hash table of occupied cells.
-  cells_.reset(out.voxels.size());
-  for (const Point& v : out.voxels) {
+  const auto count = static_cast<std::uint32_t>(voxels_.size());
+  out.voxels.resize(count);
+  for (std::uint32_t i = 0; i < count; ++i) out.voxels[i] = Point(voxels_[i].x, voxels_[i].y, voxels_[i].z) / static_cast<float>(voxels_[i].n);
+  // 2. Votes per 2-D cell, over the hash table of occupied cells (which maps a cell to its
+  // number; the cells themselves are in a dense array, first-met order).
+  cells_.reset(cell_.size());
+  cell_.clear();
+  voxel_cell_.resize(count);
+  for (std::uint32_t i = 0; i < count; ++i) {
+    const Point& v = out.voxels[i];
+    const std::int32_t cx = cell_of(v.x(), inv_cell), cy = cell_of(v.y(), inv_cell);
     bool inserted;
-    Cell& c = cells_.find_or_insert(cell_key(cell_of(v.x(), inv_cell), cell_of(v.y(), inv_cell), 0), Cell{0, v.z(), v.z(), 0.0f, false}, inserted);
-    ++c.votes;
-    c.zmin = std::min(c.zmin, v.z());
-    c.zmax = std::max(c.zmax, v.z());
+    const std::uint32_t c = cells_.find_or_insert(cell_key(cx, cy, 0), static_cast<std::uint32_t>(cell_.size()), inserted);
+    if (inserted) cell_.push_back(Cell{cx, cy, 0, v.z(), v.z(), 0});
+    Cell& e = cell_[c];
+    ++e.votes;
+    e.zmin = std::min(e.zmin, v.z());
+    e.zmax = std::max(e.zmax, v.z());
+    voxel_cell_[i] = c;
   }
-  // 3. Per cell, once: the height below which its voxels are ground (see the header).
+  // 3. Per cell, the height below which its voxels are ground (see the header). Only vertical
+  // cells and their neighbours need a look around; they are few, so the walk starts from them.
   const std::uint32_t min_votes = static_cast<std::uint32_t>(p_.min_votes);
   auto vertical = [&](const Cell& c) { return c.votes >= min_votes && c.zmax - c.zmin >= p_.min_height; };
   constexpr float kInf = std::numeric_limits<float>::infinity();
-  out.ground.resize(out.voxels.size());
-  for (std::size_t i = 0; i < out.voxels.size(); ++i) {
-    const Point& v = out.voxels[i];
-    const std::int32_t cx = cell_of(v.x(), inv_cell), cy = cell_of(v.y(), inv_cell);
-    Cell* c = cells_.find_mutable(cell_key(cx, cy, 0));
-    if (!c->resolved) {
-      c->resolved = true;
-      const bool vert = vertical(*c);
-      // Vertical: ground up to ground_band above the road it stands on, when a ground neighbour
-      // confirms that height (the one nearest in height; the band starts from the lower of the
-      // two, so a cell whose lowest voxel is a wall's bottom measures from the road beside it);
-      // none: vertical through. Not vertical: ground, except what stands min_height above a
-      // vertical neighbour's foot (a wall leaning into this cell).
-      float best = p_.ground_band;
-      c->limit = vert ? -kInf : kInf;
-      for (int dx = -1; dx <= 1; ++dx)
-        for (int dy = -1; dy <= 1; ++dy) {
-          const Cell* n = (dx || dy) ? cells_.find(cell_key(cx + dx, cy + dy, 0)) : nullptr;
-          if (!n) continue;
-          if (!vert) {
-            if (vertical(*n)) c->limit = std::min(c->limit, n->zmin + p_.min_height);
-          } else if (!vertical(*n) && std::abs(n->zmin - c->zmin) <= best) {
-            best = std::abs(n->zmin - c->zmin);
-            c->limit = std::min(c->zmin, n->zmin) + p_.ground_band;
-          }
+  for (Cell& c : cell_) c.limit = vertical(c) ? -kInf : kInf;
+  for (Cell& c : cell_) {
+    if (!vertical(c)) continue;
+    // Vertical: ground up to ground_band above the road it stands on, when a ground neighbour
+    // confirms that height (the one nearest in height; the band starts from the lower of the
+    // two, so a cell whose lowest voxel is a wall's bottom measures from the road beside it);
+    // none: vertical through. Its ground neighbours: ground, except what stands min_height above
+    // this cell's foot (a wall leaning into them).
+    float best = p_.ground_band;
+    for (int dx = -1; dx <= 1; ++dx)
+      for (int dy = -1; dy <= 1; ++dy) {
+        const std::uint32_t* k = (dx || dy) ? cells_.find(cell_key(c.x + dx, c.y + dy, 0)) : nullptr;
+        if (!k) continue;
+        Cell& n = cell_[*k];
+        if (vertical(n)) continue;
+        n.limit = std::min(n.limit, c.zmin + p_.min_height);
+        if (std::abs(n.zmin - c.zmin) <= best) {
+          best = std::abs(n.zmin - c.zmin);
+          c.limit = std::min(c.zmin, n.zmin) + p_.ground_band;
         }
-    }
-    out.ground[i] = v.z() < c->limit;
+      }
   }
+  out.ground.resize(count);
+  for (std::uint32_t i = 0; i < count; ++i) out.ground[i] = out.voxels[i].z() < cell_[voxel_cell_[i]].limit;
 }
 
 Points voxel_filter(const Points& in, float leaf) {

@@ -45,19 +45,21 @@ class GroundFilter {
 
  private:
   struct Voxel {
-    Eigen::Vector3f sum;
-    std::uint32_t n, index;
+    float x, y, z;  // sums
+    std::uint32_t n;
   };
   struct Cell {
+    std::int32_t x, y;
     std::uint32_t votes;
     float zmin, zmax;
-    float limit;    // its voxels below this are ground; found on first use
-    bool resolved;
+    float limit;  // its voxels below this are ground
   };
   GroundParams p_;
-  CellMap<std::uint32_t> voxel_index_;
+  CellMap<std::uint32_t> voxel_index_;  // voxel key -> index into voxels_
   std::vector<Voxel> voxels_;
-  CellMap<Cell> cells_;
+  CellMap<std::uint32_t> cells_;  // cell key -> index into cell_
+  std::vector<Cell> cell_;
+  std::vector<std::uint32_t> voxel_cell_;
 };
 
 // The voxel filter alone: centroids of the occupied voxels, in first-met order.

@@ -10,8 +10,13 @@ namespace brickyard::perception {
 using Point = Eigen::Vector3f;
 using Points = std::vector<Point, Eigen::aligned_allocator<Point>>;
 
-// Integer cell of a point on a grid of the given size (floor division).
-inline std::int32_t cell_of(float v, float inv_size) { return static_cast<std::int32_t>(std::floor(v * inv_size)); }
+// Integer cell of a point on a grid of the given size (floor division; truncation corrected for
+// negatives, as std::floor is a library call without SSE4.1 and this runs for every point).
+inline std::int32_t cell_of(float v, float inv_size) {
+  const float f = v * inv_size;
+  const auto t = static_cast<std::int32_t>(f);
+  return t - (f < static_cast<float>(t));
+}
 
 // A 64-bit key of an (x, y, z) cell: 21 bits each (±1M cells: ±100 km at 0.1 m).
 inline std::uint64_t cell_key(std::int32_t x, std::int32_t y, std::int32_t z) {

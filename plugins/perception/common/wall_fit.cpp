@@ -42,6 +42,8 @@ namespace {
 
 // Least squares y = sum_k s_k u^k (+ k z), u = (x - mid) / half: x is scaled to [-1, 1] over the
 // points so the problem stays well conditioned at any degree. `sel` picks the points.
+constexpr int kMaxTerms = 8;  // degree 6 and the lean: no heap in the fit
+
 // With a `fixed_lean` the lean is not fitted but taken as given: y - fixed_lean z is fitted.
 struct LocalFit {
   Eigen::VectorXd sol;
@@ -63,7 +65,7 @@ LocalFit least_squares(const Points& pts, const std::vector<int>& sel, int degre
   f.lean = lean;
   f.fixed_lean = fixed_lean;
   const int n = static_cast<int>(sel.size()), terms = degree + 1 + (lean ? 1 : 0);
-  if (n < terms) return f;
+  if (n < terms || terms > kMaxTerms) return f;
   double lo = std::numeric_limits<double>::max(), hi = std::numeric_limits<double>::lowest();
   for (int i : sel) {
     lo = std::min(lo, static_cast<double>(pts[i].x()));
@@ -71,18 +73,28 @@ LocalFit least_squares(const Points& pts, const std::vector<int>& sel, int degre
   }
   f.mid = 0.5 * (lo + hi);
   f.half = std::max(0.5 * (hi - lo), 1e-3);
-  Eigen::MatrixXd a(n, terms);
-  Eigen::VectorXd b(n);
-  for (int r = 0; r < n; ++r) {
-    const Point& q = pts[sel[r]];
-    const double u = (q.x() - f.mid) / f.half;
+  // Normal equations, accumulated without a design matrix: u in [-1, 1] keeps them well
+  // conditioned at these degrees, and a frame makes dozens of these fits.
+  using Mat = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxTerms, kMaxTerms>;
+  using Vec = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxTerms, 1>;
+  Mat ata = Mat::Zero(terms, terms);
+  Vec atb = Vec::Zero(terms), row(terms);
+  double btb = 0;
+  for (int i : sel) {
+    const Point& q = pts[i];
+    const double u = (q.x() - f.mid) / f.half, b = q.y() - (lean ? 0.0 : fixed_lean * q.z());
     double pw = 1;
-    for (int k = 0; k <= degree; ++k, pw *= u) a(r, k) = pw;
-    if (lean) a(r, degree + 1) = q.z();
-    b(r) = q.y() - (lean ? 0.0 : fixed_lean * q.z());
+    for (int k = 0; k <= degree; ++k, pw *= u) row(k) = pw;
+    if (lean) row(degree + 1) = q.z();
+    ata.selfadjointView<Eigen::Lower>().rankUpdate(row);
+    atb += b * row;
+    btb += b * b;
   }
-  f.sol = a.colPivHouseholderQr().solve(b);
-  f.rms = std::sqrt((a * f.sol - b).squaredNorm() / n);
+  ata.triangularView<Eigen::StrictlyUpper>() = ata.transpose();
+  f.sol = ata.ldlt().solve(atb);
+  // Residual sum of squares from the same sums: |b|^2 - 2 s.A'b + s'A'A s.
+  const double rss = btb - 2 * f.sol.dot(atb) + f.sol.dot(ata * f.sol);
+  f.rms = std::sqrt(std::max(rss, 0.0) / n);
   f.ok = f.sol.allFinite();
   return f;
 }
@@ -92,6 +104,14 @@ struct Extent {
 };
 
 float far_end_of(const Extent& e, int dir) { return dir > 0 ? e.hi : e.lo; }
+
+// The points of a cluster that `keep` accepts, at most about 64 of them (evenly through the
+// cluster): the growing wall's local fits need its shape, not its thousands of points.
+template <class Keep> void add_sampled(const Points& points, const std::vector<int>& cluster, std::vector<int>& sel, Keep keep) {
+  const std::size_t stride = std::max<std::size_t>(1, cluster.size() / 64);
+  for (std::size_t k = 0; k < cluster.size(); k += stride)
+    if (keep(points[cluster[k]].x())) sel.push_back(cluster[k]);
+}
 
 }  // namespace
 
@@ -131,9 +151,7 @@ WallFit fit_wall(const Points& points, const std::vector<std::vector<int>>& clus
       float end = dir > 0 ? hi : lo;
       const float fitted_end = end;
       sel.clear();
-      for (int c : w.members)
-        for (int i : clusters[c])
-          if ((points[i].x() - end) * sgn >= -30.0f) sel.push_back(i);
+      for (int c : w.members) add_sampled(points, clusters[c], sel, [&](float x) { return (x - end) * sgn >= -30.0f; });
       const LocalFit f = least_squares(points, sel, local_degree, false, lean);
       if (!f.ok) break;
       // Candidates nearest first, each judged from the end as it stands then, so a stripe is
@@ -178,9 +196,7 @@ WallFit fit_wall(const Points& points, const std::vector<std::vector<int>>& clus
   // far round a turn): judged against the wall's piece where they are, fitted over 30 m.
   for (float b = lo; b < hi; b += 20.0f) {
     sel.clear();
-    for (int c : w.members)
-      for (int i : clusters[c])
-        if (points[i].x() >= b - 5.0f && points[i].x() < b + 25.0f) sel.push_back(i);
+    for (int c : w.members) add_sampled(points, clusters[c], sel, [&](float x) { return x >= b - 5.0f && x < b + 25.0f; });
     const LocalFit f = least_squares(points, sel, local_degree, false, lean);
     if (!f.ok) continue;
     for (std::size_t c = 0; c < clusters.size(); ++c) {
