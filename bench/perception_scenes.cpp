@@ -1,5 +1,7 @@
 #include "perception_scenes.hpp"
 
+#include "common/perception_score.hpp"
+
 #include <cmath>
 
 namespace brickyard::scenes {
@@ -86,24 +88,11 @@ Frame Ims::frame(double s, double d, std::uint64_t seed) const {
 }
 
 double Ims::wall_y(const Eigen::Isometry3d& world_from_body, int side) const {
-  double u = 0;
-  for (int it = 0; it < 50; ++it) {
-    const Eigen::Vector3d p = world_from_body * Eigen::Vector3d(0, u, 0);
-    const Frenet f = track_->project(p.x(), p.y());
-    const double wall = side < 0 ? track_->wall_right_d(f.seg, f.u) : track_->wall_left_d(f.seg, f.u);
-    if (!std::isfinite(wall)) return NAN;
-    const double step = wall - f.d;  // d grows with body y (left) at about one metre per metre
-    u += step;
-    if (std::abs(step) < 1e-6) break;
-  }
-  return u;
+  return wall_y_in_body(*track_, world_from_body, side);
 }
 
 Eigen::Vector3d Ims::pylon_in_body(const Eigen::Isometry3d& world_from_body, std::size_t i) const {
-  const Pylon& p = track_->spec().pylons.at(i);
-  const Frenet f = track_->at(track_->wrap_s(p.s), p.d);
-  const Eigen::Vector2d xy = track_->position(f);
-  return world_from_body.inverse() * Eigen::Vector3d(xy.x(), xy.y(), track_->road_z(f) + 0.5 * p.height);
+  return sim::pylon_in_body(*track_, world_from_body, i);
 }
 
 }  // namespace brickyard::scenes

@@ -2,6 +2,7 @@
 // model against the analytical bicycle model, LiDAR ray casting, fault windows, the referee.
 #include "common/faults.hpp"
 #include "common/lidar.hpp"
+#include "common/perception_score.hpp"
 #include "common/referee.hpp"
 #include "common/track.hpp"
 #include "common/vehicle_model.hpp"
@@ -390,4 +391,41 @@ TEST(Referee, DetectsAWallContactAndCountsLaps) {
   EXPECT_FALSE(r.localization(time + 1.0, p.x(), p.y()));  // no truth yet for that time
   EXPECT_NEAR(r.localization_rmse(), 2.0, 1e-9);
   EXPECT_NEAR(r.localization_max_error(), 2.0, 1e-9);
+}
+
+// The perception scorer's geometry and bookkeeping on the oval: the car on the straight at
+// d = 2 (left), the outer wall on the right at the edge (d = -7.5).
+TEST(PerceptionScore, WallTruthFalseObstaclesAndPylonRange) {
+  WorldSpec w;
+  w.line = oval();
+  w.walls.right = true;
+  w.pylons = {Pylon{300, 0, 0.2, 0.7}};
+  Track t(w);
+  const Eigen::Isometry3d body = pose_on(t, 100, 2.0);
+  EXPECT_NEAR(wall_y_in_body(t, body, -1), -9.5, 1e-6);
+  EXPECT_TRUE(std::isnan(wall_y_in_body(t, body, +1)));  // no left wall
+  const Eigen::Vector3d pylon = pylon_in_body(t, body, 0);
+  EXPECT_NEAR(pylon.x(), 200, 1e-6);
+  EXPECT_NEAR(pylon.y(), -2, 1e-6);
+  PerceptionScore s(t, PerceptionScoreParams{});
+  EXPECT_FALSE(s.wall(5, -9.5, true));  // no truth yet: not scored
+  // The car drives up to the pylon; the detector sees it from 120 m on, misses it once at 150 m.
+  for (int k = 0; k <= 19; ++k) {
+    const double at = 100 + 10 * k;  // pylon 200 - 10 k ahead
+    const Eigen::Isometry3d b = pose_on(t, at, 2.0);
+    const std::int64_t stamp = k * 100'000'000;
+    s.truth(stamp, b);
+    ASSERT_TRUE(s.wall(stamp + 1, -9.5 + (k == 3 ? 0.2 : 0.0), true));
+    const double ahead = 200 - 10 * k;
+    std::vector<Eigen::Vector2d> seen;
+    if (ahead <= 120 || ahead == 170) seen.emplace_back(ahead + 0.3, -2.2);
+    if (k == 7) seen.emplace_back(50, 5);  // nothing there
+    ASSERT_TRUE(s.obstacles(stamp + 1, seen));
+  }
+  EXPECT_EQ(s.wall_frames(), 20u);
+  EXPECT_NEAR(PerceptionScore::percentile(s.wall_errors(), 0.5), 0.0, 1e-6);
+  EXPECT_NEAR(PerceptionScore::percentile(s.wall_errors(), 1.0), 0.2, 1e-6);
+  EXPECT_EQ(s.false_obstacles(), 1u);
+  ASSERT_EQ(s.pylon_ranges().size(), 1u);
+  EXPECT_NEAR(s.pylon_ranges()[0], std::hypot(120, 2), 1e-6);  // 170 m was a lucky frame, 160 m was missed
 }

@@ -22,11 +22,12 @@ void GroundFilter::run(const Points& in, GroundResult& out) {
   // Keys are computed kAhead points early, into a ring, and their slots prefetched: the loads
   // that a scattered hash makes of every point overlap instead of queueing.
   constexpr std::size_t kAhead = 8;
+  constexpr std::uint64_t kSkip = ~std::uint64_t{0} - 1;  // no cell_key is this (63 bits at most)
   std::uint64_t ring[kAhead];
   const std::size_t n = in.size();
   auto key_of = [&](std::size_t j) {
     const Point& q = in[j];
-    if (!q.allFinite()) return std::uint64_t{0};  // skipped below; a NaN must not reach an int cast
+    if (!q.allFinite()) return kSkip;  // a NaN must not reach an int cast
     return cell_key(cell_of(q.x(), inv_leaf), cell_of(q.y(), inv_leaf), cell_of(q.z(), inv_leaf));
   };
   for (std::size_t j = 0; j < kAhead && j < n; ++j) {
@@ -39,8 +40,8 @@ void GroundFilter::run(const Points& in, GroundResult& out) {
       ring[j % kAhead] = key_of(j + kAhead);
       voxel_index_.prefetch(ring[j % kAhead]);
     }
+    if (key == kSkip) continue;
     const Point& q = in[j];
-    if (!q.allFinite()) continue;
     bool inserted;
     const std::uint32_t i = voxel_index_.find_or_insert(key, static_cast<std::uint32_t>(voxels_.size()), inserted);
     if (inserted) voxels_.push_back(Voxel{0, 0, 0, 0});

@@ -59,7 +59,7 @@ std::vector<Obstacle> find_obstacles(const Points& points, const std::vector<std
     }
     if (wall) continue;
     const Eigen::Vector3f centroid = sum / static_cast<float>(c.size()), size = hi - lo;
-    if (std::abs(centroid.y()) > p.max_lateral || std::abs(centroid.x()) > p.max_range) continue;
+    if (std::abs(centroid.y()) > p.max_lateral || centroid.x() > p.max_range || centroid.x() < -p.max_behind) continue;
     if (size.x() > p.max_length || size.y() > p.max_length || size.z() < p.min_height) continue;
     if (c.size() >= 4 && lies_flat(points, c, centroid, p)) continue;
     out.push_back({centroid, size, c.size()});

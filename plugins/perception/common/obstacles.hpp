@@ -17,7 +17,9 @@ namespace brickyard::perception {
 
 struct ObstacleParams {
   double max_lateral = 15.0;  // m either side of the car
-  double max_range = 200.0;   // m ahead or behind
+  double max_range = 200.0;   // m ahead
+  double max_behind = 50.0;   // m behind: what the planner needs; far behind, the rear LiDARs graze
+                              // the wall and its stripes are the hardest to tell from obstacles
   double wall_margin = 0.5;   // m: this close to a fitted wall is wall
   double max_length = 8.0;    // m of extent in x or y
   double min_height = 0.1;    // m of extent in z: a single scan row's streak has none

@@ -31,7 +31,8 @@ class ObstacleDetectorNode : public Plugin {
         .input<msgs::WallEstimate>("wall_left", "the left wall fit of the same frames (optional)", false, 8)
         .output<msgs::ObstacleList>("obstacles", "obstacles, vehicle frame, every frame")
         .param(ParamSpec::number("max_lateral", d.max_lateral).in_unit("m").at_least(0).doc("corridor half width when no wall cuts it"))
-        .param(ParamSpec::number("max_range", d.max_range).in_unit("m").at_least(0).doc("|x| limit"))
+        .param(ParamSpec::number("max_range", d.max_range).in_unit("m").at_least(0).doc("how far ahead"))
+        .param(ParamSpec::number("max_behind", d.max_behind).in_unit("m").at_least(0).doc("how far behind"))
         .param(ParamSpec::number("wall_margin", d.wall_margin).in_unit("m").at_least(0).doc("a cluster this close to a fitted wall is wall"))
         .param(ParamSpec::number("max_length", d.max_length).in_unit("m").at_least(0).doc("longer clusters are structure, not obstacles"))
         .param(ParamSpec::number("min_height", d.min_height).in_unit("m").at_least(0).doc("less z extent: a scan row's streak, not an obstacle"))
@@ -48,6 +49,7 @@ class ObstacleDetectorNode : public Plugin {
     const Params& p = ctx.params();
     op_.max_lateral = p.number("max_lateral");
     op_.max_range = p.number("max_range");
+    op_.max_behind = p.number("max_behind");
     op_.wall_margin = p.number("wall_margin");
     op_.max_length = p.number("max_length");
     op_.min_points = static_cast<int>(p.integer("min_points"));

@@ -1,0 +1,125 @@
+// sim.perception_scorer: scores the perception chain against ground truth
+// (common/perception_score): the wall detector's d_w, false obstacles, and the range from which
+// each pylon is detected in every frame. `require_*` params turn the targets into a
+// failed run; the graph tests under tests/graphs/perception_* use them.
+#include <brickyard/msgs/ObstacleList.h>
+#include <brickyard/msgs/TrackWorld.h>
+#include <brickyard/msgs/VehicleState.h>
+#include <brickyard/msgs/WallEstimate.h>
+#include <brickyard/plugin.hpp>
+
+#include "../common/perception_score.hpp"
+#include "../world_msg.hpp"
+
+#include <cstdio>
+
+namespace {
+
+using namespace brickyard;
+using namespace brickyard::sim;
+
+class PerceptionScorer : public Plugin {
+ public:
+  static Manifest manifest() {
+    return Manifest("sim.perception_scorer", "1.0.0")
+        .describe("scores wall and obstacle detection against ground truth: d_w error, false obstacles, pylon detection range")
+        .input<msgs::TrackWorld>("world", "the world (walls, pylons)", true, 1)
+        .input<msgs::VehicleState>("truth", "ground truth", true, 4096)
+        .input<msgs::WallEstimate>("wall", "a wall detector's output (optional)", false, 256)
+        .input<msgs::ObstacleList>("obstacles", "an obstacle detector's output (optional)", false, 256)
+        .param(ParamSpec::string("wall_side", "right").one_of({"right", "left"}))
+        .param(ParamSpec::number("match_radius_m", 1.0).in_unit("m").at_least(0).doc("an obstacle this close to a pylon is that pylon"))
+        .param(ParamSpec::number("require_wall_p95_m", -1).in_unit("m").doc("fail above this p95 of |d_w error|; < 0: off"))
+        .param(ParamSpec::number("require_wall_valid_fraction", -1).doc("fail if fewer frames carry a valid fit; < 0: off"))
+        .param(ParamSpec::integer("require_max_false_obstacles", -1).doc("fail above this many; < 0: off"))
+        .param(ParamSpec::number("require_pylon_range_m", -1).in_unit("m").doc("fail if a pylon in view is not reliably detected from this far; < 0: off"))
+        .on_input("wall")
+        .on_input("obstacles");
+  }
+
+  void configure(Context& ctx) override {
+    const Params& p = ctx.params();
+    sp_.wall_side = p.string("wall_side") == "left" ? 1 : -1;
+    sp_.match_radius = p.number("match_radius_m");
+    wall_p95_ = p.number("require_wall_p95_m");
+    wall_valid_ = p.number("require_wall_valid_fraction");
+    max_false_ = p.integer("require_max_false_obstacles");
+    pylon_range_ = p.number("require_pylon_range_m");
+    world_ = ctx.input<msgs::TrackWorld>("world");
+    truth_ = ctx.input<msgs::VehicleState>("truth");
+    wall_ = ctx.input<msgs::WallEstimate>("wall");
+    obstacles_ = ctx.input<msgs::ObstacleList>("obstacles");
+  }
+
+  void step(Context&) override { drain(); }
+
+  void deactivate(Context& ctx) override {
+    drain();
+    if (!score_) {
+      ctx.fail("no world was received: nothing scored");
+      return;
+    }
+    const auto& s = *score_;
+    const double p50 = PerceptionScore::percentile(s.wall_errors(), 0.5), p95 = PerceptionScore::percentile(s.wall_errors(), 0.95);
+    const double valid = s.wall_frames() ? static_cast<double>(s.wall_errors().size()) / s.wall_frames() : 0.0;
+    ctx.metric("wall_frames", static_cast<double>(s.wall_frames()));
+    ctx.metric("wall_valid_fraction", valid);
+    ctx.metric("wall_error_p50_m", p50);
+    ctx.metric("wall_error_p95_m", p95);
+    ctx.metric("obstacle_frames", static_cast<double>(s.obstacle_frames()));
+    ctx.metric("false_obstacles", static_cast<double>(s.false_obstacles()));
+    const auto ranges = s.pylon_ranges();
+    ctx.metric("pylon_range_m", ranges);
+    char b[200];
+    if (wall_p95_ >= 0 && !(p95 <= wall_p95_)) {
+      std::snprintf(b, sizeof b, "wall distance error p95 %.3f m exceeds the required %.3f m", p95, wall_p95_);
+      ctx.fail(b);
+    }
+    if (wall_valid_ >= 0 && valid < wall_valid_) {
+      std::snprintf(b, sizeof b, "a valid wall fit in %.3f of the frames (required %.3f)", valid, wall_valid_);
+      ctx.fail(b);
+    }
+    if (max_false_ >= 0 && static_cast<std::int64_t>(s.false_obstacles()) > max_false_) {
+      std::snprintf(b, sizeof b, "%zu false obstacles (at most %lld allowed)", s.false_obstacles(), static_cast<long long>(max_false_));
+      ctx.fail(b);
+    }
+    for (std::size_t k = 0; k < ranges.size() && pylon_range_ >= 0; ++k)
+      if (std::isfinite(ranges[k]) && ranges[k] < pylon_range_) {
+        std::snprintf(b, sizeof b, "pylon %zu reliably detected only from %.0f m (required %.0f m)", k, ranges[k], pylon_range_);
+        ctx.fail(b);
+      }
+    if ((wall_.connected() && s.wall_frames() == 0) || (obstacles_.connected() && s.obstacle_frames() == 0))
+      ctx.fail("no perception output was scored");
+  }
+
+ private:
+  void drain() {
+    if (!score_) {
+      auto w = newest(world_);
+      if (!w) return;
+      track_ = std::make_unique<Track>(from_message(*w));
+      score_.emplace(*track_, sp_);
+    }
+    for (const auto& s : truth_.take()) score_->truth(s->header().stamp_ns(), body_pose(*s));
+    for (const auto& w : wall_.take()) score_->wall(w->header().stamp_ns(), w->distance(), w->valid());
+    for (const auto& o : obstacles_.take()) {
+      std::vector<Eigen::Vector2d> xy;
+      for (const auto& ob : o->obstacles()) xy.emplace_back(ob.x(), ob.y());
+      score_->obstacles(o->header().stamp_ns(), xy);
+    }
+  }
+
+  PerceptionScoreParams sp_;
+  std::unique_ptr<Track> track_;
+  std::optional<PerceptionScore> score_;
+  double wall_p95_ = -1, wall_valid_ = -1, pylon_range_ = -1;
+  std::int64_t max_false_ = -1;
+  Input<msgs::TrackWorld> world_;
+  Input<msgs::VehicleState> truth_;
+  Input<msgs::WallEstimate> wall_;
+  Input<msgs::ObstacleList> obstacles_;
+};
+
+}  // namespace
+
+BRICKYARD_PLUGINS(PerceptionScorer)
