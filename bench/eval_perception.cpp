@@ -92,9 +92,8 @@ int main(int argc, char** argv) {
     }
   }
   const std::string data = std::string(BRICKYARD_SOURCE_DIR) + "/data";
-  Pipeline pipe;
   PipelineResult r;
-  const float leaf = pipe.params().ground.leaf;
+  const float leaf = GroundParams{}.leaf;
   bool ok = true;
 
   // 1. Ground, walls, false obstacles: 30 frames per scene, the car every 10 m over 100 m of the
@@ -123,6 +122,9 @@ int main(int argc, char** argv) {
     const double s0 = spec.turn ? probe.turn_s() : probe.straight_s();
     o.pylons = {sim::Pylon{s0 + 150, 1.5, 0.2, 0.7}};
     scenes::Ims ims(data, o);
+    PipelineParams pp;
+    pp.fit_left = spec.inner_wall;  // a left wall detector where there is a left wall
+    Pipeline pipe(pp);
     Score sc;
     for (int k = 0; k < 10; ++k)
       for (double d : {-4.0, 0.0, 4.0}) {
@@ -154,6 +156,7 @@ int main(int argc, char** argv) {
   const double pylon_s = probe.straight_s() + 250;
   o.pylons = {sim::Pylon{pylon_s, 1.5, 0.2, 0.7}};
   scenes::Ims ims(data, o);
+  Pipeline pipe;
   double worst_reliable = 1e9;
   for (double d : {-4.0, 0.0, 4.0}) {
     double reliable = 0, first = 0;

@@ -13,7 +13,7 @@ struct PipelineParams {
   ClusterParams cluster;
   WallParams right;                          // side -1
   WallParams left = [] { WallParams w; w.side = 1; return w; }();
-  bool fit_left = true;
+  bool fit_left = false;  // the graphs wire the right wall's detector only, as the paper follows it
   ObstacleParams obstacles;
 };
 
@@ -37,7 +37,9 @@ class Pipeline {
     clustering_.run(r.features, r.clusters);
     r.right = fit_wall(r.features, r.clusters, p_.right);
     r.left = p_.fit_left ? fit_wall(r.features, r.clusters, p_.left) : WallFit{};
-    r.obstacles = find_obstacles(r.features, r.clusters, {{r.right, -1}, {r.left, 1}}, p_.obstacles);
+    std::vector<std::pair<WallFit, int>> walls{{r.right, -1}};
+    if (p_.fit_left) walls.emplace_back(r.left, 1);
+    r.obstacles = find_obstacles(r.features, r.clusters, walls, p_.obstacles);
   }
 
  private:

@@ -75,25 +75,31 @@ LocalFit least_squares(const Points& pts, const std::vector<int>& sel, int degre
   f.half = std::max(0.5 * (hi - lo), 1e-3);
   // Normal equations, accumulated without a design matrix: u in [-1, 1] keeps them well
   // conditioned at these degrees, and a frame makes dozens of these fits.
-  using Mat = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxTerms, kMaxTerms>;
-  using Vec = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxTerms, 1>;
-  Mat ata = Mat::Zero(terms, terms);
-  Vec atb = Vec::Zero(terms), row(terms);
+  double ata[kMaxTerms][kMaxTerms] = {}, atb[kMaxTerms] = {}, row[kMaxTerms];
   double btb = 0;
   for (int i : sel) {
     const Point& q = pts[i];
     const double u = (q.x() - f.mid) / f.half, b = q.y() - (lean ? 0.0 : fixed_lean * q.z());
     double pw = 1;
-    for (int k = 0; k <= degree; ++k, pw *= u) row(k) = pw;
-    if (lean) row(degree + 1) = q.z();
-    ata.selfadjointView<Eigen::Lower>().rankUpdate(row);
-    atb += b * row;
+    for (int k = 0; k <= degree; ++k, pw *= u) row[k] = pw;
+    if (lean) row[degree + 1] = q.z();
+    for (int a = 0; a < terms; ++a) {
+      for (int c = 0; c <= a; ++c) ata[a][c] += row[a] * row[c];
+      atb[a] += b * row[a];
+    }
     btb += b * b;
   }
-  ata.triangularView<Eigen::StrictlyUpper>() = ata.transpose();
-  f.sol = ata.ldlt().solve(atb);
+  using Mat = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxTerms, kMaxTerms>;
+  using Vec = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxTerms, 1>;
+  Mat m(terms, terms);
+  Vec v(terms);
+  for (int a = 0; a < terms; ++a) {
+    v(a) = atb[a];
+    for (int c = 0; c <= a; ++c) m(a, c) = m(c, a) = ata[a][c];
+  }
+  f.sol = m.ldlt().solve(v);
   // Residual sum of squares from the same sums: |b|^2 - 2 s.A'b + s'A'A s.
-  const double rss = btb - 2 * f.sol.dot(atb) + f.sol.dot(ata * f.sol);
+  const double rss = btb - 2 * f.sol.dot(v) + f.sol.dot(m * f.sol);
   f.rms = std::sqrt(std::max(rss, 0.0) / n);
   f.ok = f.sol.allFinite();
   return f;
