@@ -80,11 +80,11 @@ void GroundFilter::run(const Points& in, GroundResult& out) {
   for (Cell& c : cell_) {
     if (!vertical(c)) continue;
     // Vertical: ground up to ground_band above the road it stands on, when a ground neighbour
-    // confirms that height (the one nearest in height; the band starts from the lower of the
-    // two, so a cell whose lowest voxel is a wall's bottom measures from the road beside it);
-    // none: vertical through. Its ground neighbours: ground, except what stands min_height above
-    // this cell's foot (a wall leaning into them).
-    float best = p_.ground_band;
+    // confirms that height (the lowest one within ground_band; the band starts from the lower of
+    // the two, so a cell whose lowest voxel is a wall's or a pylon's bottom measures from the
+    // road beside it); none: vertical through. Its ground neighbours: ground, except what
+    // stands min_height above this cell's foot (a wall leaning into them).
+    float road = kInf;  // the lowest confirming neighbour
     for (int dx = -1; dx <= 1; ++dx)
       for (int dy = -1; dy <= 1; ++dy) {
         const std::uint32_t* k = (dx || dy) ? cells_.find(cell_key(c.x + dx, c.y + dy, 0)) : nullptr;
@@ -92,11 +92,9 @@ void GroundFilter::run(const Points& in, GroundResult& out) {
         Cell& n = cell_[*k];
         if (vertical(n)) continue;
         n.limit = std::min(n.limit, c.zmin + p_.min_height);
-        if (std::abs(n.zmin - c.zmin) <= best) {
-          best = std::abs(n.zmin - c.zmin);
-          c.limit = std::min(c.zmin, n.zmin) + p_.ground_band;
-        }
+        if (std::abs(n.zmin - c.zmin) <= p_.ground_band) road = std::min(road, n.zmin);
       }
+    if (road < kInf) c.limit = std::min(c.zmin, road) + p_.ground_band;
   }
   out.ground.resize(count);
   for (std::uint32_t i = 0; i < count; ++i) out.ground[i] = out.voxels[i].z() < cell_[voxel_cell_[i]].limit;

@@ -10,8 +10,8 @@
 //     banked road, 0.5 m x tan 20 deg = 0.18 m per cell, is never mistaken for a step):
 //     - In a vertical cell, the voxels within `ground_band` of the road it stands on are road
 //       (the asphalt at a wall's foot, under a pylon). That road height is the cell's lowest
-//       voxel, confirmed by a ground neighbour within ground_band (the one nearest in height;
-//       the lower of the two counts, so a cell holding only a wall's bottom measures from the
+//       voxel, confirmed by a ground neighbour within ground_band (the lowest such; the lower of
+//       the two counts, so a cell holding only a wall's or a pylon's bottom measures from the
 //       road beside it). Unconfirmed (a distant wall's stripe, hit a few rows up with no road in
 //       its cell): vertical through.
 //     - In a ground cell, voxels standing `min_height` above a vertical neighbour's lowest voxel

@@ -9,12 +9,53 @@ namespace brickyard::perception {
 
 namespace {
 
-// The wall's y at x: the polynomial over the fitted extent, its tangent line beyond it (a
-// polynomial extrapolated a hundred metres runs wild).
-double wall_y_at(const WallFit& w, double x) {
-  const double end = std::clamp(x, w.x_min, w.x_max);
-  return poly_value(w.coefficients, end) + poly_value(w.coefficients, end, 1) * (x - end);
-}
+// Where a wall is along x, at z = 0. The polynomial is fitted near the car only; far round a turn
+// the wall is known from its points (the grown wall's clusters): 2 m bins of y - lean z, linear
+// between bins and along the last 10 m's slope beyond them. Without points, the polynomial over
+// its extent and its tangent beyond (a polynomial extrapolated a hundred metres runs wild).
+class WallProfile {
+ public:
+  WallProfile(const WallFit& w, const Points& points, const std::vector<std::vector<int>>& clusters) : w_(w) {
+    std::vector<std::pair<int, std::pair<double, int>>> acc;  // bin -> (sum of y, count)
+    std::vector<std::pair<int, double>> samples;
+    for (int m : w.members)
+      if (m >= 0 && static_cast<std::size_t>(m) < clusters.size())
+        for (int i : clusters[m])
+          samples.emplace_back(static_cast<int>(std::floor(points[i].x() / kBin)), points[i].y() - w.lean * points[i].z());
+    std::sort(samples.begin(), samples.end());
+    for (std::size_t a = 0; a < samples.size();) {
+      std::size_t b = a;
+      double sum = 0;
+      for (; b < samples.size() && samples[b].first == samples[a].first; ++b) sum += samples[b].second;
+      bins_.emplace_back((samples[a].first + 0.5) * kBin, sum / static_cast<double>(b - a));
+      a = b;
+    }
+  }
+  double y(double x) const {
+    if (bins_.size() < 2) {
+      const double end = std::clamp(x, w_.x_min, w_.x_max);
+      return poly_value(w_.coefficients, end) + poly_value(w_.coefficients, end, 1) * (x - end);
+    }
+    if (x <= bins_.front().first) return extrapolate(x, 0, +1);
+    if (x >= bins_.back().first) return extrapolate(x, bins_.size() - 1, -1);
+    const auto hi = std::lower_bound(bins_.begin(), bins_.end(), std::pair{x, -1e300});
+    const auto lo = std::prev(hi);
+    const double t = (x - lo->first) / (hi->first - lo->first);
+    return lo->second + t * (hi->second - lo->second);
+  }
+
+ private:
+  static constexpr double kBin = 2.0;
+  // From the end bin, along the slope to the bin about 10 m inward.
+  double extrapolate(double x, std::size_t end, int inward) const {
+    std::size_t k = end;
+    while (k + inward < bins_.size() && std::abs(bins_[k].first - bins_[end].first) < 10.0) k += inward;
+    const double slope = (bins_[end].second - bins_[k].second) / (bins_[end].first - bins_[k].first);
+    return bins_[end].second + slope * (x - bins_[end].first);
+  }
+  const WallFit& w_;
+  std::vector<std::pair<double, double>> bins_;  // (x centre, y), ascending x
+};
 
 // Thin across its best-fit plane, and that plane near the car's: the covariance's smallest
 // eigenvalue and its eigenvector.
@@ -31,38 +72,98 @@ bool lies_flat(const Points& points, const std::vector<int>& c, const Eigen::Vec
   return thickness < p.flat_thickness && normal_z > std::cos(static_cast<float>(p.flat_tilt_deg * M_PI / 180));
 }
 
+double walls_lean(const std::vector<std::pair<WallFit, int>>& walls, int side) {
+  for (const auto& [w, s] : walls)
+    if (s == side && w.valid) return w.lean;
+  return 0;
+}
+
 }  // namespace
 
 std::vector<Obstacle> find_obstacles(const Points& points, const std::vector<std::vector<int>>& clusters,
                                      const std::vector<std::pair<WallFit, int>>& walls, const ObstacleParams& p) {
   std::vector<Obstacle> out;
   std::vector<char> wall_member(clusters.size(), 0);
-  for (const auto& [w, side] : walls)
-    for (int m : w.valid ? w.members : std::vector<int>{})
+  std::vector<std::pair<WallProfile, int>> profiles;  // the valid walls
+  for (const auto& [w, side] : walls) {
+    if (!w.valid) continue;
+    profiles.emplace_back(WallProfile(w, points, clusters), side);
+    for (int m : w.members)
       if (m >= 0 && static_cast<std::size_t>(m) < clusters.size()) wall_member[m] = 1;
+  }
+  // Candidates: the clusters that are neither wall nor beyond it.
+  struct Part {
+    Eigen::Vector3f lo, hi, sum;
+    std::size_t n;
+    std::vector<int> clusters;
+  };
+  std::vector<Part> parts;
   for (std::size_t k = 0; k < clusters.size(); ++k) {
     const auto& c = clusters[k];
-    if (wall_member[k] || static_cast<int>(c.size()) < p.min_points) continue;
-    Eigen::Vector3f lo = points[c[0]], hi = points[c[0]], sum = Eigen::Vector3f::Zero();
+    if (wall_member[k] || c.empty()) continue;
+    Part part{points[c[0]], points[c[0]], Eigen::Vector3f::Zero(), c.size(), {static_cast<int>(k)}};
     bool wall = false;
     for (int i : c) {
       const Point& q = points[i];
-      lo = lo.cwiseMin(q);
-      hi = hi.cwiseMax(q);
-      sum += q;
-      for (const auto& [w, side] : walls) {
-        if (!w.valid) continue;
+      part.lo = part.lo.cwiseMin(q);
+      part.hi = part.hi.cwiseMax(q);
+      part.sum += q;
+      for (std::size_t v = 0; v < profiles.size() && !wall; ++v) {
         // Signed distance inward from the wall at the point's height (the fitted lean included).
-        const double wall_y = wall_y_at(w, q.x()) + w.lean * q.z();
+        const auto& [profile, side] = profiles[v];
+        const double wall_y = profile.y(q.x()) + walls_lean(walls, side) * q.z();
         if ((wall_y - q.y()) * side < p.wall_margin) wall = true;
       }
     }
-    if (wall) continue;
-    const Eigen::Vector3f centroid = sum / static_cast<float>(c.size()), size = hi - lo;
-    if (std::abs(centroid.y()) > p.max_lateral || centroid.x() > p.max_range || centroid.x() < -p.max_behind) continue;
+    if (!wall) parts.push_back(std::move(part));
+  }
+  // Far off, the rows a thing is cut by land further apart than the clustering tolerance: a
+  // pylon at 60 m comes as two or three one-row streaks stacked at one place. Parts whose
+  // footprints overlap (within stack_gap) are one object.
+  std::vector<int> group(parts.size());
+  for (std::size_t a = 0; a < parts.size(); ++a) group[a] = static_cast<int>(a);
+  auto root = [&](int a) {
+    while (group[a] != a) a = group[a] = group[group[a]];
+    return a;
+  };
+  const float g = static_cast<float>(p.stack_gap);
+  for (std::size_t a = 0; a < parts.size(); ++a)
+    for (std::size_t b = a + 1; b < parts.size(); ++b) {
+      const bool overlap = parts[a].lo.x() <= parts[b].hi.x() + g && parts[b].lo.x() <= parts[a].hi.x() + g &&
+                           parts[a].lo.y() <= parts[b].hi.y() + g && parts[b].lo.y() <= parts[a].hi.y() + g;
+      if (!overlap) continue;
+      const int ra = root(static_cast<int>(a)), rb = root(static_cast<int>(b));
+      if (ra != rb) group[std::max(ra, rb)] = std::min(ra, rb);
+    }
+  for (std::size_t a = 0; a < parts.size(); ++a) {
+    const int r = root(static_cast<int>(a));
+    if (r == static_cast<int>(a)) continue;
+    Part& into = parts[r];
+    into.lo = into.lo.cwiseMin(parts[a].lo);
+    into.hi = into.hi.cwiseMax(parts[a].hi);
+    into.sum += parts[a].sum;
+    into.n += parts[a].n;
+    into.clusters.insert(into.clusters.end(), parts[a].clusters.begin(), parts[a].clusters.end());
+    parts[a].n = 0;
+  }
+  std::vector<int> members;
+  for (const Part& part : parts) {
+    if (part.n == 0 || static_cast<int>(part.n) < p.min_points) continue;
+    const Eigen::Vector3f centroid = part.sum / static_cast<float>(part.n), size = part.hi - part.lo;
+    if (centroid.x() > p.max_range || centroid.x() < -p.max_behind) continue;
+    // The corridor: within corridor_width of a fitted wall (it follows the wall round a turn),
+    // or within max_lateral of the car's axis when no wall is fitted.
+    if (profiles.empty()) {
+      if (std::abs(centroid.y()) > p.max_lateral) continue;
+    } else {
+      const auto& [profile, side] = profiles.front();
+      if ((profile.y(centroid.x()) - centroid.y()) * side > p.corridor_width) continue;
+    }
     if (size.x() > p.max_length || size.y() > p.max_length || size.z() < p.min_height) continue;
-    if (c.size() >= 4 && lies_flat(points, c, centroid, p)) continue;
-    out.push_back({centroid, size, c.size()});
+    members.clear();
+    for (int c : part.clusters) members.insert(members.end(), clusters[c].begin(), clusters[c].end());
+    if (members.size() >= 4 && lies_flat(points, members, centroid, p)) continue;
+    out.push_back({centroid, size, part.n});
   }
   return out;
 }

@@ -1,13 +1,20 @@
 #pragma once
 // Obstacle extraction, framework-free: the clusters inside the drivable corridor that are not
-// wall. A cluster the wall fit took as part of the wall (WallFit::members) is wall. The corridor
-// is |y| <= max_lateral in the vehicle frame, cut by each fitted wall: a cluster with any point
-// within wall_margin of a wall (or beyond it) is wall or outside the track. A cluster longer than max_length is structure (a wall the fit did not see), not an
-// obstacle. A cluster with less than min_height of z extent is a single scan row's streak: the
-// foot or the top of a wall far round a turn; anything that stands on the track is cut by two
-// rows before it is near (a pylon from 100 m, see docs/results-perception.md). A cluster of four
-// or more points lying flat (thinner than flat_thickness across its best-fit plane, that plane
-// within flat_tilt_deg of the car's) is ground the filter missed: a road crease on a steep bank.
+// wall.
+//  - Wall: a cluster the wall fit took as part of the wall (WallFit::members), or with any point
+//    within wall_margin of a fitted wall or beyond it (outside the track).
+//  - One object: clusters whose xy footprints overlap (within stack_gap). Far off, the rows a
+//    pylon is cut by land further apart than the clustering tolerance: one-row streaks stacked
+//    at one place.
+//  - Corridor: up to corridor_width inward of the first fitted wall, which is known from its
+//    points far round a turn; with no wall fitted, |y| <= max_lateral. From max_behind behind
+//    to max_range ahead.
+//  - Not obstacles: longer than max_length (structure: a wall the fit did not see); less than
+//    min_height of z extent (a single row's streak: the foot or top of a wall far round a turn;
+//    what stands on the track is cut by two rows, a pylon from 160 m on a straight, see
+//    docs/results-perception.md); four or more points lying flat (thinner than flat_thickness
+//    across their best-fit plane, that plane within flat_tilt_deg of the car's: ground the filter
+//    missed, a road crease on a steep bank).
 #include "points.hpp"
 #include "wall_fit.hpp"
 
@@ -16,15 +23,17 @@
 namespace brickyard::perception {
 
 struct ObstacleParams {
-  double max_lateral = 15.0;  // m either side of the car
-  double max_range = 200.0;   // m ahead
-  double max_behind = 50.0;   // m behind: what the planner needs; far behind, the rear LiDARs graze
-                              // the wall and its stripes are the hardest to tell from obstacles
-  double wall_margin = 0.5;   // m: this close to a fitted wall is wall
-  double max_length = 8.0;    // m of extent in x or y
-  double min_height = 0.1;    // m of extent in z: a single scan row's streak has none
-  double flat_thickness = 0.05;  // m: a cluster thinner than this (RMS across its best plane)...
-  double flat_tilt_deg = 40;     // ...whose plane lies within this of the car's is ground
+  double max_lateral = 15.0;     // m either side of the car, when no wall is fitted
+  double corridor_width = 20.0;  // m inward from a fitted wall (the track and a margin)
+  double max_range = 200.0;      // m ahead
+  double max_behind = 50.0;      // m behind: what the planner needs; far behind, the rear LiDARs
+                                 // graze the wall and its stripes are the hardest to tell apart
+  double wall_margin = 0.5;      // m: this close to a fitted wall is wall
+  double max_length = 8.0;       // m of extent in x or y
+  double min_height = 0.1;       // m of extent in z: a single scan row's streak has none
+  double flat_thickness = 0.05;  // m: thinner than this (RMS across the best plane)...
+  double flat_tilt_deg = 40;     // ...with that plane within this of the car's: ground
+  double stack_gap = 0.3;        // m: clusters whose footprints come this close are one object
   int min_points = 2;
 };
 
