@@ -331,3 +331,38 @@ TEST(Obstacles, AFlatPatchAndARowsStreakAreNotObstacles) {
   ASSERT_EQ(obstacles.size(), 1u);
   EXPECT_NEAR(obstacles[0].centroid.x(), 40, 1e-4);
 }
+
+// Far round a left turn: a pylon 120 m ahead and 20 m to the left, 5 m inside the curving right
+// wall, seen as two one-row streaks 0.55 m apart. One obstacle, inside the corridor the wall
+// draws; with no wall fitted the straight |y| <= 15 m corridor would drop it.
+TEST(Obstacles, StackedStreaksAreOneObjectAndTheCorridorFollowsTheWall) {
+  Points p;
+  std::vector<std::vector<int>> clusters(1);
+  auto wall_y = [](double x) { return -8 + x * x / (2 * 250.0); };
+  for (double x = -20; x < 150; x += 0.5)
+    for (double z = 0.2; z < 1.2; z += 0.3) {
+      clusters[0].push_back(static_cast<int>(p.size()));
+      p.emplace_back(x, wall_y(x), z);
+    }
+  const double py = wall_y(120) + 5;
+  for (float z : {0.3f, 0.85f}) {
+    clusters.emplace_back();
+    for (float dy : {-0.15f, 0.0f, 0.15f}) {
+      clusters.back().push_back(static_cast<int>(p.size()));
+      p.emplace_back(120, py + dy, z);
+    }
+  }
+  const WallFit w = fit_wall(p, clusters, WallParams{});
+  ASSERT_TRUE(w.valid);
+  const auto found = find_obstacles(p, clusters, {{w, -1}}, ObstacleParams{});
+  ASSERT_EQ(found.size(), 1u);
+  EXPECT_NEAR(found[0].centroid.y(), py, 1e-3);
+  EXPECT_EQ(found[0].points, 6u);
+  EXPECT_NEAR(found[0].size.z(), 0.55, 1e-5);
+  // Without the wall: outside |y| <= 15 m.
+  EXPECT_TRUE(find_obstacles(p, {clusters[1], clusters[2]}, {}, ObstacleParams{}).empty());
+  // Without stacking, each streak alone has no height.
+  ObstacleParams apart;
+  apart.stack_gap = -1;
+  EXPECT_TRUE(find_obstacles(p, clusters, {{w, -1}}, apart).empty());
+}

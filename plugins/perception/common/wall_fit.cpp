@@ -9,17 +9,27 @@
 
 namespace brickyard::perception {
 
-int longest_cluster_on_side(const Points& points, const std::vector<std::vector<int>>& clusters, int side) {
+int longest_cluster_on_side(const Points& points, const std::vector<std::vector<int>>& clusters, int side, float near) {
   int best = -1;
   float best_len = -1;
   for (std::size_t c = 0; c < clusters.size(); ++c) {
-    float xmin = std::numeric_limits<float>::max(), xmax = std::numeric_limits<float>::lowest(), ysum = 0;
+    if (clusters[c].empty()) continue;
+    float xmin = std::numeric_limits<float>::max(), xmax = std::numeric_limits<float>::lowest(), ynear = 0;
+    int n_near = 0, closest = clusters[c][0];
     for (int i : clusters[c]) {
-      xmin = std::min(xmin, points[i].x());
-      xmax = std::max(xmax, points[i].x());
-      ysum += points[i].y();
+      const Point& q = points[i];
+      xmin = std::min(xmin, q.x());
+      xmax = std::max(xmax, q.x());
+      if (std::abs(q.x()) <= near) {
+        ynear += q.y();
+        ++n_near;
+      }
+      if (std::abs(q.x()) < std::abs(points[closest].x())) closest = i;
     }
-    if (ysum * static_cast<float>(side) <= 0) continue;
+    // The side where the cluster passes the car: a long wall round a turn may have most of its
+    // points across the car's axis further on.
+    const float y = n_near ? ynear : points[closest].y();
+    if (y * static_cast<float>(side) <= 0) continue;
     if (xmax - xmin > best_len) {
       best_len = xmax - xmin;
       best = static_cast<int>(c);
@@ -106,7 +116,7 @@ LocalFit least_squares(const Points& pts, const std::vector<int>& sel, int degre
 }
 
 struct Extent {
-  float lo = std::numeric_limits<float>::max(), hi = std::numeric_limits<float>::lowest(), ysum = 0;
+  float lo = std::numeric_limits<float>::max(), hi = std::numeric_limits<float>::lowest();
 };
 
 float far_end_of(const Extent& e, int dir) { return dir > 0 ? e.hi : e.lo; }
@@ -123,14 +133,13 @@ template <class Keep> void add_sampled(const Points& points, const std::vector<i
 
 WallFit fit_wall(const Points& points, const std::vector<std::vector<int>>& clusters, const WallParams& p) {
   WallFit w;
-  w.cluster = longest_cluster_on_side(points, clusters, p.side);
+  w.cluster = longest_cluster_on_side(points, clusters, p.side, static_cast<float>(p.fit_range));
   if (w.cluster < 0) return w;
   std::vector<Extent> ext(clusters.size());
   for (std::size_t c = 0; c < clusters.size(); ++c)
     for (int i : clusters[c]) {
       ext[c].lo = std::min(ext[c].lo, points[i].x());
       ext[c].hi = std::max(ext[c].hi, points[i].x());
-      ext[c].ysum += points[i].y();
     }
   std::vector<char> member(clusters.size(), 0);
   member[w.cluster] = 1;

@@ -50,8 +50,9 @@ struct WallFit {
   bool valid = false;
 };
 
-// The index of the longest (x extent) cluster whose centroid lies on the side; -1 if none.
-int longest_cluster_on_side(const Points& points, const std::vector<std::vector<int>>& clusters, int side);
+// The index of the longest (x extent) cluster on the side (-1 right, +1 left) where it passes the
+// car: judged by its points within `near` of x = 0, or its point nearest to x = 0; -1 if none.
+int longest_cluster_on_side(const Points& points, const std::vector<std::vector<int>>& clusters, int side, float near);
 
 // Fits the wall to the chosen cluster (see WallParams for validity).
 WallFit fit_wall(const Points& points, const std::vector<std::vector<int>>& clusters, const WallParams& p);
