@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace brickyard::perception {
 
@@ -16,20 +17,26 @@ namespace {
 class WallProfile {
  public:
   WallProfile(const WallFit& w, const Points& points, const std::vector<std::vector<int>>& clusters) : w_(w) {
-    std::vector<std::pair<int, std::pair<double, int>>> acc;  // bin -> (sum of y, count)
-    std::vector<std::pair<int, double>> samples;
+    // Bins by index over the points' x range: one pass to find it, one to sum.
+    float lo = std::numeric_limits<float>::max(), hi = std::numeric_limits<float>::lowest();
     for (int m : w.members)
       if (m >= 0 && static_cast<std::size_t>(m) < clusters.size())
-        for (int i : clusters[m])
-          samples.emplace_back(static_cast<int>(std::floor(points[i].x() / kBin)), points[i].y() - w.lean * points[i].z());
-    std::sort(samples.begin(), samples.end());
-    for (std::size_t a = 0; a < samples.size();) {
-      std::size_t b = a;
-      double sum = 0;
-      for (; b < samples.size() && samples[b].first == samples[a].first; ++b) sum += samples[b].second;
-      bins_.emplace_back((samples[a].first + 0.5) * kBin, sum / static_cast<double>(b - a));
-      a = b;
-    }
+        for (int i : clusters[m]) {
+          lo = std::min(lo, points[i].x());
+          hi = std::max(hi, points[i].x());
+        }
+    if (lo > hi) return;
+    const int first = static_cast<int>(std::floor(lo / kBin)), last = static_cast<int>(std::floor(hi / kBin));
+    std::vector<std::pair<double, int>> acc(static_cast<std::size_t>(last - first + 1), {0.0, 0});
+    for (int m : w.members)
+      if (m >= 0 && static_cast<std::size_t>(m) < clusters.size())
+        for (int i : clusters[m]) {
+          auto& a = acc[static_cast<std::size_t>(static_cast<int>(std::floor(points[i].x() / kBin)) - first)];
+          a.first += points[i].y() - w.lean * points[i].z();
+          ++a.second;
+        }
+    for (std::size_t b = 0; b < acc.size(); ++b)
+      if (acc[b].second) bins_.emplace_back((first + static_cast<int>(b) + 0.5) * kBin, acc[b].first / acc[b].second);
   }
   double y(double x) const {
     if (bins_.size() < 2) {
