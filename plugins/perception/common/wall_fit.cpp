@@ -38,16 +38,6 @@ int longest_cluster_on_side(const Points& points, const std::vector<std::vector<
   return best;
 }
 
-double poly_value(const std::vector<double>& c, double x, int derivative) {
-  double y = 0;
-  for (std::size_t k = c.size(); k-- > static_cast<std::size_t>(derivative);) {
-    double f = c[k];
-    for (int d = 0; d < derivative; ++d) f *= static_cast<double>(k - d);
-    y = y * x + f;
-  }
-  return y;
-}
-
 namespace {
 
 // Least squares y = sum_k s_k u^k (+ k z), u = (x - mid) / half: x is scaled to [-1, 1] over the

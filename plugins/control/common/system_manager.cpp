@@ -1,0 +1,53 @@
+#include "system_manager.hpp"
+
+namespace brickyard::control {
+
+const char* mode_name(Mode m) {
+  switch (m) {
+    case Mode::path: return "PATH";
+    case Mode::wall: return "WALL_FOLLOW";
+    case Mode::safe_stop: return "SAFE_STOP";
+  }
+  return "?";
+}
+
+void SystemManager::status(double t, LocStatus s) {
+  if (s == LocStatus::normal && (!have_status_ || status_ != LocStatus::normal)) normal_since_ = t;
+  status_ = s;
+  status_t_ = t;
+  have_status_ = true;
+}
+
+void SystemManager::wall(double t, bool valid) {
+  if (valid) wall_valid_t_ = t;
+}
+
+Transition SystemManager::go(Mode to, std::string reason) {
+  Transition tr{true, mode_, to, std::move(reason)};
+  mode_ = to;
+  return tr;
+}
+
+Transition SystemManager::update(double t) {
+  const bool stale = have_status_ ? t - status_t_ > p_.status_timeout_s : t > p_.status_timeout_s;
+  const bool emergency = stale || status_ == LocStatus::emergency;
+  const bool wall_ok = t - wall_valid_t_ <= p_.wall_timeout_s;
+  const bool recovered = !stale && status_ == LocStatus::normal && t - normal_since_ >= p_.recover_after_s;
+  switch (mode_) {
+    case Mode::path:
+      if (emergency)
+        return wall_ok ? go(Mode::wall, stale ? "no localization status: following the wall" : "localization EMERGENCY: following the wall")
+                       : go(Mode::safe_stop, stale ? "no localization status and no valid wall" : "localization EMERGENCY and no valid wall");
+      break;
+    case Mode::wall:
+      if (recovered) return go(Mode::path, "localization NORMAL again: back to the path");
+      if (!wall_ok) return go(Mode::safe_stop, "wall estimate lost while following it");
+      break;
+    case Mode::safe_stop:
+      if (recovered) return go(Mode::path, "localization NORMAL again: back to the path");
+      break;
+  }
+  return {};
+}
+
+}  // namespace brickyard::control

@@ -1,0 +1,52 @@
+#pragma once
+// The system manager of the paper (§IV), framework-free: which controller's command reaches the
+// car, from the localization status and the wall estimate.
+//   PATH (path tracker) ── localization EMERGENCY, wall valid ──► WALL (wall follower)
+//   PATH ── EMERGENCY, no valid wall ──► SAFE_STOP
+//   WALL ── no valid wall for wall_timeout_s ──► SAFE_STOP
+//   WALL, SAFE_STOP ── localization NORMAL held for recover_after_s ──► PATH
+// A localization status older than status_timeout_s counts as EMERGENCY (a silent estimator is
+// not a healthy one); WARNING keeps the path tracker. Every transition is returned with its
+// reason so the plugin can log and count it.
+#include <string>
+
+namespace brickyard::control {
+
+enum class Mode { path, wall, safe_stop };
+enum class LocStatus { normal = 0, warning = 1, emergency = 2 };
+
+const char* mode_name(Mode m);
+
+struct ManagerParams {
+  double recover_after_s = 2.0;   // NORMAL this long before the path tracker drives again
+  double wall_timeout_s = 0.3;    // no valid wall this long: safe stop
+  double status_timeout_s = 0.5;  // no localization status this long: EMERGENCY
+};
+
+struct Transition {
+  bool happened = false;
+  Mode from = Mode::path, to = Mode::path;
+  std::string reason;
+};
+
+class SystemManager {
+ public:
+  explicit SystemManager(ManagerParams p = {}) : p_(p) {}
+  const ManagerParams& params() const { return p_; }
+  // Inputs as they arrive (t in seconds on the run's clock).
+  void status(double t, LocStatus s);
+  void wall(double t, bool valid);
+  // The mode at time t, after whatever the inputs so far imply.
+  Transition update(double t);
+  Mode mode() const { return mode_; }
+
+ private:
+  Transition go(Mode to, std::string reason);
+  ManagerParams p_;
+  Mode mode_ = Mode::path;
+  LocStatus status_ = LocStatus::normal;
+  double status_t_ = -1e300, normal_since_ = -1e300, wall_valid_t_ = -1e300;
+  bool have_status_ = false;
+};
+
+}  // namespace brickyard::control

@@ -1,0 +1,35 @@
+#include "wall_follower.hpp"
+
+#include "polynomial.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace brickyard::control {
+
+using plugins::poly_value;
+
+void WallFollower::engage(double t, double speed) {
+  t0_ = t;
+  v0_ = speed;
+}
+
+double WallFollower::steering(const WallView& wall) const {
+  const double d_w = poly_value(wall.coefficients, 0.0, 0), slope = poly_value(wall.coefficients, p_.lookahead, 1);
+  return p_.w_theta * slope + p_.w_d * (d_w - p_.side * p_.gap);
+}
+
+Command WallFollower::control(double t, const WallView& wall, double speed) const {
+  Command c;
+  if (!wall.valid || wall.coefficients.empty()) {
+    c.brake = 1;
+    return c;
+  }
+  c.steer = std::clamp(steering(wall), -p_.max_steer, p_.max_steer);
+  double target = v0_;
+  if (p_.reduce_speed) target = std::max(std::min(v0_, p_.fallback_speed), v0_ - p_.decel * std::max(t - t0_, 0.0));
+  pedals_for(target, speed, p_.speed_gain, c);
+  return c;
+}
+
+}  // namespace brickyard::control

@@ -1,0 +1,52 @@
+#pragma once
+// The paper's wall-following fallback (§III-B), framework-free:
+//   u_w = w_θ · y′(d_lookahead) + w_d · (d_w − d_gap)
+// y(x) is the wall's polynomial in the vehicle frame (WallEstimate), d_w = y(0). The paper writes
+// it for the wall on the right with d_w and d_gap as magnitudes; here y is signed (left positive)
+// and the gap is kept on the wall's side: u_w = w_θ y′(L) + w_d (d_w − side · d_gap), side −1 for
+// a right wall. Too far from a right wall (d_w = −10, gap 8) gives u < 0: steer right, toward it;
+// a wall curving left ahead (y′ > 0) gives u > 0: turn with it. u_w is the road-wheel angle,
+// clamped to max_steer.
+// Speed while it drives: `hold` the speed it took over at, or `reduce` to fallback_speed at
+// `decel` (never above the speed it took over at).
+#include "command.hpp"
+
+#include <vector>
+
+namespace brickyard::control {
+
+struct WallFollowerParams {
+  int side = -1;               // -1: the wall on the right
+  double w_theta = 1.0;        // rad per unit of wall slope
+  double w_d = 0.05;           // rad per m of gap error
+  double gap = 8.0;            // m kept to the wall
+  double lookahead = 10.0;     // m: where the wall's slope is read
+  double max_steer = 0.35;     // rad
+  bool reduce_speed = true;    // false: hold
+  double fallback_speed = 30;  // m/s
+  double decel = 5;            // m/s^2 to the fallback speed
+  double speed_gain = 0.5;
+};
+
+struct WallView {
+  std::vector<double> coefficients;  // y(x) = c0 + c1 x + ...
+  bool valid = false;
+};
+
+class WallFollower {
+ public:
+  explicit WallFollower(WallFollowerParams p = {}) : p_(p) {}
+  const WallFollowerParams& params() const { return p_; }
+  // Starts (or restarts) following at `speed`: what `hold` keeps and `reduce` starts from.
+  void engage(double t, double speed);
+  // The command at time t; an invalid wall gives a straight wheel and full brake.
+  Command control(double t, const WallView& wall, double speed) const;
+  // u_w alone (before the clamp).
+  double steering(const WallView& wall) const;
+
+ private:
+  WallFollowerParams p_;
+  double t0_ = 0, v0_ = 0;
+};
+
+}  // namespace brickyard::control

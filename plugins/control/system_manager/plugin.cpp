@@ -1,0 +1,130 @@
+// control.system_manager: chooses the command that reaches the car from the localization status
+// and the wall estimate (common/system_manager.hpp): the path tracker's, the wall follower's, or
+// a safe stop. Publishes ModeStatus; logs and counts every transition.
+#include <brickyard/msgs/ControlCommand.h>
+#include <brickyard/msgs/ModeStatus.h>
+#include <brickyard/msgs/WallEstimate.h>
+#include <brickyard/plugin.hpp>
+
+#include "common/system_manager.hpp"
+
+#include <map>
+
+namespace {
+
+using namespace brickyard;
+using namespace brickyard::control;
+
+class SystemManagerNode : public Plugin {
+ public:
+  static Manifest manifest() {
+    const ManagerParams d;
+    return Manifest("control.system_manager", "1.0.0")
+        .describe("localization EMERGENCY hands steering to the wall follower; back to the path tracker once NORMAL has held; "
+                  "a safe stop when the wall is lost too")
+        .input<msgs::ModeStatus>("localization", "the localization manager's status (the estimator's mode output)", true, 16)
+        .input<msgs::WallEstimate>("wall", "the wall detector's estimate: is there a wall to follow", true, 8)
+        .input<msgs::ControlCommand>("path_command", "the path tracker's command", true, 8)
+        .input<msgs::ControlCommand>("wall_command", "the wall follower's command", true, 8)
+        .output<msgs::ControlCommand>("command", "to the car")
+        .output<msgs::ModeStatus>("mode", "PATH / WALL_FOLLOW / SAFE_STOP, on change and every step")
+        .param(ParamSpec::number("rate_hz", 100).in_unit("Hz").at_least(1))
+        .param(ParamSpec::number("recover_after_s", d.recover_after_s).in_unit("s").at_least(0)
+                   .doc("NORMAL this long before the path tracker drives again"))
+        .param(ParamSpec::number("wall_timeout_s", d.wall_timeout_s).in_unit("s").at_least(0).doc("no valid wall this long: safe stop"))
+        .param(ParamSpec::number("status_timeout_s", d.status_timeout_s).in_unit("s").at_least(0)
+                   .doc("no localization status this long counts as EMERGENCY"))
+        .periodic("rate_hz");
+  }
+
+  void configure(Context& ctx) override {
+    const Params& p = ctx.params();
+    ManagerParams mp;
+    mp.recover_after_s = p.number("recover_after_s");
+    mp.wall_timeout_s = p.number("wall_timeout_s");
+    mp.status_timeout_s = p.number("status_timeout_s");
+    manager_ = SystemManager(mp);
+    loc_ = ctx.input<msgs::ModeStatus>("localization");
+    wall_ = ctx.input<msgs::WallEstimate>("wall");
+    path_cmd_ = ctx.input<msgs::ControlCommand>("path_command");
+    wall_cmd_ = ctx.input<msgs::ControlCommand>("wall_command");
+    out_ = ctx.output<msgs::ControlCommand>("command");
+    mode_out_ = ctx.output<msgs::ModeStatus>("mode");
+  }
+
+  void step(Context& ctx) override {
+    const double t = ctx.now_s();
+    for (auto& s : loc_.take()) manager_.status(stamp(s->header().stamp_ns()), static_cast<LocStatus>(std::min<int>(s->mode(), 2)));
+    for (auto& w : wall_.take()) manager_.wall(stamp(w->header().stamp_ns()), w->valid());
+    for (auto& c : path_cmd_.take()) last_path_ = c;
+    for (auto& c : wall_cmd_.take()) last_wall_ = c;
+    const Transition tr = manager_.update(t);
+    if (tr.happened) {
+      ++transitions_;
+      ++into_[mode_name(tr.to)];
+      reason_ = tr.reason;
+      ctx.log(LogLevel::info, std::string(mode_name(tr.from)) + " -> " + mode_name(tr.to) + " at t = " + std::to_string(t) +
+                                  " s: " + tr.reason);
+    }
+    time_in_[mode_name(manager_.mode())] += last_t_ < 0 ? 0.0 : t - last_t_;
+    last_t_ = t;
+    msgs::ControlCommand c;
+    switch (manager_.mode()) {
+      case Mode::path:
+        if (last_path_) c = *last_path_;
+        else c.brake(1.0);  // nothing to forward yet
+        break;
+      case Mode::wall:
+        if (last_wall_) c = *last_wall_;
+        else c.brake(1.0);
+        break;
+      case Mode::safe_stop:
+        // Full brake; keep following the wall's line while it is seen, else a straight wheel.
+        c.steer(last_wall_ ? last_wall_->steer() : 0.0);
+        c.brake(1.0);
+        break;
+    }
+    c.throttle(manager_.mode() == Mode::safe_stop ? 0.0 : c.throttle());
+    c.header().stamp_ns(ctx.now_ns());
+    c.header().seq(seq_);
+    c.source(manager_.mode() == Mode::path ? "path_tracker" : manager_.mode() == Mode::wall ? "wall_follower" : "safe_stop");
+    out_.publish(std::move(c));
+    msgs::ModeStatus m;
+    m.header().stamp_ns(ctx.now_ns());
+    m.header().seq(seq_++);
+    m.mode(manager_.mode() == Mode::path ? 0 : manager_.mode() == Mode::wall ? 2 : 3);
+    m.mode_name(mode_name(manager_.mode()));
+    m.reason(reason_);
+    m.active_controller(manager_.mode() == Mode::path ? "path_tracker" : manager_.mode() == Mode::wall ? "wall_follower" : "safe_stop");
+    mode_out_.publish(std::move(m));
+  }
+
+  void deactivate(Context& ctx) override {
+    ctx.metric("transitions", static_cast<double>(transitions_));
+    for (const char* m : {"PATH", "WALL_FOLLOW", "SAFE_STOP"}) {
+      ctx.metric(std::string("entered_") + m, static_cast<double>(into_[m]));
+      ctx.metric(std::string("time_s_") + m, time_in_[m]);
+    }
+    ctx.metric("final_mode", std::string(mode_name(manager_.mode())));
+  }
+
+ private:
+  static double stamp(std::int64_t ns) { return static_cast<double>(ns) * 1e-9; }
+  SystemManager manager_;
+  Input<msgs::ModeStatus> loc_;
+  Input<msgs::WallEstimate> wall_;
+  Input<msgs::ControlCommand> path_cmd_, wall_cmd_;
+  Output<msgs::ControlCommand> out_;
+  Output<msgs::ModeStatus> mode_out_;
+  std::shared_ptr<const msgs::ControlCommand> last_path_, last_wall_;
+  std::map<std::string, std::uint64_t> into_;
+  std::map<std::string, double> time_in_;
+  std::string reason_;
+  double last_t_ = -1;
+  std::uint32_t seq_ = 0;
+  std::uint64_t transitions_ = 0;
+};
+
+}  // namespace
+
+BRICKYARD_PLUGINS(SystemManagerNode)

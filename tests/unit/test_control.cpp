@@ -1,0 +1,148 @@
+// Control algorithms on synthetic inputs: path tracker, wall follower, system manager.
+#include "common/path_tracker.hpp"
+#include "common/system_manager.hpp"
+#include "common/wall_follower.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace brickyard::control;
+
+namespace {
+
+// A circle of radius r (counter-clockwise) at constant speed v, points every metre.
+std::vector<PathPoint> circle(double r, double v) {
+  std::vector<PathPoint> p;
+  const int n = static_cast<int>(2 * M_PI * r);
+  for (int i = 0; i < n; ++i) {
+    const double a = 2 * M_PI * i / n;
+    p.push_back({r * std::cos(a), r * std::sin(a), v});
+  }
+  return p;
+}
+
+}  // namespace
+
+// On a circle, pure pursuit's steady steer is atan(wheelbase * curvature) (the look-ahead point
+// on the circle subtends the arc the car drives); left turn: positive.
+TEST(PathTracker, SteersTheCircleAndHoldsItsSpeed) {
+  PathTracker t;
+  t.set_path(circle(100, 30));
+  const Command c = t.control(100, 0, M_PI / 2, 30);  // on the circle, heading along it
+  EXPECT_NEAR(c.steer, std::atan(2.97 / 100), 1e-3);
+  EXPECT_NEAR(t.cross_track(), 0, 1e-6);
+  EXPECT_NEAR(c.target_speed, 30, 1e-9);
+  EXPECT_DOUBLE_EQ(c.throttle, 0);
+  EXPECT_DOUBLE_EQ(c.brake, 0);
+  // 2 m outside the circle (to the right of the path): steer harder left.
+  const Command out = t.control(102, 0, M_PI / 2, 30);
+  EXPECT_GT(out.steer, c.steer);
+  EXPECT_NEAR(t.cross_track(), -2, 1e-2);
+  // Too slow: throttle.
+  EXPECT_GT(t.control(100, 0, M_PI / 2, 20).throttle, 0.9);
+}
+
+// A straight at 60 m/s that drops to 20 m/s 100 m ahead: the tracker brakes before it, for the
+// speed from which it can still brake at `decel` to 20 m/s in time.
+TEST(PathTracker, BrakesAheadOfASlowerStretch) {
+  std::vector<PathPoint> p;
+  for (int i = 0; i <= 600; ++i) p.push_back({static_cast<double>(i), 0, i < 300 ? 60.0 : 20.0});
+  TrackerParams tp;
+  tp.closed = false;
+  PathTracker t(tp);
+  t.set_path(p);
+  // Beyond the preview (3 s x 60 m/s = 180 m): full speed.
+  EXPECT_NEAR(t.control(0, 0, 0, 60).target_speed, 60, 1e-9);
+  const Command c = t.control(200, 0, 0, 60);
+  EXPECT_NEAR(c.target_speed, std::sqrt(20.0 * 20 + 2 * tp.decel * 100), 0.5);
+  EXPECT_GT(c.brake, 0.9);
+  EXPECT_NEAR(c.steer, 0, 1e-9);
+  // No path: brake, wheel straight.
+  PathTracker none;
+  const Command stop = none.control(0, 0, 0, 10);
+  EXPECT_DOUBLE_EQ(stop.brake, 1);
+  EXPECT_DOUBLE_EQ(stop.steer, 0);
+}
+
+// u_w = w_θ y′(L) + w_d (d_w − side·gap), by hand.
+TEST(WallFollower, ThePapersLawSignsAndSpeedPolicy) {
+  WallFollowerParams p;  // right wall, gap 8, w_theta 1, w_d 0.05, lookahead 10
+  WallFollower f(p);
+  // Parallel wall 8 m to the right: nothing to do.
+  EXPECT_NEAR(f.steering({{-8.0, 0.0}, true}), 0, 1e-12);
+  // 10 m away: steer right (toward it), 0.05 * -2.
+  EXPECT_NEAR(f.steering({{-10.0, 0.0}, true}), -0.1, 1e-12);
+  // Wall curving left (y = -8 + 0.002 x^2): y'(10) = 0.04, steer left.
+  EXPECT_NEAR(f.steering({{-8.0, 0.0, 0.002}, true}), 0.04, 1e-12);
+  // Left wall 8 m away, parallel: nothing; 6 m away: steer right (away), 0.05 * -2.
+  WallFollowerParams left = p;
+  left.side = 1;
+  EXPECT_NEAR(WallFollower(left).steering({{8.0}, true}), 0, 1e-12);
+  EXPECT_NEAR(WallFollower(left).steering({{6.0}, true}), -0.1, 1e-12);
+  // Speed: took over at 60 m/s; reduce at 5 m/s^2 toward 30: 50 after 2 s, 30 from 6 s on.
+  f.engage(10.0, 60.0);
+  EXPECT_NEAR(f.control(12.0, {{-8.0}, true}, 60).target_speed, 50, 1e-9);
+  EXPECT_NEAR(f.control(20.0, {{-8.0}, true}, 40).target_speed, 30, 1e-9);
+  EXPECT_GT(f.control(20.0, {{-8.0}, true}, 40).brake, 0.9);
+  // Hold: the speed it took over at.
+  WallFollowerParams hold = p;
+  hold.reduce_speed = false;
+  WallFollower h(hold);
+  h.engage(0, 60);
+  EXPECT_NEAR(h.control(20, {{-8.0}, true}, 60).target_speed, 60, 1e-9);
+  // Steering clamps; an invalid wall brakes with a straight wheel.
+  EXPECT_NEAR(f.control(12.0, {{-30.0}, true}, 50).steer, -p.max_steer, 1e-12);
+  const Command lost = f.control(12.0, {{-8.0}, false}, 50);
+  EXPECT_DOUBLE_EQ(lost.brake, 1);
+  EXPECT_DOUBLE_EQ(lost.steer, 0);
+}
+
+TEST(SystemManager, EmergencyWallRecoveryAndSafeStop) {
+  SystemManager m;  // recover 2 s, wall timeout 0.3 s, status timeout 0.5 s
+  double t = 0;
+  auto tick = [&](LocStatus s, bool wall) {
+    t += 0.125;  // exact in binary: the 2 s of recovery is 16 ticks, not 20 ticks give or take one
+    m.status(t, s);
+    m.wall(t, wall);
+    return m.update(t);
+  };
+  for (int i = 0; i < 10; ++i) EXPECT_FALSE(tick(LocStatus::normal, true).happened);
+  EXPECT_EQ(m.mode(), Mode::path);
+  EXPECT_FALSE(tick(LocStatus::warning, true).happened);  // WARNING keeps the path
+  Transition tr = tick(LocStatus::emergency, true);
+  ASSERT_TRUE(tr.happened);
+  EXPECT_EQ(tr.to, Mode::wall);
+  EXPECT_NE(tr.reason.find("EMERGENCY"), std::string::npos);
+  // NORMAL again: not for 2 s (the first NORMAL tick starts the clock).
+  for (int i = 0; i < 16; ++i) EXPECT_FALSE(tick(LocStatus::normal, true).happened) << i;
+  tr = tick(LocStatus::normal, true);
+  ASSERT_TRUE(tr.happened);
+  EXPECT_EQ(tr.to, Mode::path);
+  // EMERGENCY with the wall lost too: straight to a safe stop.
+  tr = tick(LocStatus::emergency, false);
+  ASSERT_TRUE(tr.happened);  // the wall was seen 0.1 s ago: still valid
+  EXPECT_EQ(tr.to, Mode::wall);
+  const double lost_at = t - 0.125;  // the last valid wall
+  do tr = tick(LocStatus::emergency, false);
+  while (!tr.happened && t < lost_at + 1);
+  EXPECT_EQ(tr.to, Mode::safe_stop);
+  EXPECT_DOUBLE_EQ(t - lost_at, 0.375);  // the first tick past wall_timeout_s (0.3 s)
+  // The safe stop holds while localization is bad, even if the wall comes back...
+  for (int i = 0; i < 5; ++i) EXPECT_FALSE(tick(LocStatus::emergency, true).happened);
+  // ...and ends once NORMAL has held.
+  for (int i = 0; i < 16; ++i) EXPECT_FALSE(tick(LocStatus::normal, true).happened);
+  EXPECT_EQ(tick(LocStatus::normal, true).to, Mode::path);
+}
+
+TEST(SystemManager, ASilentEstimatorIsAnEmergency) {
+  SystemManager m;
+  m.wall(0.0, true);
+  EXPECT_FALSE(m.update(0.2).happened);  // nothing heard yet, within the timeout
+  m.wall(0.5, true);
+  const Transition tr = m.update(0.6);
+  ASSERT_TRUE(tr.happened);
+  EXPECT_EQ(tr.to, Mode::wall);
+  EXPECT_NE(tr.reason.find("no localization status"), std::string::npos);
+  EXPECT_STREQ(mode_name(Mode::safe_stop), "SAFE_STOP");
+}
