@@ -67,7 +67,9 @@ TEST(PathTracker, BrakesAheadOfASlowerStretch) {
 
 // u_w = w_θ y′(L) + w_d (d_w − side·gap), by hand.
 TEST(WallFollower, ThePapersLawSignsAndSpeedPolicy) {
-  WallFollowerParams p;  // right wall, gap 8, w_theta 1, w_d 0.05, lookahead 10
+  WallFollowerParams p;  // right wall, gap 8, lookahead 10
+  p.w_theta = 1;
+  p.w_d = 0.05;
   WallFollower f(p);
   // Parallel wall 8 m to the right: nothing to do.
   EXPECT_NEAR(f.steering({{-8.0, 0.0}, true}), 0, 1e-12);

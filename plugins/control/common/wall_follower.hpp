@@ -17,8 +17,12 @@ namespace brickyard::control {
 
 struct WallFollowerParams {
   int side = -1;               // -1: the wall on the right
-  double w_theta = 1.0;        // rad per unit of wall slope
-  double w_d = 0.05;           // rad per m of gap error
+  // Gains for 30 to 40 m/s with the AV-21's 2.97 m wheelbase: w_theta ~ wheelbase / lookahead
+  // steers a wall's curvature out (y′(L) = L / R on an arc, the car needs wheelbase / R); w_d is
+  // what a pure pursuit with a 30 m look-ahead gives per metre of offset (2 wheelbase / L²,
+  // 0.007). Five times these (the first try) made the car weave and spin at 40 m/s.
+  double w_theta = 0.3;        // rad per unit of wall slope
+  double w_d = 0.01;           // rad per m of gap error
   double gap = 8.0;            // m kept to the wall
   double lookahead = 10.0;     // m: where the wall's slope is read
   double max_steer = 0.35;     // rad

@@ -1,0 +1,103 @@
+// planning.racing_line: publishes the optimal racing line as a Path — points, heading, curvature
+// and a speed profile from lateral and longitudinal acceleration limits — for the path tracker.
+// With the world wired, the line is kept edge_margin inside the track (TUM's IMS line passes
+// 0.6 m from the edges, closer than half the car's width).
+#include <brickyard/msgs/Path.h>
+#include <brickyard/msgs/TrackWorld.h>
+#include <brickyard/plugin.hpp>
+
+#include "../../sim/common/pure_pursuit.hpp"
+#include "../../sim/world_msg.hpp"
+
+#include <cmath>
+
+namespace {
+
+using namespace brickyard;
+using namespace brickyard::sim;
+
+class RacingLineNode : public Plugin {
+ public:
+  static Manifest manifest() {
+    const SpeedLimits l;
+    return Manifest("planning.racing_line", "1.0.0")
+        .describe("the racing line as a Path with a speed profile (lateral and longitudinal limits)")
+        .input<msgs::TrackWorld>("world", "when wired, the line is kept edge_margin inside the track", false, 1)
+        .output<msgs::Path>("path", "the line: poses, curvature, speed, s (a closed loop); sent at rate_hz")
+        .param(ParamSpec::string("raceline", "racelines/IMS.csv").doc("x_m,y_m file of the line"))
+        .param(ParamSpec::number("rate_hz", 1).in_unit("Hz").at_least(0.01).doc("how often the path is sent again"))
+        .param(ParamSpec::number("v_max", l.v_max).in_unit("m/s").at_least(1))
+        .param(ParamSpec::number("a_lat", l.a_lat).in_unit("m/s^2").at_least(0.5))
+        .param(ParamSpec::number("a_accel", l.a_accel).in_unit("m/s^2").at_least(0.1))
+        .param(ParamSpec::number("a_decel", l.a_decel).in_unit("m/s^2").at_least(0.1))
+        .param(ParamSpec::number("edge_margin", 2.5).in_unit("m").at_least(0).doc("closest the line may come to a track edge"))
+        .periodic("rate_hz");
+  }
+
+  void configure(Context& ctx) override {
+    const Params& p = ctx.params();
+    const std::string file = ctx.find_file(p.string("raceline"));
+    try {
+      line_ = load_xy_csv(file);
+    } catch (const TrackFileError& e) {
+      throw BadInput(std::string("raceline file ") + e.what());
+    }
+    if (line_.x.size() < 3) throw BadInput("raceline file " + file + ": fewer than 3 points");
+    limits_.v_max = p.number("v_max");
+    limits_.a_lat = p.number("a_lat");
+    limits_.a_accel = p.number("a_accel");
+    limits_.a_decel = p.number("a_decel");
+    margin_ = p.number("edge_margin");
+    world_ = ctx.input<msgs::TrackWorld>("world");
+    out_ = ctx.output<msgs::Path>("path");
+  }
+
+  void step(Context& ctx) override {
+    if (!path_) {
+      CenterLine line = line_;
+      if (world_.connected()) {
+        auto w = newest(world_);
+        if (!w) return;
+        line = keep_inside(line_, Track(from_message(*w)), margin_);
+      }
+      const RacingLine r = make_racing_line(line, limits_);
+      auto m = std::make_shared<msgs::Path>();
+      m->header().frame_id("map");
+      const std::size_t n = r.x.size();
+      for (std::size_t i = 0; i < n; ++i) {
+        const std::size_t j = (i + 1) % n;
+        msgs::Pose2D pose;
+        pose.x(r.x[i]);
+        pose.y(r.y[i]);
+        pose.yaw(std::atan2(r.y[j] - r.y[i], r.x[j] - r.x[i]));
+        m->poses().push_back(pose);
+      }
+      m->curvature(r.kappa);
+      m->speed(r.speed);
+      m->s(r.s);
+      path_ = m;
+      ctx.metric("points", static_cast<double>(n));
+      ctx.metric("length_m", r.length);
+      double lap = 0;
+      for (std::size_t i = 0; i < n; ++i) lap += std::hypot(r.x[(i + 1) % n] - r.x[i], r.y[(i + 1) % n] - r.y[i]) / r.speed[i];
+      ctx.metric("planned_lap_s", lap);
+    }
+    auto m = std::make_shared<msgs::Path>(*path_);
+    m->header().stamp_ns(ctx.now_ns());
+    m->header().seq(seq_++);
+    out_.publish(std::shared_ptr<const msgs::Path>(m));
+  }
+
+ private:
+  CenterLine line_;
+  SpeedLimits limits_;
+  double margin_ = 2.5;
+  std::shared_ptr<const msgs::Path> path_;
+  std::uint32_t seq_ = 0;
+  Input<msgs::TrackWorld> world_;
+  Output<msgs::Path> out_;
+};
+
+}  // namespace
+
+BRICKYARD_PLUGINS(RacingLineNode)
