@@ -14,9 +14,10 @@ void WallFollower::engage(double t, double speed) {
   v0_ = speed;
 }
 
-double WallFollower::steering(const WallView& wall) const {
-  const double d_w = poly_value(wall.coefficients, 0.0, 0), slope = poly_value(wall.coefficients, p_.lookahead, 1);
-  return p_.w_theta * slope + p_.w_d * (d_w - p_.side * p_.gap);
+double WallFollower::steering(const WallView& wall, double speed) const {
+  const double k = p_.schedule_above > 0 && speed > p_.schedule_above ? p_.schedule_above / speed : 1.0;
+  const double d_w = poly_value(wall.coefficients, 0.0, 0), slope = poly_value(wall.coefficients, p_.lookahead / k, 1);
+  return p_.w_theta * k * slope + p_.w_d * k * k * (d_w - p_.side * p_.gap);
 }
 
 Command WallFollower::control(double t, const WallView& wall, double speed) const {
@@ -25,7 +26,7 @@ Command WallFollower::control(double t, const WallView& wall, double speed) cons
     c.brake = 1;
     return c;
   }
-  c.steer = std::clamp(steering(wall), -p_.max_steer, p_.max_steer);
+  c.steer = std::clamp(steering(wall, speed), -p_.max_steer, p_.max_steer);
   double target = v0_;
   if (p_.reduce_speed) target = std::max(std::min(v0_, p_.fallback_speed), v0_ - p_.decel * std::max(t - t0_, 0.0));
   pedals_for(target, speed, p_.speed_gain, c);

@@ -25,6 +25,10 @@ struct WallFollowerParams {
   double w_d = 0.01;           // rad per m of gap error
   double gap = 8.0;            // m kept to the wall
   double lookahead = 10.0;     // m: where the wall's slope is read
+  // Above this speed the law keeps its shape but the gains follow the speed as a pure pursuit's
+  // would (look-ahead x v/v0, w_theta x v0/v, w_d x (v0/v)^2): gains right at 40 m/s make the car
+  // weave at 60. 0: fixed gains, as the paper.
+  double schedule_above = 40;  // m/s (v0)
   double max_steer = 0.35;     // rad
   bool reduce_speed = true;    // false: hold
   double fallback_speed = 30;  // m/s
@@ -45,8 +49,8 @@ class WallFollower {
   void engage(double t, double speed);
   // The command at time t; an invalid wall gives a straight wheel and full brake.
   Command control(double t, const WallView& wall, double speed) const;
-  // u_w alone (before the clamp).
-  double steering(const WallView& wall) const;
+  // u_w alone (before the clamp), at the given speed (it sets the gains when scheduled).
+  double steering(const WallView& wall, double speed = 0) const;
 
  private:
   WallFollowerParams p_;
