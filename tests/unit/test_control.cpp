@@ -70,6 +70,8 @@ TEST(WallFollower, ThePapersLawSignsAndSpeedPolicy) {
   WallFollowerParams p;  // right wall, gap 8, lookahead 10
   p.w_theta = 1;
   p.w_d = 0.05;
+  p.fallback_speed = 30;
+  p.decel = 5;
   WallFollower f(p);
   // Parallel wall 8 m to the right: nothing to do.
   EXPECT_NEAR(f.steering({{-8.0, 0.0}, true}), 0, 1e-12);
