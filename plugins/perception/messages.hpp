@@ -6,6 +6,7 @@
 
 #include "common/frame_set.hpp"
 
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -16,14 +17,19 @@ inline SensorPose sensor_pose(const msgs::PointCloud& c) {
   return {c.sensor_x(), c.sensor_y(), c.sensor_z(), c.sensor_roll(), c.sensor_pitch(), c.sensor_yaw()};
 }
 
-// The cloud's points in the vehicle frame, appended to `out`. Throws std::runtime_error when its
-// coordinate sequences differ in length (a malformed message names itself, it does not crash us).
+// The cloud's points in the vehicle frame, appended to `out`; points that are not finite or lie
+// beyond kMaxCoordinate once moved are dropped. Throws std::runtime_error when its coordinate
+// sequences differ in length or its sensor pose is not finite (a malformed message names itself,
+// it does not crash us).
 inline void append_vehicle_points(const msgs::PointCloud& c, Points& out) {
   const std::size_t n = c.x().size();
   if (c.y().size() != n || c.z().size() != n)
     throw std::runtime_error("PointCloud from '" + c.header().frame_id() + "': x, y, z have " + std::to_string(n) + ", " +
                              std::to_string(c.y().size()) + ", " + std::to_string(c.z().size()) + " values");
-  append_in_vehicle_frame(sensor_pose(c), c.x().data(), c.y().data(), c.z().data(), n, out);
+  const SensorPose pose = sensor_pose(c);
+  for (double v : {pose.x, pose.y, pose.z, pose.roll, pose.pitch, pose.yaw})
+    if (!std::isfinite(v)) throw std::runtime_error("PointCloud from '" + c.header().frame_id() + "': sensor pose is not finite");
+  append_in_vehicle_frame(pose, c.x().data(), c.y().data(), c.z().data(), n, out);
 }
 
 // A vehicle-frame cloud of the chosen points (all when `keep` is null).
@@ -59,7 +65,8 @@ inline msgs::ClusterList cluster_list(const Points& pts, const std::vector<std::
   return m;
 }
 
-// The clusters of a message as points plus index lists. Throws on inconsistent lengths.
+// The clusters of a message as points plus index lists. Throws on inconsistent lengths and on a
+// point that is not finite or lies beyond kMaxCoordinate.
 inline void read_clusters(const msgs::ClusterList& m, Points& pts, std::vector<std::vector<int>>& clusters) {
   const std::size_t n = m.x().size();
   std::size_t total = 0;
@@ -69,7 +76,10 @@ inline void read_clusters(const msgs::ClusterList& m, Points& pts, std::vector<s
                              std::to_string(m.z().size()) + " z, sizes summing to " + std::to_string(total));
   pts.clear();
   clusters.clear();
-  for (std::size_t i = 0; i < n; ++i) pts.emplace_back(m.x()[i], m.y()[i], m.z()[i]);
+  for (std::size_t i = 0; i < n; ++i) {
+    pts.emplace_back(m.x()[i], m.y()[i], m.z()[i]);
+    if (!in_range(pts.back())) throw std::runtime_error("ClusterList: point " + std::to_string(i) + " is not finite or beyond 10 km");
+  }
   int next = 0;
   for (auto s : m.sizes()) {
     std::vector<int> c(s);

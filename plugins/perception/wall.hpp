@@ -4,6 +4,8 @@
 
 #include "common/wall_fit.hpp"
 
+#include <cmath>
+
 namespace brickyard::perception {
 
 inline msgs::WallEstimate wall_message(const WallFit& w, double lookahead, std::int64_t stamp_ns, std::uint32_t seq) {
@@ -38,7 +40,9 @@ inline WallFit wall_fit(const msgs::WallEstimate& m) {
   w.x_max = m.x_max();
   w.points = m.point_count();
   for (auto c : m.clusters()) w.members.push_back(static_cast<int>(c));
-  w.valid = m.valid() && !w.coefficients.empty();
+  bool finite = std::isfinite(w.distance) && std::isfinite(w.lean) && std::isfinite(w.x_min) && std::isfinite(w.x_max);
+  for (double c : w.coefficients) finite = finite && std::isfinite(c);
+  w.valid = m.valid() && !w.coefficients.empty() && finite && w.x_min <= w.x_max;  // a malformed estimate is no wall
   return w;
 }
 

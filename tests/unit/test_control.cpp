@@ -150,3 +150,31 @@ TEST(SystemManager, ASilentEstimatorIsAnEmergency) {
   EXPECT_NE(tr.reason.find("no localization status"), std::string::npos);
   EXPECT_STREQ(mode_name(Mode::safe_stop), "SAFE_STOP");
 }
+
+// After a silence (which counts as EMERGENCY), NORMAL must hold its full time again.
+TEST(SystemManager, NormalAfterASilenceHoldsItsTimeAgain) {
+  SystemManager m;  // recover 2 s, status timeout 0.5 s
+  m.status(10.0, LocStatus::normal);
+  m.wall(10.0, true);
+  EXPECT_FALSE(m.update(10.0).happened);
+  m.wall(10.9, true);
+  EXPECT_EQ(m.update(11.0).to, Mode::wall);  // silent since 10.0
+  m.status(11.0, LocStatus::normal);
+  m.wall(11.0, true);
+  EXPECT_FALSE(m.update(11.0).happened);  // not back at once...
+  for (double t = 11.25; t < 12.9; t += 0.25) {
+    m.status(t, LocStatus::normal);
+    m.wall(t, true);
+    EXPECT_FALSE(m.update(t).happened) << t;
+  }
+  m.status(13.0, LocStatus::normal);
+  EXPECT_EQ(m.update(13.0).to, Mode::path);  // ...but 2 s after the first NORMAL that followed it
+}
+
+TEST(WallFollower, AMalformedWallBrakes) {
+  WallFollower f;
+  f.engage(0, 40);
+  const Command c = f.control(1, {{NAN, 0.0}, true}, 40);
+  EXPECT_DOUBLE_EQ(c.brake, 1);
+  EXPECT_DOUBLE_EQ(c.steer, 0);
+}

@@ -366,3 +366,24 @@ TEST(Obstacles, StackedStreaksAreOneObjectAndTheCorridorFollowsTheWall) {
   apart.stack_gap = -1;
   EXPECT_TRUE(find_obstacles(p, clusters, {{w, -1}}, apart).empty());
 }
+
+TEST(FrameSet, ALateCloudIsDroppedNotAFrameOfItsOwn) {
+  FrameSet<int> sets(2, 25'000'000);
+  EXPECT_TRUE(sets.offer(0, 100'000'000, 1).empty());
+  auto done = sets.offer(0, 150'000'000, 2);  // sensor 1 lost frame 100: closed partial
+  ASSERT_EQ(done.size(), 1u);
+  EXPECT_TRUE(sets.offer(1, 100'000'000, 3).empty());  // frame 100's cloud, late
+  EXPECT_EQ(sets.late(), 1u);
+  done = sets.offer(1, 150'000'000, 4);
+  ASSERT_EQ(done.size(), 1u);
+  EXPECT_EQ(done[0], (std::vector<int>{2, 4}));
+}
+
+TEST(GroundFilter, PointsOutOfRangeAreSkipped) {
+  Points p = {{1, 1, 0}, {1e10f, 0, 0}, {NAN, 0, 0}, {0, 0, -2e4f}};
+  GroundFilter f;
+  GroundResult r;
+  f.run(p, r);
+  ASSERT_EQ(r.voxels.size(), 1u);
+  EXPECT_TRUE(r.voxels[0].isApprox(Point(1, 1, 0)));
+}

@@ -12,7 +12,9 @@ const char* mode_name(Mode m) {
 }
 
 void SystemManager::status(double t, LocStatus s) {
-  if (s == LocStatus::normal && (!have_status_ || status_ != LocStatus::normal)) normal_since_ = t;
+  // NORMAL holds from its first report after anything else, a silence included.
+  const bool silent = have_status_ && t - status_t_ > p_.status_timeout_s;
+  if (s == LocStatus::normal && (!have_status_ || status_ != LocStatus::normal || silent)) normal_since_ = t;
   status_ = s;
   status_t_ = t;
   have_status_ = true;

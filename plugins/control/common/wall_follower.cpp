@@ -29,13 +29,18 @@ double WallFollower::steering(const WallView& wall, double speed) const {
 
 Command WallFollower::control(double t, const WallView& wall, double speed) const {
   Command c;
-  if (!wall.valid || wall.coefficients.empty()) {
+  const double u = wall.valid && !wall.coefficients.empty() ? steering(wall, speed) : NAN;
+  if (!std::isfinite(u)) {  // no wall, or a malformed one
     c.brake = 1;
     return c;
   }
-  c.steer = std::clamp(steering(wall, speed), -p_.max_steer, p_.max_steer);
+  c.steer = std::clamp(u, -p_.max_steer, p_.max_steer);
   double target = v0_;
   if (p_.reduce_speed) target = std::max(std::min(v0_, p_.fallback_speed), v0_ - p_.decel * std::max(t - t0_, 0.0));
+  // Never faster than the wall's bend allows: a line gap inside it is tighter still.
+  const double d1 = poly_value(wall.coefficients, p_.lookahead, 1), d2 = poly_value(wall.coefficients, p_.lookahead, 2);
+  const double kappa = std::abs(d2) / std::pow(1 + d1 * d1, 1.5);
+  if (p_.a_lat > 0 && kappa > 1e-6) target = std::min(target, std::sqrt(p_.a_lat / kappa));
   pedals_for(target, speed, p_.speed_gain, c);
   return c;
 }

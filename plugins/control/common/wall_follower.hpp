@@ -8,7 +8,8 @@
 // a wall curving left ahead (y′ > 0) gives u > 0: turn with it. u_w is the road-wheel angle,
 // clamped to max_steer.
 // Speed while it drives: `hold` the speed it took over at, or `reduce` to fallback_speed at
-// `decel` (never above the speed it took over at).
+// `decel` (never above the speed it took over at); either way at most sqrt(a_lat / κ) for the
+// wall's curvature κ at the look-ahead.
 #include "command.hpp"
 
 #include <vector>
@@ -40,6 +41,7 @@ struct WallFollowerParams {
   // braking the racing line's speed profile plans with.
   double fallback_speed = 25;  // m/s
   double decel = 12;           // m/s^2 to the fallback speed
+  double a_lat = 10;           // m/s^2: never faster than the wall's curvature allows at this
   double speed_gain = 0.5;
 };
 

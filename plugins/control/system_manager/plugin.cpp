@@ -79,8 +79,9 @@ class SystemManagerNode : public Plugin {
         else c.brake(1.0);
         break;
       case Mode::safe_stop:
-        // Full brake; keep following the wall's line while it is seen, else a straight wheel.
-        c.steer(last_wall_ ? last_wall_->steer() : 0.0);
+        // Full brake; keep following the wall's line while it is seen (a command of the last
+        // wall_timeout_s), else a straight wheel.
+        c.steer(last_wall_ && t - stamp(last_wall_->header().stamp_ns()) <= manager_.params().wall_timeout_s ? last_wall_->steer() : 0.0);
         c.brake(1.0);
         break;
     }

@@ -36,6 +36,7 @@ class WallFollowerNode : public Plugin {
         .param(ParamSpec::string("speed_policy", "reduce").one_of({"reduce", "hold"}).doc("while following: slow to fallback_speed, or hold"))
         .param(ParamSpec::number("fallback_speed", d.fallback_speed).in_unit("m/s").at_least(0))
         .param(ParamSpec::number("decel", d.decel).in_unit("m/s^2").at_least(0.1))
+        .param(ParamSpec::number("a_lat", d.a_lat).in_unit("m/s^2").at_least(0).doc("the wall's bend caps the speed at sqrt(a_lat / curvature); 0: off"))
         .param(ParamSpec::number("speed_gain", d.speed_gain).at_least(0))
         .on_input("wall");
   }
@@ -54,6 +55,7 @@ class WallFollowerNode : public Plugin {
     wp.reduce_speed = p.string("speed_policy") == "reduce";
     wp.fallback_speed = p.number("fallback_speed");
     wp.decel = p.number("decel");
+    wp.a_lat = p.number("a_lat");
     wp.speed_gain = p.number("speed_gain");
     follower_ = WallFollower(wp);
     wall_ = ctx.input<msgs::WallEstimate>("wall");
@@ -78,6 +80,9 @@ class WallFollowerNode : public Plugin {
         follower_.engage(t, speed_);
         ++engaged_;
       }
+      // Not driving yet: the speed policy starts from now, so the command the manager forwards at
+      // the handover holds the car's speed instead of braking for a stale target.
+      if (mode_.connected() && !active_) follower_.engage(t, speed_);
       WallView v{w->coefficients(), w->valid()};
       const Command c = follower_.control(t, v, speed_);
       out_.publish(command_message(c, "wall_follower", w->header().stamp_ns(), seq_++));

@@ -23,7 +23,8 @@ class EuclideanClustering {
  public:
   explicit EuclideanClustering(ClusterParams p = {}) : p_(p) {}
   const ClusterParams& params() const { return p_; }
-  // Clusters as lists of indices into `points`. Reuses its tables between calls.
+  // Clusters as lists of indices into `points`, which must be in range (points.hpp: in_range;
+  // the plugins drop the rest where clouds come in). Reuses its tables between calls.
   void run(const Points& points, std::vector<std::vector<int>>& clusters);
 
  private:

@@ -5,13 +5,15 @@
 //  - FrameSet: which clouds make one frame. A cloud joins the open set when its stamp lies within
 //    `window` of the set's first; the set is complete when every expected sensor has delivered.
 //    A cloud outside the window closes the open set as it is (a sensor lost a frame: the others
-//    are not held back for ever) and opens the next.
+//    are not held back for ever) and opens the next. A cloud older than the set open or last
+//    merged is too late: dropped and counted.
 #include "points.hpp"
 
 #include <Eigen/Geometry>
 
 #include <algorithm>
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <vector>
 
@@ -29,7 +31,8 @@ struct SensorPose {
   }
 };
 
-// Appends n sensor-frame points to `out` in the vehicle frame; non-finite points are skipped.
+// Appends n sensor-frame points to `out` in the vehicle frame; points not finite or beyond
+// kMaxCoordinate once moved are skipped.
 inline void append_in_vehicle_frame(const SensorPose& pose, const float* x, const float* y, const float* z, std::size_t n,
                                     Points& out) {
   const Eigen::Isometry3f t = pose.vehicle_from_sensor();
@@ -37,9 +40,8 @@ inline void append_in_vehicle_frame(const SensorPose& pose, const float* x, cons
   const Eigen::Vector3f o = t.translation();
   out.reserve(out.size() + n);
   for (std::size_t i = 0; i < n; ++i) {
-    const Eigen::Vector3f p(x[i], y[i], z[i]);
-    if (!p.allFinite()) continue;
-    out.push_back(r * p + o);
+    const Eigen::Vector3f p = r * Eigen::Vector3f(x[i], y[i], z[i]) + o;
+    if (in_range(p)) out.push_back(p);
   }
 }
 
@@ -51,7 +53,11 @@ template <class Cloud> class FrameSet {
   // (at most two: the open one cut short, and the new one when a single sensor completes it).
   std::vector<std::vector<Cloud>> offer(int s, std::int64_t stamp_ns, Cloud cloud) {
     std::vector<std::vector<Cloud>> done;
-    if (open_ && (stamp_ns - first_ns_ >= window_ || stamp_ns < first_ns_ || slots_[s])) {
+    if (stamp_ns < last_closed_ns_ || (open_ && stamp_ns < first_ns_)) {  // older than what was merged: too late
+      ++late_;
+      return done;
+    }
+    if (open_ && (stamp_ns - first_ns_ >= window_ || slots_[s])) {
       done.push_back(close());
       ++partial_;
     }
@@ -64,6 +70,7 @@ template <class Cloud> class FrameSet {
     return done;
   }
   std::uint64_t partial() const { return partial_; }
+  std::uint64_t late() const { return late_; }
 
  private:
   std::vector<Cloud> close() {
@@ -71,12 +78,13 @@ template <class Cloud> class FrameSet {
     for (auto& c : slots_)
       if (c) set.push_back(std::move(*c)), c.reset();
     open_ = false;
+    last_closed_ns_ = first_ns_;
     return set;
   }
   std::vector<std::optional<Cloud>> slots_;
-  std::int64_t window_, first_ns_ = 0;
+  std::int64_t window_, first_ns_ = 0, last_closed_ns_ = std::numeric_limits<std::int64_t>::min();
   bool open_ = false;
-  std::uint64_t partial_ = 0;
+  std::uint64_t partial_ = 0, late_ = 0;
 };
 
 }  // namespace brickyard::perception

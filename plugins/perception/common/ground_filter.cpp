@@ -27,7 +27,7 @@ void GroundFilter::run(const Points& in, GroundResult& out) {
   const std::size_t n = in.size();
   auto key_of = [&](std::size_t j) {
     const Point& q = in[j];
-    if (!q.allFinite()) return kSkip;  // a NaN must not reach an int cast
+    if (!in_range(q)) return kSkip;  // a NaN, or a huge value, must not reach an int cast
     return cell_key(cell_of(q.x(), inv_leaf), cell_of(q.y(), inv_leaf), cell_of(q.z(), inv_leaf));
   };
   for (std::size_t j = 0; j < kAhead && j < n; ++j) {

@@ -40,7 +40,8 @@ class GroundFilter {
  public:
   explicit GroundFilter(GroundParams p = {}) : p_(p) {}
   const GroundParams& params() const { return p_; }
-  // Classifies a cloud (vehicle frame). Reuses its tables between calls.
+  // Classifies a cloud (vehicle frame); points not finite or beyond kMaxCoordinate are skipped.
+  // Reuses its tables between calls.
   void run(const Points& in, GroundResult& out);
 
  private:

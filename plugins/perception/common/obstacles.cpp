@@ -25,7 +25,7 @@ class WallProfile {
           lo = std::min(lo, points[i].x());
           hi = std::max(hi, points[i].x());
         }
-    if (lo > hi) return;
+    if (!(lo <= hi) || hi - lo > 2 * kMaxCoordinate) return;  // nothing, or not points the algorithms take
     const int first = static_cast<int>(std::floor(lo / kBin)), last = static_cast<int>(std::floor(hi / kBin));
     std::vector<std::pair<double, int>> acc(static_cast<std::size_t>(last - first + 1), {0.0, 0});
     for (int m : w.members)
@@ -39,8 +39,9 @@ class WallProfile {
       if (acc[b].second) bins_.emplace_back((first + static_cast<int>(b) + 0.5) * kBin, acc[b].first / acc[b].second);
   }
   double y(double x) const {
+    if (!std::isfinite(x)) return x;
     if (bins_.size() < 2) {
-      const double end = std::clamp(x, w_.x_min, w_.x_max);
+      const double end = w_.x_min <= w_.x_max ? std::clamp(x, w_.x_min, w_.x_max) : w_.x_min;
       return poly_value(w_.coefficients, end) + poly_value(w_.coefficients, end, 1) * (x - end);
     }
     if (x <= bins_.front().first) return extrapolate(x, 0, +1);

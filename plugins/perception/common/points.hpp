@@ -10,6 +10,11 @@ namespace brickyard::perception {
 using Point = Eigen::Vector3f;
 using Points = std::vector<Point, Eigen::aligned_allocator<Point>>;
 
+// Coordinates the algorithms take, m: a LiDAR sees a few hundred metres; beyond 10 km a cell's
+// integer index could overflow. Points outside are dropped where clouds come in.
+constexpr float kMaxCoordinate = 10000.0f;
+inline bool in_range(const Point& p) { return p.allFinite() && p.cwiseAbs().maxCoeff() <= kMaxCoordinate; }
+
 // Integer cell of a point on a grid of the given size (floor division; truncation corrected for
 // negatives, as std::floor is a library call without SSE4.1 and this runs for every point).
 inline std::int32_t cell_of(float v, float inv_size) {

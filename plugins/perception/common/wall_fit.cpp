@@ -199,7 +199,9 @@ WallFit fit_wall(const Points& points, const std::vector<std::vector<int>>& clus
   }
   // Clusters within the wall's extent but not joined to it (a row's streak along the wall's foot
   // far round a turn): judged against the wall's piece where they are, fitted over 30 m.
-  for (float b = lo; b < hi; b += 20.0f) {
+  const int pieces = static_cast<int>(std::min(std::ceil((hi - lo) / 20.0f), 2000.0f));  // bounded: points are within 10 km
+  for (int piece = 0; piece < pieces; ++piece) {
+    const float b = lo + 20.0f * static_cast<float>(piece);
     sel.clear();
     for (int c : w.members) add_sampled(points, clusters[c], sel, [&](float x) { return x >= b - 5.0f && x < b + 25.0f; });
     const LocalFit f = least_squares(points, sel, local_degree, false, lean);

@@ -6,7 +6,9 @@
 #include "../messages.hpp"
 #include "common/ground_filter.hpp"
 
+#include <algorithm>
 #include <array>
+#include <tuple>
 
 namespace {
 
@@ -60,16 +62,22 @@ class GroundFilterNode : public Plugin {
   }
 
   void step(Context& ctx) override {
+    // Offered in stamp order across the inputs, so a backlog on one does not split frames.
+    std::vector<std::tuple<std::int64_t, int, CloudPtr>> arrived;
     for (int i = 0; i < 3; ++i) {
       if (slot_[i] < 0) continue;
-      for (auto& c : in_[i].take())
-        for (auto& set : sets_->offer(slot_[i], c->header().stamp_ns(), c)) process(ctx, set);
+      for (auto& c : in_[i].take()) arrived.emplace_back(c->header().stamp_ns(), slot_[i], c);
     }
+    std::stable_sort(arrived.begin(), arrived.end(),
+                     [](const auto& a, const auto& b) { return std::get<0>(a) < std::get<0>(b) || (std::get<0>(a) == std::get<0>(b) && std::get<1>(a) < std::get<1>(b)); });
+    for (auto& [stamp, slot, c] : arrived)
+      for (auto& set : sets_->offer(slot, stamp, c)) process(ctx, set);
   }
 
   void deactivate(Context& ctx) override {
     ctx.metric("frames", static_cast<double>(frames_));
     ctx.metric("partial_frames", static_cast<double>(sets_->partial()));
+    ctx.metric("late_clouds", static_cast<double>(sets_->late()));
     ctx.metric("malformed_clouds", static_cast<double>(malformed_));
     ctx.metric("points_per_frame", frames_ ? static_cast<double>(points_in_) / frames_ : 0.0);
     ctx.metric("voxels_per_frame", frames_ ? static_cast<double>(voxels_) / frames_ : 0.0);

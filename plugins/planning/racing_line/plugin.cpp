@@ -58,7 +58,11 @@ class RacingLineNode : public Plugin {
       if (world_.connected()) {
         auto w = newest(world_);
         if (!w) return;
-        line = keep_inside(line_, Track(from_message(*w)), margin_);
+        try {
+          line = keep_inside(line_, Track(from_message(*w)), margin_);
+        } catch (const std::exception& e) {  // a malformed world: the line as the file has it
+          ctx.log(LogLevel::warn, std::string("world unusable (") + e.what() + "): the racing line is not kept inside the edges");
+        }
       }
       const RacingLine r = make_racing_line(line, limits_);
       auto m = std::make_shared<msgs::Path>();

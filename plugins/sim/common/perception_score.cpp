@@ -40,9 +40,10 @@ const Eigen::Isometry3d* PerceptionScore::pose_at(std::int64_t stamp_ns) const {
 bool PerceptionScore::wall(std::int64_t stamp_ns, double distance, bool valid) {
   const Eigen::Isometry3d* pose = pose_at(stamp_ns);
   if (!pose) return false;
-  ++wall_frames_;
   const double truth = wall_y_in_body(track_, *pose, p_.wall_side);
-  if (valid && std::isfinite(truth)) wall_errors_.push_back(std::abs(distance - truth));
+  if (!std::isfinite(truth)) return true;  // no wall there: nothing to score
+  ++wall_frames_;
+  if (valid && std::isfinite(distance)) wall_errors_.push_back(std::abs(distance - truth));
   return true;
 }
 
