@@ -1,0 +1,219 @@
+#include "min_curvature.hpp"
+
+#include <Eigen/Sparse>
+#include <Eigen/SparseCholesky>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace brickyard::planning {
+
+namespace {
+
+struct Vec2 {
+  double x, y;
+};
+
+double cross(Vec2 a, Vec2 b) { return a.x * b.y - a.y * b.x; }
+
+// Unit tangents by central differences of a closed polyline.
+std::vector<Vec2> tangents(const std::vector<double>& x, const std::vector<double>& y) {
+  const int n = static_cast<int>(x.size());
+  std::vector<Vec2> t(n);
+  for (int i = 0; i < n; ++i) {
+    const int a = (i + n - 1) % n, b = (i + 1) % n;
+    const double dx = x[b] - x[a], dy = y[b] - y[a], l = std::max(std::hypot(dx, dy), 1e-12);
+    t[i] = {dx / l, dy / l};
+  }
+  return t;
+}
+
+// min ½ αᵀHα + gᵀα, lo ≤ α ≤ hi: the primal active-set method. From a feasible α, solve with
+// the bound variables held; step toward that solution until the first free variable meets its
+// bound (which joins the bound set); once the full step is feasible, release the bound variable
+// whose gradient most wants it inside, or stop when none does. Each round factors the reduced
+// (sparse, banded) system anew. Returns the rounds taken.
+int box_qp(const Eigen::SparseMatrix<double>& H, const Eigen::VectorXd& g, const Eigen::VectorXd& lo, const Eigen::VectorXd& hi,
+           Eigen::VectorXd& alpha) {
+  const int n = static_cast<int>(g.size());
+  std::vector<int> state(n, 0);  // 0 free, -1 at lower, +1 at upper
+  for (int i = 0; i < n; ++i) {
+    alpha(i) = std::clamp(alpha(i), lo(i), hi(i));
+    if (lo(i) == hi(i)) state[i] = -1;
+  }
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt;
+  const int max_rounds = 4 * n + 50;
+  for (int round = 1; round <= max_rounds; ++round) {
+    std::vector<int> free_index(n, -1), free_vars;
+    for (int i = 0; i < n; ++i)
+      if (state[i] == 0) {
+        free_index[i] = static_cast<int>(free_vars.size());
+        free_vars.push_back(i);
+      }
+    const int m = static_cast<int>(free_vars.size());
+    Eigen::VectorXd target = alpha;
+    if (m > 0) {
+      std::vector<Eigen::Triplet<double>> trip;
+      Eigen::VectorXd rhs(m);
+      for (int r = 0; r < m; ++r) rhs(r) = -g(free_vars[r]);
+      for (int k = 0; k < H.outerSize(); ++k)
+        for (Eigen::SparseMatrix<double>::InnerIterator it(H, k); it; ++it) {
+          const int i = static_cast<int>(it.row()), j = static_cast<int>(it.col());
+          if (free_index[i] < 0) continue;
+          if (free_index[j] >= 0) trip.emplace_back(free_index[i], free_index[j], it.value());
+          else rhs(free_index[i]) -= it.value() * alpha(j);
+        }
+      Eigen::SparseMatrix<double> Hf(m, m);
+      Hf.setFromTriplets(trip.begin(), trip.end());
+      ldlt.compute(Hf);
+      if (ldlt.info() != Eigen::Success) throw std::runtime_error("min-curvature QP: the reduced system is singular");
+      const Eigen::VectorXd sol = ldlt.solve(rhs);
+      for (int r = 0; r < m; ++r) target(free_vars[r]) = sol(r);
+    }
+    // Step toward the target, stopping at the first bound met.
+    double tau = 1;
+    int blocking = -1;
+    for (int i : free_vars) {
+      const double d = target(i) - alpha(i);
+      if (d < 0 && alpha(i) + d < lo(i)) {
+        const double t = (lo(i) - alpha(i)) / d;
+        if (t < tau) tau = t, blocking = i;
+      } else if (d > 0 && alpha(i) + d > hi(i)) {
+        const double t = (hi(i) - alpha(i)) / d;
+        if (t < tau) tau = t, blocking = i;
+      }
+    }
+    for (int i : free_vars) alpha(i) += tau * (target(i) - alpha(i));
+    if (blocking >= 0) {
+      state[blocking] = target(blocking) < lo(blocking) ? -1 : 1;
+      alpha(blocking) = state[blocking] < 0 ? lo(blocking) : hi(blocking);
+      continue;
+    }
+    // At the reduced optimum: release the bound variable the gradient pulls inside hardest.
+    const Eigen::VectorXd grad = H * alpha + g;
+    int release = -1;
+    double most = 1e-12;
+    for (int i = 0; i < n; ++i) {
+      if (lo(i) == hi(i)) continue;
+      const double pull = state[i] < 0 ? -grad(i) : state[i] > 0 ? grad(i) : 0.0;
+      if (pull > most) most = pull, release = i;
+    }
+    if (release < 0) return round;
+    state[release] = 0;
+  }
+  return max_rounds;
+}
+
+}  // namespace
+
+MinCurvatureResult min_curvature_line(const ClosedLine& line, const MinCurvatureParams& p) {
+  const int n = static_cast<int>(line.x.size());
+  if (n < 4 || line.y.size() != line.x.size() || line.width_left.size() != line.x.size() || line.width_right.size() != line.x.size())
+    throw std::invalid_argument("min_curvature_line: needs at least 4 points with x, y and both widths each");
+  const std::vector<Vec2> normal = [&] {
+    auto t = tangents(line.x, line.y);
+    std::vector<Vec2> nv(n);
+    for (int i = 0; i < n; ++i) nv[i] = {-t[i].y, t[i].x};
+    return nv;
+  }();
+  std::vector<double> h2(n);
+  Eigen::VectorXd lo(n), hi(n);
+  for (int i = 0; i < n; ++i) {
+    const int a = (i + n - 1) % n, b = (i + 1) % n;
+    const double h = 0.5 * (std::hypot(line.x[b] - line.x[i], line.y[b] - line.y[i]) + std::hypot(line.x[i] - line.x[a], line.y[i] - line.y[a]));
+    h2[i] = h * h;
+    lo(i) = -(line.width_right[i] - p.margin);
+    hi(i) = line.width_left[i] - p.margin;
+    if (lo(i) > hi(i)) lo(i) = hi(i) = 0.5 * (lo(i) + hi(i));  // narrower than the car and margins: the middle
+  }
+  // The true objective, Σ κ_i², the curvature as the linearisation below writes it.
+  auto objective = [&](const Eigen::VectorXd& al) {
+    double f = 0;
+    for (int i = 0; i < n; ++i) {
+      const int a = (i + n - 1) % n, c = (i + 1) % n;
+      auto q = [&](int j) { return Vec2{line.x[j] + al(j) * normal[j].x, line.y[j] + al(j) * normal[j].y}; };
+      const Vec2 qa = q(a), qi = q(i), qc = q(c);
+      const double h = std::sqrt(h2[i]);
+      const Vec2 q1{(qc.x - qa.x) / (2 * h), (qc.y - qa.y) / (2 * h)};
+      const Vec2 q2{(qc.x - 2 * qi.x + qa.x) / h2[i], (qc.y - 2 * qi.y + qa.y) / h2[i]};
+      const double s2 = q1.x * q1.x + q1.y * q1.y, k = cross(q1, q2) / (s2 * std::sqrt(s2));
+      f += k * k;
+    }
+    return f;
+  };
+  MinCurvatureResult r;
+  r.x = line.x;
+  r.y = line.y;
+  Eigen::VectorXd alpha = Eigen::VectorXd::Zero(n);
+  for (int it = 0; it < p.max_iterations; ++it) {
+    // Gauss-Newton: κ_i = (q'_i × q''_i) / |q'_i|³ with q' and q'' central differences of
+    // q_j = p_j + α_j n_j (linear in α), linearised at the current offsets: κ ≈ b + M α.
+    std::vector<Eigen::Triplet<double>> trip;
+    Eigen::VectorXd b(n);
+    for (int i = 0; i < n; ++i) {
+      const int a = (i + n - 1) % n, c = (i + 1) % n;
+      const double h = std::sqrt(h2[i]);
+      const Vec2 q1{(r.x[c] - r.x[a]) / (2 * h), (r.y[c] - r.y[a]) / (2 * h)};
+      const Vec2 q2{(r.x[c] - 2 * r.x[i] + r.x[a]) / h2[i], (r.y[c] - 2 * r.y[i] + r.y[a]) / h2[i]};
+      const double s2 = q1.x * q1.x + q1.y * q1.y, s3 = s2 * std::sqrt(s2), num = cross(q1, q2);
+      const double k0 = num / s3;
+      // d/dα_j of q' is n_j · d1_j, of q'' is n_j · d2_j.
+      const int js[3] = {a, i, c};
+      const double d1[3] = {-1 / (2 * h), 0, 1 / (2 * h)}, d2[3] = {1 / h2[i], -2 / h2[i], 1 / h2[i]};
+      double lin = k0;
+      for (int k = 0; k < 3; ++k) {
+        const Vec2 nj = normal[js[k]];
+        const double dnum = d1[k] * cross(nj, q2) + d2[k] * cross(q1, nj);
+        const double ds2 = 2 * d1[k] * (q1.x * nj.x + q1.y * nj.y);
+        const double dk = dnum / s3 - 1.5 * num * ds2 / (s3 * s2);
+        trip.emplace_back(i, js[k], dk);
+        lin -= dk * alpha(js[k]);
+      }
+      b(i) = lin;
+    }
+    Eigen::SparseMatrix<double> M(n, n);
+    M.setFromTriplets(trip.begin(), trip.end());
+    Eigen::SparseMatrix<double> H = Eigen::SparseMatrix<double>(M.transpose()) * M;
+    // A touch of ridge: the curvature does not see every offset pattern (the Hessian is only
+    // semi-definite); 1e-9 of its scale picks the smallest offsets among equal curvatures.
+    double scale = 0;
+    for (int i = 0; i < n; ++i) scale = std::max(scale, H.coeff(i, i));
+    for (int i = 0; i < n; ++i) H.coeffRef(i, i) += 1e-9 * scale;
+    const Eigen::VectorXd g = M.transpose() * b;
+    Eigen::VectorXd next = alpha;
+    r.active_set_rounds += box_qp(H, g, lo, hi, next);
+    // The linearisation may overshoot: step back along the way (the box is convex, so every
+    // point between stays inside it) until the true summed squared curvature goes down.
+    const double f0 = objective(alpha);
+    Eigen::VectorXd step = next - alpha;
+    for (int k = 0; k < 20 && objective(alpha + step) > f0; ++k) step *= 0.5;
+    if (objective(alpha + step) > f0) break;  // no descent left: converged
+    const double moved = step.cwiseAbs().maxCoeff();
+    alpha += step;
+    for (int i = 0; i < n; ++i) {
+      r.x[i] = line.x[i] + alpha(i) * normal[i].x;
+      r.y[i] = line.y[i] + alpha(i) * normal[i].y;
+    }
+    r.iterations = it + 1;
+    if (moved < p.tolerance) break;
+  }
+  r.offset.assign(alpha.data(), alpha.data() + n);
+  return r;
+}
+
+double summed_squared_curvature(const std::vector<double>& x, const std::vector<double>& y) {
+  const int n = static_cast<int>(x.size());
+  double sum = 0;
+  for (int i = 0; i < n; ++i) {
+    const int a = (i + n - 1) % n, b = (i + 1) % n;
+    const Vec2 e1{x[i] - x[a], y[i] - y[a]}, e2{x[b] - x[i], y[b] - y[i]};
+    const double l1 = std::hypot(e1.x, e1.y), l2 = std::hypot(e2.x, e2.y), l3 = std::hypot(x[b] - x[a], y[b] - y[a]);
+    if (l1 * l2 * l3 <= 0) continue;
+    const double k = 2 * cross(e1, e2) / (l1 * l2 * l3);  // Menger curvature
+    sum += k * k * 0.5 * (l1 + l2);
+  }
+  return sum;
+}
+
+}  // namespace brickyard::planning
