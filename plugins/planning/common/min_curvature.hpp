@@ -20,7 +20,7 @@ struct ClosedLine {
 
 struct MinCurvatureParams {
   double margin = 1.5;      // m kept from each edge: half the car's width (0.97) and a margin
-  int max_iterations = 8;   // re-linearisations
+  int max_iterations = 32;  // re-linearisations
   double tolerance = 0.01;  // m: stop when no offset moves more than this
 };
 
