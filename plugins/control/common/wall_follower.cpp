@@ -9,19 +9,12 @@ namespace brickyard::control {
 
 using plugins::poly_value;
 
-constexpr double kWheelbase = 2.97;  // AV-21
-
 void WallFollower::engage(double t, double speed) {
   t0_ = t;
   v0_ = speed;
 }
 
 double WallFollower::steering(const WallView& wall, double speed) const {
-  if (p_.pursuit) {
-    const double l = std::clamp(p_.lookahead_time * speed, p_.lookahead, std::max(p_.lookahead, p_.lookahead_max));
-    const double y = poly_value(wall.coefficients, l, 0) - p_.side * p_.gap;
-    return std::atan(2 * kWheelbase * y / (l * l + y * y));
-  }
   const double k = p_.schedule_above > 0 && speed > p_.schedule_above ? p_.schedule_above / speed : 1.0;
   const double d_w = poly_value(wall.coefficients, 0.0, 0), slope = poly_value(wall.coefficients, p_.lookahead / k, 1);
   return p_.w_theta * k * slope + p_.w_d * k * k * (d_w - p_.side * p_.gap);

@@ -30,10 +30,6 @@ struct WallFollowerParams {
   // would (look-ahead x v/v0, w_theta x v0/v, w_d x (v0/v)^2): gains right at 40 m/s make the car
   // weave at 60. 0: fixed gains, as the paper.
   double schedule_above = 40;  // m/s (v0)
-  // law "pursuit" instead of the paper's: pure pursuit of the point one look-ahead ahead on the
-  // line gap inside the wall, the look-ahead lookahead_time * v in [lookahead, lookahead_max].
-  bool pursuit = false;
-  double lookahead_time = 0.5, lookahead_max = 30;  // s, m
   double max_steer = 0.35;     // rad
   bool reduce_speed = true;    // false: hold
   // Slow down hard and early: a wall 8 m in is a tighter line than the racing line, and holding

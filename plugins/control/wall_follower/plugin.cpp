@@ -31,8 +31,6 @@ class WallFollowerNode : public Plugin {
         .param(ParamSpec::number("max_steer", d.max_steer).in_unit("rad").at_least(0.01))
         .param(ParamSpec::number("schedule_above", d.schedule_above).in_unit("m/s").at_least(0)
                    .doc("above this speed the look-ahead grows and the gains shrink with speed as a pure pursuit's; 0: fixed"))
-        .param(ParamSpec::string("law", "paper").one_of({"paper", "pursuit"})
-                   .doc("paper: u = w_theta y'(L) + w_d (d_w - d_gap); pursuit: pure pursuit on the line gap inside the wall"))
         .param(ParamSpec::string("speed_policy", "reduce").one_of({"reduce", "hold"}).doc("while following: slow to fallback_speed, or hold"))
         .param(ParamSpec::number("fallback_speed", d.fallback_speed).in_unit("m/s").at_least(0))
         .param(ParamSpec::number("decel", d.decel).in_unit("m/s^2").at_least(0.1))
@@ -51,7 +49,6 @@ class WallFollowerNode : public Plugin {
     wp.lookahead = p.number("lookahead");
     wp.max_steer = p.number("max_steer");
     wp.schedule_above = p.number("schedule_above");
-    wp.pursuit = p.string("law") == "pursuit";
     wp.reduce_speed = p.string("speed_policy") == "reduce";
     wp.fallback_speed = p.number("fallback_speed");
     wp.decel = p.number("decel");

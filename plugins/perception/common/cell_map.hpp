@@ -43,7 +43,6 @@ template <class V> class CellMap {
   // hides the cache miss that a scattered hash makes of every point.
   void prefetch(std::uint64_t key) const { __builtin_prefetch(&slots_[slot(key)]); }
   // Null when absent.
-  V* find_mutable(std::uint64_t key) { return const_cast<V*>(find(key)); }
   const V* find(std::uint64_t key) const {
     std::size_t i = slot(key);
     while (slots_[i].key != kEmpty) {
