@@ -11,18 +11,23 @@ void PathTracker::set_path(std::vector<PathPoint> path) {
   for (std::size_t i = 1; i < path_.size(); ++i)
     s_[i] = s_[i - 1] + std::hypot(path_[i].x - path_[i - 1].x, path_[i].y - path_[i - 1].y);
   length_ = path_.empty() ? 0 : s_.back();
-  if (p_.closed && path_.size() >= 2) length_ += std::hypot(path_.front().x - path_.back().x, path_.front().y - path_.back().y);
+  // A planner's path over a horizon is open, a racing line closed: the gap between the ends tells.
+  double longest = 0;
+  for (std::size_t i = 1; i < path_.size(); ++i) longest = std::max(longest, s_[i] - s_[i - 1]);
+  const double gap = path_.size() >= 2 ? std::hypot(path_.front().x - path_.back().x, path_.front().y - path_.back().y) : 0.0;
+  closed_ = p_.closed && path_.size() >= 3 && gap <= 2 * longest;
+  if (closed_) length_ += gap;
   seg_ = -1;
 }
 
 int PathTracker::segments() const {
   const int n = static_cast<int>(path_.size());
-  return p_.closed ? n : n - 1;
+  return closed_ ? n : n - 1;
 }
 
 PathPoint PathTracker::at(double s) const {
   const int n = static_cast<int>(path_.size());
-  if (p_.closed) s = std::fmod(std::fmod(s, length_) + length_, length_);
+  if (closed_) s = std::fmod(std::fmod(s, length_) + length_, length_);
   else s = std::clamp(s, 0.0, length_);
   int i = static_cast<int>(std::upper_bound(s_.begin(), s_.end(), s) - s_.begin()) - 1;
   i = std::clamp(i, 0, segments() - 1);
@@ -60,7 +65,7 @@ Command PathTracker::control(double x, double y, double yaw, double speed) {
   } else {
     const int from = seg_;
     for (int k = -30; k <= 30; ++k) {
-      const int i = p_.closed ? ((from + k) % m + m) % m : from + k;
+      const int i = closed_ ? ((from + k) % m + m) % m : from + k;
       if (i >= 0 && i < m) try_seg(i);
     }
     if (best > 25.0)  // more than 5 m off near the last place: the car (or the path) jumped

@@ -25,7 +25,8 @@ struct TrackerParams {
   double speed_gain = 0.5;  // pedal per m/s of error
   double preview_time = 3;  // s of path ahead the speed looks at
   double decel = 10;        // m/s^2 the car may brake at
-  bool closed = true;       // the path is a loop (a racing line)
+  bool closed = true;       // the path may be a loop (a racing line): it is one when its end lies
+                            // within two of its longest steps of its start
 };
 
 class PathTracker {
@@ -48,6 +49,7 @@ class PathTracker {
   std::vector<double> s_;  // arc length at each point
   double length_ = 0;
   int seg_ = -1;
+  bool closed_ = false;  // this path
   double cte_ = 0;
   TrackerParams p_;
 };

@@ -29,7 +29,7 @@ class PathTrackerNode : public Plugin {
         .param(ParamSpec::number("speed_gain", d.speed_gain).at_least(0).doc("pedal per m/s of speed error"))
         .param(ParamSpec::number("preview_time", d.preview_time).in_unit("s").at_least(0).doc("path ahead the speed looks at"))
         .param(ParamSpec::number("decel", d.decel).in_unit("m/s^2").at_least(0.1).doc("braking the speed plan assumes"))
-        .param(ParamSpec::boolean("closed", d.closed).doc("the path is a loop (a racing line)"))
+        .param(ParamSpec::boolean("closed", d.closed).doc("the path may be a loop: it is one when its end lies within two of its longest steps of its start (a racing line); false: always open"))
         .on_input("estimate");
   }
 

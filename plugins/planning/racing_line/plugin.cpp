@@ -2,6 +2,8 @@
 // and a speed profile from lateral and longitudinal acceleration limits — for the path tracker.
 // With the world wired, the line is kept edge_margin inside the track (TUM's IMS line passes
 // 0.6 m from the edges, closer than half the car's width).
+#include <brickyard/msgs/LocalizationEstimate.h>
+#include <brickyard/msgs/ObstacleList.h>
 #include <brickyard/msgs/Path.h>
 #include <brickyard/msgs/TrackWorld.h>
 #include <brickyard/plugin.hpp>
@@ -23,6 +25,9 @@ class RacingLineNode : public Plugin {
     return Manifest("planning.racing_line", "1.0.0")
         .describe("the racing line as a Path with a speed profile (lateral and longitudinal limits)")
         .input<msgs::TrackWorld>("world", "when wired, the line is kept edge_margin inside the track", false, 1)
+        // Read by planning.road_graph; accepted here so the two planners swap by the plugin's name.
+        .input<msgs::LocalizationEstimate>("estimate", "not used: this planner ignores where the car is", false, 1)
+        .input<msgs::ObstacleList>("obstacles", "not used: this planner does not avoid obstacles", false, 1)
         .output<msgs::Path>("path", "the line: poses, curvature, speed, s (a closed loop); sent at rate_hz")
         .param(ParamSpec::string("raceline", "racelines/IMS.csv").doc("x_m,y_m file of the line"))
         .param(ParamSpec::number("rate_hz", 1).in_unit("Hz").at_least(0.01).doc("how often the path is sent again"))
@@ -49,10 +54,14 @@ class RacingLineNode : public Plugin {
     limits_.a_decel = p.number("a_decel");
     margin_ = p.number("edge_margin");
     world_ = ctx.input<msgs::TrackWorld>("world");
+    estimate_ = ctx.input<msgs::LocalizationEstimate>("estimate");
+    obstacles_ = ctx.input<msgs::ObstacleList>("obstacles");
     out_ = ctx.output<msgs::Path>("path");
   }
 
   void step(Context& ctx) override {
+    estimate_.take();  // drained, unused
+    obstacles_.take();
     if (!path_) {
       CenterLine line = line_;
       if (world_.connected()) {
@@ -99,6 +108,8 @@ class RacingLineNode : public Plugin {
   std::shared_ptr<const msgs::Path> path_;
   std::uint32_t seq_ = 0;
   Input<msgs::TrackWorld> world_;
+  Input<msgs::LocalizationEstimate> estimate_;
+  Input<msgs::ObstacleList> obstacles_;
   Output<msgs::Path> out_;
 };
 

@@ -24,6 +24,8 @@ class RefereeNode : public Plugin {
         .input<msgs::VehicleState>("truth", "ground truth", true, 1024)
         .input<msgs::LocalizationEstimate>("estimate", "a localization estimate to score (optional)", false, 1024)
         .param(ParamSpec::boolean("crash_ends_run", true).doc("a wall contact fails the run (exit 1)"))
+        .param(ParamSpec::number("obstacle_clearance_required", -1).in_unit("m")
+                   .doc("passing an obstacle nearer than this fails the run (exit 1); negative: off (hits are counted only)"))
         .param(ParamSpec::integer("laps", 0).at_least(0).doc("finish the run after this many laps; 0: never"))
         .param(ParamSpec::number("car_front", f.front).in_unit("m").at_least(0).doc("from the rear axle"))
         .param(ParamSpec::number("car_rear", f.rear).in_unit("m").at_least(0))
@@ -35,6 +37,7 @@ class RefereeNode : public Plugin {
     const Params& p = ctx.params();
     crash_ends_ = p.boolean("crash_ends_run");
     laps_ = p.integer("laps");
+    clearance_required_ = p.number("obstacle_clearance_required");
     fp_.front = p.number("car_front");
     fp_.rear = p.number("car_rear");
     fp_.half_width = p.number("car_half_width");
@@ -66,6 +69,12 @@ class RefereeNode : public Plugin {
       if (ev.obstacle_hit) {
         std::snprintf(buf, sizeof buf, "obstacle hit at s = %.1f m", ref_->s());
         ctx.log(LogLevel::warn, buf);
+      }
+      if (clearance_required_ >= 0 && ref_->obstacle_min_clearance() < clearance_required_) {
+        std::snprintf(buf, sizeof buf, "obstacle passed %.2f m off at s = %.1f m (at least %.2f m required)",
+                      ref_->obstacle_min_clearance(), ref_->s(), clearance_required_);
+        clearance_required_ = -1;  // once
+        ctx.fail(buf);
       }
       if (ev.wall_contact) {
         std::snprintf(buf, sizeof buf, "wall contact at s = %.1f m, t = %.3f s, %.1f m/s", ref_->s(), t.t, t.speed);
@@ -99,6 +108,7 @@ class RefereeNode : public Plugin {
 
   bool crash_ends_ = true;
   std::int64_t laps_ = 0;
+  double clearance_required_ = -1;
   Footprint fp_;
   std::unique_ptr<Track> track_;
   std::unique_ptr<Referee> ref_;

@@ -1,0 +1,110 @@
+#include "graph_search.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace brickyard::planning {
+namespace {
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr std::uint32_t kNone = ~std::uint32_t{0};
+}  // namespace
+
+double relative_s(double s, double s0, double length) {
+  double r = std::fmod(s - s0, length);
+  if (r < 0) r += length;
+  return r > 0.5 * length ? r - length : r;
+}
+
+bool edge_blocked(const EdgeShape& e, const FrenetObstacle& o, double half_width, const SearchParams& p,
+                  double* side_gap) {
+  // The car's reference point runs along the edge; the car covers [s - rear, s + front] of the
+  // line, so it is beside the obstacle while s is in this window.
+  const double w0 = std::max(e.s_a, o.s - p.car_front - o.radius), w1 = std::min(e.s_b, o.s + p.car_rear + o.radius);
+  if (w0 > w1) {
+    if (side_gap) *side_gap = kInf;
+    return false;
+  }
+  // d is monotonic along an edge: over the window it spans [d(w0), d(w1)].
+  const double a = e.d(w0), b = e.d(w1), lo = std::min(a, b), hi = std::max(a, b);
+  const double apart = o.d < lo ? lo - o.d : o.d > hi ? o.d - hi : 0.0;
+  const double gap = apart - o.radius - half_width;
+  if (side_gap) *side_gap = gap;
+  return gap < p.clearance;
+}
+
+GraphSearch::GraphSearch(const RoadGraph& g) : g_(g), cost_(g.node_count(), kInf), parent_(g.node_count(), kNone) {}
+
+Plan GraphSearch::plan(std::uint32_t start, const std::vector<FrenetObstacle>& obstacles, const SearchParams& p) {
+  for (std::uint32_t n : touched_) { cost_[n] = kInf; parent_[n] = kNone; }
+  touched_.clear();
+  Plan out;
+  const auto& layers = g_.layers();
+  const int nl = static_cast<int>(layers.size());
+  const double length = g_.length(), reach = g_.params().max_edge_length;
+  const double horizon = std::min(p.horizon, length - reach - 1.0);
+  const double s0 = g_.node_s(start), hw = g_.params().half_width;
+  // Obstacles relative to the start, those that can matter only.
+  std::vector<FrenetObstacle> near;
+  for (const auto& o : obstacles) {
+    FrenetObstacle r = o;
+    r.s = relative_s(o.s, s0, length);
+    if (r.s > -p.car_rear - r.radius - 1 && r.s < horizon + reach + p.car_front + r.radius + 1) near.push_back(r);
+  }
+  auto rel = [&](int layer) {
+    double r = layers[layer].s - s0;
+    return r < 0 ? r + length : r;
+  };
+  cost_[start] = 0;
+  touched_.push_back(start);
+  const int l0 = g_.layer_of(start);
+  for (int off = 0; off < nl; ++off) {
+    const int l = (l0 + off) % nl;
+    const double ra = off == 0 ? 0.0 : rel(l);
+    if (off > 0 && ra >= horizon) break;
+    const auto& L = layers[l];
+    for (std::uint32_t n = L.first_node; n < L.first_node + L.count; ++n) {
+      if (cost_[n] == kInf) continue;
+      const double da = g_.node_d(n);
+      for (const auto* e = g_.edges_begin(n); e != g_.edges_end(n); ++e) {
+        ++out.edges_relaxed;
+        double rb = rel(g_.layer_of(e->to));
+        if (rb <= ra) rb += length;
+        const EdgeShape shape{ra, da, rb, g_.node_d(e->to)};
+        double c = p.k_length * e->length + p.k_curvature * e->curvature + p.k_deviation * e->deviation;
+        bool blocked = false;
+        for (const auto& o : near) {
+          double gap;
+          if (edge_blocked(shape, o, hw, p, &gap)) { blocked = true; break; }
+          if (gap < p.soft_clearance) c += p.k_proximity * (p.soft_clearance - gap) * (p.soft_clearance - gap);
+        }
+        if (blocked) continue;
+        const double total = cost_[n] + c;
+        if (total < cost_[e->to]) {
+          if (cost_[e->to] == kInf) touched_.push_back(e->to);
+          cost_[e->to] = total;
+          parent_[e->to] = n;
+        }
+      }
+    }
+  }
+  // Ends: nodes past the horizon (reached by an edge from before it), each costed on to the same
+  // s as a parallel to the line.
+  const double s_end = horizon + reach;
+  std::uint32_t best = kNone;
+  double best_cost = kInf;
+  for (std::uint32_t n : touched_) {
+    const double rn = rel(g_.layer_of(n));
+    if (rn < horizon || n == start) continue;
+    const double total = cost_[n] + std::max(0.0, s_end - rn) * (p.k_length + p.k_deviation * std::abs(g_.node_d(n)));
+    if (total < best_cost) { best_cost = total; best = n; }
+  }
+  if (best == kNone) return out;
+  out.found = true;
+  out.cost = best_cost;
+  for (std::uint32_t n = best; n != kNone; n = parent_[n]) out.nodes.push_back(n);
+  std::reverse(out.nodes.begin(), out.nodes.end());
+  return out;
+}
+
+}  // namespace brickyard::planning

@@ -1,0 +1,64 @@
+#pragma once
+// The online half of the road-graph planner: the cheapest path through the lattice from a start
+// node over a horizon, around obstacles. Framework-free.
+//
+// The layers are ordered along s, so this is dynamic programming over a DAG: each layer's nodes
+// relax their edges in turn, and every edge is looked at once. An edge costs
+//   f + g = k_length·l + k_curvature·∫κ² dl + k_deviation·∫|d| ds + k_proximity·Σ (soft − gap)²₊
+// (travel, curvature and distance from the racing line as in the paper's g, with the obstacle
+// term as a penalty for passing nearer than soft_clearance); an edge on which the car would come
+// nearer than `clearance` to an obstacle is removed. Paths end anywhere past the horizon; the
+// ends are made comparable by costing the rest of the way to a common s as a parallel to the line.
+#include "road_graph.hpp"
+
+#include <cstdint>
+#include <vector>
+
+namespace brickyard::planning {
+
+struct FrenetObstacle {
+  double s = 0, d = 0;  // on the racing line's frame, m
+  double radius = 0.5;  // m
+};
+
+struct SearchParams {
+  double horizon = 300;         // m of line ahead of the start node
+  double clearance = 1.5;       // m between the car's side and an obstacle, at least
+  double soft_clearance = 4.0;  // m: nearer than this costs k_proximity per m² short
+  double car_front = 4.0;       // m of car ahead of its reference point (base_link, the rear axle)
+  double car_rear = 1.0;        // m behind it
+  double k_length = 1.0;
+  double k_curvature = 2e4;     // per 1/m of ∫κ² dl
+  double k_deviation = 0.05;    // per m² of ∫|d| ds
+  double k_proximity = 10;      // per m² short of soft_clearance
+};
+
+struct Plan {
+  bool found = false;
+  std::vector<std::uint32_t> nodes;  // start first
+  double cost = 0;
+  std::size_t edges_relaxed = 0;
+};
+
+// An obstacle's place relative to a start at s0: along-line distance in (-length/2, length/2].
+double relative_s(double s, double s0, double length);
+
+// Whether the car following the edge from (rel_a, d_a) to (rel_b, d_b) comes nearer than the
+// clearance to the obstacle (its s relative to the same origin); `side_gap` gets the least gap.
+bool edge_blocked(const EdgeShape& e, const FrenetObstacle& o, double half_width, const SearchParams& p,
+                  double* side_gap = nullptr);
+
+class GraphSearch {
+ public:
+  explicit GraphSearch(const RoadGraph& g);
+  // Obstacles' s are map-frame s on the line (not relative).
+  Plan plan(std::uint32_t start, const std::vector<FrenetObstacle>& obstacles, const SearchParams& p);
+
+ private:
+  const RoadGraph& g_;
+  std::vector<double> cost_;
+  std::vector<std::uint32_t> parent_;
+  std::vector<std::uint32_t> touched_;
+};
+
+}  // namespace brickyard::planning

@@ -1,0 +1,40 @@
+#include "line_setup.hpp"
+
+#include <cstring>
+
+namespace brickyard::planning {
+
+Reference make_reference(const sim::CenterLine& file_line, const sim::Track* track, double edge_margin,
+                         const sim::SpeedLimits& limits) {
+  const sim::CenterLine line = track ? sim::keep_inside(file_line, *track, edge_margin) : file_line;
+  Reference r;
+  r.racing = sim::make_racing_line(line, limits);
+  r.line = RefLine(r.racing.x, r.racing.y, r.racing.kappa);
+  r.speed = r.racing.speed;
+  return r;
+}
+
+TrackRoom track_room(const sim::Track& track, const RefLine& line) {
+  return [&track, &line](double s) {
+    const Eigen::Vector2d p = line.point(s);
+    const sim::Frenet f = track.project(p.x(), p.y());
+    // The line's normal and the centre line's are near parallel: offsets add across.
+    return std::make_pair(-track.width_right(f.seg, f.u) - f.d, track.width_left(f.seg, f.u) - f.d);
+  };
+}
+
+std::uint64_t reference_digest(const Reference& ref, const RoadGraphParams& p) {
+  std::uint64_t h = 1469598103934665603ull;  // FNV-1a over the bytes
+  auto mix = [&h](const void* data, std::size_t n) {
+    const auto* b = static_cast<const unsigned char*>(data);
+    for (std::size_t i = 0; i < n; ++i) { h ^= b[i]; h *= 1099511628211ull; }
+  };
+  mix(ref.racing.x.data(), ref.racing.x.size() * sizeof(double));
+  mix(ref.racing.y.data(), ref.racing.y.size() * sizeof(double));
+  const double params[] = {p.layer_spacing, p.layer_spacing_turn, p.turn_curvature, p.lateral_step,
+                           p.half_width,    p.edge_margin,        p.max_curvature,  p.max_edge_length};
+  mix(params, sizeof(params));
+  return h;
+}
+
+}  // namespace brickyard::planning

@@ -1,0 +1,30 @@
+#pragma once
+// The racing line as both planners use it: kept inside the track's edges, with its speed profile
+// (the simulator's track library serves as the map for now; docs/algorithms.md), as a RefLine for
+// the road graph. Framework-free.
+#include "road_graph.hpp"
+
+#include "../../sim/common/pure_pursuit.hpp"
+#include "../../sim/common/track.hpp"
+
+#include <cstdint>
+
+namespace brickyard::planning {
+
+struct Reference {
+  sim::RacingLine racing;      // points, s, curvature (smoothed), speed profile
+  RefLine line;                // the same points as a Frenet frame
+  std::vector<double> speed;   // per point
+};
+
+// `track` may be null (no world): the line is used as the file has it.
+Reference make_reference(const sim::CenterLine& line, const sim::Track* track, double edge_margin,
+                         const sim::SpeedLimits& limits);
+
+// The track's edges across the line, for RoadGraph::build.
+TrackRoom track_room(const sim::Track& track, const RefLine& line);
+
+// Identifies the line (its points) and the graph parameters a graph file was built from.
+std::uint64_t reference_digest(const Reference& ref, const RoadGraphParams& p);
+
+}  // namespace brickyard::planning

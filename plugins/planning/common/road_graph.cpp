@@ -1,0 +1,232 @@
+#include "road_graph.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <stdexcept>
+
+namespace brickyard::planning {
+
+double EdgeShape::d(double s) const {
+  const double t = std::clamp((s - s_a) / (s_b - s_a), 0.0, 1.0);
+  return d_a + (d_b - d_a) * t * t * t * (10 - 15 * t + 6 * t * t);
+}
+double EdgeShape::d1(double s) const {
+  const double h = s_b - s_a, t = std::clamp((s - s_a) / h, 0.0, 1.0);
+  return (d_b - d_a) * 30 * t * t * (1 - t) * (1 - t) / h;
+}
+double EdgeShape::d2(double s) const {
+  const double h = s_b - s_a, t = std::clamp((s - s_a) / h, 0.0, 1.0);
+  return (d_b - d_a) * 60 * t * (1 - t) * (1 - 2 * t) / (h * h);
+}
+
+double offset_curvature(double kr, double d, double d1, double d2) {
+  const double q = 1 - kr * d, m = q * q + d1 * d1;
+  return (q * d2 + kr * (q * q + 2 * d1 * d1)) / (m * std::sqrt(m));
+}
+
+void sample_shape(const RefLine& line, const EdgeShape& e, double step, std::vector<PathSample>& out) {
+  const int n = std::max(1, static_cast<int>(std::ceil((e.s_b - e.s_a) / step - 1e-9)));
+  for (int i = 0; i < n; ++i) {
+    const double s = e.s_a + (e.s_b - e.s_a) * i / n, d = e.d(s);
+    const Eigen::Vector2d p = line.point(s, d);
+    out.push_back({p.x(), p.y(), s, d, offset_curvature(line.kappa(s), d, e.d1(s), e.d2(s))});
+  }
+}
+
+namespace {
+constexpr int kSpans[] = {1, 2, 3, 4, 6, 8};
+constexpr int kSamples = 10;  // per edge, at the midpoints of equal steps in s
+}  // namespace
+
+RoadGraph RoadGraph::build(const RefLine& line, const TrackRoom& room, const RoadGraphParams& p,
+                           std::uint64_t digest) {
+  if (!(p.layer_spacing > 0 && p.layer_spacing_turn > 0 && p.lateral_step > 0 && p.max_edge_length > 0))
+    throw std::invalid_argument("road graph: spacings, lateral step and edge length must be positive");
+  RoadGraph g;
+  g.p_ = p;
+  g.digest_ = digest;
+  g.length_ = line.length();
+  // Layers: the spacing of a stretch is the turn spacing when the line bends anywhere in it.
+  std::vector<double> ls;
+  for (double s = 0; s < g.length_;) {
+    ls.push_back(s);
+    bool turn = false;
+    for (double u = 0; u <= p.layer_spacing; u += 1.0) turn = turn || std::abs(line.kappa(s + u)) > p.turn_curvature;
+    s += turn ? p.layer_spacing_turn : p.layer_spacing;
+  }
+  if (ls.size() > 1 && g.length_ - ls.back() < 0.5 * p.layer_spacing_turn) ls.pop_back();  // no sliver before the start
+  if (ls.size() < 3) throw std::invalid_argument("road graph: the line is shorter than three layers");
+  const int nl = static_cast<int>(ls.size());
+  std::vector<double> lo(nl), hi(nl);
+  for (int i = 0; i < nl; ++i) {
+    const auto [dr, dl] = room(ls[i]);
+    lo[i] = dr + p.half_width + p.edge_margin;
+    hi[i] = dl - p.half_width - p.edge_margin;
+    Layer L;
+    L.s = ls[i];
+    L.k0 = static_cast<std::int32_t>(std::ceil(lo[i] / p.lateral_step - 1e-9));
+    const auto k1 = static_cast<std::int32_t>(std::floor(hi[i] / p.lateral_step + 1e-9));
+    if (k1 < L.k0) {
+      char buf[200];
+      std::snprintf(buf, sizeof buf, "road graph: at s = %.1f m the track leaves no room for the car (edges at d = %.2f and %.2f m)",
+                    ls[i], dr, dl);
+      throw std::invalid_argument(buf);
+    }
+    L.count = static_cast<std::uint32_t>(k1 - L.k0 + 1);
+    L.first_node = static_cast<std::uint32_t>(g.node_layer_.size());
+    g.layers_.push_back(L);
+    g.node_layer_.insert(g.node_layer_.end(), L.count, static_cast<std::uint32_t>(i));
+  }
+  // Edges.
+  g.first_edge_.reserve(g.node_layer_.size() + 1);
+  for (int a = 0; a < nl; ++a) {
+    const Layer& A = g.layers_[a];
+    for (std::uint32_t i = 0; i < A.count; ++i) {
+      g.first_edge_.push_back(static_cast<std::uint32_t>(g.edges_.size()));
+      const double da = (A.k0 + static_cast<std::int32_t>(i)) * p.lateral_step;
+      for (int span : kSpans) {
+        if (span >= nl) break;
+        const int b = (a + span) % nl;
+        const Layer& B = g.layers_[b];
+        double h = B.s - A.s;
+        if (h <= 0) h += g.length_;
+        if (h > p.max_edge_length && span > 1) break;
+        for (std::uint32_t j = 0; j < B.count; ++j) {
+          const double db = (B.k0 + static_cast<std::int32_t>(j)) * p.lateral_step;
+          const bool along = std::abs(db - da) < 1e-9;
+          if (along && span > 1) continue;  // the chain of span-1 edges is the same path
+          const EdgeShape e{0, da, h, db};
+          // Inside the track at every layer it passes.
+          bool inside = true;
+          for (int m = 1; m < span && inside; ++m) {
+            const int c = (a + m) % nl;
+            double sc = g.layers_[c].s - A.s;
+            if (sc < 0) sc += g.length_;
+            const double dc = e.d(sc);
+            inside = dc >= lo[c] - 1e-9 && dc <= hi[c] + 1e-9;
+          }
+          if (!inside) continue;
+          Edge E;
+          E.to = B.first_node + j;
+          double len = 0, curv = 0, dev = 0, kmax = 0;
+          const double ds = h / kSamples;
+          for (int k = 0; k < kSamples; ++k) {
+            const double s = (k + 0.5) * ds;
+            const double d = e.d(s), d1 = e.d1(s), kr = line.kappa(A.s + s);
+            const double q = 1 - kr * d, dl = std::sqrt(q * q + d1 * d1) * ds;
+            const double kappa = offset_curvature(kr, d, d1, e.d2(s));
+            len += dl;
+            curv += kappa * kappa * dl;
+            dev += std::abs(d) * ds;
+            kmax = std::max(kmax, std::abs(kappa));
+          }
+          if (!along && kmax > p.max_curvature) continue;
+          E.length = static_cast<float>(len);
+          E.curvature = static_cast<float>(curv);
+          E.deviation = static_cast<float>(dev);
+          E.max_kappa = static_cast<float>(kmax);
+          g.edges_.push_back(E);
+        }
+      }
+    }
+  }
+  g.first_edge_.push_back(static_cast<std::uint32_t>(g.edges_.size()));
+  return g;
+}
+
+int RoadGraph::layer_at_or_after(double s) const {
+  s = std::fmod(s, length_);
+  if (s < 0) s += length_;
+  auto it = std::lower_bound(layers_.begin(), layers_.end(), s, [](const Layer& l, double v) { return l.s < v; });
+  return it == layers_.end() ? 0 : static_cast<int>(it - layers_.begin());
+}
+
+std::uint32_t RoadGraph::nearest_node(int layer, double d) const {
+  const Layer& L = layers_[layer];
+  const double k = std::round(d / p_.lateral_step) - L.k0;
+  const double i = std::clamp(k, 0.0, static_cast<double>(L.count - 1));
+  return L.first_node + static_cast<std::uint32_t>(i);
+}
+
+// File: "BYRG", format version, the parameters, the source digest, the line's length, then the
+// layers, the first-edge index of every node and the edges, each array preceded by its count.
+// Little-endian, as written by this machine; the loader checks every count and index.
+namespace {
+constexpr char kMagic[4] = {'B', 'Y', 'R', 'G'};
+constexpr std::uint32_t kVersion = 1;
+
+template <class T>
+void put(std::ofstream& f, const T& v) { f.write(reinterpret_cast<const char*>(&v), sizeof(T)); }
+template <class T>
+void put_vec(std::ofstream& f, const std::vector<T>& v) {
+  put(f, static_cast<std::uint64_t>(v.size()));
+  f.write(reinterpret_cast<const char*>(v.data()), static_cast<std::streamsize>(v.size() * sizeof(T)));
+}
+}  // namespace
+
+void RoadGraph::save(const std::string& path) const {
+  std::ofstream f(path, std::ios::binary);
+  if (!f) throw std::runtime_error(path + ": cannot open for writing");
+  f.write(kMagic, 4);
+  put(f, kVersion);
+  put(f, p_);
+  put(f, digest_);
+  put(f, length_);
+  put_vec(f, layers_);
+  put_vec(f, first_edge_);
+  put_vec(f, edges_);
+  if (!f) throw std::runtime_error(path + ": write failed");
+}
+
+RoadGraph RoadGraph::load(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  if (!f) throw std::runtime_error(path + ": cannot open");
+  auto fail = [&](const std::string& what) { return std::runtime_error(path + ": not a usable road graph (" + what + ")"); };
+  auto get = [&](auto& v, const char* what) {
+    f.read(reinterpret_cast<char*>(&v), sizeof(v));
+    if (!f) throw fail(std::string("truncated at ") + what);
+  };
+  auto get_vec = [&](auto& v, const char* what, std::uint64_t limit) {
+    std::uint64_t n = 0;
+    get(n, what);
+    if (n > limit) throw fail(std::string(what) + " count " + std::to_string(n) + " is implausible");
+    v.resize(n);
+    f.read(reinterpret_cast<char*>(v.data()), static_cast<std::streamsize>(n * sizeof(v[0])));
+    if (!f) throw fail(std::string("truncated in ") + what);
+  };
+  char magic[4];
+  f.read(magic, 4);
+  if (!f || std::memcmp(magic, kMagic, 4) != 0) throw fail("no BYRG header");
+  std::uint32_t version = 0;
+  get(version, "version");
+  if (version != kVersion) throw fail("format version " + std::to_string(version) + ", this build reads " + std::to_string(kVersion));
+  RoadGraph g;
+  get(g.p_, "parameters");
+  get(g.digest_, "digest");
+  get(g.length_, "length");
+  get_vec(g.layers_, "layers", 1u << 24);
+  get_vec(g.first_edge_, "nodes", 1u << 26);
+  get_vec(g.edges_, "edges", 1u << 28);
+  if (f.peek() != std::char_traits<char>::eof()) throw fail("trailing bytes");
+  // Consistency: layers in order and their nodes contiguous; edge ranges and targets in bounds.
+  std::uint32_t nodes = 0;
+  for (std::size_t i = 0; i < g.layers_.size(); ++i) {
+    const Layer& L = g.layers_[i];
+    if (L.first_node != nodes || L.count == 0 || !(L.s >= 0 && L.s < g.length_) || (i > 0 && L.s <= g.layers_[i - 1].s))
+      throw fail("layer " + std::to_string(i) + " is out of order");
+    nodes += L.count;
+    g.node_layer_.insert(g.node_layer_.end(), L.count, static_cast<std::uint32_t>(i));
+  }
+  if (g.layers_.size() < 3 || g.first_edge_.size() != nodes + std::size_t{1} || g.first_edge_.back() != g.edges_.size())
+    throw fail("node and edge counts disagree");
+  for (std::size_t i = 0; i + 1 < g.first_edge_.size(); ++i)
+    if (g.first_edge_[i] > g.first_edge_[i + 1]) throw fail("edge ranges out of order at node " + std::to_string(i));
+  for (const Edge& e : g.edges_)
+    if (e.to >= nodes || !(e.length > 0)) throw fail("an edge leads nowhere");
+  return g;
+}
+
+}  // namespace brickyard::planning

@@ -1,0 +1,74 @@
+#pragma once
+// The replanning loop of planning.road_graph, framework-free: obstacles remembered in the map
+// frame, the part of the last plan the car is committed to, a graph search from its end, and the
+// path with its speeds.
+//
+// Commitment: the car keeps the last plan up to the first node at least max(commit_min,
+// commit_time · v) ahead, and the search starts there, so successive plans join without a jump
+// (the paper replans at 20 Hz). The committed part is dropped — the plan restarts from the node
+// nearest the car's offset, joined by a smooth lead-in — when the car is off it by more than
+// `rejoin` metres or an obstacle now blocks it.
+#include "graph_search.hpp"
+#include "road_graph.hpp"
+#include "speed_profile.hpp"
+
+#include <cstdint>
+#include <vector>
+
+namespace brickyard::planning {
+
+struct PlannerParams {
+  SearchParams search;
+  VehicleLimits limits;           // for the path's own curvature; ref_speed caps it besides
+  double commit_time = 1.0;       // s
+  double commit_min = 15;         // m
+  double rejoin = 2.0;            // m off the committed path before it is dropped
+  double path_step = 2.0;         // m between path points
+  double behind = 3.0;            // m of path behind the car (the tracker projects the car on it)
+  double obstacle_memory = 2.0;   // s an obstacle is kept after it was last seen
+  double merge_distance = 2.0;    // m: a detection this near a remembered obstacle is that one
+};
+
+struct MapObstacle {
+  double x = 0, y = 0, radius = 0.5;  // map frame, m
+  std::int64_t seen_ns = 0;
+};
+
+struct PlannedPath {
+  std::vector<PathSample> points;  // s on the line (not wrapped), d, x, y, curvature
+  std::vector<double> speed;       // m/s per point
+  bool route_found = false;        // false: every route was blocked; the path brakes to a stop
+  bool restarted = false;          // the committed part was dropped this cycle
+  std::size_t edges_relaxed = 0;
+};
+
+class RoadGraphPlanner {
+ public:
+  // ref_speed: one speed per point of `line` (the racing line's profile), the cap everywhere.
+  RoadGraphPlanner(const RoadGraph& graph, const RefLine& line, std::vector<double> ref_speed, PlannerParams p);
+
+  // New detections (map frame) at now_ns: merged into the remembered ones; old ones forgotten.
+  void observe(const std::vector<MapObstacle>& seen, std::int64_t now_ns);
+  const std::vector<MapObstacle>& obstacles() const { return memory_; }
+
+  // A new plan from the car's reference point and speed.
+  const PlannedPath& plan(double x, double y, double speed);
+
+ private:
+  struct Piece {
+    EdgeShape shape;       // s on the line, s_b may run past the line's length
+    std::uint32_t end;     // the node it ends at
+  };
+  bool committed_blocked(const std::vector<Piece>& pieces, const std::vector<FrenetObstacle>& obs) const;
+  const RoadGraph& g_;
+  const RefLine& line_;
+  std::vector<double> ref_speed_;
+  PlannerParams p_;
+  GraphSearch search_;
+  std::vector<MapObstacle> memory_;
+  std::vector<Piece> pieces_;
+  double hint_s_ = -1;
+  PlannedPath out_;
+};
+
+}  // namespace brickyard::planning

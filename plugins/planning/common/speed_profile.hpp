@@ -1,0 +1,33 @@
+#pragma once
+// Speed profiles by forward and backward passes (the quasi-steady-state method): the speed each
+// point's curvature allows, then what the car can accelerate to and brake from. The ggv is an
+// ellipse — the longitudinal budget shrinks as the lateral one is used — with aero drag slowing
+// the car (helping the brakes, eating the engine's push) and an optional power limit.
+// Framework-free.
+#include <vector>
+
+namespace brickyard::planning {
+
+struct VehicleLimits {
+  double v_max = 80;          // m/s
+  double a_lat = 18;          // m/s², lateral
+  double a_accel = 8;         // m/s², traction (before drag)
+  double a_decel = 12;        // m/s², brakes (before drag)
+  double drag = 0;            // 1/m: drag deceleration = drag · v² (ρ c_d A / 2m)
+  double power = 0;           // m²/s³: engine power per mass; the push is at most power / v (0: none)
+  bool ellipse = true;        // off: longitudinal and lateral budgets independent
+};
+
+// Speeds at the points of a line with curvature kappa[i] and ds[i] from point i to the next.
+// closed: a loop (ds has one entry per point, the last back to the first; the passes go round
+// twice so they settle across the start). Open: ds has n − 1 entries; v_start (≥ 0) is the speed
+// at the first point and v_end (≥ 0) a cap at the last (the speed the line beyond allows).
+// cap (when not null): a further speed limit per point.
+std::vector<double> speed_profile(const std::vector<double>& ds, const std::vector<double>& kappa,
+                                  const VehicleLimits& lim, bool closed, double v_start = -1, double v_end = -1,
+                                  const std::vector<double>* cap = nullptr);
+
+// Σ ds_i / mean(v_i, v_i+1): the time to drive the profile, s.
+double profile_time(const std::vector<double>& ds, const std::vector<double>& v, bool closed);
+
+}  // namespace brickyard::planning

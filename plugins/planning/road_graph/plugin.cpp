@@ -1,0 +1,248 @@
+// planning.road_graph: the paper's obstacle-avoiding planner. A lattice along the racing line
+// (built from the world at start, or loaded from a file `brickyard-plan graph` wrote) is searched
+// at rate_hz from the car's estimate around the obstacles perception reports; the Path it
+// publishes runs horizon metres ahead with speeds. Same ports and line parameters as
+// planning.racing_line, so the two swap by the plugin's name. Algorithms:
+// ../common/road_graph_planner.hpp.
+#include <brickyard/msgs/LocalizationEstimate.h>
+#include <brickyard/msgs/ObstacleList.h>
+#include <brickyard/msgs/Path.h>
+#include <brickyard/msgs/TrackWorld.h>
+#include <brickyard/plugin.hpp>
+
+#include "../../sim/common/pure_pursuit.hpp"
+#include "../../sim/world_msg.hpp"
+#include "../common/line_setup.hpp"
+#include "../common/road_graph_planner.hpp"
+
+#include <cmath>
+#include <deque>
+#include <memory>
+
+namespace {
+
+using namespace brickyard;
+using namespace brickyard::planning;
+
+class RoadGraphNode : public Plugin {
+ public:
+  static Manifest manifest() {
+    const sim::SpeedLimits l;
+    const RoadGraphParams g;
+    const SearchParams s;
+    const PlannerParams pp;
+    return Manifest("planning.road_graph", "1.0.0")
+        .describe("obstacle avoidance on a road graph (Frenet lattice) along the racing line; a Path with speeds, replanned at rate_hz")
+        .input<msgs::TrackWorld>("world", "the track: the graph's room (needed unless graph_file is given)", false, 1)
+        .input<msgs::LocalizationEstimate>("estimate", "where the car is (base_link, map frame)", false, 64)
+        .input<msgs::ObstacleList>("obstacles", "obstacles in the vehicle frame, placed with the estimate of their stamp", false, 16)
+        .output<msgs::Path>("path", "horizon m of path from just behind the car, with speeds (open)")
+        .param(ParamSpec::string("raceline", "racelines/IMS.csv").doc("x_m,y_m file of the racing line the graph follows"))
+        .param(ParamSpec::number("rate_hz", 20).in_unit("Hz").at_least(0.1).doc("replanning rate"))
+        .param(ParamSpec::number("v_max", l.v_max).in_unit("m/s").at_least(1))
+        .param(ParamSpec::number("a_lat", l.a_lat).in_unit("m/s^2").at_least(0.5))
+        .param(ParamSpec::number("a_accel", l.a_accel).in_unit("m/s^2").at_least(0.1))
+        .param(ParamSpec::number("a_decel", l.a_decel).in_unit("m/s^2").at_least(0.1))
+        .param(ParamSpec::number("edge_margin", 2.5).in_unit("m").at_least(0).doc("closest the racing line may come to a track edge"))
+        .param(ParamSpec::string("graph_file", "").doc("a graph written by `brickyard-plan graph`; empty: built from the world at start"))
+        .param(ParamSpec::number("layer_spacing", g.layer_spacing).in_unit("m").range(1, 100))
+        .param(ParamSpec::number("layer_spacing_turn", g.layer_spacing_turn).in_unit("m").range(1, 100))
+        .param(ParamSpec::number("lateral_step", g.lateral_step).in_unit("m").range(0.1, 5))
+        .param(ParamSpec::number("half_width", g.half_width).in_unit("m").range(0.1, 5).doc("half the car's width"))
+        .param(ParamSpec::number("graph_edge_margin", g.edge_margin).in_unit("m").at_least(0).doc("nodes keep this much beyond half the width from the track edges"))
+        .param(ParamSpec::number("max_curvature", g.max_curvature).in_unit("1/m").range(0.001, 1).doc("sharper edges are dropped"))
+        .param(ParamSpec::number("max_edge_length", g.max_edge_length).in_unit("m").range(5, 500))
+        .param(ParamSpec::number("horizon", s.horizon).in_unit("m").range(20, 2000))
+        .param(ParamSpec::number("clearance", s.clearance).in_unit("m").at_least(0).doc("least gap between the car's side and an obstacle"))
+        .param(ParamSpec::number("soft_clearance", s.soft_clearance).in_unit("m").at_least(0))
+        .param(ParamSpec::number("car_front", s.car_front).in_unit("m").at_least(0).doc("car ahead of base_link"))
+        .param(ParamSpec::number("car_rear", s.car_rear).in_unit("m").at_least(0).doc("car behind base_link"))
+        .param(ParamSpec::number("k_length", s.k_length).at_least(0))
+        .param(ParamSpec::number("k_curvature", s.k_curvature).at_least(0))
+        .param(ParamSpec::number("k_deviation", s.k_deviation).at_least(0))
+        .param(ParamSpec::number("k_proximity", s.k_proximity).at_least(0))
+        .param(ParamSpec::number("commit_time", pp.commit_time).in_unit("s").at_least(0))
+        .param(ParamSpec::number("commit_min", pp.commit_min).in_unit("m").at_least(1))
+        .param(ParamSpec::number("obstacle_memory", pp.obstacle_memory).in_unit("s").at_least(0))
+        .periodic("rate_hz");
+  }
+
+  void configure(Context& ctx) override {
+    const Params& p = ctx.params();
+    line_file_ = ctx.find_file(p.string("raceline"));
+    try {
+      line_ = sim::load_xy_csv(line_file_);
+    } catch (const sim::TrackFileError& e) {
+      throw BadInput(std::string("raceline file ") + e.what());
+    }
+    if (line_.x.size() < 3) throw BadInput("raceline file " + line_file_ + ": fewer than 3 points");
+    limits_.v_max = p.number("v_max");
+    limits_.a_lat = p.number("a_lat");
+    limits_.a_accel = p.number("a_accel");
+    limits_.a_decel = p.number("a_decel");
+    margin_ = p.number("edge_margin");
+    gp_.layer_spacing = p.number("layer_spacing");
+    gp_.layer_spacing_turn = p.number("layer_spacing_turn");
+    gp_.lateral_step = p.number("lateral_step");
+    gp_.half_width = p.number("half_width");
+    gp_.edge_margin = p.number("graph_edge_margin");
+    gp_.max_curvature = p.number("max_curvature");
+    gp_.max_edge_length = p.number("max_edge_length");
+    SearchParams& s = pp_.search;
+    s.horizon = p.number("horizon");
+    s.clearance = p.number("clearance");
+    s.soft_clearance = p.number("soft_clearance");
+    s.car_front = p.number("car_front");
+    s.car_rear = p.number("car_rear");
+    s.k_length = p.number("k_length");
+    s.k_curvature = p.number("k_curvature");
+    s.k_deviation = p.number("k_deviation");
+    s.k_proximity = p.number("k_proximity");
+    pp_.commit_time = p.number("commit_time");
+    pp_.commit_min = p.number("commit_min");
+    pp_.obstacle_memory = p.number("obstacle_memory");
+    pp_.limits.v_max = limits_.v_max;
+    pp_.limits.a_lat = limits_.a_lat;
+    pp_.limits.a_accel = limits_.a_accel;
+    pp_.limits.a_decel = limits_.a_decel;
+    pp_.limits.ellipse = false;  // as the racing line's profile: the two planners agree on a clear track
+    const std::string gf = p.string("graph_file");
+    if (!gf.empty()) {
+      graph_file_ = ctx.find_file(gf);
+      try {
+        loaded_ = std::make_unique<RoadGraph>(RoadGraph::load(graph_file_));
+      } catch (const std::exception& e) {
+        throw BadInput(std::string("graph_file ") + e.what());
+      }
+    }
+    world_ = ctx.input<msgs::TrackWorld>("world");
+    if (!world_.connected() && !loaded_) throw BadInput("input 'world' must be wired unless 'graph_file' is given");
+    estimate_ = ctx.input<msgs::LocalizationEstimate>("estimate");
+    obstacles_ = ctx.input<msgs::ObstacleList>("obstacles");
+    out_ = ctx.output<msgs::Path>("path");
+  }
+
+  void step(Context& ctx) override {
+    for (auto& e : estimate_.take()) {
+      poses_.push_back(e);
+      if (poses_.size() > 256) poses_.pop_front();
+    }
+    if (!planner_ && !setup(ctx)) return;
+    if (poses_.empty()) return;
+    // Obstacles into the map frame with the estimate nearest their stamp.
+    std::vector<MapObstacle> seen;
+    for (auto& list : obstacles_.take()) {
+      const msgs::LocalizationEstimate& at = nearest_pose(list->header().stamp_ns());
+      const double c = std::cos(at.yaw()), sn = std::sin(at.yaw());
+      for (const auto& o : list->obstacles()) {
+        if (!std::isfinite(o.x()) || !std::isfinite(o.y())) continue;
+        MapObstacle m;
+        m.x = at.x() + c * o.x() - sn * o.y();
+        m.y = at.y() + sn * o.x() + c * o.y();
+        m.radius = std::clamp(0.5 * std::max(o.size_x(), o.size_y()), 0.1, 5.0);
+        seen.push_back(m);
+      }
+    }
+    planner_->observe(seen, ctx.now_ns());
+    const msgs::LocalizationEstimate& car = *poses_.back();
+    if (!std::isfinite(car.x()) || !std::isfinite(car.y())) return;
+    const PlannedPath& plan = planner_->plan(car.x(), car.y(), car.speed());
+    if (!plan.route_found) ++blocked_;
+    if (plan.restarted) ++restarts_;
+    obstacles_max_ = std::max(obstacles_max_, planner_->obstacles().size());
+    auto m = std::make_shared<msgs::Path>();
+    m->header().frame_id("map");
+    m->header().stamp_ns(ctx.now_ns());
+    m->header().seq(seq_++);
+    double s = 0;
+    const auto& pts = plan.points;
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+      const std::size_t j = i + 1 < pts.size() ? i + 1 : i;
+      const std::size_t k = i + 1 < pts.size() ? i : i - 1;
+      msgs::Pose2D pose;
+      pose.x(pts[i].x);
+      pose.y(pts[i].y);
+      pose.yaw(std::atan2(pts[j].y - pts[k].y, pts[j].x - pts[k].x));
+      m->poses().push_back(pose);
+      m->curvature().push_back(pts[i].kappa);
+      if (i > 0) s += std::hypot(pts[i].x - pts[i - 1].x, pts[i].y - pts[i - 1].y);
+      m->s().push_back(s);
+      max_offset_ = std::max(max_offset_, std::abs(pts[i].d));
+    }
+    m->speed(plan.speed);
+    out_.publish(std::shared_ptr<const msgs::Path>(m));
+  }
+
+  void deactivate(Context& ctx) override {
+    ctx.metric("plans", static_cast<double>(seq_));
+    ctx.metric("plans_without_route", static_cast<double>(blocked_));
+    ctx.metric("restarts", static_cast<double>(restarts_));
+    ctx.metric("obstacles_remembered_max", static_cast<double>(obstacles_max_));
+    ctx.metric("max_offset_from_line_m", max_offset_);
+    if (graph_) {
+      ctx.metric("graph_nodes", static_cast<double>(graph_->node_count()));
+      ctx.metric("graph_edges", static_cast<double>(graph_->edge_count()));
+    }
+  }
+
+ private:
+  // The racing line, the graph and the planner, once the world is known.
+  bool setup(Context& ctx) {
+    std::shared_ptr<const msgs::TrackWorld> w;
+    if (world_.connected()) {
+      w = sim::newest(world_);
+      if (!w) return false;
+    }
+    try {
+      std::unique_ptr<sim::Track> track;
+      if (w) track = std::make_unique<sim::Track>(sim::from_message(*w));
+      line_ready_ = make_reference(line_, track.get(), margin_, limits_);
+      const std::uint64_t digest = reference_digest(line_ready_, gp_);
+      if (loaded_) {
+        if (loaded_->source_digest() != digest)
+          throw BadInput("graph_file " + graph_file_ + " was built for another racing line, margin or graph parameters (rebuild it with brickyard-plan graph)");
+        graph_ = std::move(loaded_);
+      } else {
+        if (!track) throw BadInput("no world to build the road graph from");
+        graph_ = std::make_unique<RoadGraph>(RoadGraph::build(line_ready_.line, track_room(*track, line_ready_.line), gp_, digest));
+      }
+      planner_ = std::make_unique<RoadGraphPlanner>(*graph_, line_ready_.line, line_ready_.speed, pp_);
+    } catch (const BadInput&) {
+      throw;
+    } catch (const std::exception& e) {
+      throw BadInput(std::string("road graph for ") + line_file_ + ": " + e.what());
+    }
+    ctx.log(LogLevel::info, "road graph: " + std::to_string(graph_->layers().size()) + " layers, " +
+                                std::to_string(graph_->node_count()) + " nodes, " + std::to_string(graph_->edge_count()) + " edges");
+    return true;
+  }
+
+  const msgs::LocalizationEstimate& nearest_pose(std::int64_t stamp) const {
+    const msgs::LocalizationEstimate* best = poses_.back().get();
+    for (const auto& p : poses_)
+      if (std::llabs(p->header().stamp_ns() - stamp) < std::llabs(best->header().stamp_ns() - stamp)) best = p.get();
+    return *best;
+  }
+
+  sim::CenterLine line_;
+  std::string line_file_, graph_file_;
+  sim::SpeedLimits limits_;
+  double margin_ = 2.5;
+  RoadGraphParams gp_;
+  PlannerParams pp_;
+  Reference line_ready_;
+  std::unique_ptr<RoadGraph> loaded_, graph_;
+  std::unique_ptr<RoadGraphPlanner> planner_;
+  std::deque<std::shared_ptr<const msgs::LocalizationEstimate>> poses_;
+  std::uint32_t seq_ = 0;
+  std::size_t blocked_ = 0, restarts_ = 0, obstacles_max_ = 0;
+  double max_offset_ = 0;
+  Input<msgs::TrackWorld> world_;
+  Input<msgs::LocalizationEstimate> estimate_;
+  Input<msgs::ObstacleList> obstacles_;
+  Output<msgs::Path> out_;
+};
+
+}  // namespace
+
+BRICKYARD_PLUGINS(RoadGraphNode)

@@ -1,0 +1,262 @@
+// The road graph, its search, the replanning loop and the speed profile, on synthetic lines with
+// known answers.
+#include "common/graph_search.hpp"
+#include "common/road_graph.hpp"
+#include "common/road_graph_planner.hpp"
+#include "common/speed_profile.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+
+using namespace brickyard::planning;
+
+namespace {
+
+// A counter-clockwise circle of radius r, a point every ~5 m.
+RefLine circle(double r) {
+  std::vector<double> x, y, k;
+  const int n = static_cast<int>(2 * M_PI * r / 5);
+  for (int i = 0; i < n; ++i) {
+    x.push_back(r * std::cos(2 * M_PI * i / n));
+    y.push_back(r * std::sin(2 * M_PI * i / n));
+    k.push_back(1 / r);
+  }
+  return RefLine(x, y, k);
+}
+
+// A stadium: two 600 m straights joined by half circles of 200 m, a point every ~5 m.
+RefLine stadium() {
+  std::vector<double> x, y, k;
+  const double L = 600, r = 200;
+  auto arc = [&](double cx, double a0) {
+    const int m = static_cast<int>(M_PI * r / 5);
+    for (int i = 0; i < m; ++i) {
+      const double a = a0 + M_PI * i / m;
+      x.push_back(cx + r * std::cos(a));
+      y.push_back(r + r * std::sin(a));
+      k.push_back(1 / r);
+    }
+  };
+  for (double s = 0; s < L; s += 5) { x.push_back(s); y.push_back(0); k.push_back(0); }
+  arc(L, -M_PI / 2);
+  for (double s = L; s > 0; s -= 5) { x.push_back(s); y.push_back(2 * r); k.push_back(0); }
+  arc(0, M_PI / 2);
+  return RefLine(x, y, k);
+}
+
+// 7 m of road to each side of the line everywhere.
+const TrackRoom kRoom = [](double) { return std::make_pair(-7.0, 7.0); };
+
+TEST(RefLine, FrenetRoundTripOnACircle) {
+  const RefLine c = circle(200);
+  EXPECT_NEAR(c.length(), 2 * M_PI * 200, 0.5);
+  const Eigen::Vector2d p = c.point(300, -1.5);  // outside: right of a counter-clockwise circle
+  EXPECT_NEAR(p.norm(), 201.5, 0.01);
+  const Eigen::Vector2d f = c.to_frenet(p.x(), p.y(), 290);
+  EXPECT_NEAR(f.x(), 300, 0.05);
+  EXPECT_NEAR(f.y(), -1.5, 0.01);
+  const Eigen::Vector2d g = c.to_frenet(p.x(), p.y());  // no hint: searches all
+  EXPECT_NEAR(g.x(), 300, 0.05);
+}
+
+TEST(RoadGraph, OffsetCurvatureOfAConcentricCircle) {
+  // At a constant offset d from a circle of radius R the curve is a circle of radius R - d.
+  EXPECT_NEAR(offset_curvature(1 / 200.0, 3, 0, 0), 1 / 197.0, 1e-12);
+  EXPECT_NEAR(offset_curvature(1 / 200.0, -3, 0, 0), 1 / 203.0, 1e-12);
+  EXPECT_NEAR(offset_curvature(0, 2, 0, 0.01), 0.01, 1e-12);  // on a straight: d''
+}
+
+TEST(RoadGraph, LayersNodesAndEdgesFollowTheParameters) {
+  const RefLine line = stadium();
+  RoadGraphParams p;
+  const RoadGraph g = RoadGraph::build(line, kRoom, p);
+  // Denser layers in the turns.
+  int turn = 0, straight = 0;
+  for (std::size_t i = 0; i + 1 < g.layers().size(); ++i) {
+    const double gap = g.layers()[i + 1].s - g.layers()[i].s;
+    (std::abs(line.kappa(g.layers()[i].s)) > p.turn_curvature ? turn : straight) += 1;
+    EXPECT_TRUE(std::abs(gap - p.layer_spacing) < 1e-9 || std::abs(gap - p.layer_spacing_turn) < 1e-9) << gap;
+  }
+  EXPECT_GT(turn, 0);
+  EXPECT_GT(straight, 0);
+  // Nodes: every 0.5 m within 7 - 0.97 - 1.5 of the line, the line itself one of them.
+  const auto& L = g.layers()[3];
+  EXPECT_EQ(L.count, 2u * 9 + 1);
+  EXPECT_DOUBLE_EQ(g.node_d(L.first_node), -4.5);
+  // Edges: within the curvature limit unless they follow the line; they reach forward.
+  std::size_t along = 0;
+  for (std::uint32_t n = 0; n < g.node_count(); ++n)
+    for (auto* e = g.edges_begin(n); e != g.edges_end(n); ++e) {
+      const bool same_d = g.node_d(e->to) == g.node_d(n);
+      along += same_d;
+      if (!same_d) ASSERT_LE(e->max_kappa, p.max_curvature + 1e-6);
+      ASSERT_GT(e->length, 0);
+      double h = g.node_s(e->to) - g.node_s(n);
+      if (h <= 0) h += g.length();
+      ASSERT_LE(h, p.max_edge_length + 1e-9);
+    }
+  EXPECT_EQ(along, g.node_count());  // exactly one "keep your lane" edge per node
+}
+
+TEST(RoadGraph, EdgeCurvatureMatchesItsPoints) {
+  // The curvature the graph stores is that of the curve it stands for: three-point curvature of
+  // sampled points on a lane change across a straight.
+  const RefLine line = stadium();
+  const EdgeShape e{100, -2, 160, 3};
+  std::vector<PathSample> pts;
+  sample_shape(line, e, 0.5, pts);
+  double kmax = 0;
+  for (std::size_t i = 1; i + 1 < pts.size(); ++i) {
+    const double ax = pts[i].x - pts[i - 1].x, ay = pts[i].y - pts[i - 1].y;
+    const double bx = pts[i + 1].x - pts[i].x, by = pts[i + 1].y - pts[i].y;
+    const double cx = pts[i + 1].x - pts[i - 1].x, cy = pts[i + 1].y - pts[i - 1].y;
+    const double k = 2 * (ax * by - ay * bx) / (std::hypot(ax, ay) * std::hypot(bx, by) * std::hypot(cx, cy));
+    EXPECT_NEAR(k, pts[i].kappa, 2e-4) << i;
+    kmax = std::max(kmax, std::abs(k));
+  }
+  EXPECT_NEAR(kmax, 5.7735 * 5 / (60 * 60), 2e-4);  // smootherstep: |d''| peaks at 10/√3 Δd/h²
+}
+
+TEST(RoadGraph, SavesAndLoadsAndRejectsBrokenFiles) {
+  const RoadGraph g = RoadGraph::build(stadium(), kRoom, RoadGraphParams{}, 0xABCDEF);
+  const std::string path = ::testing::TempDir() + "/stadium.byrg";
+  g.save(path);
+  const RoadGraph h = RoadGraph::load(path);
+  EXPECT_EQ(h.source_digest(), 0xABCDEFu);
+  ASSERT_EQ(h.node_count(), g.node_count());
+  ASSERT_EQ(h.edge_count(), g.edge_count());
+  EXPECT_EQ(h.edges_begin(1234)->to, g.edges_begin(1234)->to);
+  EXPECT_EQ(h.edges_begin(1234)->curvature, g.edges_begin(1234)->curvature);
+  // Truncated, and not a graph at all: the error names the file.
+  std::ifstream in(path, std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string cut = ::testing::TempDir() + "/cut.byrg";
+  std::ofstream(cut, std::ios::binary) << bytes.substr(0, bytes.size() / 2);
+  try {
+    RoadGraph::load(cut);
+    FAIL() << "a truncated file loaded";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find(cut), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("truncated"), std::string::npos) << e.what();
+  }
+  const std::string junk = ::testing::TempDir() + "/junk.byrg";
+  std::ofstream(junk) << "x_m,y_m\n1,2\n";
+  EXPECT_THROW(RoadGraph::load(junk), std::runtime_error);
+  // An edge pointing past the last node.
+  std::string bad = bytes;
+  const std::size_t last_edge = bad.size() - sizeof(RoadGraph::Edge);
+  const std::uint32_t far = 0xFFFFFFF0u;
+  bad.replace(last_edge, 4, reinterpret_cast<const char*>(&far), 4);
+  const std::string badf = ::testing::TempDir() + "/bad.byrg";
+  std::ofstream(badf, std::ios::binary) << bad;
+  EXPECT_THROW(RoadGraph::load(badf), std::runtime_error);
+}
+
+TEST(RoadGraph, TooNarrowTrackNamesWhere) {
+  const TrackRoom narrow = [](double s) { return s > 300 && s < 320 ? std::make_pair(-1.0, 1.0) : std::make_pair(-7.0, 7.0); };
+  try {
+    RoadGraph::build(stadium(), narrow, RoadGraphParams{});
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("at s = 310.0 m"), std::string::npos) << e.what();
+  }
+}
+
+TEST(GraphSearch, StaysOnTheLineWithoutObstaclesAndGoesRoundOne) {
+  const RefLine line = stadium();
+  const RoadGraph g = RoadGraph::build(line, kRoom, RoadGraphParams{});
+  GraphSearch search(g);
+  SearchParams p;
+  const std::uint32_t start = g.nearest_node(g.layer_at_or_after(50), 0);
+  Plan clear = search.plan(start, {}, p);
+  ASSERT_TRUE(clear.found);
+  for (auto n : clear.nodes) EXPECT_EQ(g.node_d(n), 0.0);
+  EXPECT_GE(g.node_s(clear.nodes.back()) - g.node_s(start), p.horizon);
+  // A pylon on the line 150 m on: passed with the clearance, every edge checked.
+  const FrenetObstacle pylon{g.node_s(start) + 150, 0.0, 0.3};
+  Plan around = search.plan(start, {pylon}, p);
+  ASSERT_TRUE(around.found);
+  double least = 1e9, widest = 0;
+  for (std::size_t i = 1; i < around.nodes.size(); ++i) {
+    const double sa = g.node_s(around.nodes[i - 1]) - g.node_s(start), sb = g.node_s(around.nodes[i]) - g.node_s(start);
+    const EdgeShape e{sa, g.node_d(around.nodes[i - 1]), sb, g.node_d(around.nodes[i])};
+    FrenetObstacle rel = pylon;
+    rel.s -= g.node_s(start);
+    double gap;
+    EXPECT_FALSE(edge_blocked(e, rel, g.params().half_width, p, &gap));
+    least = std::min(least, gap);
+    widest = std::max(widest, std::abs(e.d_b));
+  }
+  EXPECT_GE(least, p.clearance);
+  EXPECT_LT(least, p.soft_clearance + 1.0);  // not needlessly wide
+  EXPECT_EQ(g.node_d(around.nodes.back()), 0.0);  // back on the line by the horizon
+  EXPECT_GT(around.cost, clear.cost);
+  // A wall of pylons across the whole road: no route.
+  std::vector<FrenetObstacle> wall;
+  for (double d = -7; d <= 7; d += 1) wall.push_back({g.node_s(start) + 150, d, 0.5});
+  EXPECT_FALSE(search.plan(start, wall, p).found);
+}
+
+TEST(RoadGraphPlanner, CommitsToItsLastPlanAndRestartsWhenOffIt) {
+  const RefLine line = stadium();
+  const RoadGraph g = RoadGraph::build(line, kRoom, RoadGraphParams{});
+  PlannerParams pp;
+  RoadGraphPlanner planner(g, line, std::vector<double>(line.size(), 40.0), pp);
+  planner.observe({{150, 0.5, 0.3, 0}}, 0);  // a pylon on the straight, 0.5 m left of the line
+  const PlannedPath first = planner.plan(20, 0, 30);
+  ASSERT_TRUE(first.route_found);
+  EXPECT_TRUE(first.restarted);
+  // 1.5 m (one cycle at 30 m/s) later the car is on the plan: it keeps it, so the two paths agree
+  // where they overlap up to the commitment point.
+  const PlannedPath second = planner.plan(21.5, 0, 30);
+  EXPECT_FALSE(second.restarted);
+  int same = 0;
+  for (const auto& a : second.points)
+    for (const auto& b : first.points)
+      if (std::abs(a.s - b.s) < 1e-9) { EXPECT_NEAR(a.d, b.d, 1e-9); ++same; }
+  EXPECT_GT(same, 10);
+  // Far off the plan: start afresh from the car.
+  EXPECT_TRUE(planner.plan(25, 4, 30).restarted);
+  // Speeds: within the reference and the bends' limits.
+  for (double v : second.speed) EXPECT_LE(v, 40.0 + 1e-9);
+  // Forgetting: the pylon is dropped after obstacle_memory seconds unseen.
+  planner.observe({}, static_cast<std::int64_t>((pp.obstacle_memory + 0.1) * 1e9));
+  EXPECT_TRUE(planner.obstacles().empty());
+}
+
+TEST(SpeedProfile, CornerSpeedsDragAndTheEllipse) {
+  // A 2 km straight, then a curve of radius 100 m, then the straight again (closed).
+  std::vector<double> ds(600, 5.0), k(600, 0.0);
+  for (int i = 400; i < 450; ++i) k[i] = 0.01;
+  VehicleLimits l;
+  l.v_max = 200;
+  l.a_lat = 16;
+  std::vector<double> v = speed_profile(ds, k, l, true);
+  EXPECT_NEAR(v[425], 40.0, 1e-9);  // sqrt(16 / 0.01)
+  // Drag and power bound the top speed: push = power / v meets drag · v² at (power/drag)^(1/3).
+  l.drag = 1.0 / 2000;
+  l.power = 600;
+  v = speed_profile(ds, k, l, true);
+  const double terminal = std::cbrt(l.power / l.drag);
+  double top = 0;
+  for (double x : v) top = std::max(top, x);
+  EXPECT_LT(top, terminal);
+  EXPECT_GT(top, 0.9 * terminal);
+  // With the ellipse, no push is left at the corner's limit: drag alone acts through it.
+  EXPECT_LE(v[430], 40.0 + 1e-9);
+  EXPECT_LE(v[440], v[430] + 1e-9);
+  l.ellipse = false;
+  EXPECT_GT(speed_profile(ds, k, l, true)[440], v[440]);
+  // Open profile from a given speed: brakes from it, not from the cap.
+  std::vector<double> dso(99, 5.0), ko(100, 0.0);
+  ko[99] = 0.01;
+  const std::vector<double> vo = speed_profile(dso, ko, l, false, 30, 0);
+  EXPECT_DOUBLE_EQ(vo[0], 30);
+  EXPECT_DOUBLE_EQ(vo[99], 0);
+  EXPECT_GT(profile_time(dso, vo, false), 0);
+}
+
+}  // namespace
