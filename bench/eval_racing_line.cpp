@@ -4,15 +4,42 @@
 // same room (margin 0.6 m); the default margin for driving (1.5 m: half the AV-21's width and a
 // margin) is shown beside it. Prints the table of docs/planning.md.
 #include "common/min_curvature.hpp"
+#include "common/speed_profile.hpp"
 #include "common/track.hpp"
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <string>
 
 using namespace brickyard;
 
+namespace {
+// Lap time of a closed line under the limits: Menger curvature per point, the ggv + drag profile.
+double lap_time(const std::vector<double>& x, const std::vector<double>& y, const planning::VehicleLimits& l) {
+  const std::size_t n = x.size();
+  std::vector<double> ds(n), k(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t a = (i + n - 1) % n, b = (i + 1) % n;
+    ds[i] = std::hypot(x[b] - x[i], y[b] - y[i]);
+    const double ux = x[i] - x[a], uy = y[i] - y[a], vx = x[b] - x[i], vy = y[b] - y[i];
+    k[i] = 2 * (ux * vy - uy * vx) / (std::hypot(ux, uy) * std::hypot(vx, vy) * std::hypot(x[b] - x[a], y[b] - y[a]));
+  }
+  return planning::profile_time(ds, planning::speed_profile(ds, k, l, true), true);
+}
+}  // namespace
+
 int main() {
+  // The simulator's AV-21 (plugins/sim/common/vehicle_model.hpp): μ g = 15.7 m/s² less a margin,
+  // 9 kN drive and 370 kW on 815 kg, brakes at the grip, drag ρ Cd A / 2m; downforce ignored.
+  planning::VehicleLimits car;
+  car.v_max = 90;
+  car.a_lat = 15;
+  car.a_accel = 9000.0 / 815;
+  car.a_decel = 15;
+  car.power = 370e3 / 815;
+  car.drag = 1.2 * 0.85 / (2 * 815);
+  std::vector<std::string> times;
   const std::string data = std::string(BRICKYARD_SOURCE_DIR) + "/data";
   std::printf("| track | points | centre line Σκ²ds | TUM Σκ²ds | ours, margin 0.6 m | ours / TUM | time | ours, margin 1.5 m | time |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|\n");
@@ -30,8 +57,18 @@ int main() {
       cost[k] = planning::summed_squared_curvature(r.x, r.y);
     }
     const double t = planning::summed_squared_curvature(tum.x, tum.y);
+    planning::MinCurvatureParams p06;
+    p06.margin = 0.6;
+    const auto ours = planning::min_curvature_line(line, p06);
+    const double lt_tum = lap_time(tum.x, tum.y, car), lt_ours = lap_time(ours.x, ours.y, car);
+    char row[200];
+    std::snprintf(row, sizeof row, "| %s | %.2f s | %.2f s | %+.2f s |", name, lt_tum, lt_ours, lt_ours - lt_tum);
+    times.push_back(row);
     std::printf("| %s | %zu | %.5f | %.5f | %.5f | %.3f | %.0f ms | %.5f | %.0f ms |\n", name, c.x.size(),
                 planning::summed_squared_curvature(c.x, c.y), t, cost[0], cost[0] / t, ms[0], cost[1], ms[1]);
   }
+  std::printf("\nLap time under the same limits (ggv ellipse, drag, power; speed_profile.hpp):\n\n");
+  std::printf("| track | TUM's line | ours, margin 0.6 m | ours − TUM |\n|---|---|---|---|\n");
+  for (const auto& r : times) std::printf("%s\n", r.c_str());
   return 0;
 }

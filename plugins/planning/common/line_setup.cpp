@@ -23,16 +23,16 @@ TrackRoom track_room(const sim::Track& track, const RefLine& line) {
   };
 }
 
-std::uint64_t reference_digest(const Reference& ref, const RoadGraphParams& p) {
+std::uint64_t reference_digest(const sim::CenterLine& raceline, double edge_margin, const RoadGraphParams& p) {
   std::uint64_t h = 1469598103934665603ull;  // FNV-1a over the bytes
   auto mix = [&h](const void* data, std::size_t n) {
     const auto* b = static_cast<const unsigned char*>(data);
     for (std::size_t i = 0; i < n; ++i) { h ^= b[i]; h *= 1099511628211ull; }
   };
-  mix(ref.racing.x.data(), ref.racing.x.size() * sizeof(double));
-  mix(ref.racing.y.data(), ref.racing.y.size() * sizeof(double));
-  const double params[] = {p.layer_spacing, p.layer_spacing_turn, p.turn_curvature, p.lateral_step,
-                           p.half_width,    p.edge_margin,        p.max_curvature,  p.max_edge_length};
+  mix(raceline.x.data(), raceline.x.size() * sizeof(double));
+  mix(raceline.y.data(), raceline.y.size() * sizeof(double));
+  const double params[] = {edge_margin,   p.layer_spacing, p.layer_spacing_turn, p.turn_curvature, p.lateral_step,
+                           p.half_width,  p.edge_margin,   p.max_curvature,      p.max_edge_length};
   mix(params, sizeof(params));
   return h;
 }

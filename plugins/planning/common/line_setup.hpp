@@ -24,7 +24,9 @@ Reference make_reference(const sim::CenterLine& line, const sim::Track* track, d
 // The track's edges across the line, for RoadGraph::build.
 TrackRoom track_room(const sim::Track& track, const RefLine& line);
 
-// Identifies the line (its points) and the graph parameters a graph file was built from.
-std::uint64_t reference_digest(const Reference& ref, const RoadGraphParams& p);
+// Identifies what a graph file was built from — the racing line file's points, the edge margin
+// and the graph parameters — so a mismatch is caught in configure, before anything runs. (The
+// track itself is not in it: the world arrives as a message, after configure.)
+std::uint64_t reference_digest(const sim::CenterLine& raceline, double edge_margin, const RoadGraphParams& p);
 
 }  // namespace brickyard::planning

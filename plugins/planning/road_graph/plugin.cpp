@@ -114,6 +114,8 @@ class RoadGraphNode : public Plugin {
       } catch (const std::exception& e) {
         throw BadInput(std::string("graph_file ") + e.what());
       }
+      if (loaded_->source_digest() != reference_digest(line_, margin_, gp_))
+        throw BadInput("graph_file " + graph_file_ + " was built for another racing line, edge_margin or graph parameters (rebuild it with brickyard-plan graph)");
     }
     world_ = ctx.input<msgs::TrackWorld>("world");
     if (!world_.connected() && !loaded_) throw BadInput("input 'world' must be wired unless 'graph_file' is given");
@@ -197,14 +199,11 @@ class RoadGraphNode : public Plugin {
       std::unique_ptr<sim::Track> track;
       if (w) track = std::make_unique<sim::Track>(sim::from_message(*w));
       line_ready_ = make_reference(line_, track.get(), margin_, limits_);
-      const std::uint64_t digest = reference_digest(line_ready_, gp_);
       if (loaded_) {
-        if (loaded_->source_digest() != digest)
-          throw BadInput("graph_file " + graph_file_ + " was built for another racing line, margin or graph parameters (rebuild it with brickyard-plan graph)");
         graph_ = std::move(loaded_);
       } else {
         if (!track) throw BadInput("no world to build the road graph from");
-        graph_ = std::make_unique<RoadGraph>(RoadGraph::build(line_ready_.line, track_room(*track, line_ready_.line), gp_, digest));
+        graph_ = std::make_unique<RoadGraph>(RoadGraph::build(line_ready_.line, track_room(*track, line_ready_.line), gp_, reference_digest(line_, margin_, gp_)));
       }
       planner_ = std::make_unique<RoadGraphPlanner>(*graph_, line_ready_.line, line_ready_.speed, pp_);
     } catch (const BadInput&) {
@@ -212,8 +211,9 @@ class RoadGraphNode : public Plugin {
     } catch (const std::exception& e) {
       throw BadInput(std::string("road graph for ") + line_file_ + ": " + e.what());
     }
-    ctx.log(LogLevel::info, "road graph: " + std::to_string(graph_->layers().size()) + " layers, " +
-                                std::to_string(graph_->node_count()) + " nodes, " + std::to_string(graph_->edge_count()) + " edges");
+    ctx.log(LogLevel::info, "road graph " + (graph_file_.empty() ? std::string("built from the world") : "loaded from " + graph_file_) +
+                                ": " + std::to_string(graph_->layers().size()) + " layers, " + std::to_string(graph_->node_count()) +
+                                " nodes, " + std::to_string(graph_->edge_count()) + " edges");
     return true;
   }
 

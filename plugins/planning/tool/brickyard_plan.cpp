@@ -1,0 +1,162 @@
+// brickyard-plan: the offline half of planning.
+//   brickyard-plan line  --track FILE [--margin M] --out FILE [--profile FILE]
+//   brickyard-plan graph --track FILE --raceline FILE [--edge-margin M] [graph options] --out FILE
+// `line` optimises the minimum-curvature racing line and writes it as x_m,y_m (TUM's format,
+// which planning.racing_line and planning.road_graph read); --profile also writes
+// s_m,x_m,y_m,kappa_radpm,vx_mps with the ggv + drag speed profile and prints the lap time.
+// `graph` builds the road graph planning.road_graph would build at start and saves it
+// (graph_file=...). Bad input: a message naming the file or option, exit 2.
+#include "common/line_setup.hpp"
+#include "common/min_curvature.hpp"
+#include "common/road_graph.hpp"
+#include "common/speed_profile.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <map>
+#include <stdexcept>
+#include <string>
+
+using namespace brickyard;
+using namespace brickyard::planning;
+
+namespace {
+
+struct Usage : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+const char* kUsage =
+    "usage: brickyard-plan line  --track FILE [--margin M] --out FILE [--profile FILE]\n"
+    "                            [--v-max V --a-lat A --a-accel A --a-decel A --drag K --power P]\n"
+    "       brickyard-plan graph --track FILE --raceline FILE --out FILE [--edge-margin M]\n"
+    "                            [--layer-spacing M --layer-spacing-turn M --lateral-step M --half-width M\n"
+    "                             --graph-edge-margin M --max-curvature K --max-edge-length M]\n";
+
+std::map<std::string, std::string> parse(int argc, char** argv) {
+  std::map<std::string, std::string> o;
+  for (int i = 2; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a.rfind("--", 0) != 0 || i + 1 >= argc) throw Usage(a + ": expected --option VALUE");
+    o[a.substr(2)] = argv[++i];
+  }
+  return o;
+}
+
+double number(std::map<std::string, std::string>& o, const std::string& k, double def) {
+  auto it = o.find(k);
+  if (it == o.end()) return def;
+  char* end = nullptr;
+  const double v = std::strtod(it->second.c_str(), &end);
+  if (it->second.empty() || *end != '\0' || !std::isfinite(v)) throw Usage("--" + k + " " + it->second + ": not a number");
+  o.erase(it);
+  return v;
+}
+
+std::string text(std::map<std::string, std::string>& o, const std::string& k) {
+  auto it = o.find(k);
+  if (it == o.end()) throw Usage("--" + k + " is required");
+  std::string v = it->second;
+  o.erase(it);
+  return v;
+}
+
+void no_leftovers(const std::map<std::string, std::string>& o) {
+  if (!o.empty()) throw Usage("--" + o.begin()->first + ": unknown option");
+}
+
+double since_ms(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+int line_cmd(std::map<std::string, std::string> o) {
+  const std::string track = text(o, "track"), out = text(o, "out");
+  const std::string profile = o.count("profile") ? text(o, "profile") : "";
+  MinCurvatureParams p;
+  p.margin = number(o, "margin", p.margin);
+  VehicleLimits l;
+  l.v_max = number(o, "v-max", l.v_max);
+  l.a_lat = number(o, "a-lat", l.a_lat);
+  l.a_accel = number(o, "a-accel", l.a_accel);
+  l.a_decel = number(o, "a-decel", l.a_decel);
+  l.drag = number(o, "drag", l.drag);
+  l.power = number(o, "power", l.power);
+  no_leftovers(o);
+  const sim::CenterLine c = sim::load_centerline_csv(track);
+  const auto t0 = std::chrono::steady_clock::now();
+  const MinCurvatureResult r = min_curvature_line({c.x, c.y, c.width_left, c.width_right}, p);
+  const double ms = since_ms(t0);
+  std::ofstream f(out);
+  if (!f) throw std::runtime_error(out + ": cannot open for writing");
+  f << "# minimum-curvature racing line by brickyard-plan from " << track << ", margin " << p.margin << " m\n# x_m,y_m\n";
+  char row[128];
+  for (std::size_t i = 0; i < r.x.size(); ++i) {
+    std::snprintf(row, sizeof row, "%.4f,%.4f\n", r.x[i], r.y[i]);
+    f << row;
+  }
+  std::printf("%s: %zu points, sum k^2 ds %.5f 1/m, %d linearisations, %.0f ms\n", out.c_str(), r.x.size(),
+              summed_squared_curvature(r.x, r.y), r.iterations, ms);
+  if (!profile.empty()) {
+    const std::size_t n = r.x.size();
+    std::vector<double> ds(n), k = sim::signed_curvature(sim::CenterLine{"", r.x, r.y, {}, {}}, 30);
+    for (std::size_t i = 0; i < n; ++i) ds[i] = std::hypot(r.x[(i + 1) % n] - r.x[i], r.y[(i + 1) % n] - r.y[i]);
+    const std::vector<double> v = speed_profile(ds, k, l, true);
+    std::ofstream g(profile);
+    if (!g) throw std::runtime_error(profile + ": cannot open for writing");
+    g << "# s_m,x_m,y_m,kappa_radpm,vx_mps\n";
+    double s = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      std::snprintf(row, sizeof row, "%.3f,%.4f,%.4f,%.6f,%.3f\n", s, r.x[i], r.y[i], k[i], v[i]);
+      g << row;
+      s += ds[i];
+    }
+    std::printf("%s: lap time %.2f s\n", profile.c_str(), profile_time(ds, v, true));
+  }
+  return 0;
+}
+
+int graph_cmd(std::map<std::string, std::string> o) {
+  const std::string track = text(o, "track"), raceline = text(o, "raceline"), out = text(o, "out");
+  const double edge_margin = number(o, "edge-margin", 2.5);  // planning.road_graph's default
+  RoadGraphParams p;
+  p.layer_spacing = number(o, "layer-spacing", p.layer_spacing);
+  p.layer_spacing_turn = number(o, "layer-spacing-turn", p.layer_spacing_turn);
+  p.lateral_step = number(o, "lateral-step", p.lateral_step);
+  p.half_width = number(o, "half-width", p.half_width);
+  p.edge_margin = number(o, "graph-edge-margin", p.edge_margin);
+  p.max_curvature = number(o, "max-curvature", p.max_curvature);
+  p.max_edge_length = number(o, "max-edge-length", p.max_edge_length);
+  no_leftovers(o);
+  sim::WorldSpec w;
+  w.line = sim::load_centerline_csv(track);
+  const sim::Track t(w);
+  const sim::CenterLine raw = sim::load_xy_csv(raceline);
+  const Reference ref = make_reference(raw, &t, edge_margin, sim::SpeedLimits{});
+  const auto t0 = std::chrono::steady_clock::now();
+  const RoadGraph g = RoadGraph::build(ref.line, track_room(t, ref.line), p, reference_digest(raw, edge_margin, p));
+  const double ms = since_ms(t0);
+  g.save(out);
+  std::printf("%s: %zu layers, %zu nodes, %zu edges, built in %.0f ms\n", out.c_str(), g.layers().size(), g.node_count(),
+              g.edge_count(), ms);
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const std::string cmd = argc > 1 ? argv[1] : "";
+  try {
+    if (cmd == "line") return line_cmd(parse(argc, argv));
+    if (cmd == "graph") return graph_cmd(parse(argc, argv));
+    if (cmd == "--help" || cmd == "-h") { std::fputs(kUsage, stdout); return 0; }
+    throw Usage(cmd.empty() ? "no command" : cmd + ": unknown command (line, graph)");
+  } catch (const Usage& e) {
+    std::fprintf(stderr, "brickyard-plan: %s\n%s", e.what(), kUsage);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "brickyard-plan: %s\n", e.what());
+  }
+  return 2;
+}
