@@ -66,14 +66,24 @@ Plan GraphSearch::plan(std::uint32_t start, const std::vector<FrenetObstacle>& o
     for (std::uint32_t n = L.first_node; n < L.first_node + L.count; ++n) {
       if (cost_[n] == kInf) continue;
       const double da = g_.node_d(n);
+      // A node's edges come grouped by the layer they lead to: the target layer's s and the
+      // obstacles beside the stretch between are worked out once per group.
+      int to_layer = -1;
+      double rb = 0;
       for (const auto* e = g_.edges_begin(n); e != g_.edges_end(n); ++e) {
         ++out.edges_relaxed;
-        double rb = rel(g_.layer_of(e->to));
-        if (rb <= ra) rb += length;
+        if (g_.layer_of(e->to) != to_layer) {
+          to_layer = g_.layer_of(e->to);
+          rb = rel(to_layer);
+          if (rb <= ra) rb += length;
+          beside_.clear();
+          for (const auto& o : near)
+            if (o.s - p.car_front - o.radius <= rb && o.s + p.car_rear + o.radius >= ra) beside_.push_back(o);
+        }
         const EdgeShape shape{ra, da, rb, g_.node_d(e->to)};
         double c = p.k_length * e->length + p.k_curvature * e->curvature + p.k_deviation * e->deviation;
         bool blocked = false;
-        for (const auto& o : near) {
+        for (const auto& o : beside_) {
           double gap;
           if (edge_blocked(shape, o, hw, p, &gap)) { blocked = true; break; }
           if (gap < p.soft_clearance) c += p.k_proximity * (p.soft_clearance - gap) * (p.soft_clearance - gap);
@@ -97,7 +107,7 @@ Plan GraphSearch::plan(std::uint32_t start, const std::vector<FrenetObstacle>& o
     const double rn = rel(g_.layer_of(n));
     if (rn < horizon || n == start) continue;
     const double total = cost_[n] + std::max(0.0, s_end - rn) * (p.k_length + p.k_deviation * std::abs(g_.node_d(n)));
-    if (total < best_cost) { best_cost = total; best = n; }
+    if (total < best_cost || (total == best_cost && n < best)) { best_cost = total; best = n; }  // ties: lowest node
   }
   if (best == kNone) return out;
   out.found = true;

@@ -59,6 +59,7 @@ class GraphSearch {
   std::vector<double> cost_;
   std::vector<std::uint32_t> parent_;
   std::vector<std::uint32_t> touched_;
+  std::vector<FrenetObstacle> beside_;  // near the edges being relaxed
 };
 
 }  // namespace brickyard::planning
