@@ -72,8 +72,9 @@ TEST(MinCurvature, AnOvalBendsLessWithinTheWidth) {
     lo = std::min(lo, a);
     hi = std::max(hi, a);
   }
-  EXPECT_NEAR(lo, -(7.5 - p.margin), 1e-6);  // it uses the outside to the margin
-  EXPECT_LT(hi, 7.5 - p.margin);
+  // Outside - apex - outside: the outside edge before and after each bend, the inside at its apex.
+  EXPECT_NEAR(lo, -(7.5 - p.margin), 1e-6);
+  EXPECT_NEAR(hi, 7.5 - p.margin, 1e-6);
   const double ours = summed_squared_curvature(r.x, r.y), centre = summed_squared_curvature(c.x, c.y);
   EXPECT_LT(ours, 0.92 * centre);
   EXPECT_GE(r.iterations, 1);

@@ -138,7 +138,7 @@ MinCurvatureResult min_curvature_line(const ClosedLine& line, const MinCurvature
       const Vec2 q1{(qc.x - qa.x) / (2 * h), (qc.y - qa.y) / (2 * h)};
       const Vec2 q2{(qc.x - 2 * qi.x + qa.x) / h2[i], (qc.y - 2 * qi.y + qa.y) / h2[i]};
       const double s2 = q1.x * q1.x + q1.y * q1.y, k = cross(q1, q2) / (s2 * std::sqrt(s2));
-      f += k * k;
+      f += k * k * std::sqrt(s2) * h;  // κ² ds: ds = |q'| h
     }
     return f;
   };
@@ -146,6 +146,14 @@ MinCurvatureResult min_curvature_line(const ClosedLine& line, const MinCurvature
   r.x = line.x;
   r.y = line.y;
   Eigen::VectorXd alpha = Eigen::VectorXd::Zero(n);
+  if (!p.start.empty()) {
+    if (static_cast<int>(p.start.size()) != n) throw std::invalid_argument("min_curvature_line: one start offset per point");
+    for (int i = 0; i < n; ++i) {
+      alpha(i) = std::clamp(p.start[i], lo(i), hi(i));
+      r.x[i] = line.x[i] + alpha(i) * normal[i].x;
+      r.y[i] = line.y[i] + alpha(i) * normal[i].y;
+    }
+  }
   for (int it = 0; it < p.max_iterations; ++it) {
     // Gauss-Newton: κ_i = (q'_i × q''_i) / |q'_i|³ with q' and q'' central differences of
     // q_j = p_j + α_j n_j (linear in α), linearised at the current offsets: κ ≈ b + M α.
@@ -158,17 +166,23 @@ MinCurvatureResult min_curvature_line(const ClosedLine& line, const MinCurvature
       const Vec2 q2{(r.x[c] - 2 * r.x[i] + r.x[a]) / h2[i], (r.y[c] - 2 * r.y[i] + r.y[a]) / h2[i]};
       const double s2 = q1.x * q1.x + q1.y * q1.y, s3 = s2 * std::sqrt(s2), num = cross(q1, q2);
       const double k0 = num / s3;
+      // The residual is κ √ds (ds = |q'| h, the arc length at the point), so the sum is Σ κ² ds,
+      // the line's bending energy, as the comparison with TUM's lines measures. Its derivative
+      // takes in that of √ds, or the Gauss-Newton step need not go downhill.
+      const double speed = std::sqrt(s2), w = std::sqrt(speed * h);
       // d/dα_j of q' is n_j · d1_j, of q'' is n_j · d2_j.
       const int js[3] = {a, i, c};
       const double d1[3] = {-1 / (2 * h), 0, 1 / (2 * h)}, d2[3] = {1 / h2[i], -2 / h2[i], 1 / h2[i]};
-      double lin = k0;
+      double lin = w * k0;
       for (int k = 0; k < 3; ++k) {
         const Vec2 nj = normal[js[k]];
         const double dnum = d1[k] * cross(nj, q2) + d2[k] * cross(q1, nj);
         const double ds2 = 2 * d1[k] * (q1.x * nj.x + q1.y * nj.y);
         const double dk = dnum / s3 - 1.5 * num * ds2 / (s3 * s2);
-        trip.emplace_back(i, js[k], dk);
-        lin -= dk * alpha(js[k]);
+        const double dw = 0.25 * w * ds2 / s2;  // d√(|q'| h) = √(|q'| h) · d(|q'|²) / (4 |q'|²)
+        const double dr = w * dk + k0 * dw;
+        trip.emplace_back(i, js[k], dr);
+        lin -= dr * alpha(js[k]);
       }
       b(i) = lin;
     }

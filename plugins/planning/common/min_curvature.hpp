@@ -1,14 +1,14 @@
 #pragma once
 // The minimum-curvature racing line (paper §III-C, offline), framework-free: lateral offsets α_i
 // along the reference line's left normals, within the track edges less a margin, minimising the
-// summed squared curvature of the resulting closed line.
+// bending energy Σ κ² ds of the resulting closed line.
 //
-// Curvature is linear in α when the tangents are held: with arc-length spacing h, the curvature
-// at point i is t_i × q''_i, q''_i = (q_{i+1} − 2 q_i + q_{i−1}) / h², q_j = p_j + α_j n_j. So
-// κ = κ_ref + M α and the problem is the box-constrained least squares min |κ_ref + M α|²,
-// l ≤ α ≤ u: a QP with a pentadiagonal (cyclic) Hessian, solved by an active set over a sparse
-// LDLᵀ. Holding the tangents is an approximation; the line is re-sampled and the QP solved again
-// from it until the offsets stop moving ("iterated to convergence").
+// Gauss-Newton: with q_j = p_j + α_j n_j and central differences q', q'' at each point, the
+// residual κ_i √ds_i (κ = q' × q'' / |q'|³, ds = |q'| h) is linearised at the current offsets, and
+// the box-constrained least squares min |b + M α|², l ≤ α ≤ u — a QP with a pentadiagonal (cyclic)
+// Hessian — is solved by a primal active set over a sparse LDLᵀ. The true objective decides the
+// step (halved until it goes down); the loop ends when the offsets stop moving ("iterated to
+// convergence"). docs/planning.md has the derivation and the comparison with TUM's lines.
 #include <vector>
 
 namespace brickyard::planning {
@@ -22,6 +22,7 @@ struct MinCurvatureParams {
   double margin = 1.5;      // m kept from each edge: half the car's width (0.97) and a margin
   int max_iterations = 32;  // re-linearisations
   double tolerance = 0.01;  // m: stop when no offset moves more than this
+  std::vector<double> start;  // initial offsets (clamped into the box); empty: the input line
 };
 
 struct MinCurvatureResult {
