@@ -139,6 +139,63 @@ LidarCaster::LidarCaster(const Track& track, LidarSpec spec) : track_(track), sp
   }
 }
 
+namespace {
+// The first t in [ta, tb] where a ray (a = a0 + va t, d = d0 + vd t, z = oz + vz t in the slab of
+// g) meets the road, given it is above the road at ta and not at tb (f_tb = its height there).
+// In closed form: the cross-section is straight between the edges and level beyond them, so the
+// edges' crossings (linear in t) cut [ta, tb] into at most three pieces, and on each the road's
+// height — the cross-section coordinate (d, or an edge's) times tan(bank), both linear in t — is a
+// quadratic in t. (Regula falsi here took 4-8 evaluations per ray.)
+template <class Seg>
+double road_root(const Seg& g, double a0, double va, double d0, double vd, double oz, double vz, double ta, double tb,
+                 double f_tb) {
+  double cuts[2];
+  int nc = 0;
+  auto cut = [&](double num, double den) {
+    if (std::abs(den) > 1e-12) {
+      const double t = num / den;
+      if (t > ta && t < tb) cuts[nc++] = t;
+    }
+  };
+  cut(g.wl0 + g.dwl * a0 - d0, vd - g.dwl * va);
+  cut(-(g.wr0 + g.dwr * a0) - d0, vd + g.dwr * va);
+  if (nc == 2 && cuts[0] > cuts[1]) std::swap(cuts[0], cuts[1]);
+  const double b0 = g.tb0 + g.dtb * a0, b1 = g.dtb * va;
+  double lo = ta;
+  for (int k = 0; k <= nc; ++k) {
+    const double hi = k < nc ? cuts[k] : tb;
+    // Which piece: the middle of the interval says.
+    const double tm = 0.5 * (lo + hi), am = a0 + va * tm, dm = d0 + vd * tm;
+    double c0 = d0, c1 = vd;
+    if (dm > g.wl0 + g.dwl * am) { c0 = g.wl0 + g.dwl * a0; c1 = g.dwl * va; }
+    else if (dm < -(g.wr0 + g.dwr * am)) { c0 = -(g.wr0 + g.dwr * a0); c1 = -g.dwr * va; }
+    // Height over the road: C + B t + A t².
+    const double A = -c1 * b1, B = vz - c0 * b1 - c1 * b0, C = oz - c0 * b0;
+    const double f_hi = k < nc ? C + hi * (B + A * hi) : f_tb;
+    if (f_hi > 0) {
+      lo = hi;
+      continue;
+    }
+    double root = hi;
+    if (std::abs(A) * (hi - lo) < 1e-12 * std::abs(B)) {
+      if (B != 0) root = -C / B;
+    } else {
+      const double disc = B * B - 4 * A * C;
+      if (disc >= 0) {
+        const double q = -0.5 * (B + std::copysign(std::sqrt(disc), B));
+        const double r1 = q / A, r2 = q != 0 ? C / q : r1;
+        const double eps = 1e-9 * (1 + std::abs(hi));
+        root = hi;
+        for (double r : {r1, r2})
+          if (r >= lo - eps && r <= hi + eps) root = std::min(root, r);
+      }
+    }
+    return std::clamp(root, lo, hi);
+  }
+  return tb;
+}
+}  // namespace
+
 RayHit LidarCaster::cast(const Eigen::Vector3d& o, const Eigen::Vector3d& v, int k, const Resume* from, double shift,
                          double shift_rest, Resume* checkpoint) const {
   // March from slab to slab (the region of a segment between the planes normal to it at its
@@ -259,23 +316,7 @@ RayHit LidarCaster::cast(const Eigen::Vector3d& o, const Eigen::Vector3d& v, int
     if (f1 <= 0) {
       double lo = t0, hi = tf, flo = above(t0), fhi = f1, t = hi;
       if (flo > 0) {
-        // Regula falsi, Illinois variant: the height over the road has a kink at the road edge,
-        // where plain regula falsi keeps one end fixed and crawls.
-        int side = 0;
-        for (int it = 0; it < 30; ++it) {
-          t = lo + (hi - lo) * flo / (flo - fhi);
-          const double f = above(t);
-          if (std::abs(f) < 1e-6 || hi - lo < 1e-6) break;
-          if (f > 0) {
-            lo = t; flo = f;
-            if (side > 0) fhi *= 0.5;
-            side = 1;
-          } else {
-            hi = t; fhi = f;
-            if (side < 0) flo *= 0.5;
-            side = -1;
-          }
-        }
+        t = road_root(g, a0, va, d0, vd, oz, vz, lo, hi, fhi);
       } else {
         t = t0;
       }
