@@ -35,12 +35,15 @@ options:
   --domain N           DDS domain id; overrides transport.domain
   --plugin-path DIR    search DIR for plugin libraries first; repeatable
   --quiet              only warnings and errors
+  --record FILE        record every wire's samples into FILE (SQLite; docs/recording.md)
+  --record-only P,...  record only the topics NODE.PORT matching these patterns ('*' any)
 
 exit codes: 0 success, 1 the run failed, 2 invalid input
 )";
 
 struct Args {
-  std::string command, target, dir, out, process;
+  std::string command, target, dir, out, process, record;
+  std::vector<std::string> record_only;
   std::vector<std::string> sets, plugin_paths;
   std::optional<double> duration;
   std::optional<int> domain;
@@ -90,6 +93,16 @@ Args parse_args(int argc, char** argv) {
       a.domain = static_cast<int>(d);
     } else if (f == "--plugin-path") a.plugin_paths.push_back(value());
     else if (f == "--dir") a.dir = value();
+    else if (f == "--record") a.record = value();
+    else if (f == "--record-only") {
+      std::string list = value();
+      for (std::size_t at = 0; at <= list.size();) {
+        const std::size_t comma = std::min(list.find(',', at), list.size());
+        if (comma > at) a.record_only.push_back(list.substr(at, comma - at));
+        at = comma + 1;
+      }
+      if (a.record_only.empty()) usage_error("--record-only", "expected NODE.PORT patterns, comma-separated");
+    }
     else if (f == "--json") a.json = true;
     else if (f == "--dot") a.dot = true;
     else if (f == "--quiet" || f == "-q") a.quiet = true;
@@ -135,6 +148,9 @@ int cmd_run(const Args& a, bool validate_only) {
   opt.process = a.process;
   opt.domain = a.domain;
   opt.quiet = a.quiet;
+  opt.record = a.record;
+  opt.record_only = a.record_only;
+  if (!a.record_only.empty() && a.record.empty()) usage_error("--record-only", "needs --record FILE");
   RunSummary s;
   {
     Executive ex(rg, opt);

@@ -68,6 +68,7 @@ class OutputPort final : public detail::OutputChannel {
   void publish(std::shared_ptr<const void> s) override {
     if (!s) return;
     ++published_;
+    if (tap) tap(s.get());  // the recorder, before anyone downstream runs
     for (InputQueue* q : local) q->push(s);
     if (writer && writer->has_remote_readers()) writer->write(s.get());
   }
@@ -75,6 +76,7 @@ class OutputPort final : public detail::OutputChannel {
 
   std::vector<InputQueue*> local;
   DdsWriter* writer = nullptr;
+  std::function<void(const void*)> tap;  // set by the executive when this port is recorded
 
  private:
   std::string name_, type_;

@@ -1,5 +1,6 @@
 #include "exec/executive.hpp"
 #include "loader/registry.hpp"
+#include <brickyard/version.hpp>
 
 #include <chrono>
 #include <cmath>
@@ -224,6 +225,11 @@ void Executive::build() {
       else {
         n->outputs.push_back(std::make_unique<OutputPort>(p.name, p.type_name));
         n->outputs.back()->writer = transport_->make_writer(topic_name(n->name, p.name), p.type_name);
+        const std::string topic = n->name + "." + p.name;
+        if (recorder_ && (opt_.record_only.empty() || topic_selected(topic, opt_.record_only))) {
+          const int id = recorder_->add_topic(topic, p.type_name);
+          n->outputs.back()->tap = [this, id](const void* m) { recorder_->write(id, now_ns(), m); };
+        }
       }
     }
     n->ctx = std::make_unique<NodeContext>(*this, *n);
@@ -372,11 +378,28 @@ RunSummary Executive::run() {
   real_start_ns_ = wall_ns();
   const GraphDecl& g = *graph_.decl;
   bool built = false;
-  try {
-    build();
-    built = true;
-  } catch (const std::exception& e) {
-    request_stop(RunResult::failed, std::string("transport: ") + e.what());
+  if (!opt_.record.empty()) {
+    try {
+      recorder_ = std::make_unique<Recorder>(opt_.record);
+      recorder_->set_metadata("graph", g.name);
+      recorder_->set_metadata("graph_file", g.file);
+      recorder_->set_metadata("clock", sim() ? "sim" : "real");
+      recorder_->set_metadata("seed", std::to_string(opt_.seed));
+      recorder_->set_metadata("process", opt_.process.empty() ? "all" : opt_.process);
+      recorder_->set_metadata("brickyard_version", BRICKYARD_SDK_VERSION);
+      recorder_->set_metadata("schema", "brickyard recording 1 (docs/recording.md)");
+    } catch (const std::exception& e) {
+      recorder_.reset();
+      request_stop(RunResult::invalid_input, std::string("--record ") + e.what());
+    }
+  }
+  if (!stop_) {
+    try {
+      build();
+      built = true;
+    } catch (const std::exception& e) {
+      request_stop(RunResult::failed, std::string("transport: ") + e.what());
+    }
   }
   if (built) {
     for (auto& n : nodes_)
@@ -412,6 +435,15 @@ RunSummary Executive::run() {
   for (auto it = active.rbegin(); it != active.rend(); ++it)
     call(**it, "deactivate", [&] { (*it)->instance->deactivate(*(*it)->ctx); });
 
+  nlohmann::json recording;
+  if (recorder_) {
+    try {
+      recorder_->close();
+      recording = {{"file", recorder_->path()}, {"messages", recorder_->messages()}, {"bytes", recorder_->bytes()}};
+    } catch (const std::exception& e) {
+      request_stop(RunResult::failed, e.what());
+    }
+  }
   RunSummary s;
   s.result = stop_result_.value_or(RunResult::success);
   s.reason = stop_result_ ? stop_reason_ : (sim() ? "sim clock reached the end" : "duration reached");
@@ -428,6 +460,7 @@ RunSummary Executive::run() {
   j["process"] = opt_.process.empty() ? "all" : opt_.process;
   j["sim_time_s"] = s.sim_time_s;
   j["wall_time_s"] = s.wall_time_s;
+  if (!recording.is_null()) j["recording"] = recording;
   j["nodes"] = nlohmann::json::object();
   for (auto& n : nodes_) {
     nlohmann::json nj;

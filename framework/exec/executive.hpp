@@ -3,6 +3,7 @@
 // clock (one thread, ordered, reproducible) or the real clock (a thread per node).
 #include "exec/channels.hpp"
 #include "graph/resolve.hpp"
+#include "record/recorder.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -18,6 +19,8 @@ struct RunOptions {
   std::string process;               // empty: every node
   std::optional<int> domain;         // overrides transport.domain
   bool quiet = false;
+  std::string record;                    // --record FILE: every wire's samples (docs/recording.md)
+  std::vector<std::string> record_only;  // --record-only: "node.port" patterns ('*' any); empty: all
 };
 
 enum class RunResult { success, failed, interrupted, invalid_input };
@@ -60,6 +63,7 @@ class Executive {
   const ResolvedGraph& graph_;
   RunOptions opt_;
   std::unique_ptr<DdsTransport> transport_;
+  std::unique_ptr<Recorder> recorder_;
   std::vector<std::unique_ptr<NodeRuntime>> nodes_;
 
   std::atomic<bool> stop_{false};

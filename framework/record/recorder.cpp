@@ -1,0 +1,164 @@
+#include "record/recorder.hpp"
+
+#include <brickyard/msgs/registry.hpp>
+
+#include <fastdds/dds/topic/TopicDataType.hpp>
+#include <fastdds/rtps/common/SerializedPayload.h>
+
+#include <sqlite3.h>
+
+#include <cstring>
+#include <filesystem>
+#include <stdexcept>
+
+namespace brickyard::fw {
+
+namespace {
+struct IdlText {
+  const char* type;
+  const char* text;
+};
+const IdlText kIdl[] = {
+#include "idl_texts.inc"
+};
+// Commit every this many samples: a crash loses at most a few seconds of a run, and one
+// transaction per sample would make recording the bottleneck.
+constexpr std::uint64_t kBatch = 2000;
+}  // namespace
+
+const char* idl_text(const std::string& type) {
+  for (const auto& t : kIdl)
+    if (type == t.type) return t.text;
+  return nullptr;
+}
+
+bool topic_selected(const std::string& topic, const std::vector<std::string>& patterns) {
+  auto match = [](const char* p, const char* s, auto& self) -> bool {
+    if (*p == '\0') return *s == '\0';
+    if (*p == '*') return self(p + 1, s, self) || (*s != '\0' && self(p, s + 1, self));
+    return *s != '\0' && *p == *s && self(p + 1, s + 1, self);
+  };
+  for (const auto& p : patterns)
+    if (match(p.c_str(), topic.c_str(), match)) return true;
+  return false;
+}
+
+struct Recorder::Topic {
+  std::string name, type;
+  std::unique_ptr<eprosima::fastdds::dds::TopicDataType> support;
+  eprosima::fastrtps::rtps::SerializedPayload_t payload;
+};
+
+Recorder::Recorder(const std::string& path) : path_(path) {
+  std::error_code ec;
+  if (std::filesystem::exists(path, ec)) throw std::runtime_error(path + ": exists; a recording is never overwritten");
+  if (sqlite3_open_v2(path.c_str(), &db_, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE, nullptr) != SQLITE_OK)
+    fail("cannot create");
+  // The file is written by this process alone and only whole at close(): no journal needed
+  // beyond what keeps it consistent after a crash (WAL, synchronous NORMAL).
+  exec("PRAGMA journal_mode=WAL");
+  exec("PRAGMA synchronous=NORMAL");
+  exec("CREATE TABLE metadata(key TEXT PRIMARY KEY, value TEXT NOT NULL)");
+  exec("CREATE TABLE topics(id INTEGER PRIMARY KEY, name TEXT NOT NULL UNIQUE, type TEXT NOT NULL, "
+       "type_hash TEXT NOT NULL, serialization_format TEXT NOT NULL, idl TEXT NOT NULL)");
+  exec("CREATE TABLE messages(id INTEGER PRIMARY KEY, topic_id INTEGER NOT NULL REFERENCES topics(id), "
+       "timestamp INTEGER NOT NULL, data BLOB NOT NULL)");
+  exec("CREATE INDEX messages_topic_timestamp ON messages(topic_id, timestamp)");
+  if (sqlite3_prepare_v2(db_, "INSERT INTO messages(topic_id, timestamp, data) VALUES(?, ?, ?)", -1, &insert_, nullptr) != SQLITE_OK)
+    fail("prepare");
+}
+
+Recorder::~Recorder() {
+  try {
+    close();
+  } catch (...) {
+  }
+}
+
+void Recorder::fail(const std::string& what) {
+  throw std::runtime_error(path_ + ": recording: " + what + (db_ ? std::string(" (") + sqlite3_errmsg(db_) + ")" : ""));
+}
+
+void Recorder::exec(const char* sql) {
+  char* err = nullptr;
+  if (sqlite3_exec(db_, sql, nullptr, nullptr, &err) != SQLITE_OK) {
+    const std::string e = err ? err : "?";
+    sqlite3_free(err);
+    fail(std::string(sql) + ": " + e);
+  }
+}
+
+void Recorder::set_metadata(const std::string& key, const std::string& value) {
+  std::lock_guard<std::mutex> l(m_);
+  sqlite3_stmt* st = nullptr;
+  sqlite3_prepare_v2(db_, "INSERT OR REPLACE INTO metadata(key, value) VALUES(?, ?)", -1, &st, nullptr);
+  sqlite3_bind_text(st, 1, key.c_str(), -1, SQLITE_TRANSIENT);
+  sqlite3_bind_text(st, 2, value.c_str(), -1, SQLITE_TRANSIENT);
+  const int rc = sqlite3_step(st);
+  sqlite3_finalize(st);
+  if (rc != SQLITE_DONE) fail("metadata");
+}
+
+int Recorder::add_topic(const std::string& name, const std::string& type) {
+  std::lock_guard<std::mutex> l(m_);
+  const auto* entry = msgs::find_type(type.c_str());
+  const char* idl = idl_text(type);
+  if (!entry || !idl) fail("no type support for " + type);
+  auto t = std::make_unique<Topic>();
+  t->name = name;
+  t->type = type;
+  t->support.reset(entry->make());
+  sqlite3_stmt* st = nullptr;
+  sqlite3_prepare_v2(db_, "INSERT INTO topics(id, name, type, type_hash, serialization_format, idl) VALUES(?, ?, ?, ?, 'cdr', ?)", -1,
+                     &st, nullptr);
+  const int id = static_cast<int>(topics_.size()) + 1;
+  sqlite3_bind_int(st, 1, id);
+  sqlite3_bind_text(st, 2, name.c_str(), -1, SQLITE_TRANSIENT);
+  sqlite3_bind_text(st, 3, type.c_str(), -1, SQLITE_TRANSIENT);
+  sqlite3_bind_text(st, 4, entry->hash, -1, SQLITE_TRANSIENT);
+  sqlite3_bind_text(st, 5, idl, -1, SQLITE_TRANSIENT);
+  const int rc = sqlite3_step(st);
+  sqlite3_finalize(st);
+  if (rc != SQLITE_DONE) fail("topic " + name);
+  topics_.push_back(std::move(t));
+  return id;
+}
+
+void Recorder::write(int topic, std::int64_t stamp_ns, const void* message) {
+  std::lock_guard<std::mutex> l(m_);
+  if (!db_ || topic < 1 || topic > static_cast<int>(topics_.size())) return;
+  Topic& t = *topics_[topic - 1];
+  void* data = const_cast<void*>(message);  // serialize() reads only; its signature predates const
+  const std::uint32_t size = t.support->getSerializedSizeProvider(data)();
+  if (t.payload.max_size < size) t.payload.reserve(size);
+  t.payload.length = 0;
+  t.payload.pos = 0;
+  if (!t.support->serialize(data, &t.payload)) fail("serializing a sample of " + t.name);
+  if (in_transaction_ == 0) exec("BEGIN");
+  sqlite3_reset(insert_);
+  sqlite3_bind_int(insert_, 1, topic);
+  sqlite3_bind_int64(insert_, 2, stamp_ns);
+  sqlite3_bind_blob(insert_, 3, t.payload.data, static_cast<int>(t.payload.length), SQLITE_STATIC);
+  if (sqlite3_step(insert_) != SQLITE_DONE) fail("writing a sample of " + t.name);
+  ++messages_;
+  bytes_ += t.payload.length;
+  if (++in_transaction_ >= kBatch) {
+    exec("COMMIT");
+    in_transaction_ = 0;
+  }
+}
+
+void Recorder::close() {
+  std::lock_guard<std::mutex> l(m_);
+  if (!db_) return;
+  if (in_transaction_ > 0) exec("COMMIT");
+  in_transaction_ = 0;
+  sqlite3_finalize(insert_);
+  insert_ = nullptr;
+  exec("PRAGMA wal_checkpoint(TRUNCATE)");
+  exec("PRAGMA journal_mode=DELETE");  // one self-contained file
+  sqlite3_close(db_);
+  db_ = nullptr;
+}
+
+}  // namespace brickyard::fw

@@ -1,0 +1,123 @@
+// replay.<type>: republishes one recorded topic (`brickyard run --record`) on the run's clock —
+// every sample at the time it was first published — so a perception or estimation graph can be
+// rerun on recorded data. One plugin per message type (the port's type is the manifest's), e.g.
+// replay.gnss_fix, replay.imu, replay.point_cloud. Reading: common/recording.hpp.
+#include <brickyard/plugin.hpp>
+
+#include <brickyard/msgs/BlobPubSubTypes.h>
+#include <brickyard/msgs/ClusterListPubSubTypes.h>
+#include <brickyard/msgs/ControlCommandPubSubTypes.h>
+#include <brickyard/msgs/GnssFixPubSubTypes.h>
+#include <brickyard/msgs/ImuPubSubTypes.h>
+#include <brickyard/msgs/LocalizationEstimatePubSubTypes.h>
+#include <brickyard/msgs/ModeStatusPubSubTypes.h>
+#include <brickyard/msgs/ObstacleListPubSubTypes.h>
+#include <brickyard/msgs/PathPubSubTypes.h>
+#include <brickyard/msgs/PointCloudPubSubTypes.h>
+#include <brickyard/msgs/ScalarPubSubTypes.h>
+#include <brickyard/msgs/TrackWorldPubSubTypes.h>
+#include <brickyard/msgs/VehicleStatePubSubTypes.h>
+#include <brickyard/msgs/WallEstimatePubSubTypes.h>
+#include <brickyard/msgs/WheelSpeedsPubSubTypes.h>
+
+#include <fastdds/rtps/common/SerializedPayload.h>
+
+#include "common/recording.hpp"
+
+#include <cstring>
+#include <memory>
+
+namespace {
+
+using namespace brickyard;
+
+template <class T, class PubSub, const char* Name>
+class Replay : public Plugin {
+ public:
+  static Manifest manifest() {
+    return Manifest(std::string("replay.") + Name, "1.0.0")
+        .describe(std::string("republishes a recorded topic of ") + message_traits<T>::name + " at the times it was published")
+        .template output<T>("out", "the recorded samples, each at its recorded time")
+        .param(ParamSpec::string("file", "").doc("the recording (brickyard run --record FILE)"))
+        .param(ParamSpec::string("topic", "").doc("the recorded topic, NODE.PORT as in the recording"))
+        .param(ParamSpec::number("rate_hz", 1000).in_unit("Hz").at_least(1).doc("how often due samples are sent"))
+        .periodic("rate_hz");
+  }
+
+  void configure(Context& ctx) override {
+    const Params& p = ctx.params();
+    const std::string topic = p.string("topic");
+    if (p.string("file").empty()) throw BadInput("parameter 'file': the recording to replay is required");
+    if (topic.empty()) throw BadInput("parameter 'topic': the recorded topic (NODE.PORT) is required");
+    const std::string file = ctx.find_file(p.string("file"));
+    try {
+      replay::Recording rec(file);
+      const replay::RecordedTopic* t = rec.topic(topic);
+      if (!t) {
+        std::string have;
+        for (const auto& x : rec.topics()) have += (have.empty() ? "" : ", ") + x.name;
+        throw BadInput("recording " + file + " has no topic '" + topic + "' (it has: " + have + ")");
+      }
+      if (t->type != message_traits<T>::name)
+        throw BadInput("recording " + file + ": topic '" + topic + "' holds " + t->type + ", this node replays " +
+                       message_traits<T>::name + " (use the replay plugin of that type)");
+      if (t->type_hash != message_traits<T>::hash)
+        throw BadInput("recording " + file + ": topic '" + topic + "' was recorded with another definition of " + t->type +
+                       " (IDL hash " + t->type_hash + ", this build " + message_traits<T>::hash + ")");
+      samples_ = rec.samples(*t);
+    } catch (const replay::RecordingError& e) {
+      throw BadInput(std::string("parameter 'file': ") + e.what());
+    }
+    name_ = topic;
+    out_ = ctx.output<T>("out");
+  }
+
+  void step(Context& ctx) override {
+    const std::int64_t now = ctx.now_ns();
+    for (; next_ < samples_.size() && samples_[next_].stamp_ns <= now; ++next_) {
+      auto& s = samples_[next_];
+      eprosima::fastrtps::rtps::SerializedPayload_t payload(static_cast<std::uint32_t>(s.data.size()));
+      std::memcpy(payload.data, s.data.data(), s.data.size());
+      payload.length = static_cast<std::uint32_t>(s.data.size());
+      auto m = std::make_shared<T>();
+      if (!type_.deserialize(&payload, m.get()))
+        throw std::runtime_error("sample " + std::to_string(next_) + " of '" + name_ + "' does not deserialize");
+      std::vector<unsigned char>().swap(s.data);  // published: its bytes are not needed again
+      out_.publish(std::shared_ptr<const T>(std::move(m)));
+    }
+  }
+
+  void deactivate(Context& ctx) override {
+    ctx.metric("replayed", static_cast<double>(next_));
+    ctx.metric("left", static_cast<double>(samples_.size() - next_));
+  }
+
+ private:
+  std::vector<replay::RecordedSample> samples_;
+  std::size_t next_ = 0;
+  std::string name_;
+  PubSub type_;
+  Output<T> out_;
+};
+
+constexpr char kBlob[] = "blob", kClusterList[] = "cluster_list", kControlCommand[] = "control_command",
+               kGnssFix[] = "gnss_fix", kImu[] = "imu", kLocalizationEstimate[] = "localization_estimate",
+               kModeStatus[] = "mode_status", kObstacleList[] = "obstacle_list", kPath[] = "path",
+               kPointCloud[] = "point_cloud", kScalar[] = "scalar", kTrackWorld[] = "track_world",
+               kVehicleState[] = "vehicle_state", kWallEstimate[] = "wall_estimate", kWheelSpeeds[] = "wheel_speeds";
+
+using namespace brickyard::msgs;
+
+}  // namespace
+
+BRICKYARD_PLUGINS(Replay<Blob, BlobPubSubType, kBlob>, Replay<ClusterList, ClusterListPubSubType, kClusterList>,
+                  Replay<ControlCommand, ControlCommandPubSubType, kControlCommand>,
+                  Replay<GnssFix, GnssFixPubSubType, kGnssFix>, Replay<Imu, ImuPubSubType, kImu>,
+                  Replay<LocalizationEstimate, LocalizationEstimatePubSubType, kLocalizationEstimate>,
+                  Replay<ModeStatus, ModeStatusPubSubType, kModeStatus>,
+                  Replay<ObstacleList, ObstacleListPubSubType, kObstacleList>, Replay<Path, PathPubSubType, kPath>,
+                  Replay<PointCloud, PointCloudPubSubType, kPointCloud>, Replay<Scalar, ScalarPubSubType, kScalar>,
+                  Replay<TrackWorld, TrackWorldPubSubType, kTrackWorld>,
+                  Replay<VehicleState, VehicleStatePubSubType, kVehicleState>,
+                  Replay<WallEstimate, WallEstimatePubSubType, kWallEstimate>,
+                  Replay<WheelSpeeds, WheelSpeedsPubSubType, kWheelSpeeds>)

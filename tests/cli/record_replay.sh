@@ -1,0 +1,41 @@
+#!/usr/bin/env bash
+# Record a simulator run, replay its sensors into the estimator alone, and get the same estimates:
+# byte for byte and at the same times. Then the ways it must refuse, each with exit 2 and a
+# message naming the culprit.
+set -u
+by=$1; graphs=$2; domain=$3; out=$4
+rm -rf "$out"; mkdir -p "$out"
+a="$out/sim.db3"; b="$out/replayed.db3"
+"$by" run "$graphs/localization_double_degradation.json" --domain "$domain" --quiet --record "$a" \
+  || { echo "FAIL: recording run"; exit 1; }
+sets=""; for n in gnss_left gnss_right imu wheels; do sets="$sets --set $n.file=$a"; done
+replay="$graphs/replay/estimator_from_recording.json"
+"$by" run "$replay" --domain "$domain" --quiet $sets --record "$b" --record-only 'estimator.*' \
+  || { echo "FAIL: replay run"; exit 1; }
+python3 - "$a" "$b" <<'PY' || exit 1
+import sqlite3, sys
+def rows(f):
+    c = sqlite3.connect(f)
+    return list(c.execute("SELECT m.timestamp, m.data FROM messages m JOIN topics t ON t.id = m.topic_id "
+                          "WHERE t.name = 'estimator.estimate' ORDER BY m.id"))
+a, b = rows(sys.argv[1]), rows(sys.argv[2])
+same = sum(1 for x, y in zip(a, b) if x == y)
+print(f"estimates: recorded {len(a)}, replayed {len(b)}, identical {same}")
+sys.exit(0 if len(a) > 100 and len(a) == len(b) == same else 1)
+PY
+expect2() {  # pattern, then the command
+  pat=$1; shift
+  "$@" > "$out/bad.log" 2>&1; rc=$?
+  [ $rc -eq 2 ] || { cat "$out/bad.log"; echo "FAIL: exit $rc, expected 2: $*"; exit 1; }
+  grep -q -- "$pat" "$out/bad.log" || { cat "$out/bad.log"; echo "FAIL: message lacks '$pat'"; exit 1; }
+}
+expect2 "sim.db3: exists; a recording is never overwritten" \
+  "$by" run "$graphs/localization_double_degradation.json" --domain "$domain" --duration 1 --record "$a"
+expect2 "has no topic 'gnss_left.nope' (it has: world.world, car.truth" \
+  "$by" run "$replay" --domain "$domain" $sets --set gnss_left.topic=gnss_left.nope
+expect2 "topic 'imu.imu' holds brickyard::msgs::Imu, this node replays brickyard::msgs::GnssFix" \
+  "$by" run "$replay" --domain "$domain" $sets --set gnss_left.topic=imu.imu
+echo "not a database" > "$out/junk.db3"
+expect2 "junk.db3" "$by" run "$replay" --domain "$domain" $sets --set gnss_left.file="$out/junk.db3"
+expect2 "--record-only: needs --record FILE" "$by" run "$replay" --domain "$domain" $sets --record-only 'x.*'
+echo "record_replay: ok"
