@@ -35,6 +35,8 @@ options:
   --domain N           DDS domain id; overrides transport.domain
   --plugin-path DIR    search DIR for plugin libraries first; repeatable
   --quiet              only warnings and errors
+  --progress S         a progress line every S seconds (default: 0.25 on a terminal, one
+                       updating line; 5 otherwise, plain lines); 0: none
   --record FILE        record every wire's samples into FILE (SQLite; docs/recording.md)
   --record-only P,...  record only the topics NODE.PORT matching these patterns ('*' any)
 
@@ -47,6 +49,7 @@ struct Args {
   std::vector<std::string> sets, plugin_paths;
   std::optional<double> duration;
   std::optional<int> domain;
+  double progress = -1;
   std::uint64_t seed = 0;
   bool json = false, dot = false, quiet = false;
 };
@@ -94,6 +97,10 @@ Args parse_args(int argc, char** argv) {
     } else if (f == "--plugin-path") a.plugin_paths.push_back(value());
     else if (f == "--dir") a.dir = value();
     else if (f == "--record") a.record = value();
+    else if (f == "--progress") {
+      a.progress = parse_number(f, value());
+      if (!(a.progress >= 0)) usage_error("--progress", "expected seconds, 0 or more");
+    }
     else if (f == "--record-only") {
       std::string list = value();
       for (std::size_t at = 0; at <= list.size();) {
@@ -124,6 +131,44 @@ Registry load_registry(const Args& a, const GraphDecl* g) {
 
 void on_signal(int) { g_interrupt = true; }
 
+// The end of a run at a glance: one row per node with its metrics (arrays cut at four values).
+std::string summary_table(const nlohmann::json& j) {
+  if (!j.contains("nodes") || j["nodes"].empty()) return "";
+  std::size_t wn = 4, wp = 6;
+  for (const auto& [name, n] : j["nodes"].items()) {
+    wn = std::max(wn, name.size());
+    wp = std::max(wp, n.value("plugin", std::string()).size());
+  }
+  auto num = [](double v) {
+    char b[32];
+    std::snprintf(b, sizeof b, "%.4g", v);
+    return std::string(b);
+  };
+  auto value = [&](const nlohmann::json& v) -> std::string {
+    if (v.is_number()) return num(v.get<double>());
+    if (v.is_string()) return v.get<std::string>();
+    if (v.is_array()) {
+      std::string out = "[";
+      for (std::size_t i = 0; i < v.size() && i < 4; ++i) out += (i ? " " : "") + (v[i].is_number() ? num(v[i].get<double>()) : v[i].dump());
+      return out + (v.size() > 4 ? " … (" + std::to_string(v.size()) + ")]" : "]");
+    }
+    return v.dump();
+  };
+  std::string out;
+  char row[256];
+  std::snprintf(row, sizeof row, "%-*s  %-*s  %8s  %s\n", static_cast<int>(wn), "node", static_cast<int>(wp), "plugin", "steps", "metrics");
+  out += row;
+  for (const auto& [name, n] : j["nodes"].items()) {
+    std::string m;
+    if (n.contains("metrics"))
+      for (const auto& [k, v] : n["metrics"].items()) m += (m.empty() ? "" : " · ") + k + " " + value(v);
+    std::snprintf(row, sizeof row, "%-*s  %-*s  %8llu  ", static_cast<int>(wn), name.c_str(), static_cast<int>(wp),
+                  n.value("plugin", std::string()).c_str(), static_cast<unsigned long long>(n.value("steps", 0ull)));
+    out += row + (m.empty() ? "—" : m) + "\n";
+  }
+  return out;
+}
+
 int cmd_run(const Args& a, bool validate_only) {
   if (a.target.empty()) usage_error(a.command, "needs a graph file");
   GraphDecl g = load_graph_file(a.target, a.sets);
@@ -149,6 +194,7 @@ int cmd_run(const Args& a, bool validate_only) {
   opt.domain = a.domain;
   opt.quiet = a.quiet;
   opt.record = a.record;
+  opt.progress_s = a.progress;
   opt.record_only = a.record_only;
   if (!a.record_only.empty() && a.record.empty()) usage_error("--record-only", "needs --record FILE");
   RunSummary s;
@@ -156,6 +202,7 @@ int cmd_run(const Args& a, bool validate_only) {
     Executive ex(rg, opt);
     s = ex.run();
   }
+  if (!a.quiet) std::fputs(summary_table(s.json).c_str(), stderr);
   std::fprintf(stderr, "[brickyard] %s: %s (sim %.3f s, wall %.3f s)\n", to_string(s.result), s.reason.c_str(),
                s.sim_time_s, s.wall_time_s);
   if (!a.out.empty()) {

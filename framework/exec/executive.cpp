@@ -11,6 +11,8 @@
 #include <queue>
 #include <thread>
 
+#include <unistd.h>
+
 namespace brickyard::fw {
 
 std::atomic<bool> g_interrupt{false};
@@ -99,6 +101,7 @@ class NodeContext final : public Context {
     e_.request_stop(RunResult::success, "node '" + n_.name + "' finished the run: " + std::string(reason));
   }
   std::string find_file(std::string_view path) const override { return e_.find_file(path); }
+  void status(std::string_view field, std::string_view value) override { e_.set_status(n_.name, field, value); }
   void fail(std::string_view reason) override {
     e_.request_stop(RunResult::failed, "node '" + n_.name + "' (" + n_.plugin_name() + "): " + std::string(reason));
   }
@@ -134,7 +137,44 @@ std::int64_t Executive::now_ns() const { return sim() ? sim_now_ns_ : wall_ns();
 void Executive::host_log(const std::string& msg) {
   if (opt_.quiet) return;
   std::lock_guard<std::mutex> l(log_m_);
+  if (line_open_) { std::fputs("\r\033[K", stderr); line_open_ = false; }
   std::fprintf(stderr, "[brickyard] %s\n", msg.c_str());
+}
+
+void Executive::set_status(const std::string& node, std::string_view field, std::string_view value) {
+  std::lock_guard<std::mutex> l(status_m_);
+  for (auto& [name, fields] : status_) {
+    if (name != node) continue;
+    for (auto& [f, v] : fields)
+      if (f == field) { v = value; return; }
+    fields.emplace_back(std::string(field), std::string(value));
+    return;
+  }
+}
+
+void Executive::progress(bool last) {
+  if (progress_every_s_ <= 0) return;
+  const auto now = std::chrono::steady_clock::now();
+  if (!last && now - last_progress_ < std::chrono::duration<double>(progress_every_s_)) return;
+  if (last && !tty_) return;  // the summary follows
+  last_progress_ = now;
+  const double wall = std::chrono::duration<double>(now - wall0_).count();
+  char head[96];
+  if (sim()) std::snprintf(head, sizeof head, "sim %.1f s (%.1fx real time)", sim_now_ns_ * 1e-9, wall > 0 ? sim_now_ns_ * 1e-9 / wall : 0.0);
+  else std::snprintf(head, sizeof head, "t %.1f s", wall);
+  std::string line = head;
+  {
+    std::lock_guard<std::mutex> l(status_m_);
+    for (const auto& [node, fields] : status_)
+      for (const auto& [f, v] : fields) line += " · " + f + " " + v;
+  }
+  std::lock_guard<std::mutex> l(log_m_);
+  if (tty_) {
+    std::fprintf(stderr, "\r\033[K%s%s", line.c_str(), last ? "\n" : "");
+    line_open_ = !last;
+  } else {
+    std::fprintf(stderr, "[brickyard] progress: %s\n", line.c_str());
+  }
 }
 
 void Executive::log(const NodeRuntime& n, LogLevel level, std::string_view msg) {
@@ -142,6 +182,7 @@ void Executive::log(const NodeRuntime& n, LogLevel level, std::string_view msg) 
   static const char* names[] = {"debug", "info", "warn", "error"};
   double t = sim() ? sim_now_ns_ * 1e-9 : (wall_ns() - real_start_ns_) * 1e-9;
   std::lock_guard<std::mutex> l(log_m_);
+  if (line_open_) { std::fputs("\r\033[K", stderr); line_open_ = false; }
   std::fprintf(stderr, "[%9.3f] %s %s: %.*s\n", t, names[static_cast<int>(level)], n.name.c_str(),
                static_cast<int>(msg.size()), msg.data());
 }
@@ -233,6 +274,7 @@ void Executive::build() {
       }
     }
     n->ctx = std::make_unique<NodeContext>(*this, *n);
+    status_.push_back({n->name, {}});
     here[n->name] = n.get();
     nodes_.push_back(std::move(n));
   }
@@ -277,6 +319,7 @@ void Executive::run_sim() {
       };
     }
   }
+  std::uint64_t events = 0;
   auto drain = [&] {
     while (!ready.empty() && !stop_) {
       NodeRuntime& n = *nodes_[ready.front()];
@@ -304,6 +347,7 @@ void Executive::run_sim() {
     step(*nodes_[i], Trigger{Trigger::Kind::periodic, {}});
     drain();
     timers.push({t + nodes_[i]->rn->period_ns, i});
+    if ((++events & 255) == 0) progress();
   }
 }
 
@@ -364,6 +408,7 @@ void Executive::run_real() {
     }
     if (std::chrono::steady_clock::now() >= deadline) break;
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    progress();
   }
   stop_ = true;
   for (auto& n : nodes_) {
@@ -375,6 +420,9 @@ void Executive::run_real() {
 
 RunSummary Executive::run() {
   const auto wall0 = std::chrono::steady_clock::now();
+  wall0_ = last_progress_ = wall0;
+  tty_ = !opt_.quiet && isatty(2);
+  progress_every_s_ = opt_.quiet ? 0.0 : opt_.progress_s >= 0 ? opt_.progress_s : tty_ ? 0.25 : 5.0;
   real_start_ns_ = wall_ns();
   const GraphDecl& g = *graph_.decl;
   bool built = false;
@@ -424,6 +472,7 @@ RunSummary Executive::run() {
     host_log("running");
     if (sim()) run_sim();
     else run_real();
+    progress(true);
   }
   if (transport_) transport_->close_readers();
   // The run loop's wake-up hooks refer to its own state: samples published from here on (in

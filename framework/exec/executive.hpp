@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <optional>
 
@@ -19,6 +20,8 @@ struct RunOptions {
   std::string process;               // empty: every node
   std::optional<int> domain;         // overrides transport.domain
   bool quiet = false;
+  double progress_s = -1;                // seconds of wall time between progress lines; 0: none;
+                                         // < 0: 0.25 on a terminal (one updating line), 5 otherwise
   std::string record;                    // --record FILE: every wire's samples (docs/recording.md)
   std::vector<std::string> record_only;  // --record-only: "node.port" patterns ('*' any); empty: all
 };
@@ -51,6 +54,7 @@ class Executive {
   std::uint64_t seed() const { return opt_.seed; }
   void log(const NodeRuntime& n, LogLevel level, std::string_view msg);
   void request_stop(RunResult r, std::string reason);
+  void set_status(const std::string& node, std::string_view field, std::string_view value);
 
  private:
   void build();
@@ -59,6 +63,7 @@ class Executive {
   void run_real();
   void step(NodeRuntime& n, Trigger t);
   void host_log(const std::string& msg);
+  void progress(bool last = false);  // prints the progress line when it is due (or last)
 
   const ResolvedGraph& graph_;
   RunOptions opt_;
@@ -74,6 +79,12 @@ class Executive {
   std::int64_t sim_now_ns_ = 0;
   std::int64_t real_start_ns_ = 0;
   std::mutex log_m_;
+  // Progress: status fields by node (in graph order), the line's timing.
+  std::mutex status_m_;
+  std::vector<std::pair<std::string, std::vector<std::pair<std::string, std::string>>>> status_;
+  bool tty_ = false, line_open_ = false;
+  double progress_every_s_ = 0;
+  std::chrono::steady_clock::time_point wall0_, last_progress_;
 };
 
 }  // namespace brickyard::fw

@@ -66,6 +66,7 @@ class SystemManagerNode : public Plugin {
       ctx.log(LogLevel::info, std::string(mode_name(tr.from)) + " -> " + mode_name(tr.to) + " at t = " + std::to_string(t) +
                                   " s: " + tr.reason);
     }
+    if (tr.happened || last_t_ < 0) ctx.status("mode", mode_name(manager_.mode()));
     time_in_[mode_name(manager_.mode())] += last_t_ < 0 ? 0.0 : t - last_t_;
     last_t_ = t;
     msgs::ControlCommand c;

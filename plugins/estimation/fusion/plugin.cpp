@@ -167,6 +167,7 @@ template <Policy P> class Estimator : public Plugin {
       m.header().seq(mode_seq_++);
       m.mode(static_cast<std::uint8_t>(s));
       m.mode_name(status_name(s));
+      if (s != last_status_ || mode_seq_ == 1) ctx.status("localization", status_name(s));
       m.reason(filter.initialized() ? loc_->manager().reason() : "initializing: waiting for the car to move");
       mode_.publish(std::move(m));
       last_mode_ = now;

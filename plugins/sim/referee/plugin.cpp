@@ -57,6 +57,12 @@ class RefereeNode : public Plugin {
       TruthSample t{static_cast<double>(stamp(*s)) * 1e-9, s->x(), s->y(), s->yaw(), std::hypot(s->vx(), s->vy())};
       auto ev = ref_->update(t);
       char buf[160];
+      if (++samples_ % 100 == 0 || ev.lap_completed) {  // the progress line: a few times a second of sim time
+        std::snprintf(buf, sizeof buf, "%.1f m/s", t.speed);
+        ctx.status("speed", buf);
+        std::snprintf(buf, sizeof buf, "%d%s", ref_->laps_completed() + 1, laps_ > 0 ? ("/" + std::to_string(laps_)).c_str() : "");
+        ctx.status("lap", buf);
+      }
       if (ev.lap_completed) {
         std::snprintf(buf, sizeof buf, "lap %d: %.3f s", ref_->laps_completed(), ref_->lap_times().back());
         ctx.log(LogLevel::info, buf);
@@ -109,6 +115,7 @@ class RefereeNode : public Plugin {
   bool crash_ends_ = true;
   std::int64_t laps_ = 0;
   double clearance_required_ = -1;
+  std::uint64_t samples_ = 0;
   Footprint fp_;
   std::unique_ptr<Track> track_;
   std::unique_ptr<Referee> ref_;

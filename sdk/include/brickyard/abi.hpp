@@ -4,7 +4,7 @@
 #include <cstdint>
 
 #define BRICKYARD_ABI_MAJOR 1u
-#define BRICKYARD_ABI_MINOR 1u  // 1: Context::find_file, BadInput
+#define BRICKYARD_ABI_MINOR 2u  // 1: Context::find_file, BadInput; 2: Context::status
 #define BRICKYARD_ENTRY_POINT_NAME "brickyard_plugin_library"
 #define BRICKYARD_EXPORT __attribute__((visibility("default")))
 

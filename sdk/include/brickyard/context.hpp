@@ -127,6 +127,12 @@ class Context {
   virtual detail::InputChannel* input_channel(std::string_view port) = 0;
   virtual detail::OutputChannel* output_channel(std::string_view port) = 0;
 
+ public:
+  // A live status field for the run's progress line ("speed", "40.2 m/s"; "mode", "PATH"):
+  // `brickyard run` shows the newest of each while it runs. Not kept in the summary (use metric).
+  // Appended last so that plugins built against ABI 1.1 keep their vtable (ABI 1.2).
+  virtual void status(std::string_view field, std::string_view value) = 0;
+
  private:
   static void check_type(const std::string& declared, const char* requested, std::string_view port) {
     if (declared != requested)
