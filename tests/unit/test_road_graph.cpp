@@ -260,3 +260,128 @@ TEST(SpeedProfile, CornerSpeedsDragAndTheEllipse) {
 }
 
 }  // namespace
+
+namespace {
+
+// Drives a point car along each plan for dt at the plan's speed (braking at most 12 m/s²,
+// accelerating at most 8), from x0 on the stadium's first straight; returns the largest x
+// reached and the final speed. `late`: obstacles the planner is told of only from time t_seen.
+struct Drive {
+  double x_max = 0, v_end = 0;
+  bool always_clear = true;  // no plan came within the clearance of an obstacle it knew
+  int no_route = 0;
+};
+Drive drive(RoadGraphPlanner& planner, const RoadGraph& g, double x0, double v0, const std::vector<MapObstacle>& obstacles,
+            double t_seen, double seconds) {
+  Drive r;
+  double x = x0, y = 0, v = v0;
+  const double dt = 0.05;
+  for (double t = 0; t < seconds; t += dt) {
+    planner.observe(t >= t_seen ? obstacles : std::vector<MapObstacle>{}, static_cast<std::int64_t>(t * 1e9));
+    const PlannedPath& p = planner.plan(x, y, v);
+    r.no_route += !p.route_found;
+    if (p.points.size() < 2) break;
+    for (const auto& q : p.points)
+      for (const auto& o : planner.obstacles())
+        if (std::abs(q.x - o.x) < 1.0 + o.radius && std::abs(q.y - o.y) < o.radius + g.params().half_width + 1.0) r.always_clear = false;
+    // The car's place on the path, its target speed there, and a step along the path.
+    std::size_t i = 0;
+    double best = 1e18;
+    for (std::size_t k = 0; k < p.points.size(); ++k) {
+      const double d = std::hypot(p.points[k].x - x, p.points[k].y - y);
+      if (d < best) { best = d; i = k; }
+    }
+    const double target = p.speed[i];
+    v = target < v ? std::max(target, v - 12 * dt) : std::min(target, v + 8 * dt);
+    double go = v * dt;
+    while (go > 0 && i + 1 < p.points.size()) {
+      const double seg = std::hypot(p.points[i + 1].x - x, p.points[i + 1].y - y);
+      if (seg >= go) {
+        x += go * (p.points[i + 1].x - x) / seg;
+        y += go * (p.points[i + 1].y - y) / seg;
+        go = 0;
+      } else {
+        go -= seg;
+        x = p.points[i + 1].x;
+        y = p.points[i + 1].y;
+        ++i;
+      }
+    }
+    r.x_max = std::max(r.x_max, x);
+  }
+  r.v_end = v;
+  return r;
+}
+
+TEST(RoadGraphPlanner, StopsBeforeARoadBlockedFromEdgeToEdge) {
+  const RefLine line = stadium();
+  const RoadGraph g = RoadGraph::build(line, kRoom, RoadGraphParams{});
+  RoadGraphPlanner planner(g, line, std::vector<double>(line.size(), 40.0), PlannerParams{});
+  std::vector<MapObstacle> wall;
+  for (double d = -7; d <= 7; d += 0.5) wall.push_back({400, d, 0.3, 0});
+  const Drive r = drive(planner, g, 100, 30, wall, 0, 30);
+  EXPECT_GT(r.no_route, 0);
+  EXPECT_LT(r.v_end, 0.5);                                      // it stopped
+  EXPECT_LT(r.x_max + 4.0, 400 - 0.3);                          // its front short of the wall
+  EXPECT_GT(r.x_max, 300);                                      // near it, not at its commitment
+}
+
+TEST(RoadGraphPlanner, AnObstacleSeenInsideTheCommitmentIsAvoidedOrStoppedFor) {
+  const RefLine line = stadium();
+  const RoadGraph g = RoadGraph::build(line, kRoom, RoadGraphParams{});
+  for (double ahead : {33.0, 60.0}) {
+    RoadGraphPlanner planner(g, line, std::vector<double>(line.size(), 60.0), PlannerParams{});
+    // Seen 0.5 s in, when the car (50 m/s, from x = 100) is `ahead` m short of it.
+    const double x_obs = 100 + 25 + ahead;
+    const Drive r = drive(planner, g, 100, 50, {{x_obs, 0, 0.3, 0}}, 0.5, 6);
+    EXPECT_TRUE(r.always_clear) << ahead;
+    EXPECT_GT(r.x_max, x_obs + 20) << ahead;  // and it went past
+  }
+}
+
+TEST(RoadGraph, RejectsFilesThatWouldBreakTheSearch) {
+  const RoadGraph g = RoadGraph::build(stadium(), kRoom, RoadGraphParams{});
+  const std::string path = ::testing::TempDir() + "/ok.byrg";
+  g.save(path);
+  std::ifstream in(path, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::size_t edges_at = bytes.size() - g.edge_count() * sizeof(RoadGraph::Edge);
+  auto expect_refused = [&](std::string b, const char* why) {
+    const std::string f = ::testing::TempDir() + "/crafted.byrg";
+    std::ofstream(f, std::ios::binary) << b;
+    try {
+      RoadGraph::load(f);
+      ADD_FAILURE() << "loaded: " << why;
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find(why), std::string::npos) << e.what();
+    }
+  };
+  // Edge 0 (of node 0) turned back to node 0 itself: a cycle.
+  std::string back = bytes;
+  const std::uint32_t zero = 0;
+  back.replace(edges_at, 4, reinterpret_cast<const char*>(&zero), 4);
+  expect_refused(back, "does not lead 1 to 8 layers forward");
+  // A negative curvature cost.
+  std::string neg = bytes;
+  const float minus = -1e6f;
+  neg.replace(edges_at + 8, 4, reinterpret_cast<const char*>(&minus), 4);
+  expect_refused(neg, "negative or non-finite cost");
+  // A lateral step of zero in the parameters.
+  std::string step0 = bytes;
+  const double nil = 0;
+  step0.replace(8 + 3 * sizeof(double), sizeof(double), reinterpret_cast<const char*>(&nil), sizeof(double));
+  expect_refused(step0, "lateral_step = 0 is outside");
+}
+
+TEST(RoadGraph, BuildRefusesParametersOutOfRange) {
+  RoadGraphParams p;
+  p.layer_spacing = 1e300;
+  EXPECT_THROW(RoadGraph::build(stadium(), kRoom, p), std::invalid_argument);
+  p = RoadGraphParams{};
+  p.lateral_step = 1e-12;
+  EXPECT_THROW(RoadGraph::build(stadium(), kRoom, p), std::invalid_argument);
+  const TrackRoom nan_room = [](double) { return std::make_pair(std::nan(""), 7.0); };
+  EXPECT_THROW(RoadGraph::build(stadium(), nan_room, RoadGraphParams{}), std::invalid_argument);
+}
+
+}  // namespace

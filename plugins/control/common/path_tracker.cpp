@@ -78,7 +78,8 @@ Command PathTracker::control(double x, double y, double yaw, double speed) {
   const double alpha = std::atan2(dy, dx) - yaw;
   c.steer = std::clamp(std::atan2(2 * p_.wheelbase * std::sin(alpha), dist), -p_.max_steer, p_.max_steer);
   // Speed: brake early enough for every slower point of the preview.
-  const double preview = std::max(p_.preview_time * speed, 1.0);
+  // At most 2 km of preview: a corrupt speed must not become an endless loop.
+  const double preview = std::clamp(p_.preview_time * speed, 1.0, 2000.0);
   double v_target = at(s_car).speed;
   for (double ds = 1.0; ds <= preview; ds += 1.0) {
     const double v = at(s_car + ds).speed;

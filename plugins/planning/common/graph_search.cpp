@@ -35,10 +35,13 @@ bool edge_blocked(const EdgeShape& e, const FrenetObstacle& o, double half_width
 
 GraphSearch::GraphSearch(const RoadGraph& g) : g_(g), cost_(g.node_count(), kInf), parent_(g.node_count(), kNone) {}
 
-Plan GraphSearch::plan(std::uint32_t start, const std::vector<FrenetObstacle>& obstacles, const SearchParams& p) {
+Plan GraphSearch::plan(const std::vector<std::pair<std::uint32_t, double>>& starts, const std::vector<FrenetObstacle>& obstacles,
+                       const SearchParams& p) {
   for (std::uint32_t n : touched_) { cost_[n] = kInf; parent_[n] = kNone; }
   touched_.clear();
   Plan out;
+  if (starts.empty()) return out;
+  const std::uint32_t start = starts.front().first;
   const auto& layers = g_.layers();
   const int nl = static_cast<int>(layers.size());
   const double length = g_.length(), reach = g_.params().max_edge_length;
@@ -55,9 +58,12 @@ Plan GraphSearch::plan(std::uint32_t start, const std::vector<FrenetObstacle>& o
     double r = layers[layer].s - s0;
     return r < 0 ? r + length : r;
   };
-  cost_[start] = 0;
-  touched_.push_back(start);
   const int l0 = g_.layer_of(start);
+  for (const auto& [n, c] : starts) {
+    if (g_.layer_of(n) != l0 || !(c >= 0) || cost_[n] != kInf) continue;  // one layer, each once
+    cost_[n] = c;
+    touched_.push_back(n);
+  }
   for (int off = 0; off < nl; ++off) {
     const int l = (l0 + off) % nl;
     const double ra = off == 0 ? 0.0 : rel(l);
@@ -105,14 +111,15 @@ Plan GraphSearch::plan(std::uint32_t start, const std::vector<FrenetObstacle>& o
   double best_cost = kInf;
   for (std::uint32_t n : touched_) {
     const double rn = rel(g_.layer_of(n));
-    if (rn < horizon || n == start) continue;
+    if (rn < horizon || g_.layer_of(n) == l0) continue;
     const double total = cost_[n] + std::max(0.0, s_end - rn) * (p.k_length + p.k_deviation * std::abs(g_.node_d(n)));
     if (total < best_cost || (total == best_cost && n < best)) { best_cost = total; best = n; }  // ties: lowest node
   }
   if (best == kNone) return out;
   out.found = true;
   out.cost = best_cost;
-  for (std::uint32_t n = best; n != kNone; n = parent_[n]) out.nodes.push_back(n);
+  // Parents lead back layer by layer to a start: at most one node per layer.
+  for (std::uint32_t n = best; n != kNone && out.nodes.size() <= layers.size(); n = parent_[n]) out.nodes.push_back(n);
   std::reverse(out.nodes.begin(), out.nodes.end());
   return out;
 }

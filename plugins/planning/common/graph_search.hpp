@@ -12,6 +12,7 @@
 #include "road_graph.hpp"
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 namespace brickyard::planning {
@@ -52,7 +53,13 @@ class GraphSearch {
  public:
   explicit GraphSearch(const RoadGraph& g);
   // Obstacles' s are map-frame s on the line (not relative).
-  Plan plan(std::uint32_t start, const std::vector<FrenetObstacle>& obstacles, const SearchParams& p);
+  Plan plan(std::uint32_t start, const std::vector<FrenetObstacle>& obstacles, const SearchParams& p) {
+    return plan({{start, 0.0}}, obstacles, p);
+  }
+  // From several start nodes of one layer, each with a cost already paid to reach it (the
+  // planner's lead-ins from the car); the plan begins at the start it goes through.
+  Plan plan(const std::vector<std::pair<std::uint32_t, double>>& starts, const std::vector<FrenetObstacle>& obstacles,
+            const SearchParams& p);
 
  private:
   const RoadGraph& g_;

@@ -201,8 +201,10 @@ MinCurvatureResult min_curvature_line(const ClosedLine& line, const MinCurvature
     // point between stays inside it) until the true summed squared curvature goes down.
     const double f0 = objective(alpha);
     Eigen::VectorXd step = next - alpha;
-    for (int k = 0; k < 20 && objective(alpha + step) > f0; ++k) step *= 0.5;
-    if (objective(alpha + step) > f0) break;  // no descent left: converged
+    // (A non-finite value — points that coincide — counts as no descent.)
+    auto worse = [&](const Eigen::VectorXd& a) { const double f = objective(a); return !(f <= f0); };
+    for (int k = 0; k < 20 && worse(alpha + step); ++k) step *= 0.5;
+    if (worse(alpha + step)) break;  // no descent left: converged
     const double moved = step.cwiseAbs().maxCoeff();
     alpha += step;
     for (int i = 0; i < n; ++i) {

@@ -41,10 +41,27 @@ constexpr int kSpans[] = {1, 2, 3, 4, 6, 8};
 constexpr int kSamples = 10;  // per edge, at the midpoints of equal steps in s
 }  // namespace
 
+void check_params(const RoadGraphParams& p) {
+  auto in = [](const char* name, double v, double lo, double hi) {
+    if (!(v >= lo && v <= hi)) {  // NaN fails too
+      char buf[160];
+      std::snprintf(buf, sizeof buf, "road graph: %s = %g is outside [%g, %g]", name, v, lo, hi);
+      throw std::invalid_argument(buf);
+    }
+  };
+  in("layer_spacing", p.layer_spacing, 1, 100);
+  in("layer_spacing_turn", p.layer_spacing_turn, 1, 100);
+  in("turn_curvature", p.turn_curvature, 0, 1);
+  in("lateral_step", p.lateral_step, 0.1, 5);
+  in("half_width", p.half_width, 0.1, 5);
+  in("edge_margin", p.edge_margin, 0, 20);
+  in("max_curvature", p.max_curvature, 0.001, 1);
+  in("max_edge_length", p.max_edge_length, 5, 500);
+}
+
 RoadGraph RoadGraph::build(const RefLine& line, const TrackRoom& room, const RoadGraphParams& p,
                            std::uint64_t digest) {
-  if (!(p.layer_spacing > 0 && p.layer_spacing_turn > 0 && p.lateral_step > 0 && p.max_edge_length > 0))
-    throw std::invalid_argument("road graph: spacings, lateral step and edge length must be positive");
+  check_params(p);
   RoadGraph g;
   g.p_ = p;
   g.digest_ = digest;
@@ -63,6 +80,11 @@ RoadGraph RoadGraph::build(const RefLine& line, const TrackRoom& room, const Roa
   std::vector<double> lo(nl), hi(nl);
   for (int i = 0; i < nl; ++i) {
     const auto [dr, dl] = room(ls[i]);
+    if (!(std::abs(dr) < 1000 && std::abs(dl) < 1000)) {  // NaN too: it must not reach an int cast
+      char buf[160];
+      std::snprintf(buf, sizeof buf, "road graph: at s = %.1f m the track's edges are not usable (d = %g and %g m)", ls[i], dr, dl);
+      throw std::invalid_argument(buf);
+    }
     lo[i] = dr + p.half_width + p.edge_margin;
     hi[i] = dl - p.half_width - p.edge_margin;
     Layer L;
@@ -205,27 +227,50 @@ RoadGraph RoadGraph::load(const std::string& path) {
   if (version != kVersion) throw fail("format version " + std::to_string(version) + ", this build reads " + std::to_string(kVersion));
   RoadGraph g;
   get(g.p_, "parameters");
+  try {
+    check_params(g.p_);
+  } catch (const std::invalid_argument& e) {
+    throw fail(e.what());
+  }
   get(g.digest_, "digest");
   get(g.length_, "length");
+  if (!(g.length_ > 0 && g.length_ < 1e6)) throw fail("implausible line length");
   get_vec(g.layers_, "layers", 1u << 24);
   get_vec(g.first_edge_, "nodes", 1u << 26);
   get_vec(g.edges_, "edges", 1u << 28);
   if (f.peek() != std::char_traits<char>::eof()) throw fail("trailing bytes");
   // Consistency: layers in order and their nodes contiguous; edge ranges and targets in bounds.
-  std::uint32_t nodes = 0;
+  // Layers in order, their nodes contiguous and within a kilometre of the line; counts checked
+  // in 64 bits before anything is allocated for them.
+  std::uint64_t nodes = 0;
+  const double k_max = 1000 / g.p_.lateral_step;
   for (std::size_t i = 0; i < g.layers_.size(); ++i) {
     const Layer& L = g.layers_[i];
-    if (L.first_node != nodes || L.count == 0 || !(L.s >= 0 && L.s < g.length_) || (i > 0 && L.s <= g.layers_[i - 1].s))
-      throw fail("layer " + std::to_string(i) + " is out of order");
+    if (L.first_node != nodes || L.count == 0 || !(L.s >= 0 && L.s < g.length_) || (i > 0 && L.s <= g.layers_[i - 1].s) ||
+        std::abs(static_cast<double>(L.k0)) > k_max || L.count > 2 * k_max + 1)
+      throw fail("layer " + std::to_string(i) + " is out of order or out of bounds");
     nodes += L.count;
-    g.node_layer_.insert(g.node_layer_.end(), L.count, static_cast<std::uint32_t>(i));
   }
-  if (g.layers_.size() < 3 || g.first_edge_.size() != nodes + std::size_t{1} || g.first_edge_.back() != g.edges_.size())
+  if (g.layers_.size() < 3 || g.first_edge_.size() != nodes + 1 || g.first_edge_.back() != g.edges_.size())
     throw fail("node and edge counts disagree");
-  for (std::size_t i = 0; i + 1 < g.first_edge_.size(); ++i)
-    if (g.first_edge_[i] > g.first_edge_[i + 1]) throw fail("edge ranges out of order at node " + std::to_string(i));
-  for (const Edge& e : g.edges_)
-    if (e.to >= nodes || !(e.length > 0)) throw fail("an edge leads nowhere");
+  g.node_layer_.reserve(nodes);
+  for (std::size_t i = 0; i < g.layers_.size(); ++i)
+    g.node_layer_.insert(g.node_layer_.end(), g.layers_[i].count, static_cast<std::uint32_t>(i));
+  // Edges: in range, finite, non-negative, and forward by 1 to 8 layers — the search is a DAG
+  // pass that a backward edge would turn into a cycle.
+  const auto nl = static_cast<std::uint32_t>(g.layers_.size());
+  for (std::size_t n = 0; n + 1 < g.first_edge_.size(); ++n) {
+    if (g.first_edge_[n] > g.first_edge_[n + 1]) throw fail("edge ranges out of order at node " + std::to_string(n));
+    for (std::uint32_t k = g.first_edge_[n]; k < g.first_edge_[n + 1]; ++k) {
+      const Edge& e = g.edges_[k];
+      if (e.to >= nodes) throw fail("edge " + std::to_string(k) + " leads past the last node");
+      const std::uint32_t ahead = (g.node_layer_[e.to] + nl - g.node_layer_[n]) % nl;
+      if (ahead < 1 || ahead > 8) throw fail("edge " + std::to_string(k) + " does not lead 1 to 8 layers forward");
+      for (float v : {e.length, e.curvature, e.deviation, e.max_kappa})
+        if (!(v >= 0 && v < 1e9)) throw fail("edge " + std::to_string(k) + " has a negative or non-finite cost");
+      if (!(e.length > 0)) throw fail("edge " + std::to_string(k) + " has no length");
+    }
+  }
   return g;
 }
 

@@ -31,6 +31,7 @@ struct RoadGraphParams {
                                       // tracker strays up to ~1 m at 50 m/s (docs/planning.md)
   double max_curvature = 0.05;        // 1/m: sharper edges are dropped
   double max_edge_length = 80;        // m
+  bool operator==(const RoadGraphParams&) const = default;
 };
 
 // The track's edges across the line at s: (d of the right edge, d of the left edge), d measured
@@ -91,6 +92,11 @@ class RoadGraph {
   std::vector<std::uint32_t> first_edge_;  // per node, and one past the last
   std::vector<Edge> edges_;
 };
+
+// Throws std::invalid_argument naming the first parameter outside its range (layer_spacing and
+// layer_spacing_turn 1-100 m, lateral_step 0.1-5 m, half_width 0.1-5 m, edge_margin 0-20 m,
+// max_curvature 0.001-1 1/m, max_edge_length 5-500 m, turn_curvature 0-1 1/m).
+void check_params(const RoadGraphParams& p);
 
 // d along an edge from (s_a, d_a) to (s_b, d_b) at s, and its derivatives in s.
 struct EdgeShape {

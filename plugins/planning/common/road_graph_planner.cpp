@@ -6,6 +6,10 @@
 
 namespace brickyard::planning {
 
+namespace {
+constexpr std::uint32_t kNoNode = ~std::uint32_t{0};  // a piece that ends off the graph
+}  // namespace
+
 RoadGraphPlanner::RoadGraphPlanner(const RoadGraph& graph, const RefLine& line, std::vector<double> ref_speed,
                                    PlannerParams p)
     : g_(graph), line_(line), ref_speed_(std::move(ref_speed)), p_(p), search_(graph) {
@@ -14,7 +18,9 @@ RoadGraphPlanner::RoadGraphPlanner(const RoadGraph& graph, const RefLine& line, 
 }
 
 void RoadGraphPlanner::observe(const std::vector<MapObstacle>& seen, std::int64_t now_ns) {
-  for (const MapObstacle& o : seen) {
+  for (MapObstacle o : seen) {
+    if (!(std::abs(o.x) < 1e7 && std::abs(o.y) < 1e7)) continue;  // NaN or absurd: not a place
+    if (!(o.radius >= 0.05 && o.radius <= 5.0)) o.radius = 5.0;     // unknown size: the largest
     MapObstacle* same = nullptr;
     double best = p_.merge_distance;
     for (MapObstacle& m : memory_) {
@@ -25,7 +31,7 @@ void RoadGraphPlanner::observe(const std::vector<MapObstacle>& seen, std::int64_
     else memory_.push_back(o);
     (same ? *same : memory_.back()).seen_ns = now_ns;
   }
-  const auto keep_ns = static_cast<std::int64_t>(p_.obstacle_memory * 1e9);
+  const auto keep_ns = static_cast<std::int64_t>(std::clamp(p_.obstacle_memory, 0.0, 1e6) * 1e9);
   memory_.erase(std::remove_if(memory_.begin(), memory_.end(), [&](const MapObstacle& m) { return now_ns - m.seen_ns > keep_ns; }),
                 memory_.end());
 }
@@ -44,19 +50,74 @@ bool RoadGraphPlanner::committed_blocked(const std::vector<Piece>& pieces, const
   return false;
 }
 
+std::vector<std::pair<std::uint32_t, double>> RoadGraphPlanner::lead_ins(double s_c, double d_c, double commit,
+                                                                         const std::vector<FrenetObstacle>& obs) const {
+  const double L = line_.length();
+  const SearchParams& sp = p_.search;
+  const int layer = g_.layer_at_or_after(s_c + commit);
+  const auto& Ly = g_.layers()[layer];
+  double h = Ly.s - s_c;
+  if (h <= 0) h += L;
+  std::vector<std::pair<std::uint32_t, double>> out;
+  for (std::uint32_t n = Ly.first_node; n < Ly.first_node + Ly.count; ++n) {
+    const EdgeShape e{-p_.behind, d_c, h, g_.node_d(n)};  // s relative to the car
+    double cost = 0;
+    bool ok = true;
+    for (const auto& o : obs) {
+      FrenetObstacle r = o;
+      r.s = relative_s(o.s, s_c, L);
+      double gap;
+      if (edge_blocked(e, r, g_.params().half_width, sp, &gap)) { ok = false; break; }
+      if (gap < sp.soft_clearance) cost += sp.k_proximity * (sp.soft_clearance - gap) * (sp.soft_clearance - gap);
+    }
+    if (!ok) continue;
+    constexpr int kSamples = 10;
+    const double ds = (e.s_b - e.s_a) / kSamples;
+    double kmax = 0;
+    for (int k = 0; k < kSamples; ++k) {
+      const double s = e.s_a + (k + 0.5) * ds, d = e.d(s), d1 = e.d1(s), kr = line_.kappa(s_c + s);
+      const double q = 1 - kr * d, dl = std::sqrt(q * q + d1 * d1) * ds;
+      const double kappa = offset_curvature(kr, d, d1, e.d2(s));
+      cost += sp.k_length * dl + sp.k_curvature * kappa * kappa * dl + sp.k_deviation * std::abs(d) * ds;
+      kmax = std::max(kmax, std::abs(kappa));
+    }
+    if (kmax <= g_.params().max_curvature || std::abs(g_.node_d(n) - d_c) < g_.params().lateral_step) out.emplace_back(n, cost);
+  }
+  return out;
+}
+
+double RoadGraphPlanner::stop_at(const std::vector<Piece>& pieces, const std::vector<FrenetObstacle>& obs) const {
+  const double L = line_.length();
+  double stop = pieces.back().shape.s_b;
+  for (const Piece& pc : pieces) {
+    const EdgeShape e{0, pc.shape.d_a, pc.shape.s_b - pc.shape.s_a, pc.shape.d_b};
+    for (const auto& o : obs) {
+      FrenetObstacle r = o;
+      r.s = relative_s(o.s, pc.shape.s_a, L);
+      if (edge_blocked(e, r, g_.params().half_width, p_.search))
+        stop = std::min(stop, pc.shape.s_a + r.s - p_.search.car_front - r.radius - p_.search.clearance);
+    }
+  }
+  return stop;
+}
+
 const PlannedPath& RoadGraphPlanner::plan(double x, double y, double speed) {
   const double L = line_.length();
+  out_ = PlannedPath{};
   const Eigen::Vector2d f = line_.to_frenet(x, y, hint_s_);
   const double s_c = f.x(), d_c = f.y();
+  // A pose nowhere near the line (a corrupt estimate): no path at all, rather than one built on it.
+  if (!(std::isfinite(s_c) && std::abs(d_c) < 1000)) return out_;
   hint_s_ = s_c;
+  if (!(speed >= 0 && speed < 1000)) speed = 0;
   std::vector<FrenetObstacle> obs;
   for (const MapObstacle& m : memory_) {
     const Eigen::Vector2d q = line_.to_frenet(m.x, m.y, s_c);
-    obs.push_back({q.x(), q.y(), m.radius});
+    if (std::isfinite(q.x()) && std::abs(q.y()) < 1000) obs.push_back({q.x(), q.y(), m.radius});
   }
-  out_ = PlannedPath{};
-  // What stays of the last plan: pieces not yet behind the car, up to the commitment point.
-  const double commit = std::max(p_.commit_min, p_.commit_time * std::max(speed, 0.0));
+  // What stays of the last plan: pieces not yet behind the car, up to the commitment point (all
+  // of them while stopping: the stop point stays where it was).
+  const double commit = std::max(p_.commit_min, p_.commit_time * speed);
   std::vector<Piece> kept;
   bool on_it = false;
   for (const Piece& pc : pieces_) {
@@ -64,38 +125,81 @@ const PlannedPath& RoadGraphPlanner::plan(double x, double y, double speed) {
     if (rb < 0) continue;
     if (ra <= 0) on_it = std::abs(pc.shape.d(pc.shape.s_a - ra) - d_c) <= p_.rejoin;
     kept.push_back(pc);
-    if (rb >= commit) break;
+    if (rb >= commit && !stopping_) break;
   }
-  const bool reaches = !kept.empty() && relative_s(kept.back().shape.s_b, s_c, L) >= commit;
-  if (!on_it || !reaches || committed_blocked(kept, obs)) {
-    // Start afresh: a lead-in from behind the car at its offset to the node nearest it there.
-    kept.clear();
-    const int layer = g_.layer_at_or_after(s_c + commit);
-    const std::uint32_t start = g_.nearest_node(layer, d_c);
-    double h = g_.node_s(start) - s_c;
-    if (h < 0) h += L;
-    kept.push_back({EdgeShape{s_c - p_.behind, d_c, s_c + h, g_.node_d(start)}, start});
-    out_.restarted = true;
+  const bool usable = on_it && !kept.empty() && !committed_blocked(kept, obs);
+  const bool reaches = usable && relative_s(kept.back().shape.s_b, s_c, L) >= commit && kept.back().end != kNoNode;
+  Plan plan;
+  if (reaches && !stopping_) {
+    plan = search_.plan(kept.back().end, obs, p_.search);
+    out_.edges_relaxed += plan.edges_relaxed;
   }
-  const std::uint32_t start = kept.back().end;
-  const Plan plan = search_.plan(start, obs, p_.search);
+  std::vector<Piece> pieces = kept;
+  if (!plan.found) {
+    // Start afresh from the car: every node of the layer at the commitment distance that a
+    // lead-in reaches without meeting an obstacle, the lead-in's cost counted.
+    // When an obstacle seen late leaves no way round at the commitment distance, nearer layers
+    // are tried (a sharper lead-in; the speeds follow its bends), down to commit_min.
+    Plan fresh;
+    for (double reach = commit;; reach = std::max(p_.commit_min, reach - 10)) {
+      fresh = search_.plan(lead_ins(s_c, d_c, reach, obs), obs, p_.search);
+      out_.edges_relaxed += fresh.edges_relaxed;
+      if (fresh.found || reach <= p_.commit_min) break;
+    }
+    if (fresh.found) {
+      plan = std::move(fresh);
+      const std::uint32_t first = plan.nodes.front();
+      double h = g_.node_s(first) - s_c;
+      if (h <= 0) h += L;
+      pieces = {{EdgeShape{s_c - p_.behind, d_c, s_c + h, g_.node_d(first)}, first}};
+      out_.restarted = true;
+    }
+  }
   out_.route_found = plan.found;
-  out_.edges_relaxed = plan.edges_relaxed;
-  for (std::size_t i = 1; i < plan.nodes.size(); ++i) {
-    const std::uint32_t a = plan.nodes[i - 1], b = plan.nodes[i];
-    double h = g_.node_s(b) - g_.node_s(a);
-    if (h <= 0) h += L;
-    const double sa = kept.back().shape.s_b;
-    kept.push_back({EdgeShape{sa, g_.node_d(a), sa + h, g_.node_d(b)}, b});
+  if (plan.found) {
+    for (std::size_t i = 1; i < plan.nodes.size(); ++i) {
+      const std::uint32_t a = plan.nodes[i - 1], b = plan.nodes[i];
+      double h = g_.node_s(b) - g_.node_s(a);
+      if (h <= 0) h += L;
+      const double sa = pieces.back().shape.s_b;
+      pieces.push_back({EdgeShape{sa, g_.node_d(a), sa + h, g_.node_d(b)}, b});
+    }
+    pieces_ = std::move(pieces);
+    stopping_ = false;
+    make_path(speed, false, 0);
+    return out_;
   }
-  pieces_ = kept;
-  // The path: points along the pieces, then speeds within the line's profile and the path's bends.
+  // No route: stop. On what the car is committed to while it is usable (it then stays put),
+  // else on a straight line at the car's offset.
+  if (!(stopping_ && usable)) {
+    pieces_ = usable ? kept : std::vector<Piece>{{EdgeShape{s_c - p_.behind, d_c, s_c + commit, d_c}, kNoNode}};
+    if (!usable) out_.restarted = true;
+    // On along the line at the same offset over the horizon: the car stops before the blockage,
+    // not at the end of its commitment.
+    const EdgeShape& end = pieces_.back().shape;
+    pieces_.push_back({EdgeShape{end.s_b, end.d_b, end.s_b + p_.search.horizon, end.d_b}, kNoNode});
+  } else {
+    pieces_ = kept;
+  }
+  stopping_ = true;
+  make_path(speed, true, stop_at(pieces_, obs));
+  return out_;
+}
+
+void RoadGraphPlanner::make_path(double speed, bool stop, double stop_s) {
+  // Points along the pieces (cut at the stop), then speeds within the line's profile and the
+  // path's bends — braking from the car's speed to zero at the stop.
   for (const Piece& pc : pieces_) sample_shape(line_, pc.shape, p_.path_step, out_.points);
   {
     const Piece& last = pieces_.back();
     const double s = last.shape.s_b, d = last.shape.d_b;
     const Eigen::Vector2d q = line_.point(s, d);
     out_.points.push_back({q.x(), q.y(), s, d, offset_curvature(line_.kappa(s), d, 0, 0)});
+  }
+  if (stop) {
+    std::size_t keep = 1;
+    while (keep < out_.points.size() && out_.points[keep].s <= stop_s) ++keep;
+    out_.points.resize(std::max<std::size_t>(keep, 2));
   }
   const std::size_t n = out_.points.size();
   std::vector<double> ds(n - 1), kappa(n), cap(n);
@@ -105,9 +209,8 @@ const PlannedPath& RoadGraphPlanner::plan(double x, double y, double speed) {
     cap[i] = line_.interpolate(ref_speed_, q.s);
     if (i + 1 < n) ds[i] = std::max(1e-3, std::hypot(out_.points[i + 1].x - q.x, out_.points[i + 1].y - q.y));
   }
-  // No route: brake to a stop by the end of what the car is committed to.
-  out_.speed = speed_profile(ds, kappa, p_.limits, false, -1, plan.found ? -1 : 0.0, &cap);
-  return out_;
+  out_.speed = stop ? speed_profile(ds, kappa, p_.limits, false, speed, 0.0, &cap)
+                    : speed_profile(ds, kappa, p_.limits, false, -1, -1, &cap);
 }
 
 }  // namespace brickyard::planning

@@ -5,9 +5,17 @@
 //
 // Commitment: the car keeps the last plan up to the first node at least max(commit_min,
 // commit_time · v) ahead, and the search starts there, so successive plans join without a jump
-// (the paper replans at 20 Hz). The committed part is dropped — the plan restarts from the node
-// nearest the car's offset, joined by a smooth lead-in — when the car is off it by more than
-// `rejoin` metres or an obstacle now blocks it.
+// (the paper replans at 20 Hz). The plan restarts — from every node of the layer at the
+// commitment distance that a smooth lead-in from the car reaches without meeting an obstacle,
+// the lead-in's cost counted as an edge's — when the car is off the committed part by more than
+// `rejoin` metres, an obstacle now blocks it, or no route goes on from its end.
+//
+// No route at all: the car stops. The path is the part it is committed to (or, when that is
+// blocked or gone, a straight line at its offset) and on at the same offset from the line over
+// the horizon, cut where the car would come within the clearance of the first obstacle in its
+// way, its speeds braking from the car's to zero there.
+// That stop point stays put from cycle to cycle (it does not move ahead with the car) until a
+// route opens.
 #include "graph_search.hpp"
 #include "road_graph.hpp"
 #include "speed_profile.hpp"
@@ -60,6 +68,14 @@ class RoadGraphPlanner {
     std::uint32_t end;     // the node it ends at
   };
   bool committed_blocked(const std::vector<Piece>& pieces, const std::vector<FrenetObstacle>& obs) const;
+  // Lead-ins from the car (s_c, d_c) to the reachable nodes of the layer at the commitment
+  // distance, each with its cost (as an edge's, in the search's terms).
+  std::vector<std::pair<std::uint32_t, double>> lead_ins(double s_c, double d_c, double commit,
+                                                         const std::vector<FrenetObstacle>& obs) const;
+  // Where a car on these pieces must stop (s on the line, unwrapped like the pieces): before the
+  // first obstacle that blocks them, or at their end.
+  double stop_at(const std::vector<Piece>& pieces, const std::vector<FrenetObstacle>& obs) const;
+  void make_path(double speed, bool stop, double stop_s);
   const RoadGraph& g_;
   const RefLine& line_;
   std::vector<double> ref_speed_;
@@ -68,6 +84,7 @@ class RoadGraphPlanner {
   std::vector<MapObstacle> memory_;
   std::vector<Piece> pieces_;
   double hint_s_ = -1;
+  bool stopping_ = false;  // the last plan found no route: its pieces end at a fixed stop
   PlannedPath out_;
 };
 

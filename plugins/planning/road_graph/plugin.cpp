@@ -33,7 +33,7 @@ class RoadGraphNode : public Plugin {
     const PlannerParams pp;
     return Manifest("planning.road_graph", "1.0.0")
         .describe("obstacle avoidance on a road graph (Frenet lattice) along the racing line; a Path with speeds, replanned at rate_hz")
-        .input<msgs::TrackWorld>("world", "the track: the graph's room (needed unless graph_file is given)", false, 1)
+        .input<msgs::TrackWorld>("world", "the track: the graph's room and the line's edge margin (must be wired)", false, 1)
         .input<msgs::LocalizationEstimate>("estimate", "where the car is (base_link, map frame)", false, 64)
         .input<msgs::ObstacleList>("obstacles", "obstacles in the vehicle frame, placed with the estimate of their stamp", false, 16)
         .output<msgs::Path>("path", "horizon m of path from just behind the car, with speeds (open)")
@@ -63,7 +63,7 @@ class RoadGraphNode : public Plugin {
         .param(ParamSpec::number("k_proximity", s.k_proximity).at_least(0))
         .param(ParamSpec::number("commit_time", pp.commit_time).in_unit("s").at_least(0))
         .param(ParamSpec::number("commit_min", pp.commit_min).in_unit("m").at_least(1))
-        .param(ParamSpec::number("obstacle_memory", pp.obstacle_memory).in_unit("s").at_least(0))
+        .param(ParamSpec::number("obstacle_memory", pp.obstacle_memory).in_unit("s").range(0, 3600))
         .periodic("rate_hz");
   }
 
@@ -114,11 +114,15 @@ class RoadGraphNode : public Plugin {
       } catch (const std::exception& e) {
         throw BadInput(std::string("graph_file ") + e.what());
       }
+      if (!(loaded_->params() == gp_))
+        throw BadInput("graph_file " + graph_file_ + " was built with other graph parameters than this node's (rebuild it with brickyard-plan graph and the same options)");
       if (loaded_->source_digest() != reference_digest(line_, margin_, gp_))
         throw BadInput("graph_file " + graph_file_ + " was built for another racing line, edge_margin or graph parameters (rebuild it with brickyard-plan graph)");
     }
     world_ = ctx.input<msgs::TrackWorld>("world");
-    if (!world_.connected() && !loaded_) throw BadInput("input 'world' must be wired unless 'graph_file' is given");
+    // The line is kept inside the track's edges as the graph was built: the world is needed even
+    // with a graph file, or the nodes would sit on another line.
+    if (!world_.connected()) throw BadInput("input 'world' must be wired: the racing line is kept inside its edges");
     estimate_ = ctx.input<msgs::LocalizationEstimate>("estimate");
     obstacles_ = ctx.input<msgs::ObstacleList>("obstacles");
     out_ = ctx.output<msgs::Path>("path");
@@ -137,18 +141,21 @@ class RoadGraphNode : public Plugin {
       const msgs::LocalizationEstimate& at = nearest_pose(list->header().stamp_ns());
       const double c = std::cos(at.yaw()), sn = std::sin(at.yaw());
       for (const auto& o : list->obstacles()) {
-        if (!std::isfinite(o.x()) || !std::isfinite(o.y())) continue;
         MapObstacle m;
         m.x = at.x() + c * o.x() - sn * o.y();
         m.y = at.y() + sn * o.x() + c * o.y();
-        m.radius = std::clamp(0.5 * std::max(o.size_x(), o.size_y()), 0.1, 5.0);
+        if (!std::isfinite(m.x) || !std::isfinite(m.y)) continue;
+        // An unknown (non-finite) size is taken as the largest: the obstacle still blocks.
+        const double r = 0.5 * std::max(o.size_x(), o.size_y());
+        m.radius = std::isfinite(r) ? std::clamp(r, 0.1, 5.0) : 5.0;
         seen.push_back(m);
       }
     }
     planner_->observe(seen, ctx.now_ns());
     const msgs::LocalizationEstimate& car = *poses_.back();
-    if (!std::isfinite(car.x()) || !std::isfinite(car.y())) return;
+    if (!(std::abs(car.x()) < 1e7 && std::abs(car.y()) < 1e7)) return;  // NaN or absurd: no plan from it
     const PlannedPath& plan = planner_->plan(car.x(), car.y(), car.speed());
+    if (plan.points.size() < 2) return;
     if (!plan.route_found) ++blocked_;
     if (plan.restarted) ++restarts_;
     obstacles_max_ = std::max(obstacles_max_, planner_->obstacles().size());
@@ -219,8 +226,11 @@ class RoadGraphNode : public Plugin {
 
   const msgs::LocalizationEstimate& nearest_pose(std::int64_t stamp) const {
     const msgs::LocalizationEstimate* best = poses_.back().get();
+    auto apart = [stamp](const msgs::LocalizationEstimate& e) {  // in double: no overflow on odd stamps
+      return std::abs(static_cast<double>(e.header().stamp_ns()) - static_cast<double>(stamp));
+    };
     for (const auto& p : poses_)
-      if (std::llabs(p->header().stamp_ns() - stamp) < std::llabs(best->header().stamp_ns() - stamp)) best = p.get();
+      if (apart(*p) < apart(*best)) best = p.get();
     return *best;
   }
 
