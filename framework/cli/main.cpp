@@ -5,6 +5,8 @@
 
 #include <brickyard/version.hpp>
 
+#include <sys/wait.h>
+
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
@@ -23,6 +25,7 @@ usage:
   brickyard validate GRAPH.json [options]  check everything, start nothing
   brickyard plugins [--json]               list the plugins found and their manifests
   brickyard graph GRAPH.json --dot         print the graph for Graphviz
+  brickyard report RUN_DIR                 write RUN_DIR/report.html from a run's recording
   brickyard new-plugin NAME --dir DIR      scaffold a plugin project from the SDK template
   brickyard --version
 
@@ -30,13 +33,15 @@ options:
   --duration S         stop after S seconds (sim or real clock); overrides clock.duration_s
   --set NODE.PARAM=V   override a parameter (V is JSON, or else a string); repeatable
   --seed N             seed of every random source (default 0)
-  --out DIR            write DIR/summary.json
   --process NAME       run only the nodes of process NAME; other processes meet over DDS
   --domain N           DDS domain id; overrides transport.domain
   --plugin-path DIR    search DIR for plugin libraries first; repeatable
   --quiet              only warnings and errors
   --progress S         a progress line every S seconds (default: 0.25 on a terminal, one
                        updating line; 5 otherwise, plain lines); 0: none
+  --out DIR            write DIR/summary.json, and (unless --no-report) record the run's wires
+                       but its point clouds into DIR/recording.db3 and write DIR/report.html
+  --no-report          with --out: the summary alone
   --record FILE        record every wire's samples into FILE (SQLite; docs/recording.md)
   --record-only P,...  record only the topics NODE.PORT matching these patterns ('*' any)
 
@@ -51,7 +56,7 @@ struct Args {
   std::optional<int> domain;
   double progress = -1;
   std::uint64_t seed = 0;
-  bool json = false, dot = false, quiet = false;
+  bool json = false, dot = false, quiet = false, no_report = false;
 };
 
 [[noreturn]] void usage_error(const std::string& where, const std::string& msg) {
@@ -97,6 +102,7 @@ Args parse_args(int argc, char** argv) {
     } else if (f == "--plugin-path") a.plugin_paths.push_back(value());
     else if (f == "--dir") a.dir = value();
     else if (f == "--record") a.record = value();
+    else if (f == "--no-report") a.no_report = true;
     else if (f == "--progress") {
       a.progress = parse_number(f, value());
       if (!(a.progress >= 0)) usage_error("--progress", "expected seconds, 0 or more");
@@ -130,6 +136,20 @@ Registry load_registry(const Args& a, const GraphDecl* g) {
 }
 
 void on_signal(int) { g_interrupt = true; }
+
+// brickyard-report, installed beside this executable, on a run folder; its exit code.
+int run_report(const std::string& dir, bool quiet) {
+  std::error_code ec;
+  const fs::path self = fs::read_symlink("/proc/self/exe", ec);
+  const fs::path tool = self.parent_path() / "brickyard-report";
+  if (ec || !fs::exists(tool)) {
+    std::fprintf(stderr, "[brickyard] brickyard-report not found beside %s\n", self.string().c_str());
+    return 2;
+  }
+  const std::string cmd = "'" + tool.string() + "' '" + dir + "'" + (quiet ? " > /dev/null" : "");
+  const int rc = std::system(cmd.c_str());
+  return WIFEXITED(rc) ? WEXITSTATUS(rc) : 1;
+}
 
 // The end of a run at a glance: one row per node with its metrics (arrays cut at four values).
 std::string summary_table(const nlohmann::json& j) {
@@ -197,6 +217,18 @@ int cmd_run(const Args& a, bool validate_only) {
   opt.progress_s = a.progress;
   opt.record_only = a.record_only;
   if (!a.record_only.empty() && a.record.empty()) usage_error("--record-only", "needs --record FILE");
+  // --out keeps the run: its summary, a recording of everything but the point clouds (those
+  // are large; --record takes them) and the report drawn from it. The folder's own recording
+  // is the run's output, replaced by the next run into it (a --record FILE never is).
+  const bool report = !a.out.empty() && !a.no_report;
+  if (report && a.record.empty()) {
+    const fs::path rec = fs::path(a.out) / "recording.db3";
+    std::error_code ec;
+    fs::remove(rec, ec);
+    fs::remove(fs::path(a.out) / "report.html", ec);
+    opt.record = rec.string();
+    opt.record_skip_types = {"brickyard::msgs::PointCloud", "brickyard::msgs::ClusterList"};
+  }
   RunSummary s;
   {
     Executive ex(rg, opt);
@@ -213,8 +245,17 @@ int cmd_run(const Args& a, bool validate_only) {
       return 1;
     }
   }
+  if (report && s.result != RunResult::invalid_input && s.json.contains("recording")) {
+    const int rc = run_report(a.out, a.quiet);
+    if (rc != 0) std::fprintf(stderr, "[brickyard] warning: no report (brickyard-report exit %d); the run's result stands\n", rc);
+  }
   if (s.result == RunResult::invalid_input) return 2;
   return s.result == RunResult::failed ? 1 : 0;
+}
+
+int cmd_report(const Args& a) {
+  if (a.target.empty()) usage_error("report", "needs a run folder (brickyard run --out DIR)");
+  return run_report(a.target, false);
 }
 
 int cmd_plugins(const Args& a) {
@@ -271,6 +312,7 @@ int main(int argc, char** argv) {
     if (a.command == "validate") return cmd_run(a, true);
     if (a.command == "plugins") return cmd_plugins(a);
     if (a.command == "graph") return cmd_graph(a);
+    if (a.command == "report") return cmd_report(a);
     if (a.command == "new-plugin") return cmd_new_plugin(a);
     usage_error(a.command, "unknown command (commands: run, validate, plugins, graph, new-plugin)");
   } catch (const InvalidInput& e) {

@@ -2,6 +2,7 @@
 #include "loader/registry.hpp"
 #include <brickyard/version.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -267,7 +268,8 @@ void Executive::build() {
         n->outputs.push_back(std::make_unique<OutputPort>(p.name, p.type_name));
         n->outputs.back()->writer = transport_->make_writer(topic_name(n->name, p.name), p.type_name);
         const std::string topic = n->name + "." + p.name;
-        if (recorder_ && (opt_.record_only.empty() || topic_selected(topic, opt_.record_only))) {
+        const bool skip = std::find(opt_.record_skip_types.begin(), opt_.record_skip_types.end(), p.type_name) != opt_.record_skip_types.end();
+        if (recorder_ && !skip && (opt_.record_only.empty() || topic_selected(topic, opt_.record_only))) {
           const int id = recorder_->add_topic(topic, p.type_name);
           n->outputs.back()->tap = [this, id](const void* m) { recorder_->write(id, now_ns(), m); };
         }

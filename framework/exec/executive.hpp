@@ -24,6 +24,7 @@ struct RunOptions {
                                          // < 0: 0.25 on a terminal (one updating line), 5 otherwise
   std::string record;                    // --record FILE: every wire's samples (docs/recording.md)
   std::vector<std::string> record_only;  // --record-only: "node.port" patterns ('*' any); empty: all
+  std::vector<std::string> record_skip_types;  // message types not recorded (the --out default skips clouds)
 };
 
 enum class RunResult { success, failed, interrupted, invalid_input };

@@ -84,6 +84,8 @@ template <Policy P> class Estimator : public Plugin {
     if constexpr (P == Policy::resilient) {
       lp.selection.epsilon = p.number("epsilon_m");
       lp.selection.delta = p.number("delta_m");
+      epsilon_ = lp.selection.epsilon;
+      delta_ = lp.selection.delta;
       if (lp.selection.epsilon > lp.selection.delta)
         throw BadInput("parameter 'epsilon_m' (" + std::to_string(lp.selection.epsilon) + ") must not exceed 'delta_m' (" +
                        std::to_string(lp.selection.delta) + ")");
@@ -147,6 +149,10 @@ template <Policy P> class Estimator : public Plugin {
     ctx.metric("epochs_rejected", static_cast<double>(loc_->epochs_of(UpdateCase::rejected)));
     ctx.metric("time_warning_s", time_in_[1]);
     ctx.metric("time_emergency_s", time_in_[2]);
+    if constexpr (P == Policy::resilient) {  // the thresholds, for the report's Δk figure
+      ctx.metric("epsilon_m", epsilon_);
+      ctx.metric("delta_m", delta_);
+    }
   }
 
  private:
@@ -199,6 +205,7 @@ template <Policy P> class Estimator : public Plugin {
   int receivers_ = 2;
   double time_in_[3] = {0, 0, 0}, last_publish_ = -1, last_mode_ = -1;
   Status last_status_ = Status::normal;
+  double epsilon_ = 0, delta_ = 0;
   std::uint32_t seq_ = 0, mode_seq_ = 0;
   Input<msgs::Imu> imu_;
   Input<msgs::WheelSpeeds> wheels_;
