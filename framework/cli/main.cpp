@@ -237,6 +237,9 @@ int cmd_run(const Args& a, bool validate_only) {
   if (!a.quiet) std::fputs(summary_table(s.json).c_str(), stderr);
   std::fprintf(stderr, "[brickyard] %s: %s (sim %.3f s, wall %.3f s)\n", to_string(s.result), s.reason.c_str(),
                s.sim_time_s, s.wall_time_s);
+  // The folder's own recording is named relative to the folder: the summary of two identical
+  // runs into two folders is the same.
+  if (report && a.record.empty() && s.json.contains("recording")) s.json["recording"]["file"] = "recording.db3";
   if (!a.out.empty()) {
     std::ofstream f(fs::path(a.out) / "summary.json");
     f << s.json.dump(2) << "\n";

@@ -283,7 +283,10 @@ int run(const fs::path& dir) {
     throw std::invalid_argument(summary_file.string() + ": " + e.what());
   }
   fs::path recording = dir / "recording.db3";
-  if (summary.contains("recording") && summary["recording"].contains("file")) recording = summary["recording"]["file"].get<std::string>();
+  if (summary.contains("recording") && summary["recording"].contains("file") && summary["recording"]["file"].is_string()) {
+    recording = summary["recording"]["file"].get<std::string>();
+    if (recording.is_relative() && fs::exists(dir / recording)) recording = dir / recording;  // the folder's own
+  }
   if (!fs::exists(recording)) throw std::invalid_argument(recording.string() + ": no recording of this run (run it with --out or --record)");
   if (std::system("command -v gnuplot > /dev/null 2>&1") != 0)
     throw std::invalid_argument("gnuplot not found: the report's figures are drawn with it (apt-get install gnuplot-nox)");
