@@ -126,7 +126,8 @@ void figures(const RunData& d, const nlohmann::json& summary, const Writer& w, s
     if (receivers > 0) {
       auto f = w.open("delta.dat");
       for (const auto& e : d.estimates) {
-        if (e.delta.empty()) continue;  // an epoch without fixes
+        // Estimates between GNSS epochs carry no Δ (zeros): only the epochs are drawn.
+        if (std::none_of(e.delta.begin(), e.delta.end(), [](double v) { return v > 0; })) continue;
         f << e.t;
         for (std::size_t k = 0; k < receivers; ++k) f << ' ' << (k < e.delta.size() && e.delta[k] > 0 ? e.delta[k] : NAN);
         f << '\n';
@@ -190,28 +191,56 @@ void figures(const RunData& d, const nlohmann::json& summary, const Writer& w, s
     }
     out.push_back({"steering", "Steering", std::isfinite(first) ? "Every controller's steering command from 5 s before the manager left the path to 5 s after it came back." : "Every controller's steering command over the run (the manager never left the path).", s + "\n"});
   }
-  // 6. The obstacle scene: pylons, planned paths on the way to them, the driven path.
-  if (!d.pylons.empty() && !d.truth.empty()) {
-    double x0 = 1e18, x1 = -1e18, y0 = 1e18, y1 = -1e18;
-    for (const auto& p : d.pylons) { x0 = std::min(x0, p.x); x1 = std::max(x1, p.x); y0 = std::min(y0, p.y); y1 = std::max(y1, p.y); }
-    const double m = 80;
-    x0 -= m; x1 += m; y0 -= m; y1 += m;
-    auto near = [&](double x, double y) { return x >= x0 && x <= x1 && y >= y0 && y <= y1; };
+  // 6. The obstacle scene, along the track (s) and across it (d): pylons, the plans published on
+  //    the way to them and the path driven. (Drawn in the track's frame: a straight seen from
+  //    above is a thin strip.)
+  if (!d.pylons.empty() && !d.truth.empty() && !d.centre_x.empty()) {
+    double s0 = 1e18, s1 = -1e18;
+    for (const auto& p : d.pylons) { s0 = std::min(s0, p.s); s1 = std::max(s1, p.s); }
+    s0 -= 150;
+    s1 += 100;
+    // Along-track distance to a window that may cross the start line: unwrap near s0.
+    double length = 0;
+    for (std::size_t i = 0; i < d.centre_x.size(); ++i) {
+      const std::size_t j = (i + 1) % d.centre_x.size();
+      length += std::hypot(d.centre_x[j] - d.centre_x[i], d.centre_y[j] - d.centre_y[i]);
+    }
+    auto unwrap = [&](double s) {
+      while (s < s0 - length / 2) s += length;
+      while (s > s0 + length / 2) s -= length;
+      return s;
+    };
+    auto inside = [&](double s) { return s >= s0 && s <= s1; };
+    auto f = w.open("scene_driven.dat");
+    double last_s = NAN;
+    for (const auto& p : d.truth) {
+      const double s = unwrap(p.s);
+      if (!inside(s)) { if (!std::isnan(last_s)) f << "\n"; last_s = NAN; continue; }
+      f << s << ' ' << p.d << '\n';
+      last_s = s;
+    }
+    auto e = w.open("scene_edges.dat");
+    for (int side = 0; side < 2; ++side) {
+      double acc = 0;
+      for (std::size_t i = 0; i <= d.centre_x.size(); ++i) {
+        const std::size_t k = i % d.centre_x.size();
+        if (i > 0) {
+          const std::size_t a = i - 1;
+          acc += std::hypot(d.centre_x[k] - d.centre_x[a], d.centre_y[k] - d.centre_y[a]);
+        }
+        const double s = unwrap(acc);
+        if (inside(s)) e << s << ' ' << (side ? -d.width_right[k] : d.width_left[k]) << '\n';
+        else e << '\n';
+      }
+      e << "\n\n";
+    }
+    auto py = w.open("scene_pylons.dat");
+    for (const auto& p : d.pylons) py << unwrap(p.s) << ' ' << p.d << ' ' << p.radius << '\n';
     auto dist = [&](double x, double y) {
       double best = 1e18;
       for (const auto& p : d.pylons) best = std::min(best, std::hypot(p.x - x, p.y - y));
       return best;
     };
-    auto f = w.open("scene_driven.dat");
-    for (const auto& s : d.truth) if (near(s.x, s.y)) f << s.x << ' ' << s.y << '\n';
-    auto e = w.open("scene_edges.dat");
-    for (int side = 0; side < 2; ++side) {
-      const auto& xs = side ? d.right_x : d.left_x;
-      const auto& ys = side ? d.right_y : d.left_y;
-      for (std::size_t i = 0; i < xs.size(); ++i) if (near(xs[i], ys[i])) e << xs[i] << ' ' << ys[i] << '\n';
-      e << "\n\n";
-    }
-    // Planned paths when the car was about 150, 100 and 50 m from the nearest pylon, approaching.
     std::string paths;
     int shown = 0;
     for (double want : {150.0, 100.0, 50.0}) {
@@ -219,25 +248,28 @@ void figures(const RunData& d, const nlohmann::json& summary, const Writer& w, s
       double err = 1e18;
       for (const auto& p : d.paths) {
         const auto* car = at(d.truth, p.t);
-        if (!car) continue;
+        if (!car || !inside(unwrap(car->s))) continue;
         const double dd = dist(car->x, car->y);
         if (std::abs(dd - want) < err) { err = std::abs(dd - want); pick = &p; }
       }
       if (!pick || err > 20) continue;
       const std::string name = "scene_path_" + std::to_string(shown) + ".dat";
       auto g = w.open(name);
-      for (std::size_t i = 0; i < pick->x.size(); ++i) if (near(pick->x[i], pick->y[i])) g << pick->x[i] << ' ' << pick->y[i] << '\n';
+      for (std::size_t i = 0; i < pick->x.size(); ++i) {
+        const auto [s, dd] = brickyard::report::to_track(d, pick->x[i], pick->y[i]);
+        if (inside(unwrap(s))) g << unwrap(s) << ' ' << dd << '\n';
+      }
       char label[64];
       std::snprintf(label, sizeof label, "plan at t = %.1f s (%.0f m to go)", pick->t, want);
       paths += ", " + gq(w.file(name).string()) + " w l dt 2 lw 1.5 t " + gq(label);
       ++shown;
     }
     out.push_back({"scene", "Obstacle scene",
-                   "The pylons, the plans the planner published on the way to them and the path the car drove. (The road graph's lattice itself is not in the recording.)",
-                   term + "set output " + gq(w.file("scene.svg").string()) + "\nset size ratio -1\nset xlabel 'x, m'\nset ylabel 'y, m'\nset key outside right\nplot " +
+                   "Along the track (s) and across it (d, left positive): the pylons, the plans the planner published on the way to them and the path the car drove. (The road graph's lattice itself is not in the recording.)",
+                   term + "set output " + gq(w.file("scene.svg").string()) + "\nset xlabel 's along the centre line, m'\nset ylabel 'd, m (left positive)'\nset key outside bottom center horizontal\nplot " +
                        gq(w.file("scene_edges.dat").string()) + " w l lc rgb '#888888' t 'track edges', " + gq(w.file("scene_driven.dat").string()) +
-                       " w l lw 2 lc rgb '#2ca02c' t 'driven'" + paths + ", " + gq(w.file("pylons.dat").string()) +
-                       " u 1:2:3 w circles lc rgb 'black' fs solid t 'pylons'\n"});
+                       " w l lw 2 lc rgb '#2ca02c' t 'driven (every pass)'" + paths + ", " + gq(w.file("scene_pylons.dat").string()) +
+                       " u 1:2 w p pt 7 ps 1.2 lc rgb 'black' t 'pylons'\n"});
   }
   // 7. Speed over distance.
   if (!d.truth.empty()) {

@@ -12,6 +12,7 @@
 
 #include "common/recording.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <stdexcept>
@@ -70,14 +71,20 @@ RunData read_run(const std::string& path) {
         d.right_x.push_back(m.x()[k] + ty * m.width_right()[k]);
         d.right_y.push_back(m.y()[k] - tx * m.width_right()[k]);
       }
-      for (const auto& p : m.pylons()) d.pylons.push_back({p.x(), p.y(), p.radius()});
+      for (const auto& p : m.pylons()) d.pylons.push_back({p.x(), p.y(), p.radius(), p.s(), p.d()});
+      if (m.width_left().size() == n && m.width_right().size() == n) {
+        d.centre_x = m.x();
+        d.centre_y = m.y();
+        d.width_left = m.width_left();
+        d.width_right = m.width_right();
+      }
     }
   } else {
     d.notes.push_back("no TrackWorld topic: no track edges");
   }
   if (auto v = of_type(rec, "VehicleState"); !v.empty()) {
     for (const auto& m : decode<msgs::VehicleState, msgs::VehicleStatePubSubType>(rec, *v.front()))
-      d.truth.push_back({secs(m.header().stamp_ns()), m.x(), m.y(), std::hypot(m.vx(), m.vy()), m.s()});
+      d.truth.push_back({secs(m.header().stamp_ns()), m.x(), m.y(), std::hypot(m.vx(), m.vy()), m.s(), m.d()});
   } else {
     d.notes.push_back("no VehicleState topic: no driven path, error or speed");
   }
@@ -117,6 +124,26 @@ RunData read_run(const std::string& path) {
     }
   }
   return d;
+}
+
+std::pair<double, double> to_track(const RunData& d, double x, double y) {
+  const std::size_t n = d.centre_x.size();
+  double best = 1e300, bs = 0, bd = 0, s0 = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t j = (i + 1) % n;
+    const double ex = d.centre_x[j] - d.centre_x[i], ey = d.centre_y[j] - d.centre_y[i], len = std::hypot(ex, ey);
+    if (len > 0) {
+      const double u = std::clamp(((x - d.centre_x[i]) * ex + (y - d.centre_y[i]) * ey) / (len * len), 0.0, 1.0);
+      const double px = d.centre_x[i] + u * ex - x, py = d.centre_y[i] + u * ey - y, dist = px * px + py * py;
+      if (dist < best) {
+        best = dist;
+        bs = s0 + u * len;
+        bd = ((x - d.centre_x[i]) * -ey + (y - d.centre_y[i]) * ex) / len;
+      }
+    }
+    s0 += len;
+  }
+  return {bs, bd};
 }
 
 }  // namespace brickyard::report

@@ -7,7 +7,7 @@
 namespace brickyard::report {
 
 struct Pose {
-  double t, x, y, speed, s;  // s: along the centre line (VehicleState.s)
+  double t, x, y, speed, s, d;  // s, d: along and off the centre line (VehicleState)
 };
 struct Fix {
   double t, x, y;
@@ -30,11 +30,12 @@ struct PathSnapshot {
   std::vector<double> x, y;
 };
 struct Pylon {
-  double x, y, radius;
+  double x, y, radius, s, d;
 };
 
 struct RunData {
   std::vector<double> left_x, left_y, right_x, right_y;  // track edges (closed)
+  std::vector<double> centre_x, centre_y, width_left, width_right;  // the centre line
   std::vector<Pylon> pylons;
   std::vector<Pose> truth;
   std::vector<Fix> fixes;
@@ -47,5 +48,8 @@ struct RunData {
 
 // Throws std::runtime_error naming the file when it cannot be read.
 RunData read_run(const std::string& recording);
+
+// (s, d) of a map point on the run's centre line (nearest segment; left positive).
+std::pair<double, double> to_track(const RunData& d, double x, double y);
 
 }  // namespace brickyard::report
