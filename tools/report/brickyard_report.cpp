@@ -241,6 +241,21 @@ void figures(const RunData& d, const nlohmann::json& summary, const Writer& w, s
       for (const auto& p : d.pylons) best = std::min(best, std::hypot(p.x - x, p.y - y));
       return best;
     };
+    // The road graph's nodes around the obstacles, as the planner reported them.
+    std::string lattice;
+    for (const auto& [name, n] : summary["nodes"].items()) {
+      if (!n.contains("metrics") || !n["metrics"].contains("lattice_near_obstacles_x")) continue;
+      const auto& xs = n["metrics"]["lattice_near_obstacles_x"];
+      const auto& ys = n["metrics"]["lattice_near_obstacles_y"];
+      auto g = w.open("scene_lattice.dat");
+      for (std::size_t i = 0; i < xs.size() && i < ys.size(); ++i) {
+        if (!xs[i].is_number() || !ys[i].is_number()) continue;
+        const auto [ls, ld] = brickyard::report::to_track(d, xs[i].get<double>(), ys[i].get<double>());
+        if (inside(unwrap(ls))) g << unwrap(ls) << ' ' << ld << '\n';
+      }
+      lattice = ", " + gq(w.file("scene_lattice.dat").string()) + " w p pt 7 ps 0.25 lc rgb '#999999' t 'road graph nodes'";
+      break;
+    }
     std::string paths;
     int shown = 0;
     for (double want : {150.0, 100.0, 50.0}) {
@@ -265,9 +280,9 @@ void figures(const RunData& d, const nlohmann::json& summary, const Writer& w, s
       ++shown;
     }
     out.push_back({"scene", "Obstacle scene",
-                   "Along the track (s) and across it (d, left positive): the pylons, the plans the planner published on the way to them and the path the car drove. (The road graph's lattice itself is not in the recording.)",
+                   "Along the track (s) and across it (d, left positive): the road graph's nodes around the pylons (as the planner reported them), the pylons, the plans the planner published on the way to them and the path the car drove.",
                    term + "set output " + gq(w.file("scene.svg").string()) + "\nset xlabel 's along the centre line, m'\nset ylabel 'd, m (left positive)'\nset key outside bottom center horizontal\nplot " +
-                       gq(w.file("scene_edges.dat").string()) + " w l lc rgb '#888888' t 'track edges', " + gq(w.file("scene_driven.dat").string()) +
+                       gq(w.file("scene_edges.dat").string()) + " w l lc rgb '#888888' t 'track edges'" + lattice + ", " + gq(w.file("scene_driven.dat").string()) +
                        " w l lw 2 lc rgb '#2ca02c' t 'driven (every pass)'" + paths + ", " + gq(w.file("scene_pylons.dat").string()) +
                        " u 1:2 w p pt 7 ps 1.2 lc rgb 'black' t 'pylons'\n"});
   }

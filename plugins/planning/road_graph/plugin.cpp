@@ -17,6 +17,7 @@
 
 #include <cmath>
 #include <deque>
+#include <set>
 #include <memory>
 
 namespace {
@@ -152,6 +153,12 @@ class RoadGraphNode : public Plugin {
       }
     }
     planner_->observe(seen, ctx.now_ns());
+    // The layers around the obstacles met, for the report's drawing of the lattice.
+    for (const auto& o : planner_->obstacles()) {
+      const Eigen::Vector2d f = line_ready_.line.to_frenet(o.x, o.y);
+      if (!std::isfinite(f.x())) continue;
+      for (double s = f.x() - 150; s <= f.x() + 100; s += 1.0) shown_layers_.insert(graph_->layer_at_or_after(s));
+    }
     const msgs::LocalizationEstimate& car = *poses_.back();
     if (!(std::abs(car.x()) < 1e7 && std::abs(car.y()) < 1e7)) return;  // NaN or absurd: no plan from it
     const PlannedPath& plan = planner_->plan(car.x(), car.y(), car.speed());
@@ -191,6 +198,20 @@ class RoadGraphNode : public Plugin {
     if (graph_) {
       ctx.metric("graph_nodes", static_cast<double>(graph_->node_count()));
       ctx.metric("graph_edges", static_cast<double>(graph_->edge_count()));
+      // The lattice's nodes (map frame) from 150 m before to 100 m past every obstacle met.
+      std::vector<double> xs, ys;
+      for (int l : shown_layers_) {
+        const auto& L = graph_->layers()[l];
+        for (std::uint32_t n = L.first_node; n < L.first_node + L.count; ++n) {
+          const Eigen::Vector2d q = line_ready_.line.point(L.s, graph_->node_d(n));
+          xs.push_back(q.x());
+          ys.push_back(q.y());
+        }
+      }
+      if (!xs.empty()) {
+        ctx.metric("lattice_near_obstacles_x", xs);
+        ctx.metric("lattice_near_obstacles_y", ys);
+      }
     }
   }
 
@@ -247,6 +268,7 @@ class RoadGraphNode : public Plugin {
   std::uint32_t seq_ = 0;
   std::size_t blocked_ = 0, restarts_ = 0, obstacles_max_ = 0;
   double max_offset_ = 0;
+  std::set<int> shown_layers_;
   Input<msgs::TrackWorld> world_;
   Input<msgs::LocalizationEstimate> estimate_;
   Input<msgs::ObstacleList> obstacles_;
