@@ -10,6 +10,7 @@
 
 #include "../../sim/common/pure_pursuit.hpp"
 #include "../../sim/world_msg.hpp"
+#include "../line_params.hpp"
 
 #include <cmath>
 
@@ -17,42 +18,30 @@ namespace {
 
 using namespace brickyard;
 using namespace brickyard::sim;
+using brickyard::planning::LineParams;
+using brickyard::planning::read_line_params;
+using brickyard::planning::with_line_params;
 
 class RacingLineNode : public Plugin {
  public:
   static Manifest manifest() {
-    const SpeedLimits l;
-    return Manifest("planning.racing_line", "1.0.0")
-        .describe("the racing line as a Path with a speed profile (lateral and longitudinal limits)")
-        .input<msgs::TrackWorld>("world", "when wired, the line is kept edge_margin inside the track", false, 1)
-        // Read by planning.road_graph; accepted here so the two planners swap by the plugin's name.
-        .input<msgs::LocalizationEstimate>("estimate", "not used: this planner ignores where the car is", false, 1)
-        .input<msgs::ObstacleList>("obstacles", "not used: this planner does not avoid obstacles", false, 1)
-        .output<msgs::Path>("path", "the line: poses, curvature, speed, s (a closed loop); sent at rate_hz")
-        .param(ParamSpec::string("raceline", "racelines/IMS.csv").doc("x_m,y_m file of the line"))
+    return with_line_params(
+               Manifest("planning.racing_line", "1.0.0")
+                   .describe("the racing line as a Path with a speed profile (lateral and longitudinal limits)")
+                   .input<msgs::TrackWorld>("world", "when wired, the line is kept edge_margin inside the track", false, 1)
+                   // Read by planning.road_graph; accepted here so the two planners swap by the plugin's name.
+                   .input<msgs::LocalizationEstimate>("estimate", "not used: this planner ignores where the car is", false, 1)
+                   .input<msgs::ObstacleList>("obstacles", "not used: this planner does not avoid obstacles", false, 1)
+                   .output<msgs::Path>("path", "the line: poses, curvature, speed, s (a closed loop); sent at rate_hz"))
         .param(ParamSpec::number("rate_hz", 1).in_unit("Hz").at_least(0.01).doc("how often the path is sent again"))
-        .param(ParamSpec::number("v_max", l.v_max).in_unit("m/s").at_least(1))
-        .param(ParamSpec::number("a_lat", l.a_lat).in_unit("m/s^2").at_least(0.5))
-        .param(ParamSpec::number("a_accel", l.a_accel).in_unit("m/s^2").at_least(0.1))
-        .param(ParamSpec::number("a_decel", l.a_decel).in_unit("m/s^2").at_least(0.1))
-        .param(ParamSpec::number("edge_margin", 2.5).in_unit("m").at_least(0).doc("closest the line may come to a track edge"))
         .periodic("rate_hz");
   }
 
   void configure(Context& ctx) override {
-    const Params& p = ctx.params();
-    const std::string file = ctx.find_file(p.string("raceline"));
-    try {
-      line_ = load_xy_csv(file);
-    } catch (const TrackFileError& e) {
-      throw BadInput(std::string("raceline file ") + e.what());
-    }
-    if (line_.x.size() < 3) throw BadInput("raceline file " + file + ": fewer than 3 points");
-    limits_.v_max = p.number("v_max");
-    limits_.a_lat = p.number("a_lat");
-    limits_.a_accel = p.number("a_accel");
-    limits_.a_decel = p.number("a_decel");
-    margin_ = p.number("edge_margin");
+    const LineParams lp = read_line_params(ctx);
+    line_ = lp.line;
+    limits_ = lp.limits;
+    margin_ = lp.edge_margin;
     world_ = ctx.input<msgs::TrackWorld>("world");
     estimate_ = ctx.input<msgs::LocalizationEstimate>("estimate");
     obstacles_ = ctx.input<msgs::ObstacleList>("obstacles");

@@ -13,6 +13,7 @@
 #include "../../sim/common/pure_pursuit.hpp"
 #include "../../sim/world_msg.hpp"
 #include "../common/line_setup.hpp"
+#include "../line_params.hpp"
 #include "../common/road_graph_planner.hpp"
 
 #include <cmath>
@@ -28,23 +29,16 @@ using namespace brickyard::planning;
 class RoadGraphNode : public Plugin {
  public:
   static Manifest manifest() {
-    const sim::SpeedLimits l;
     const RoadGraphParams g;
     const SearchParams s;
     const PlannerParams pp;
-    return Manifest("planning.road_graph", "1.0.0")
+    return with_line_params(Manifest("planning.road_graph", "1.0.0")
         .describe("obstacle avoidance on a road graph (Frenet lattice) along the racing line; a Path with speeds, replanned at rate_hz")
         .input<msgs::TrackWorld>("world", "the track: the graph's room and the line's edge margin (must be wired)", false, 1)
         .input<msgs::LocalizationEstimate>("estimate", "where the car is (base_link, map frame)", false, 64)
         .input<msgs::ObstacleList>("obstacles", "obstacles in the vehicle frame, placed with the estimate of their stamp", false, 16)
-        .output<msgs::Path>("path", "horizon m of path from just behind the car, with speeds (open)")
-        .param(ParamSpec::string("raceline", "racelines/IMS.csv").doc("x_m,y_m file of the racing line the graph follows"))
+        .output<msgs::Path>("path", "horizon m of path from just behind the car, with speeds (open)"))
         .param(ParamSpec::number("rate_hz", 20).in_unit("Hz").at_least(0.1).doc("replanning rate"))
-        .param(ParamSpec::number("v_max", l.v_max).in_unit("m/s").at_least(1))
-        .param(ParamSpec::number("a_lat", l.a_lat).in_unit("m/s^2").at_least(0.5))
-        .param(ParamSpec::number("a_accel", l.a_accel).in_unit("m/s^2").at_least(0.1))
-        .param(ParamSpec::number("a_decel", l.a_decel).in_unit("m/s^2").at_least(0.1))
-        .param(ParamSpec::number("edge_margin", 2.5).in_unit("m").at_least(0).doc("closest the racing line may come to a track edge"))
         .param(ParamSpec::string("graph_file", "").doc("a graph written by `brickyard-plan graph`; empty: built from the world at start"))
         .param(ParamSpec::number("layer_spacing", g.layer_spacing).in_unit("m").range(1, 100))
         .param(ParamSpec::number("layer_spacing_turn", g.layer_spacing_turn).in_unit("m").range(1, 100))
@@ -70,18 +64,11 @@ class RoadGraphNode : public Plugin {
 
   void configure(Context& ctx) override {
     const Params& p = ctx.params();
-    line_file_ = ctx.find_file(p.string("raceline"));
-    try {
-      line_ = sim::load_xy_csv(line_file_);
-    } catch (const sim::TrackFileError& e) {
-      throw BadInput(std::string("raceline file ") + e.what());
-    }
-    if (line_.x.size() < 3) throw BadInput("raceline file " + line_file_ + ": fewer than 3 points");
-    limits_.v_max = p.number("v_max");
-    limits_.a_lat = p.number("a_lat");
-    limits_.a_accel = p.number("a_accel");
-    limits_.a_decel = p.number("a_decel");
-    margin_ = p.number("edge_margin");
+    const LineParams lp = read_line_params(ctx);
+    line_file_ = lp.file;
+    line_ = lp.line;
+    limits_ = lp.limits;
+    margin_ = lp.edge_margin;
     gp_.layer_spacing = p.number("layer_spacing");
     gp_.layer_spacing_turn = p.number("layer_spacing_turn");
     gp_.lateral_step = p.number("lateral_step");
