@@ -387,3 +387,34 @@ TEST(GroundFilter, PointsOutOfRangeAreSkipped) {
   ASSERT_EQ(r.voxels.size(), 1u);
   EXPECT_TRUE(r.voxels[0].isApprox(Point(1, 1, 0)));
 }
+
+// A cloud whose cells fit 31 bits is hashed with 32-bit keys (packed_keys.hpp), any other with
+// cell_key's 64 bits: the answers are the same. One far point, alone in its voxel, its cell and
+// its cluster, makes the banked scene too wide to pack.
+TEST(GroundFilter, PackedAndFullKeysAgree) {
+  const Scene s = banked_scene(9.2);
+  Points wide = s.points;
+  wide.emplace_back(9000, -9000, 0);
+  GroundFilter f;
+  GroundResult packed, full;
+  f.run(s.points, packed);
+  f.run(wide, full);
+  ASSERT_EQ(full.voxels.size(), packed.voxels.size() + 1);
+  for (std::size_t i = 0; i < packed.voxels.size(); ++i) {
+    EXPECT_EQ(full.voxels[i], packed.voxels[i]) << i;
+    EXPECT_EQ(full.ground[i], packed.ground[i]) << i;
+  }
+  EXPECT_EQ(full.voxels.back(), Point(9000, -9000, 0));
+}
+
+TEST(Clustering, PackedAndFullKeysAgree) {
+  const Scene s = banked_scene(9.2);
+  Points wide = s.points;
+  wide.emplace_back(9000, -9000, 0);
+  EuclideanClustering c({0.2f, 2, 100000});  // the road's 0.25 m grid apart; the wall and the pylon not
+  std::vector<std::vector<int>> packed, full;
+  c.run(s.points, packed);
+  c.run(wide, full);
+  EXPECT_GT(packed.size(), 1u);
+  EXPECT_EQ(full, packed);  // the far point alone is below min_size
+}
