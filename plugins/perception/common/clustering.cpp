@@ -37,7 +37,7 @@ void EuclideanClustering::run(const Points& pts, std::vector<std::vector<int>>& 
   parent_.resize(n);
   for (int i = 0; i < n; ++i) parent_[i] = i;
   if (box.in_range && packing.ok)
-    join_neighbours(pts, cells32_, [&](std::int32_t x, std::int32_t y, std::int32_t z) { return packing.key(x, y, z); });
+    join_neighbours(pts, cells32_, [packing](std::int32_t x, std::int32_t y, std::int32_t z) { return packing.key(x, y, z); });
   else
     join_neighbours(pts, cells_, [](std::int32_t x, std::int32_t y, std::int32_t z) { return cell_key(x, y, z); });
   // Components in order of their first point; sizes filtered. Sizes first, so that only the

@@ -48,10 +48,7 @@ void GroundFilter::run(const Points& in, GroundResult& out) {
   };
   if (packed) {
     keys32_.resize(n);
-    for (std::size_t j = 0; j < n; ++j) {
-      const Point& q = in[j];
-      keys32_[j] = voxel_packing.key(cell_of(q.x(), inv_leaf), cell_of(q.y(), inv_leaf), cell_of(q.z(), inv_leaf));
-    }
+    packed_keys(in, inv_leaf, voxel_packing, keys32_.data());
     accumulate(voxel_index32_, keys32_, ~std::uint32_t{0});  // no packed key is all ones (31 bits)
   } else {
     constexpr std::uint64_t kSkip = ~std::uint64_t{0} - 1;  // no cell_key is this (63 bits at most)
@@ -82,7 +79,7 @@ void GroundFilter::run(const Points& in, GroundResult& out) {
   for (int a = 0; a < 2; ++a) lo_2d[a] -= 1, hi_2d[a] += 1;
   const Packing cell_packing(lo_2d, hi_2d, 3);
   if (count > 0 && cell_packing.ok)
-    vote(cells32_, [&](std::int32_t x, std::int32_t y) { return cell_packing.key(x, y); }, out);
+    vote(cells32_, [cell_packing](std::int32_t x, std::int32_t y) { return cell_packing.key(x, y); }, out);
   else
     vote(cells_, [](std::int32_t x, std::int32_t y) { return cell_key(x, y, 0); }, out);
 }
@@ -92,7 +89,7 @@ template <class Table, class Key> void GroundFilter::vote(Table& cells, Key key,
   // The cells' slots prefetched kAhead voxels early, as the voxels' (CellMap::number, which
   // measured slower here than this loop).
   constexpr std::uint32_t kAhead = 8;
-  cells.reset(2 * count);  // at most `count` cells: it never grows, a quarter full or less
+  cells.reset(count);  // at most `count` cells: it never grows
   cell_.resize(count);
   std::uint32_t m = 0;  // cells so far
   for (std::uint32_t i = 0; i < kAhead && i < count; ++i) cells.prefetch(key(cell_xy_[i][0], cell_xy_[i][1]));

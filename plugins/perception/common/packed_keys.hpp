@@ -82,4 +82,31 @@ struct Packing {
 };
 
 
+// Every point's packed key on a grid of cell size 1 / inv_size (3 axes; the points must lie in
+// the packing's cells). Four points at a time as in box_of: the cells of twelve floats in three
+// vectors, as cell_of computes them (truncation corrected for negatives: a true compare is -1),
+// less the packing's origin, then combined per point.
+inline void packed_keys(const Points& in, float inv_size, const Packing& pk, std::uint32_t* keys) {
+  typedef float v4 __attribute__((vector_size(16)));
+  typedef std::int32_t v4i __attribute__((vector_size(16)));
+  const float* f = in.empty() ? nullptr : in.data()->data();
+  const std::size_t n = in.size();
+  const v4i origin[3] = {{pk.lo[0], pk.lo[1], pk.lo[2], pk.lo[0]}, {pk.lo[1], pk.lo[2], pk.lo[0], pk.lo[1]}, {pk.lo[2], pk.lo[0], pk.lo[1], pk.lo[2]}};
+  const v4 inv = {inv_size, inv_size, inv_size, inv_size};
+  std::size_t j = 0;
+  for (; j + 4 <= n; j += 4) {
+    std::uint32_t c[12];
+    for (int k = 0; k < 3; ++k) {
+      v4 v;
+      std::memcpy(&v, f + 3 * j + 4 * k, sizeof v);
+      v *= inv;
+      const v4i t = __builtin_convertvector(v, v4i);
+      const v4i cell = t + (v < __builtin_convertvector(t, v4)) - origin[k];
+      std::memcpy(c + 4 * k, &cell, sizeof cell);
+    }
+    for (int p = 0; p < 4; ++p) keys[j + p] = c[3 * p] << pk.shift[0] | c[3 * p + 1] << pk.shift[1] | c[3 * p + 2] << pk.shift[2];
+  }
+  for (; j < n; ++j) keys[j] = pk.key(cell_of(f[3 * j], inv_size), cell_of(f[3 * j + 1], inv_size), cell_of(f[3 * j + 2], inv_size));
+}
+
 }  // namespace brickyard::perception
