@@ -1,11 +1,11 @@
 #pragma once
-// An open-addressing hash map from 64-bit (or 32-bit) cell keys to small values: the "hash table that holds
-// occupied cells only" of the paper's ground filter, reused by the voxel filter and the
+// An open-addressing hash map from 64-bit (or 32-bit) cell keys to small values: the "hash table
+// that holds occupied cells only" of the paper's ground filter, reused by the voxel filter and the
 // clustering. Linear probing, power-of-two capacity, at most half full (it doubles when an insert
 // would pass that), no deletion; cleared and reused per frame so a frame allocates nothing once
 // the table has grown. Sized by a hint (the last frame's count), not by the worst case: a table
 // sized for every point of a frame when a fifth of them make voxels would be cleared and missed
-// in cache for nothing. 32-bit keys (a frame whose cells fit 31 bits, see ground_filter.cpp)
+// in cache for nothing. 32-bit keys (a frame whose cells fit 31 bits, see packed_keys.hpp)
 // halve the slots and hash with one multiply.
 #include <algorithm>
 #include <cstdint>
@@ -48,7 +48,7 @@ template <class V, class K = std::uint64_t> class CellMap {
   // Numbers a batch of keys in first-met order, continuing from size(): calls visit(j, number,
   // inserted) for each keys[j] other than `skip`. What find_or_insert does key by key, in one
   // loop that holds the table in locals and prefetches the slots kAhead keys early (the loads
-  // that a scattered hash makes of every key overlap instead of queueing): a quarter faster on
+  // that a scattered hash makes of every key overlap instead of queueing): a fifth faster on
   // the voxel filter's 50k points than calling find_or_insert and prefetch.
   template <class Visit> void number(const K* keys, std::size_t n, K skip, Visit&& visit) {
     constexpr std::size_t kAhead = 8;

@@ -81,7 +81,6 @@ struct Packing {
   }
 };
 
-
 // Every point's packed key on a grid of cell size 1 / inv_size (3 axes; the points must lie in
 // the packing's cells). Four points at a time as in box_of: the cells of twelve floats in three
 // vectors, as cell_of computes them (truncation corrected for negatives: a true compare is -1),
@@ -91,7 +90,9 @@ inline void packed_keys(const Points& in, float inv_size, const Packing& pk, std
   typedef std::int32_t v4i __attribute__((vector_size(16)));
   const float* f = in.empty() ? nullptr : in.data()->data();
   const std::size_t n = in.size();
-  const v4i origin[3] = {{pk.lo[0], pk.lo[1], pk.lo[2], pk.lo[0]}, {pk.lo[1], pk.lo[2], pk.lo[0], pk.lo[1]}, {pk.lo[2], pk.lo[0], pk.lo[1], pk.lo[2]}};
+  const v4i origin[3] = {{pk.lo[0], pk.lo[1], pk.lo[2], pk.lo[0]},
+                         {pk.lo[1], pk.lo[2], pk.lo[0], pk.lo[1]},
+                         {pk.lo[2], pk.lo[0], pk.lo[1], pk.lo[2]}};
   const v4 inv = {inv_size, inv_size, inv_size, inv_size};
   std::size_t j = 0;
   for (; j + 4 <= n; j += 4) {
@@ -106,7 +107,8 @@ inline void packed_keys(const Points& in, float inv_size, const Packing& pk, std
     }
     for (int p = 0; p < 4; ++p) keys[j + p] = c[3 * p] << pk.shift[0] | c[3 * p + 1] << pk.shift[1] | c[3 * p + 2] << pk.shift[2];
   }
-  for (; j < n; ++j) keys[j] = pk.key(cell_of(f[3 * j], inv_size), cell_of(f[3 * j + 1], inv_size), cell_of(f[3 * j + 2], inv_size));
+  for (; j < n; ++j)
+    keys[j] = pk.key(cell_of(f[3 * j], inv_size), cell_of(f[3 * j + 1], inv_size), cell_of(f[3 * j + 2], inv_size));
 }
 
 }  // namespace brickyard::perception
