@@ -3,6 +3,7 @@
 #include "common/frame_set.hpp"
 #include "common/ground_filter.hpp"
 #include "common/obstacles.hpp"
+#include "common/packed_keys.hpp"
 #include "common/wall_fit.hpp"
 
 #include <gtest/gtest.h>
@@ -386,4 +387,65 @@ TEST(GroundFilter, PointsOutOfRangeAreSkipped) {
   f.run(p, r);
   ASSERT_EQ(r.voxels.size(), 1u);
   EXPECT_TRUE(r.voxels[0].isApprox(Point(1, 1, 0)));
+}
+
+// A cloud whose cells fit 31 bits is hashed with 32-bit keys (packed_keys.hpp), any other with
+// cell_key's 64 bits: the answers are the same. One far point, alone in its voxel, its cell and
+// its cluster, makes the banked scene too wide to pack.
+TEST(GroundFilter, PackedAndFullKeysAgree) {
+  const Scene s = banked_scene(9.2);
+  Points wide = s.points;
+  wide.emplace_back(9000, -9000, 0);
+  GroundFilter f;
+  GroundResult packed, full;
+  f.run(s.points, packed);
+  f.run(wide, full);
+  ASSERT_EQ(full.voxels.size(), packed.voxels.size() + 1);
+  for (std::size_t i = 0; i < packed.voxels.size(); ++i) {
+    EXPECT_EQ(full.voxels[i], packed.voxels[i]) << i;
+    EXPECT_EQ(full.ground[i], packed.ground[i]) << i;
+  }
+  EXPECT_EQ(full.voxels.back(), Point(9000, -9000, 0));
+}
+
+TEST(Clustering, PackedAndFullKeysAgree) {
+  const Scene s = banked_scene(9.2);
+  Points wide = s.points;
+  wide.emplace_back(9000, -9000, 0);
+  EuclideanClustering c({0.2f, 2, 100000});  // the road's 0.25 m grid apart; the wall and the pylon not
+  std::vector<std::vector<int>> packed, full;
+  c.run(s.points, packed);
+  c.run(wide, full);
+  EXPECT_GT(packed.size(), 1u);
+  EXPECT_EQ(full, packed);  // the far point alone is below min_size
+}
+
+// The vectorised keys are cell_of's, negatives and cell borders included, for any point count.
+TEST(PackedKeys, SameAsCellOfPointByPoint) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> u(-150, 150);
+  Points p;
+  for (int i = 0; i < 1001; ++i) p.emplace_back(u(rng), u(rng) * 0.5f, u(rng) * 0.05f);
+  p.emplace_back(-0.4f, 0.0f, -0.2f);  // on borders
+  p.emplace_back(-1e-7f, 0.2f, 0.6f);
+  const float inv = 1.0f / 0.2f;
+  const Box box = box_of(p);
+  ASSERT_TRUE(box.in_range);
+  std::int32_t lo[3], hi[3];
+  for (int a = 0; a < 3; ++a) lo[a] = cell_of(box.lo[a], inv), hi[a] = cell_of(box.hi[a], inv);
+  const Packing pk(lo, hi, 3);
+  ASSERT_TRUE(pk.ok);
+  for (std::size_t n : {p.size(), p.size() - 1, p.size() - 2, std::size_t{3}}) {
+    const Points q(p.begin(), p.begin() + static_cast<std::ptrdiff_t>(n));
+    std::vector<std::uint32_t> keys(n);
+    packed_keys(q, inv, pk, keys.data());
+    for (std::size_t j = 0; j < n; ++j)
+      EXPECT_EQ(keys[j], pk.key(cell_of(q[j].x(), inv), cell_of(q[j].y(), inv), cell_of(q[j].z(), inv))) << j;
+  }
+  Points bad = p;
+  bad[7].y() = NAN;
+  EXPECT_FALSE(box_of(bad).in_range);
+  bad[7].y() = 2e4f;
+  EXPECT_FALSE(box_of(bad).in_range);
+  EXPECT_FALSE(box_of(Points{}).in_range);
 }

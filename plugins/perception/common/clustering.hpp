@@ -29,12 +29,16 @@ class EuclideanClustering {
 
  private:
   int find(int i);
+  // Buckets the points by cell and joins, in parent_, the pairs within the tolerance; over either
+  // table (32- or 64-bit keys), `key(x, y, z)` a cell's key.
+  template <class Table, class Key> void join_neighbours(const Points& pts, Table& cells, Key key);
   ClusterParams p_;
-  CellMap<std::uint32_t> cells_;  // cell key -> cell number, first-met order
+  CellMap<std::uint32_t, std::uint32_t> cells32_;  // cell key -> cell number, first-met order
+  CellMap<std::uint32_t> cells_;                   // the same, 64-bit keys
   std::vector<std::array<std::int32_t, 3>> cell_xyz_;
   std::vector<std::uint32_t> cell_of_point_, begin_, fill_;
   std::vector<char> whole_;
-  std::vector<int> order_, parent_, root_slot_;
+  std::vector<int> order_, parent_, root_slot_, component_size_;
 };
 
 }  // namespace brickyard::perception

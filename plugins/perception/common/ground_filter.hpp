@@ -20,6 +20,8 @@
 #include "cell_map.hpp"
 #include "points.hpp"
 
+#include <array>
+
 namespace brickyard::perception {
 
 struct GroundParams {
@@ -55,11 +57,20 @@ class GroundFilter {
     float zmin, zmax;
     float limit;  // its voxels below this are ground
   };
+  // Steps 2 and 3 over either table of cells (32- or 64-bit keys), `key(x, y)` the cell's key.
+  template <class Table, class Key> void vote(Table& cells, Key key, GroundResult& out);
   GroundParams p_;
-  CellMap<std::uint32_t> voxel_index_;  // voxel key -> index into voxels_
-  std::vector<Voxel> voxels_;
-  CellMap<std::uint32_t> cells_;  // cell key -> index into cell_
+  // voxel key -> index into voxels_: 32-bit keys when the frame's voxels fit, else 64-bit
+  CellMap<std::uint32_t, std::uint32_t> voxel_index32_;
+  CellMap<std::uint32_t> voxel_index_;
+  std::vector<std::uint32_t> keys32_;
+  std::vector<std::uint64_t> keys64_;
+  std::vector<Voxel> voxels_;  // sums, the first voxel_count_ of them this frame's
+  std::size_t voxel_count_ = 0;
+  CellMap<std::uint32_t, std::uint32_t> cells32_;  // cell key -> index into cell_, likewise
+  CellMap<std::uint32_t> cells_;
   std::vector<Cell> cell_;
+  std::vector<std::array<std::int32_t, 2>> cell_xy_;  // per voxel
   std::vector<std::uint32_t> voxel_cell_;
 };
 

@@ -59,6 +59,32 @@ struct LocalFit {
   }
 };
 
+// The normal equations' sums for degree 2 without the lean (the growing wall's local fits, most
+// of a frame's fits), in scalars: the general loop's arrays go through memory, where a
+// store-to-load stall per term and point made that loop most of the wall fit's time. The same
+// operations in the same order as the general loop, whose row is 1, u, u * u.
+void quadratic_sums(const Points& pts, const std::vector<int>& sel, double fixed_lean, const LocalFit& f,
+                    double (&ata)[kMaxTerms][kMaxTerms], double (&atb)[kMaxTerms], double& btb) {
+  double a00 = 0, a10 = 0, a11 = 0, a20 = 0, a21 = 0, a22 = 0, b0 = 0, b1 = 0, b2 = 0, bb = 0;
+  for (int i : sel) {
+    const Point& q = pts[i];
+    const double u = (q.x() - f.mid) / f.half, b = q.y() - fixed_lean * q.z(), u2 = u * u;
+    a00 += 1.0;
+    a10 += u;
+    a11 += u * u;
+    a20 += u2;
+    a21 += u2 * u;
+    a22 += u2 * u2;
+    b0 += b;
+    b1 += b * u;
+    b2 += b * u2;
+    bb += b * b;
+  }
+  ata[0][0] = a00, ata[1][0] = a10, ata[1][1] = a11, ata[2][0] = a20, ata[2][1] = a21, ata[2][2] = a22;
+  atb[0] = b0, atb[1] = b1, atb[2] = b2;
+  btb = bb;
+}
+
 LocalFit least_squares(const Points& pts, const std::vector<int>& sel, int degree, bool lean, double fixed_lean = 0) {
   LocalFit f;
   f.degree = degree;
@@ -77,17 +103,21 @@ LocalFit least_squares(const Points& pts, const std::vector<int>& sel, int degre
   // conditioned at these degrees, and a frame makes dozens of these fits.
   double ata[kMaxTerms][kMaxTerms] = {}, atb[kMaxTerms] = {}, row[kMaxTerms];
   double btb = 0;
-  for (int i : sel) {
-    const Point& q = pts[i];
-    const double u = (q.x() - f.mid) / f.half, b = q.y() - (lean ? 0.0 : fixed_lean * q.z());
-    double pw = 1;
-    for (int k = 0; k <= degree; ++k, pw *= u) row[k] = pw;
-    if (lean) row[degree + 1] = q.z();
-    for (int a = 0; a < terms; ++a) {
-      for (int c = 0; c <= a; ++c) ata[a][c] += row[a] * row[c];
-      atb[a] += b * row[a];
+  if (degree == 2 && !lean) {
+    quadratic_sums(pts, sel, fixed_lean, f, ata, atb, btb);
+  } else {
+    for (int i : sel) {
+      const Point& q = pts[i];
+      const double u = (q.x() - f.mid) / f.half, b = q.y() - (lean ? 0.0 : fixed_lean * q.z());
+      double pw = 1;
+      for (int k = 0; k <= degree; ++k, pw *= u) row[k] = pw;
+      if (lean) row[degree + 1] = q.z();
+      for (int a = 0; a < terms; ++a) {
+        for (int c = 0; c <= a; ++c) ata[a][c] += row[a] * row[c];
+        atb[a] += b * row[a];
+      }
+      btb += b * b;
     }
-    btb += b * b;
   }
   using Mat = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxTerms, kMaxTerms>;
   using Vec = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxTerms, 1>;
@@ -111,12 +141,11 @@ struct Extent {
 
 float far_end_of(const Extent& e, int dir) { return dir > 0 ? e.hi : e.lo; }
 
-// The points of a cluster that `keep` accepts, at most about 64 of them (evenly through the
-// cluster): the growing wall's local fits need its shape, not its thousands of points.
-template <class Keep> void add_sampled(const Points& points, const std::vector<int>& cluster, std::vector<int>& sel, Keep keep) {
+// Appends about 64 points of a cluster (evenly through it): the growing wall's local fits need
+// its shape, not its thousands of points.
+void add_sampled(const std::vector<int>& cluster, std::vector<int>& out) {
   const std::size_t stride = std::max<std::size_t>(1, cluster.size() / 64);
-  for (std::size_t k = 0; k < cluster.size(); k += stride)
-    if (keep(points[cluster[k]].x())) sel.push_back(cluster[k]);
+  for (std::size_t k = 0; k < cluster.size(); k += stride) out.push_back(cluster[k]);
 }
 
 }  // namespace
@@ -149,15 +178,21 @@ WallFit fit_wall(const Points& points, const std::vector<std::vector<int>>& clus
     const LocalFit seed = least_squares(points, sel, local_degree, true);
     if (seed.ok) lean = seed.lean_value();
   }
+  // The members' samples, in member order. Each growing pass fits those within 30 m of the end;
+  // the end only moves outwards, so a sample left behind stays behind: `live` drops it for good
+  // (in order) and takes a new member's samples at its back, so a pass costs the wall's last
+  // 30 m, not its whole length.
+  std::vector<int> samples, live;
+  add_sampled(clusters[w.cluster], samples);
   std::vector<std::pair<float, int>> candidates;
   for (int dir : {1, -1}) {
     const float sgn = static_cast<float>(dir);
+    live = samples;
     for (int pass = 0; pass < 1000; ++pass) {
       float end = dir > 0 ? hi : lo;
       const float fitted_end = end;
-      sel.clear();
-      for (int c : w.members) add_sampled(points, clusters[c], sel, [&](float x) { return (x - end) * sgn >= -30.0f; });
-      const LocalFit f = least_squares(points, sel, local_degree, false, lean);
+      live.erase(std::remove_if(live.begin(), live.end(), [&](int i) { return !((points[i].x() - end) * sgn >= -30.0f); }), live.end());
+      const LocalFit f = least_squares(points, live, local_degree, false, lean);
       if (!f.ok) break;
       // Candidates nearest first, each judged from the end as it stands then, so a stripe is
       // measured from the stripe before it, not from where the fit was made.
@@ -188,6 +223,8 @@ WallFit fit_wall(const Points& points, const std::vector<std::vector<int>>& clus
         if (near == 0 || on * 10 < near * 9) continue;
         member[c] = 1;
         w.members.push_back(c);
+        add_sampled(clusters[c], samples);
+        add_sampled(clusters[c], live);
         lo = std::min(lo, ext[c].lo);
         hi = std::max(hi, ext[c].hi);
         end = dir > 0 ? hi : lo;
@@ -203,7 +240,8 @@ WallFit fit_wall(const Points& points, const std::vector<std::vector<int>>& clus
   for (int piece = 0; piece < pieces; ++piece) {
     const float b = lo + 20.0f * static_cast<float>(piece);
     sel.clear();
-    for (int c : w.members) add_sampled(points, clusters[c], sel, [&](float x) { return x >= b - 5.0f && x < b + 25.0f; });
+    for (int i : samples)
+      if (points[i].x() >= b - 5.0f && points[i].x() < b + 25.0f) sel.push_back(i);
     const LocalFit f = least_squares(points, sel, local_degree, false, lean);
     if (!f.ok) continue;
     for (std::size_t c = 0; c < clusters.size(); ++c) {
@@ -213,6 +251,7 @@ WallFit fit_wall(const Points& points, const std::vector<std::vector<int>>& clus
       if (on * 10 < static_cast<int>(clusters[c].size()) * 9) continue;
       member[c] = 1;
       w.members.push_back(static_cast<int>(c));
+      add_sampled(clusters[c], samples);  // later pieces fit it too
     }
   }
   // The published fit: the wall's points near the car.
