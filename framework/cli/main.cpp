@@ -41,7 +41,7 @@ options:
                        updating line; 5 otherwise, plain lines); 0: none
   --out DIR            write DIR/summary.json, and (unless --no-report) record the run's wires
                        but its point clouds into DIR/recording.db3 and write DIR/report.html
-  --no-report          with --out: the summary alone
+  --no-report          with --out: the summary alone (also the case with --process)
   --record FILE        record every wire's samples into FILE (SQLite; docs/recording.md)
   --record-only P,...  record only the topics NODE.PORT matching these patterns ('*' any)
 
@@ -220,7 +220,8 @@ int cmd_run(const Args& a, bool validate_only) {
   // --out keeps the run: its summary, a recording of everything but the point clouds (those
   // are large; --record takes them) and the report drawn from it. The folder's own recording
   // is the run's output, replaced by the next run into it (a --record FILE never is).
-  const bool report = !a.out.empty() && !a.no_report;
+  // (Not for one process of a multi-process graph: the others would write the same folder.)
+  const bool report = !a.out.empty() && !a.no_report && a.process.empty();
   if (report && a.record.empty()) {
     const fs::path rec = fs::path(a.out) / "recording.db3";
     std::error_code ec;
