@@ -311,6 +311,41 @@ TEST(Lidar, CoherentColumnsReturnWhatEveryRayAloneReturns) {
   EXPECT_LT(differ, n / 10000);
 }
 
+// The Ziggurat normal generator: moments, the tails (beyond R = 3.44 it samples the tail
+// separately), a binned chi-square against the normal CDF, and the same numbers for the same seed.
+TEST(Rng, ZigguratNormalsAreStandardNormal) {  // normal_fast, the LiDAR range noise
+  Rng rng(7);
+  const int n = 2000000;
+  double s1 = 0, s2 = 0;
+  int over2 = 0, over3 = 0, over4 = 0;
+  std::vector<int> bins(80, 0);  // [-4, 4) in steps of 0.1
+  for (int i = 0; i < n; ++i) {
+    const double x = rng.normal_fast();
+    s1 += x;
+    s2 += x * x;
+    over2 += std::abs(x) > 2;
+    over3 += std::abs(x) > 3;
+    over4 += std::abs(x) > 4;
+    const int b = static_cast<int>(std::floor((x + 4) * 10));
+    if (b >= 0 && b < 80) ++bins[b];
+  }
+  // Bounds at about 5 standard errors of each estimate.
+  EXPECT_NEAR(s1 / n, 0.0, 0.0035);
+  EXPECT_NEAR(s2 / n, 1.0, 0.005);
+  EXPECT_NEAR(static_cast<double>(over2) / n, 0.0455003, 5 * 1.5e-4);
+  EXPECT_NEAR(static_cast<double>(over3) / n, 0.0026998, 5 * 3.7e-5);
+  EXPECT_NEAR(static_cast<double>(over4) / n, 6.334e-5, 5 * 5.6e-6);
+  double chi2 = 0;
+  for (int b = 0; b < 80; ++b) {
+    const double lo = b / 10.0 - 4, hi = lo + 0.1;
+    const double e = n * 0.5 * (std::erf(hi / std::sqrt(2.0)) - std::erf(lo / std::sqrt(2.0)));
+    chi2 += (bins[b] - e) * (bins[b] - e) / e;
+  }
+  EXPECT_LT(chi2, 130);  // 79 degrees of freedom: P(chi2 > 130) < 1e-3
+  Rng a(11), b(11);
+  for (int i = 0; i < 1000; ++i) ASSERT_EQ(a.normal_fast(), b.normal_fast());
+}
+
 TEST(Faults, WindowsGiveExactlyTheConfiguredError) {
   FaultSchedule f(R"([{"type": "bias", "start_s": 498, "end_s": 505, "offset": [0.4, -0.2, 0]},
                       {"type": "drift", "start_s": 500, "end_s": 510, "rate": [0.1, 0, 0]},

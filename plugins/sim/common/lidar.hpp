@@ -81,11 +81,14 @@ class LidarCaster {
                    PointBuffers& out) const;
 
  private:
+  RayHit march(const Eigen::Vector3d& o, const Eigen::Vector3d& v, int seg, const Resume* from, double shift,
+               double shift_rest, Resume* checkpoint) const;
   // Per segment, everything as a function of a (m along the segment from its start).
   struct Seg {
     double px, py, tx, ty, len;
     double wl0, dwl, wr0, dwr;     // road edges: d = +wl (left), -wr (right)
     double tb0, dtb;               // tan(bank)
+    double inv_n0;                 // 1 / sqrt(1 + tb0²): the road normal's norm at a = 0
     double wall_l, wall_r;         // wall lines at a = 0: d (+inf / -inf when absent); same slope as the edges
     int pylon_begin, pylon_end;    // into pylons_
   };
