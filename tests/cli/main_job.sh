@@ -2,9 +2,9 @@
 # The main job, configs/ims_race.json, as scripts/demo runs it: two laps, no wall contact, every
 # pylon passed at least 1 m off, the wall follower in and out, a report written.
 set -u
-by=$1; graph=$2; domain=$3; out=$4
+by=$1; graph=$2; domain=$3; out=$4; shift 4  # then more options for the run (--seed N)
 rm -rf "$out"
-"$by" run "$graph" --domain "$domain" --quiet --out "$out" > "$out.log" 2>&1; rc=$?
+"$by" run "$graph" --domain "$domain" --quiet --out "$out" "$@" > "$out.log" 2>&1; rc=$?
 [ $rc -eq 0 ] || { tail -5 "$out.log"; echo "FAIL: exit $rc"; exit 1; }
 python3 - "$out/summary.json" <<'PY' || exit 1
 import json, sys

@@ -205,7 +205,8 @@ TEST(RoadGraphPlanner, CommitsToItsLastPlanAndRestartsWhenOffIt) {
   const RoadGraph g = RoadGraph::build(line, kRoom, RoadGraphParams{});
   PlannerParams pp;
   RoadGraphPlanner planner(g, line, std::vector<double>(line.size(), 40.0), pp);
-  planner.observe({{150, 0.5, 0.3, 0}}, 0);  // a pylon on the straight, 0.5 m left of the line
+  // A pylon on the straight, 0.5 m left of the line: planned around once seen in 3 frames.
+  for (int k = 0; k < pp.confirmations; ++k) planner.observe({{150, 0.5, 0.3, 0}}, 0);
   const PlannedPath first = planner.plan(20, 0, 30);
   ASSERT_TRUE(first.route_found);
   EXPECT_TRUE(first.restarted);
@@ -283,7 +284,9 @@ Drive drive(RoadGraphPlanner& planner, const RoadGraph& g, double x0, double v0,
     if (p.points.size() < 2) break;
     for (const auto& q : p.points)
       for (const auto& o : planner.obstacles())
-        if (std::abs(q.x - o.x) < 1.0 + o.radius && std::abs(q.y - o.y) < o.radius + g.params().half_width + 1.0) r.always_clear = false;
+        if (o.seen >= PlannerParams{}.confirmations && std::abs(q.x - o.x) < 1.0 + o.radius &&
+            std::abs(q.y - o.y) < o.radius + g.params().half_width + 1.0 && q.s < 1e9)
+          r.always_clear = false;
     // The car's place on the path, its target speed there, and a step along the path.
     std::size_t i = 0;
     double best = 1e18;
@@ -291,7 +294,17 @@ Drive drive(RoadGraphPlanner& planner, const RoadGraph& g, double x0, double v0,
       const double d = std::hypot(p.points[k].x - x, p.points[k].y - y);
       if (d < best) { best = d; i = k; }
     }
-    const double target = p.speed[i];
+    // Brake for what comes, as the path tracker does: the slowest point of the next 3 s, eased
+    // by the distance to it at 12 m/s².
+    double target = p.speed[i], ahead = 0;
+    if (i + 1 < p.points.size()) {  // measured from the car, which may be past point i
+      const double tx = p.points[i + 1].x - p.points[i].x, ty = p.points[i + 1].y - p.points[i].y, tl = std::hypot(tx, ty);
+      if (tl > 0) ahead = -((x - p.points[i].x) * tx + (y - p.points[i].y) * ty) / tl;
+    }
+    for (std::size_t k = i + 1; k < p.points.size() && ahead < 3 * v + 1; ++k) {
+      ahead += std::hypot(p.points[k].x - p.points[k - 1].x, p.points[k].y - p.points[k - 1].y);
+      target = std::min(target, std::sqrt(p.speed[k] * p.speed[k] + 2 * 12 * ahead));
+    }
     v = target < v ? std::max(target, v - 12 * dt) : std::min(target, v + 8 * dt);
     double go = v * dt;
     while (go > 0 && i + 1 < p.points.size()) {
@@ -337,6 +350,19 @@ TEST(RoadGraphPlanner, AnObstacleSeenInsideTheCommitmentIsAvoidedOrStoppedFor) {
     EXPECT_TRUE(r.always_clear) << ahead;
     EXPECT_GT(r.x_max, x_obs + 20) << ahead;  // and it went past
   }
+}
+
+TEST(RoadGraphPlanner, OneFramesFalseDetectionDoesNotCloseTheRoad) {
+  const RefLine line = stadium();
+  const RoadGraph g = RoadGraph::build(line, kRoom, RoadGraphParams{});
+  RoadGraphPlanner planner(g, line, std::vector<double>(line.size(), 40.0), PlannerParams{});
+  std::vector<MapObstacle> wall;
+  for (double d = -7; d <= 7; d += 0.5) wall.push_back({200, d, 0.3, 0});
+  planner.observe(wall, 0);  // seen in one frame only
+  EXPECT_TRUE(planner.plan(100, 0, 30).route_found);
+  planner.observe(wall, 50000000);
+  planner.observe(wall, 100000000);  // the third frame: now it is real
+  EXPECT_FALSE(planner.plan(101.5, 0, 30).route_found);
 }
 
 TEST(RoadGraph, RejectsFilesThatWouldBreakTheSearch) {

@@ -18,18 +18,28 @@ RoadGraphPlanner::RoadGraphPlanner(const RoadGraph& graph, const RefLine& line, 
 }
 
 void RoadGraphPlanner::observe(const std::vector<MapObstacle>& seen, std::int64_t now_ns) {
+  // Each remembered obstacle takes at most one detection of a frame (the nearest within
+  // merge_distance): two pylons side by side stay two, and a frame counts once.
+  std::vector<char> matched(memory_.size(), 0);
+  const std::size_t before = memory_.size();
   for (MapObstacle o : seen) {
     if (!(std::abs(o.x) < 1e7 && std::abs(o.y) < 1e7)) continue;  // NaN or absurd: not a place
     if (!(o.radius >= 0.05 && o.radius <= 5.0)) o.radius = 5.0;     // unknown size: the largest
-    MapObstacle* same = nullptr;
+    std::size_t same = before;
     double best = p_.merge_distance;
-    for (MapObstacle& m : memory_) {
-      const double d = std::hypot(m.x - o.x, m.y - o.y);
-      if (d <= best) { best = d; same = &m; }
+    for (std::size_t i = 0; i < before; ++i) {
+      const double d = std::hypot(memory_[i].x - o.x, memory_[i].y - o.y);
+      if (!matched[i] && d <= best) { best = d; same = i; }
     }
-    if (same) *same = o;
-    else memory_.push_back(o);
-    (same ? *same : memory_.back()).seen_ns = now_ns;
+    o.seen_ns = now_ns;
+    if (same < before) {
+      o.seen = memory_[same].seen + 1;
+      memory_[same] = o;
+      matched[same] = 1;
+    } else {
+      o.seen = 1;
+      memory_.push_back(o);
+    }
   }
   const auto keep_ns = static_cast<std::int64_t>(std::clamp(p_.obstacle_memory, 0.0, 1e6) * 1e9);
   memory_.erase(std::remove_if(memory_.begin(), memory_.end(), [&](const MapObstacle& m) { return now_ns - m.seen_ns > keep_ns; }),
@@ -112,6 +122,7 @@ const PlannedPath& RoadGraphPlanner::plan(double x, double y, double speed) {
   if (!(speed >= 0 && speed < 1000)) speed = 0;
   std::vector<FrenetObstacle> obs;
   for (const MapObstacle& m : memory_) {
+    if (m.seen < p_.confirmations) continue;
     const Eigen::Vector2d q = line_.to_frenet(m.x, m.y, s_c);
     if (std::isfinite(q.x()) && std::abs(q.y()) < 1000) obs.push_back({q.x(), q.y(), m.radius});
   }
@@ -187,7 +198,8 @@ const PlannedPath& RoadGraphPlanner::plan(double x, double y, double speed) {
 }
 
 void RoadGraphPlanner::make_path(double speed, bool stop, double stop_s) {
-  // Points along the pieces (cut at the stop), then speeds within the line's profile and the
+  // Points along the pieces (all of them: past a stop the speeds are zero, and the tracker keeps
+  // a path to steer along), then speeds within the line's profile and the
   // path's bends — braking from the car's speed to zero at the stop.
   for (const Piece& pc : pieces_) sample_shape(line_, pc.shape, p_.path_step, out_.points);
   {
@@ -196,17 +208,14 @@ void RoadGraphPlanner::make_path(double speed, bool stop, double stop_s) {
     const Eigen::Vector2d q = line_.point(s, d);
     out_.points.push_back({q.x(), q.y(), s, d, offset_curvature(line_.kappa(s), d, 0, 0)});
   }
-  if (stop) {
-    std::size_t keep = 1;
-    while (keep < out_.points.size() && out_.points[keep].s <= stop_s) ++keep;
-    out_.points.resize(std::max<std::size_t>(keep, 2));
-  }
   const std::size_t n = out_.points.size();
   std::vector<double> ds(n - 1), kappa(n), cap(n);
   for (std::size_t i = 0; i < n; ++i) {
     const PathSample& q = out_.points[i];
     kappa[i] = q.kappa;
-    cap[i] = line_.interpolate(ref_speed_, q.s);
+    // Past the stop the path goes on (the tracker keeps steering along it) at speed zero.
+    // (Zero from the last point before the stop: the profile reaches zero at a point, not between.)
+    cap[i] = stop && q.s > stop_s - p_.path_step ? 0.0 : line_.interpolate(ref_speed_, q.s);
     if (i + 1 < n) ds[i] = std::max(1e-3, std::hypot(out_.points[i + 1].x - q.x, out_.points[i + 1].y - q.y));
   }
   out_.speed = stop ? speed_profile(ds, kappa, p_.limits, false, speed, 0.0, &cap)

@@ -12,8 +12,8 @@
 //
 // No route at all: the car stops. The path is the part it is committed to (or, when that is
 // blocked or gone, a straight line at its offset) and on at the same offset from the line over
-// the horizon, cut where the car would come within the clearance of the first obstacle in its
-// way, its speeds braking from the car's to zero there.
+// the horizon, its speeds braking from the car's to zero where the car would come within the
+// clearance of the first obstacle in its way (and zero beyond).
 // That stop point stays put from cycle to cycle (it does not move ahead with the car) until a
 // route opens.
 #include "graph_search.hpp"
@@ -34,12 +34,15 @@ struct PlannerParams {
   double path_step = 2.0;         // m between path points
   double behind = 3.0;            // m of path behind the car (the tracker projects the car on it)
   double obstacle_memory = 2.0;   // s an obstacle is kept after it was last seen
-  double merge_distance = 2.0;    // m: a detection this near a remembered obstacle is that one
+  double merge_distance = 1.5;    // m: a detection this near a remembered obstacle is that one
+  int confirmations = 3;          // frames an obstacle must be seen in before it is planned around:
+                                  // one frame's false detection must not close the road
 };
 
 struct MapObstacle {
   double x = 0, y = 0, radius = 0.5;  // map frame, m
   std::int64_t seen_ns = 0;
+  int seen = 0;                       // frames it was detected in
 };
 
 struct PlannedPath {
@@ -55,9 +58,10 @@ class RoadGraphPlanner {
   // ref_speed: one speed per point of `line` (the racing line's profile), the cap everywhere.
   RoadGraphPlanner(const RoadGraph& graph, const RefLine& line, std::vector<double> ref_speed, PlannerParams p);
 
-  // New detections (map frame) at now_ns: merged into the remembered ones; old ones forgotten.
+  // New detections (map frame) of one frame at now_ns: merged into the remembered ones; old ones
+  // forgotten. Only those seen in `confirmations` frames are planned around.
   void observe(const std::vector<MapObstacle>& seen, std::int64_t now_ns);
-  const std::vector<MapObstacle>& obstacles() const { return memory_; }
+  const std::vector<MapObstacle>& obstacles() const { return memory_; }  // confirmed or not
 
   // A new plan from the car's reference point and speed.
   const PlannedPath& plan(double x, double y, double speed);

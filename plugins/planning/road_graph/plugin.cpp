@@ -17,6 +17,7 @@
 #include "../common/road_graph_planner.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <deque>
 #include <set>
 #include <memory>
@@ -59,6 +60,8 @@ class RoadGraphNode : public Plugin {
         .param(ParamSpec::number("commit_time", pp.commit_time).in_unit("s").at_least(0))
         .param(ParamSpec::number("commit_min", pp.commit_min).in_unit("m").at_least(1))
         .param(ParamSpec::number("obstacle_memory", pp.obstacle_memory).in_unit("s").range(0, 3600))
+        .param(ParamSpec::integer("obstacle_confirmations", pp.confirmations).range(1, 100)
+                   .doc("frames an obstacle must be detected in before it is planned around"))
         .periodic("rate_hz");
   }
 
@@ -89,6 +92,7 @@ class RoadGraphNode : public Plugin {
     pp_.commit_time = p.number("commit_time");
     pp_.commit_min = p.number("commit_min");
     pp_.obstacle_memory = p.number("obstacle_memory");
+    pp_.confirmations = static_cast<int>(p.integer("obstacle_confirmations"));
     pp_.limits.v_max = limits_.v_max;
     pp_.limits.a_lat = limits_.a_lat;
     pp_.limits.a_accel = limits_.a_accel;
@@ -150,7 +154,26 @@ class RoadGraphNode : public Plugin {
     if (!(std::abs(car.x()) < 1e7 && std::abs(car.y()) < 1e7)) return;  // NaN or absurd: no plan from it
     const PlannedPath& plan = planner_->plan(car.x(), car.y(), car.speed());
     if (plan.points.size() < 2) return;
-    if (!plan.route_found) ++blocked_;
+    if (!plan.route_found) {
+      // Once per episode: which obstacles closed the road (the car brakes for them).
+      if (!stopping_) {
+        std::string what;
+        for (const auto& o : planner_->obstacles()) {
+          const Eigen::Vector2d f = line_ready_.line.to_frenet(o.x, o.y);
+          char b[96];
+          std::snprintf(b, sizeof b, "%s(s %.1f, d %.1f, r %.2f)", what.empty() ? "" : ", ", f.x(), f.y(), o.radius);
+          what += b;
+        }
+        const Eigen::Vector2d c = line_ready_.line.to_frenet(car.x(), car.y());
+        char b[96];
+        std::snprintf(b, sizeof b, "no route: braking to a stop (car at s %.1f, d %.1f); obstacles: ", c.x(), c.y());
+        ctx.log(LogLevel::warn, b + (what.empty() ? std::string("none") : what));
+      }
+      stopping_ = true;
+      ++blocked_;
+    } else {
+      stopping_ = false;
+    }
     if (plan.restarted) ++restarts_;
     obstacles_max_ = std::max(obstacles_max_, planner_->obstacles().size());
     auto m = std::make_shared<msgs::Path>();
@@ -254,6 +277,7 @@ class RoadGraphNode : public Plugin {
   std::deque<std::shared_ptr<const msgs::LocalizationEstimate>> poses_;
   std::uint32_t seq_ = 0;
   std::size_t blocked_ = 0, restarts_ = 0, obstacles_max_ = 0;
+  bool stopping_ = false;
   double max_offset_ = 0;
   std::set<int> shown_layers_;
   Input<msgs::TrackWorld> world_;
