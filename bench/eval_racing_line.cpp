@@ -61,14 +61,20 @@ int main() {
     p06.margin = 0.6;
     const auto ours = planning::min_curvature_line(line, p06);
     const double lt_tum = lap_time(tum.x, tum.y, car), lt_ours = lap_time(ours.x, ours.y, car);
+    auto length = [](const std::vector<double>& x, const std::vector<double>& y) {
+      double l = 0;
+      for (std::size_t i = 0; i < x.size(); ++i) l += std::hypot(x[(i + 1) % x.size()] - x[i], y[(i + 1) % x.size()] - y[i]);
+      return l;
+    };
     char row[200];
-    std::snprintf(row, sizeof row, "| %s | %.2f s | %.2f s | %+.2f s |", name, lt_tum, lt_ours, lt_ours - lt_tum);
+    std::snprintf(row, sizeof row, "| %s | %.2f s | %.2f s | %+.2f s | %.1f m | %.1f m |", name, lt_tum, lt_ours, lt_ours - lt_tum,
+                  length(tum.x, tum.y), length(ours.x, ours.y));
     times.push_back(row);
     std::printf("| %s | %zu | %.5f | %.5f | %.5f | %.3f | %.0f ms | %.5f | %.0f ms |\n", name, c.x.size(),
                 planning::summed_squared_curvature(c.x, c.y), t, cost[0], cost[0] / t, ms[0], cost[1], ms[1]);
   }
   std::printf("\nLap time under the same limits (ggv ellipse, drag, power; speed_profile.hpp):\n\n");
-  std::printf("| track | TUM's line | ours, margin 0.6 m | ours − TUM |\n|---|---|---|---|\n");
+  std::printf("| track | TUM's line | ours, margin 0.6 m | ours − TUM | TUM's length | our length |\n|---|---|---|---|---|---|\n");
   for (const auto& r : times) std::printf("%s\n", r.c_str());
   return 0;
 }
