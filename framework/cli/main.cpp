@@ -5,7 +5,13 @@
 
 #include <brickyard/version.hpp>
 
+#include <fcntl.h>
+#include <spawn.h>
 #include <sys/wait.h>
+
+#include <cerrno>
+
+extern char** environ;
 
 #include <csignal>
 #include <cstdio>
@@ -137,18 +143,28 @@ Registry load_registry(const Args& a, const GraphDecl* g) {
 
 void on_signal(int) { g_interrupt = true; }
 
-// brickyard-report, installed beside this executable, on a run folder; its exit code.
+// brickyard-report, installed beside this executable, on a run folder; its exit code. Started
+// with an argument vector, no shell: a folder's name is never parsed.
 int run_report(const std::string& dir, bool quiet) {
   std::error_code ec;
   const fs::path self = fs::read_symlink("/proc/self/exe", ec);
-  const fs::path tool = self.parent_path() / "brickyard-report";
+  const std::string tool = (self.parent_path() / "brickyard-report").string();
   if (ec || !fs::exists(tool)) {
     std::fprintf(stderr, "[brickyard] brickyard-report not found beside %s\n", self.string().c_str());
     return 2;
   }
-  const std::string cmd = "'" + tool.string() + "' '" + dir + "'" + (quiet ? " > /dev/null" : "");
-  const int rc = std::system(cmd.c_str());
-  return WIFEXITED(rc) ? WEXITSTATUS(rc) : 1;
+  posix_spawn_file_actions_t fa;
+  posix_spawn_file_actions_init(&fa);
+  if (quiet) posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
+  std::vector<char*> argv = {const_cast<char*>(tool.c_str()), const_cast<char*>(dir.c_str()), nullptr};
+  pid_t pid = 0;
+  const int err = posix_spawn(&pid, tool.c_str(), &fa, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&fa);
+  if (err != 0) return 2;
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 1;
 }
 
 // The end of a run at a glance: one row per node with its metrics (arrays cut at four values).
@@ -222,12 +238,29 @@ int cmd_run(const Args& a, bool validate_only) {
   // is the run's output, replaced by the next run into it (a --record FILE never is).
   // (Not for one process of a multi-process graph: the others would write the same folder.)
   const bool report = !a.out.empty() && !a.no_report && a.process.empty();
-  if (report && a.record.empty()) {
-    const fs::path rec = fs::path(a.out) / "recording.db3";
+  if (!a.out.empty()) {
+    // What an earlier run left in the folder goes — its report, and its recording when the
+    // folder's own (its summary says so) — so nothing stale is drawn; a recording made there
+    // with --record is never removed: the run refuses instead.
+    const fs::path dir(a.out), rec = dir / "recording.db3";
     std::error_code ec;
-    fs::remove(rec, ec);
-    fs::remove(fs::path(a.out) / "report.html", ec);
-    opt.record = rec.string();
+    if (fs::exists(rec, ec)) {
+      bool ours = false;
+      std::ifstream old(dir / "summary.json");
+      try {
+        const auto j = nlohmann::json::parse(old);
+        ours = j.contains("recording") && j["recording"].value("file", "") == "recording.db3";
+      } catch (...) {
+      }
+      if (!ours) usage_error("--out " + a.out, rec.string() + " was not written by --out (a --record file?): move it or use another folder");
+      if (!a.record.empty() && fs::equivalent(a.record, rec, ec)) usage_error("--record " + a.record, "is the --out folder's own recording");
+      fs::remove(rec, ec);
+    }
+    fs::remove(dir / "report.html", ec);
+    fs::remove(dir / "summary.json", ec);
+  }
+  if (report && a.record.empty()) {
+    opt.record = (fs::path(a.out) / "recording.db3").string();
     opt.record_skip_types = {"brickyard::msgs::PointCloud", "brickyard::msgs::ClusterList"};
   }
   RunSummary s;

@@ -271,7 +271,14 @@ void Executive::build() {
         const bool skip = std::find(opt_.record_skip_types.begin(), opt_.record_skip_types.end(), p.type_name) != opt_.record_skip_types.end();
         if (recorder_ && !skip && (opt_.record_only.empty() || topic_selected(topic, opt_.record_only))) {
           const int id = recorder_->add_topic(topic, p.type_name);
-          n->outputs.back()->tap = [this, id](const void* m) { recorder_->write(id, now_ns(), m); };
+          // A failed write stops the run; it must not unwind through the publishing plugin.
+          n->outputs.back()->tap = [this, id](const void* m) {
+            try {
+              recorder_->write(id, now_ns(), m);
+            } catch (const std::exception& e) {
+              request_stop(RunResult::failed, e.what());
+            }
+          };
         }
       }
     }
@@ -490,7 +497,10 @@ RunSummary Executive::run() {
   if (recorder_) {
     try {
       recorder_->close();
-      recording = {{"file", recorder_->path()}, {"messages", recorder_->messages()}, {"bytes", recorder_->bytes()}};
+      std::error_code ec;
+      const auto abs = std::filesystem::absolute(recorder_->path(), ec);
+      recording = {{"file", ec ? recorder_->path() : abs.lexically_normal().string()},
+                   {"messages", recorder_->messages()}, {"bytes", recorder_->bytes()}};
     } catch (const std::exception& e) {
       request_stop(RunResult::failed, e.what());
     }

@@ -7,9 +7,13 @@
 
 #include <sqlite3.h>
 
+#include <cerrno>
 #include <cstring>
 #include <filesystem>
 #include <stdexcept>
+
+#include <fcntl.h>
+#include <unistd.h>
 
 namespace brickyard::fw {
 
@@ -50,10 +54,29 @@ struct Recorder::Topic {
 };
 
 Recorder::Recorder(const std::string& path) : path_(path) {
-  std::error_code ec;
-  if (std::filesystem::exists(path, ec)) throw std::runtime_error(path + ": exists; a recording is never overwritten");
-  if (sqlite3_open_v2(path.c_str(), &db_, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE, nullptr) != SQLITE_OK)
-    fail("cannot create");
+  // Created exclusively: two runs given the same FILE cannot both pass an exists() check.
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0644);
+  if (fd < 0) {
+    if (errno == EEXIST) throw std::runtime_error(path + ": exists; a recording is never overwritten");
+    throw std::runtime_error(path + ": cannot create (" + std::strerror(errno) + ")");
+  }
+  ::close(fd);
+  if (sqlite3_open_v2(path.c_str(), &db_, SQLITE_OPEN_READWRITE, nullptr) != SQLITE_OK) {
+    sqlite3_close(db_);
+    db_ = nullptr;
+    throw std::runtime_error(path + ": cannot open as a database");
+  }
+  try {
+    create_schema();
+  } catch (...) {
+    sqlite3_finalize(insert_);
+    sqlite3_close(db_);
+    db_ = nullptr;
+    throw;
+  }
+}
+
+void Recorder::create_schema() {
   // The file is written by this process alone and only whole at close(): no journal needed
   // beyond what keeps it consistent after a crash (WAL, synchronous NORMAL).
   exec("PRAGMA journal_mode=WAL");
@@ -133,13 +156,21 @@ void Recorder::write(int topic, std::int64_t stamp_ns, const void* message) {
   if (t.payload.max_size < size) t.payload.reserve(size);
   t.payload.length = 0;
   t.payload.pos = 0;
+  if (failed_) return;  // after a failed write: the run is stopping, nothing more is written
   if (!t.support->serialize(data, &t.payload)) fail("serializing a sample of " + t.name);
   if (in_transaction_ == 0) exec("BEGIN");
   sqlite3_reset(insert_);
   sqlite3_bind_int(insert_, 1, topic);
   sqlite3_bind_int64(insert_, 2, stamp_ns);
   sqlite3_bind_blob(insert_, 3, t.payload.data, static_cast<int>(t.payload.length), SQLITE_STATIC);
-  if (sqlite3_step(insert_) != SQLITE_DONE) fail("writing a sample of " + t.name);
+  if (sqlite3_step(insert_) != SQLITE_DONE) {
+    // (A full disk, the file gone.) What was committed stays; this batch is rolled back.
+    const std::string why = sqlite3_errmsg(db_);
+    sqlite3_exec(db_, "ROLLBACK", nullptr, nullptr, nullptr);
+    in_transaction_ = 0;
+    failed_ = true;
+    throw std::runtime_error(path_ + ": recording: writing a sample of " + t.name + " (" + why + ")");
+  }
   ++messages_;
   bytes_ += t.payload.length;
   if (++in_transaction_ >= kBatch) {
@@ -151,14 +182,22 @@ void Recorder::write(int topic, std::int64_t stamp_ns, const void* message) {
 void Recorder::close() {
   std::lock_guard<std::mutex> l(m_);
   if (!db_) return;
-  if (in_transaction_ > 0) exec("COMMIT");
+  // Finalized and closed whatever happens; the first error is reported after.
+  std::string error;
+  auto run = [&](const char* sql) {
+    char* err = nullptr;
+    if (sqlite3_exec(db_, sql, nullptr, nullptr, &err) != SQLITE_OK && error.empty()) error = std::string(sql) + ": " + (err ? err : "?");
+    sqlite3_free(err);
+  };
+  if (in_transaction_ > 0) run("COMMIT");
   in_transaction_ = 0;
   sqlite3_finalize(insert_);
   insert_ = nullptr;
-  exec("PRAGMA wal_checkpoint(TRUNCATE)");
-  exec("PRAGMA journal_mode=DELETE");  // one self-contained file
-  sqlite3_close(db_);
+  run("PRAGMA wal_checkpoint(TRUNCATE)");
+  run("PRAGMA journal_mode=DELETE");  // one self-contained file
+  sqlite3_close_v2(db_);
   db_ = nullptr;
+  if (!error.empty()) throw std::runtime_error(path_ + ": recording: " + error);
 }
 
 }  // namespace brickyard::fw

@@ -37,6 +37,7 @@ class Recorder {
 
  private:
   struct Topic;
+  void create_schema();
   void exec(const char* sql);
   [[noreturn]] void fail(const std::string& what);
   std::string path_;
@@ -45,6 +46,7 @@ class Recorder {
   std::vector<std::unique_ptr<Topic>> topics_;
   std::mutex m_;
   std::uint64_t messages_ = 0, bytes_ = 0, in_transaction_ = 0;
+  bool failed_ = false;
 };
 
 // The IDL text of a message type (with what it includes), or null.

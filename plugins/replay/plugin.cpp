@@ -52,6 +52,11 @@ class Replay : public Plugin {
     const std::string file = ctx.find_file(p.string("file"));
     try {
       replay::Recording rec(file);
+      // Stamps are the recording run's clock: sim time from 0, or the epoch on the real clock.
+      const std::string clock = rec.metadata("clock");
+      if (clock != (ctx.sim_clock() ? "sim" : "real"))
+        throw BadInput("recording " + file + " was made on the " + (clock.empty() ? "unknown" : clock) + " clock, this run is on the " +
+                       (ctx.sim_clock() ? "sim" : "real") + " clock: its samples' times would not line up");
       const replay::RecordedTopic* t = rec.topic(topic);
       if (!t) {
         std::string have;
@@ -64,27 +69,27 @@ class Replay : public Plugin {
       if (t->type_hash != message_traits<T>::hash)
         throw BadInput("recording " + file + ": topic '" + topic + "' was recorded with another definition of " + t->type +
                        " (IDL hash " + t->type_hash + ", this build " + message_traits<T>::hash + ")");
-      samples_ = rec.samples(*t);
+      // Every sample decoded now: a bad one is bad input, found before the run starts.
+      for (auto& s : rec.samples(*t)) {
+        eprosima::fastrtps::rtps::SerializedPayload_t payload(static_cast<std::uint32_t>(s.data.size()));
+        std::memcpy(payload.data, s.data.data(), s.data.size());
+        payload.length = static_cast<std::uint32_t>(s.data.size());
+        auto m = std::make_shared<T>();
+        if (!type_.deserialize(&payload, m.get()))
+          throw BadInput("recording " + file + ": sample " + std::to_string(samples_.size()) + " of '" + topic + "' does not decode as " +
+                         message_traits<T>::name);
+        samples_.push_back({s.stamp_ns, std::move(m)});
+      }
     } catch (const replay::RecordingError& e) {
       throw BadInput(std::string("parameter 'file': ") + e.what());
     }
-    name_ = topic;
     out_ = ctx.output<T>("out");
   }
 
   void step(Context& ctx) override {
     const std::int64_t now = ctx.now_ns();
-    for (; next_ < samples_.size() && samples_[next_].stamp_ns <= now; ++next_) {
-      auto& s = samples_[next_];
-      eprosima::fastrtps::rtps::SerializedPayload_t payload(static_cast<std::uint32_t>(s.data.size()));
-      std::memcpy(payload.data, s.data.data(), s.data.size());
-      payload.length = static_cast<std::uint32_t>(s.data.size());
-      auto m = std::make_shared<T>();
-      if (!type_.deserialize(&payload, m.get()))
-        throw std::runtime_error("sample " + std::to_string(next_) + " of '" + name_ + "' does not deserialize");
-      std::vector<unsigned char>().swap(s.data);  // published: its bytes are not needed again
-      out_.publish(std::shared_ptr<const T>(std::move(m)));
-    }
+    for (; next_ < samples_.size() && samples_[next_].stamp_ns <= now; ++next_)
+      out_.publish(std::move(samples_[next_].message));  // published: this node lets go of it
   }
 
   void deactivate(Context& ctx) override {
@@ -93,9 +98,12 @@ class Replay : public Plugin {
   }
 
  private:
-  std::vector<replay::RecordedSample> samples_;
+  struct Sample {
+    std::int64_t stamp_ns;
+    std::shared_ptr<const T> message;
+  };
+  std::vector<Sample> samples_;
   std::size_t next_ = 0;
-  std::string name_;
   PubSub type_;
   Output<T> out_;
 };

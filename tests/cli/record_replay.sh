@@ -35,6 +35,9 @@ expect2 "has no topic 'gnss_left.nope' (it has: world.world, car.truth" \
   "$by" run "$replay" --domain "$domain" $sets --set gnss_left.topic=gnss_left.nope
 expect2 "topic 'imu.imu' holds brickyard::msgs::Imu, this node replays brickyard::msgs::GnssFix" \
   "$by" run "$replay" --domain "$domain" $sets --set gnss_left.topic=imu.imu
+"$by" run "$graphs/real_clock.json" --domain "$domain" --quiet --duration 0.3 --record "$out/real.db3" > /dev/null 2>&1
+expect2 "was made on the real clock, this run is on the sim clock" \
+  "$by" run "$replay" --domain "$domain" $sets --set gnss_left.file="$out/real.db3" --set gnss_left.topic=src.out
 echo "not a database" > "$out/junk.db3"
 expect2 "junk.db3" "$by" run "$replay" --domain "$domain" $sets --set gnss_left.file="$out/junk.db3"
 expect2 "--record-only: needs --record FILE" "$by" run "$replay" --domain "$domain" $sets --record-only 'x.*'

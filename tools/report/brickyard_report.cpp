@@ -17,6 +17,15 @@
 #include <sstream>
 #include <string>
 
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+
+extern char** environ;
+
 namespace fs = std::filesystem;
 using brickyard::report::RunData;
 
@@ -38,11 +47,46 @@ std::string esc(const std::string& s) {
   return o;
 }
 
-// gnuplot's strings are single-quoted: a quote inside is doubled.
+// gnuplot's strings are single-quoted: a quote inside is doubled, and a control character (a
+// newline would end the command and start another — `!` runs a shell) becomes '?'. Names come
+// from the recording, which anyone may have written.
 std::string gq(const std::string& s) {
   std::string o = "'";
-  for (char c : s) o += c == '\'' ? std::string("''") : std::string(1, c);
+  for (char c : s) {
+    if (c == '\'') o += "''";
+    else if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) o += '?';
+    else o += c;
+  }
   return o + "'";
+}
+
+// gnuplot on a script, its output into a log; no shell in between. Its exit code.
+int run_gnuplot(const fs::path& script, const fs::path& log) {
+  posix_spawn_file_actions_t fa;
+  posix_spawn_file_actions_init(&fa);
+  posix_spawn_file_actions_addopen(&fa, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_adddup2(&fa, 1, 2);
+  std::string prog = "gnuplot", arg = script.string();
+  std::vector<char*> argv = {prog.data(), arg.data(), nullptr};
+  pid_t pid = 0;
+  const int err = posix_spawnp(&pid, "gnuplot", &fa, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&fa);
+  if (err != 0) return 127;
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 1;
+}
+
+bool have_gnuplot() {
+  const char* path = std::getenv("PATH");
+  std::string p = path ? path : "/usr/bin:/bin";
+  for (std::size_t at = 0; at <= p.size();) {
+    const std::size_t colon = std::min(p.find(':', at), p.size());
+    if (access((p.substr(at, colon - at) + "/gnuplot").c_str(), X_OK) == 0) return true;
+    at = colon + 1;
+  }
+  return false;
 }
 
 int mode_colour(const std::string& name) {
@@ -133,7 +177,7 @@ void figures(const RunData& d, const nlohmann::json& summary, const Writer& w, s
         f << '\n';
       }
       double eps = NAN, del = NAN;
-      for (const auto& [name, n] : summary["nodes"].items())
+      for (const auto& [name, n] : summary.value("nodes", nlohmann::json::object()).items())
         if (n.contains("metrics") && n["metrics"].contains("epsilon_m") && n["metrics"]["epsilon_m"].is_number()) {
           eps = n["metrics"]["epsilon_m"].get<double>();
           del = n["metrics"].value("delta_m", NAN);
@@ -243,10 +287,11 @@ void figures(const RunData& d, const nlohmann::json& summary, const Writer& w, s
     };
     // The road graph's nodes around the obstacles, as the planner reported them.
     std::string lattice;
-    for (const auto& [name, n] : summary["nodes"].items()) {
-      if (!n.contains("metrics") || !n["metrics"].contains("lattice_near_obstacles_x")) continue;
+    for (const auto& [name, n] : summary.value("nodes", nlohmann::json::object()).items()) {
+      if (!n.is_object() || !n.contains("metrics") || !n["metrics"].is_object() || !n["metrics"].contains("lattice_near_obstacles_x")) continue;
       const auto& xs = n["metrics"]["lattice_near_obstacles_x"];
-      const auto& ys = n["metrics"]["lattice_near_obstacles_y"];
+      const auto ys = n["metrics"].value("lattice_near_obstacles_y", nlohmann::json::array());
+      if (!xs.is_array() || !ys.is_array()) continue;
       auto g = w.open("scene_lattice.dat");
       for (std::size_t i = 0; i < xs.size() && i < ys.size(); ++i) {
         if (!xs[i].is_number() || !ys[i].is_number()) continue;
@@ -329,14 +374,16 @@ int run(const fs::path& dir) {
   } catch (const std::exception& e) {
     throw std::invalid_argument(summary_file.string() + ": " + e.what());
   }
-  fs::path recording = dir / "recording.db3";
-  if (summary.contains("recording") && summary["recording"].contains("file") && summary["recording"]["file"].is_string()) {
-    recording = summary["recording"]["file"].get<std::string>();
-    if (recording.is_relative() && fs::exists(dir / recording)) recording = dir / recording;  // the folder's own
-  }
-  if (!fs::exists(recording)) throw std::invalid_argument(recording.string() + ": no recording of this run (run it with --out or --record)");
-  if (std::system("command -v gnuplot > /dev/null 2>&1") != 0)
-    throw std::invalid_argument("gnuplot not found: the report's figures are drawn with it (apt-get install gnuplot-nox)");
+  if (!summary.is_object()) throw std::invalid_argument(summary_file.string() + ": not a run summary (not a JSON object)");
+  // The run's own recording, as its summary names it: the folder's ("recording.db3", relative to
+  // the folder) or a --record file (absolute). No summary entry: the run kept none.
+  const auto rec = summary.value("recording", nlohmann::json::object());
+  if (!rec.is_object() || !rec.contains("file") || !rec["file"].is_string())
+    throw std::invalid_argument(summary_file.string() + ": the run kept no recording (run it with --out, or --record FILE)");
+  fs::path recording = rec["file"].get<std::string>();
+  if (recording.is_relative()) recording = dir / recording;
+  if (!fs::exists(recording)) throw std::invalid_argument(recording.string() + ": the run's recording is gone");
+  if (!have_gnuplot()) throw std::invalid_argument("gnuplot not found: the report's figures are drawn with it (apt-get install gnuplot-nox)");
   RunData data;
   try {
     data = brickyard::report::read_run(recording.string());
@@ -351,8 +398,8 @@ int run(const fs::path& dir) {
   std::ofstream gp(work / "figures.gp");
   for (const auto& f : figs) gp << f.script << "unset output\nreset\n";
   gp.close();
-  const std::string cmd = "gnuplot " + (work / "figures.gp").string() + " > " + (work / "gnuplot.log").string() + " 2>&1";
-  if (std::system(cmd.c_str()) != 0) throw std::runtime_error("gnuplot failed: see " + (work / "gnuplot.log").string());
+  if (run_gnuplot(work / "figures.gp", work / "gnuplot.log") != 0)
+    throw std::runtime_error("gnuplot failed: see " + (work / "gnuplot.log").string());
 
   std::ostringstream h;
   h << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>Brickyard run: " << esc(summary.value("graph", "")) << "</title>\n"
@@ -366,9 +413,11 @@ int run(const fs::path& dir) {
   char b[96];
   std::snprintf(b, sizeof b, "%.3f s of sim time in %.3f s", summary.value("sim_time_s", 0.0), summary.value("wall_time_s", 0.0));
   h << "<tr><th>time</th><td>" << b << "</td></tr>\n<tr><th>seed</th><td>" << summary.value("seed", 0) << "</td></tr>\n</table>\n";
-  if (summary.contains("nodes") && summary["nodes"].contains("referee") && summary["nodes"]["referee"].contains("metrics")) {
+  const auto nodes = summary.value("nodes", nlohmann::json::object());
+  if (nodes.is_object() && nodes.contains("referee") && nodes["referee"].is_object() && nodes["referee"].contains("metrics") &&
+      nodes["referee"]["metrics"].is_object()) {
     h << "<h2>Referee</h2>\n<table>\n";
-    for (const auto& [k, v] : summary["nodes"]["referee"]["metrics"].items()) h << "<tr><th>" << esc(k) << "</th><td>" << esc(metric_text(v)) << "</td></tr>\n";
+    for (const auto& [k, v] : nodes["referee"]["metrics"].items()) h << "<tr><th>" << esc(k) << "</th><td>" << esc(metric_text(v)) << "</td></tr>\n";
     h << "</table>\n";
   }
   for (const auto& f : figs) {
@@ -398,6 +447,9 @@ int main(int argc, char** argv) {
     return run(argv[1]);
   } catch (const std::invalid_argument& e) {
     std::fprintf(stderr, "brickyard-report: %s\n", e.what());
+    return 2;
+  } catch (const nlohmann::json::exception& e) {  // a summary.json of the wrong shape
+    std::fprintf(stderr, "brickyard-report: %s/summary.json: %s\n", argv[1], e.what());
     return 2;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "brickyard-report: %s\n", e.what());

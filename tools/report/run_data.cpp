@@ -12,6 +12,8 @@
 
 #include "common/recording.hpp"
 
+#include <brickyard/message_traits.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -24,9 +26,13 @@ using replay::RecordedTopic;
 using replay::Recording;
 
 template <class T, class PubSub>
-std::vector<T> decode(const Recording& rec, const RecordedTopic& topic) {
+std::vector<T> decode(const Recording& rec, const RecordedTopic& topic, std::vector<std::string>& notes) {
   PubSub type;
   std::vector<T> out;
+  if (topic.type_hash != message_traits<T>::hash) {  // recorded with another definition of the type
+    notes.push_back(topic.name + " was recorded with another definition of " + topic.type + ": not drawn");
+    return out;
+  }
   for (const auto& s : rec.samples(topic)) {
     eprosima::fastrtps::rtps::SerializedPayload_t payload(static_cast<std::uint32_t>(s.data.size()));
     std::memcpy(payload.data, s.data.data(), s.data.size());
@@ -55,11 +61,13 @@ RunData read_run(const std::string& path) {
   Recording rec(path);
   RunData d;
   if (auto w = of_type(rec, "TrackWorld"); !w.empty()) {
-    const auto worlds = decode<msgs::TrackWorld, msgs::TrackWorldPubSubType>(rec, *w.front());
+    const auto worlds = decode<msgs::TrackWorld, msgs::TrackWorldPubSubType>(rec, *w.front(), d.notes);
     if (!worlds.empty()) {
       const auto& m = worlds.front();
       const std::size_t n = m.x().size();
-      for (std::size_t i = 0; i <= n && n > 2 && m.width_left().size() == n && m.width_right().size() == n; ++i) {
+      const bool whole = n > 2 && m.y().size() == n && m.width_left().size() == n && m.width_right().size() == n;
+      if (!whole) d.notes.push_back("the TrackWorld's sequences disagree in length: no track edges");
+      for (std::size_t i = 0; whole && i <= n; ++i) {
         const std::size_t k = i % n, a = (k + n - 1) % n, b = (k + 1) % n;
         double tx = m.x()[b] - m.x()[a], ty = m.y()[b] - m.y()[a];
         const double len = std::hypot(tx, ty);
@@ -72,7 +80,7 @@ RunData read_run(const std::string& path) {
         d.right_y.push_back(m.y()[k] - tx * m.width_right()[k]);
       }
       for (const auto& p : m.pylons()) d.pylons.push_back({p.x(), p.y(), p.radius(), p.s(), p.d()});
-      if (m.width_left().size() == n && m.width_right().size() == n) {
+      if (whole) {
         d.centre_x = m.x();
         d.centre_y = m.y();
         d.width_left = m.width_left();
@@ -83,18 +91,18 @@ RunData read_run(const std::string& path) {
     d.notes.push_back("no TrackWorld topic: no track edges");
   }
   if (auto v = of_type(rec, "VehicleState"); !v.empty()) {
-    for (const auto& m : decode<msgs::VehicleState, msgs::VehicleStatePubSubType>(rec, *v.front()))
+    for (const auto& m : decode<msgs::VehicleState, msgs::VehicleStatePubSubType>(rec, *v.front(), d.notes))
       d.truth.push_back({secs(m.header().stamp_ns()), m.x(), m.y(), std::hypot(m.vx(), m.vy()), m.s(), m.d()});
   } else {
     d.notes.push_back("no VehicleState topic: no driven path, error or speed");
   }
   for (const auto* t : of_type(rec, "GnssFix"))
-    for (const auto& m : decode<msgs::GnssFix, msgs::GnssFixPubSubType>(rec, *t))
+    for (const auto& m : decode<msgs::GnssFix, msgs::GnssFixPubSubType>(rec, *t, d.notes))
       if (m.valid()) d.fixes.push_back({secs(m.header().stamp_ns()), m.x(), m.y(), m.receiver_id()});
   std::string estimator;
   if (auto e = of_type(rec, "LocalizationEstimate"); !e.empty()) {
     estimator = node_of(e.front()->name);
-    for (const auto& m : decode<msgs::LocalizationEstimate, msgs::LocalizationEstimatePubSubType>(rec, *e.front()))
+    for (const auto& m : decode<msgs::LocalizationEstimate, msgs::LocalizationEstimatePubSubType>(rec, *e.front(), d.notes))
       d.estimates.push_back({secs(m.header().stamp_ns()), m.x(), m.y(), m.delta()});
   } else {
     d.notes.push_back("no LocalizationEstimate topic: no error or Δk figures");
@@ -104,17 +112,17 @@ RunData read_run(const std::string& path) {
   for (const auto* t : of_type(rec, "ModeStatus")) {
     auto& into = node_of(t->name) == estimator ? d.localization : d.manager;
     if (!into.empty()) continue;
-    for (const auto& m : decode<msgs::ModeStatus, msgs::ModeStatusPubSubType>(rec, *t))
+    for (const auto& m : decode<msgs::ModeStatus, msgs::ModeStatusPubSubType>(rec, *t, d.notes))
       into.push_back({secs(m.header().stamp_ns()), m.mode(), m.mode_name()});
   }
   for (const auto* t : of_type(rec, "ControlCommand")) {
     std::vector<Steer> s;
-    for (const auto& m : decode<msgs::ControlCommand, msgs::ControlCommandPubSubType>(rec, *t))
+    for (const auto& m : decode<msgs::ControlCommand, msgs::ControlCommandPubSubType>(rec, *t, d.notes))
       s.push_back({secs(m.header().stamp_ns()), m.steer()});
     d.commands.emplace_back(t->name, std::move(s));
   }
   if (auto p = of_type(rec, "Path"); !p.empty()) {
-    for (const auto& m : decode<msgs::Path, msgs::PathPubSubType>(rec, *p.front())) {
+    for (const auto& m : decode<msgs::Path, msgs::PathPubSubType>(rec, *p.front(), d.notes)) {
       PathSnapshot s{secs(m.header().stamp_ns()), {}, {}};
       for (const auto& q : m.poses()) {
         s.x.push_back(q.x());

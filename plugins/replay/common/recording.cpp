@@ -19,7 +19,7 @@ Recording::Recording(const std::string& path) : path_(path) {
   };
   int rc;
   while ((rc = sqlite3_step(st)) == SQLITE_ROW)
-    topics_.push_back({sqlite3_column_int(st, 0), text(1), text(2), text(3), text(4)});
+    topics_.push_back({sqlite3_column_int64(st, 0), text(1), text(2), text(3), text(4)});
   sqlite3_finalize(st);
   if (rc != SQLITE_DONE) fail("reading its topics");
 }
@@ -54,10 +54,14 @@ std::vector<RecordedSample> Recording::samples(const RecordedTopic& t) const {
   sqlite3_stmt* st = nullptr;
   if (sqlite3_prepare_v2(db_, "SELECT timestamp, data FROM messages WHERE topic_id = ? ORDER BY id", -1, &st, nullptr) != SQLITE_OK)
     fail("not a brickyard recording (no messages table)");
-  sqlite3_bind_int(st, 1, t.id);
+  sqlite3_bind_int64(st, 1, t.id);
   std::vector<RecordedSample> out;
   int rc;
   while ((rc = sqlite3_step(st)) == SQLITE_ROW) {
+    if (sqlite3_column_type(st, 1) != SQLITE_BLOB || sqlite3_column_type(st, 0) != SQLITE_INTEGER) {
+      sqlite3_finalize(st);
+      fail("sample " + std::to_string(out.size()) + " of " + t.name + " is not a timestamp and a blob");
+    }
     RecordedSample s;
     s.stamp_ns = sqlite3_column_int64(st, 0);
     const auto* b = static_cast<const unsigned char*>(sqlite3_column_blob(st, 1));

@@ -11,7 +11,7 @@ struct sqlite3;
 namespace brickyard::replay {
 
 struct RecordedTopic {
-  int id = 0;
+  std::int64_t id = 0;
   std::string name, type, type_hash, idl;
 };
 
