@@ -103,9 +103,10 @@ class Lidar : public Plugin {
     buf_.clear();
     hint_ = track_->project(s->x(), s->y(), hint_).seg;
     rays_ += caster_->scan(body_pose(*s), hint_, rng_, e.noise_factor, buf_);
-    m->x(buf_.x); m->y(buf_.y); m->z(buf_.z); m->intensity(buf_.intensity);
     points_ += buf_.x.size();
     for (const auto* v : {&buf_.x, &buf_.y, &buf_.z, &buf_.intensity}) digest_.add(v->data(), v->size() * sizeof(float));
+    // The buffers move into the message (no copy); scan reserves them again next frame.
+    m->x(std::move(buf_.x)); m->y(std::move(buf_.y)); m->z(std::move(buf_.z)); m->intensity(std::move(buf_.intensity));
     ++frames_;
     last_ = m;
     out_.publish(std::shared_ptr<const msgs::PointCloud>(m));
