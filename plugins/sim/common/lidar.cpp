@@ -104,6 +104,7 @@ LidarCaster::LidarCaster(const Track& track, LidarSpec spec) : track_(track), sp
       if (gap <= spec_.max_range + blen[b] + blen[c]) zt = std::max(zt, top[c]);
     }
     blocks_[b].z_top_near = zt;
+    z_top_all_ = std::max(z_top_all_, zt);
   }
   wall_left_ = w.walls.left;
   wall_right_ = w.walls.right;
@@ -226,7 +227,12 @@ RayHit LidarCaster::cast(const Eigen::Vector3d& o, const Eigen::Vector3d& v, int
   if (checkpoint) *checkpoint = Resume{0, -1, 0, false};
   // This ray escapes at t: so do the rays above it when the path up to t kept clear of the walls.
   auto escape = [&](double t) {
-    if (checkpoints && shift_rest >= 0 && margin - t * shift_rest > 0) checkpoint->rest_escape = true;
+    if (!checkpoints) return;
+    if (shift_rest >= 0 && margin - t * shift_rest > 0) checkpoint->rest_escape = true;
+    if (margin > 0) {
+      checkpoint->escape_t = t;
+      checkpoint->escape_margin = margin;
+    }
   };
   if (from && from->seg >= 0) {
     t0 = from->t;
@@ -316,12 +322,6 @@ RayHit LidarCaster::cast(const Eigen::Vector3d& o, const Eigen::Vector3d& v, int
       if (t_wall > max_t) t_wall = kInf;
     }
     const double tf = std::min({te, t_wall, max_t});
-    if (checkpoints) {
-      for (double t : {t0, tf}) {
-        const double a = std::clamp(a0 + va * t, 0.0, g.len), d = d0 + vd * t;
-        margin = std::min({margin, g.wall_l + g.dwl * a - d, d - (g.wall_r - g.dwr * a)});
-      }
-    }
     const double f1 = above(tf);
     if (f1 <= 0) {
       double lo = t0, hi = tf, flo = above(t0), fhi = f1, t = hi;
@@ -353,6 +353,14 @@ RayHit LidarCaster::cast(const Eigen::Vector3d& o, const Eigen::Vector3d& v, int
       }
       break;
     }
+    // The path's clearance from the walls: only a ray that goes on (or escapes here) needs it, so
+    // it is not worked out for the slab where a ray hits something (most rays).
+    if (checkpoints) {
+      for (double t : {t0, tf}) {
+        const double a = std::clamp(a0 + va * t, 0.0, g.len), d = d0 + vd * t;
+        margin = std::min({margin, g.wall_l + g.dwl * a - d, d - (g.wall_r - g.dwr * a)});
+      }
+    }
     if (tf >= max_t) {
       if (best.surface == Surface::none) escape(max_t);
       break;
@@ -363,6 +371,43 @@ RayHit LidarCaster::cast(const Eigen::Vector3d& o, const Eigen::Vector3d& v, int
   }
   best.range = best.surface == Surface::none ? 0 : best_t;
   return best;
+}
+
+// Row r escaped: its path, horizontally the segment from o along h_r = (its direction's x, y) to
+// t_e, kept above the road and more than `margin` from every wall line, and met no pylon slab.
+// Row q above it: at t, it is over the point of row r's path at ρ t (ρ = h_q·h_r / |h_r|²), off it
+// sideways by λ t (λ = |h_q × h_r| / |h_r|), and higher than row r there by t (v_qz − ρ v_rz).
+// Until it rises over the highest point of the world (t ≤ L), it surely meets nothing when
+//   ρ L ≤ t_e            (it stays over the part of the path row r cleared),
+//   λ L < margin         (its sideways offset never reaches a wall line),
+//   v_qz − ρ v_rz ≥ slope_max λ   (it is higher than the road can rise over the offset),
+//   no pylon within its radius + λ L of row r's path;
+// and past L it is above everything and rising. The rows are then not cast: their output (no
+// points, no random draws) is the same. With the sensor level, λ = 0 and ρ < 1; a banked car rolls
+// the sensor, and L keeps the sideways drift of the steep rows small.
+bool LidarCaster::rows_above_escape(const Eigen::Vector3d* dw, int r, int rows, double oz, const Resume& esc,
+                                    const std::vector<int>& near_pylons, const Eigen::Vector3d& o) const {
+  const double hx = dw[r].x(), hy = dw[r].y(), hh = hx * hx + hy * hy;
+  if (!(hh > 0)) return false;
+  const double inv_hh = 1 / hh, inv_h = 1 / std::sqrt(hh), max_t = spec_.max_range;
+  double reach = 0;  // the largest sideways offset of any row above
+  for (int q = r + 1; q < rows; ++q) {
+    const double qx = dw[q].x(), qy = dw[q].y(), qz = dw[q].z();
+    const double rho = (qx * hx + qy * hy) * inv_hh, lam = std::abs(qx * hy - qy * hx) * inv_h;
+    if (!(rho >= 0) || qz - rho * dw[r].z() < slope_max_ * lam) return false;
+    const double L = qz > 0 ? std::min(max_t, std::max(0.0, (z_top_all_ - oz) / qz)) : max_t;
+    if (rho * L > esc.escape_t || lam * L >= esc.escape_margin) return false;
+    reach = std::max(reach, lam * L);
+  }
+  // Pylons: horizontal distance from each to row r's path.
+  const double ex = hx * esc.escape_t, ey = hy * esc.escape_t, ee = ex * ex + ey * ey;
+  for (int i : near_pylons) {
+    const Pylon& c = pylons_[i];
+    const double px = c.x - o.x(), py = c.y - o.y();
+    const double u = std::clamp((px * ex + py * ey) / ee, 0.0, 1.0);
+    if (std::hypot(px - u * ex, py - u * ey) <= c.radius + reach + 1e-6) return false;
+  }
+  return true;
 }
 
 std::size_t LidarCaster::scan(const Eigen::Isometry3d& world_from_body, int seg_hint, Rng& rng, double noise_factor,
@@ -387,6 +432,11 @@ std::size_t LidarCaster::scan(const Eigen::Isometry3d& world_from_body, int seg_
   std::vector<double> shift(rows), rest(rows);
   std::vector<float> px(rows), py(rows), pz(rows), pi(rows);
   std::vector<Surface> ps(rows);
+  // Pylons a ray of this frame can reach, for rows_above_escape.
+  std::vector<int> near_pylons;
+  for (std::size_t i = 0; i < pylons_.size(); ++i)
+    if (std::hypot(pylons_[i].x - o.x(), pylons_[i].y - o.y()) <= spec_.max_range + pylons_[i].radius)
+      near_pylons.push_back(static_cast<int>(i));
   // A ray's direction is row_c (col_c, col_s, 0) + row_s (0, 0, 1) in the sensor frame: in the
   // world, row_c U + row_s Z with U per column and Z per frame (6 flops a ray, not a 3x3 product).
   const Eigen::Vector3d Z = R.col(2);
@@ -410,6 +460,8 @@ std::size_t LidarCaster::scan(const Eigen::Isometry3d& world_from_body, int seg_
       from = checkpoint;
       if (h.surface == Surface::none) {
         if (shift[r] >= 0 && checkpoint.rest_escape) break;
+        if (spec_.skip_escaped_rows && shift[r] >= 0 && checkpoint.escape_t > 0 && rows_above_escape(dw.data(), r, rows, o.z(), checkpoint, near_pylons, o))
+          break;
         continue;
       }
       double range = h.range + (sigma > 0 ? rng.normal_fast(sigma) : 0.0);

@@ -31,6 +31,7 @@ struct LidarSpec {
   double dropout = 0.0;                             // probability a return is lost
   bool use_blocks = true;                           // off: walk every slab (benchmark baseline)
   bool coherent_columns = true;                     // off: every ray marches from the sensor
+  bool skip_escaped_rows = true;                    // off: rows above an escaped row are cast (tests)
   double reflectivity_road = 0.15, reflectivity_wall = 0.6, reflectivity_pylon = 0.9;
 };
 
@@ -61,6 +62,9 @@ class LidarCaster {
     int seg = -1;
     double margin = 0;
     bool rest_escape = false;  // the rays above this one return nothing either
+    // When the ray escaped with its whole path clear of pylon slabs: where (t), and how far the
+    // path stayed from every wall line (> 0). scan's rows_above_escape takes it from there.
+    double escape_t = 0, escape_margin = 0;
   };
 
   // First hit of the ray o + t v (world frame, v unit) within max_range; `seg` is the centre-line
@@ -81,6 +85,10 @@ class LidarCaster {
                    PointBuffers& out) const;
 
  private:
+  // Whether every row above r of a column surely returns nothing, given that row r escaped (see
+  // the definition for the argument).
+  bool rows_above_escape(const Eigen::Vector3d* dw, int r, int rows, double oz, const Resume& escaped,
+                         const std::vector<int>& near_pylons, const Eigen::Vector3d& o) const;
   RayHit march(const Eigen::Vector3d& o, const Eigen::Vector3d& v, int seg, const Resume* from, double shift,
                double shift_rest, Resume* checkpoint) const;
   // Per segment, everything as a function of a (m along the segment from its start).
@@ -113,6 +121,7 @@ class LidarCaster {
   Eigen::Isometry3d body_from_sensor_;
   std::vector<double> col_c_, col_s_, row_c_, row_s_;  // rows sorted by elevation, lowest first
   double slope_max_ = 0;                               // bound on the road surface's gradient
+  double z_top_all_ = 0;                               // the highest point of the world
 };
 
 }  // namespace brickyard::sim
