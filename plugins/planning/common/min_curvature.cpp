@@ -1,11 +1,13 @@
 #include "min_curvature.hpp"
 
+#include "box_qp.hpp"
+
 #include <Eigen/Sparse>
-#include <Eigen/SparseCholesky>
 
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 namespace brickyard::planning {
 
@@ -17,115 +19,40 @@ struct Vec2 {
 
 double cross(Vec2 a, Vec2 b) { return a.x * b.y - a.y * b.x; }
 
-// Unit tangents by central differences of a closed polyline.
-std::vector<Vec2> tangents(const std::vector<double>& x, const std::vector<double>& y) {
-  const int n = static_cast<int>(x.size());
-  std::vector<Vec2> t(n);
-  for (int i = 0; i < n; ++i) {
-    const int a = (i + n - 1) % n, b = (i + 1) % n;
-    const double dx = x[b] - x[a], dy = y[b] - y[a], l = std::max(std::hypot(dx, dy), 1e-12);
-    t[i] = {dx / l, dy / l};
-  }
-  return t;
-}
-
-// min ½ αᵀHα + gᵀα, lo ≤ α ≤ hi: the primal active-set method. From a feasible α, solve with
-// the bound variables held; step toward that solution until the first free variable meets its
-// bound (which joins the bound set); once the full step is feasible, release the bound variable
-// whose gradient most wants it inside, or stop when none does. Each round factors the reduced
-// (sparse, banded) system anew. Returns the rounds taken.
-int box_qp(const Eigen::SparseMatrix<double>& H, const Eigen::VectorXd& g, const Eigen::VectorXd& lo, const Eigen::VectorXd& hi,
-           Eigen::VectorXd& alpha) {
-  const int n = static_cast<int>(g.size());
-  std::vector<int> state(n, 0);  // 0 free, -1 at lower, +1 at upper
-  for (int i = 0; i < n; ++i) {
-    alpha(i) = std::clamp(alpha(i), lo(i), hi(i));
-    if (lo(i) == hi(i)) state[i] = -1;
-  }
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt;
-  const int max_rounds = 4 * n + 50;
-  for (int round = 1; round <= max_rounds; ++round) {
-    std::vector<int> free_index(n, -1), free_vars;
-    for (int i = 0; i < n; ++i)
-      if (state[i] == 0) {
-        free_index[i] = static_cast<int>(free_vars.size());
-        free_vars.push_back(i);
-      }
-    const int m = static_cast<int>(free_vars.size());
-    Eigen::VectorXd target = alpha;
-    if (m > 0) {
-      std::vector<Eigen::Triplet<double>> trip;
-      Eigen::VectorXd rhs(m);
-      for (int r = 0; r < m; ++r) rhs(r) = -g(free_vars[r]);
-      for (int k = 0; k < H.outerSize(); ++k)
-        for (Eigen::SparseMatrix<double>::InnerIterator it(H, k); it; ++it) {
-          const int i = static_cast<int>(it.row()), j = static_cast<int>(it.col());
-          if (free_index[i] < 0) continue;
-          if (free_index[j] >= 0) trip.emplace_back(free_index[i], free_index[j], it.value());
-          else rhs(free_index[i]) -= it.value() * alpha(j);
-        }
-      Eigen::SparseMatrix<double> Hf(m, m);
-      Hf.setFromTriplets(trip.begin(), trip.end());
-      ldlt.compute(Hf);
-      if (ldlt.info() != Eigen::Success) throw std::runtime_error("min-curvature QP: the reduced system is singular");
-      const Eigen::VectorXd sol = ldlt.solve(rhs);
-      for (int r = 0; r < m; ++r) target(free_vars[r]) = sol(r);
-    }
-    // Step toward the target, stopping at the first bound met.
-    double tau = 1;
-    int blocking = -1;
-    for (int i : free_vars) {
-      const double d = target(i) - alpha(i);
-      if (d < 0 && alpha(i) + d < lo(i)) {
-        const double t = (lo(i) - alpha(i)) / d;
-        if (t < tau) tau = t, blocking = i;
-      } else if (d > 0 && alpha(i) + d > hi(i)) {
-        const double t = (hi(i) - alpha(i)) / d;
-        if (t < tau) tau = t, blocking = i;
-      }
-    }
-    for (int i : free_vars) alpha(i) += tau * (target(i) - alpha(i));
-    if (blocking >= 0) {
-      state[blocking] = target(blocking) < lo(blocking) ? -1 : 1;
-      alpha(blocking) = state[blocking] < 0 ? lo(blocking) : hi(blocking);
-      continue;
-    }
-    // At the reduced optimum: release the bound variable the gradient pulls inside hardest.
-    const Eigen::VectorXd grad = H * alpha + g;
-    int release = -1;
-    double most = 1e-12;
-    for (int i = 0; i < n; ++i) {
-      if (lo(i) == hi(i)) continue;
-      const double pull = state[i] < 0 ? -grad(i) : state[i] > 0 ? grad(i) : 0.0;
-      if (pull > most) most = pull, release = i;
-    }
-    if (release < 0) return round;
-    state[release] = 0;
-  }
-  return max_rounds;
-}
-
 }  // namespace
 
-MinCurvatureResult min_curvature_line(const ClosedLine& line, const MinCurvatureParams& p) {
+OffsetFrame offset_frame(const ClosedLine& line, double margin, const char* who) {
   const int n = static_cast<int>(line.x.size());
   if (n < 4 || line.y.size() != line.x.size() || line.width_left.size() != line.x.size() || line.width_right.size() != line.x.size())
-    throw std::invalid_argument("min_curvature_line: needs at least 4 points with x, y and both widths each");
-  const std::vector<Vec2> normal = [&] {
-    auto t = tangents(line.x, line.y);
-    std::vector<Vec2> nv(n);
-    for (int i = 0; i < n; ++i) nv[i] = {-t[i].y, t[i].x};
-    return nv;
-  }();
+    throw std::invalid_argument(std::string(who) + ": needs at least 4 points with x, y and both widths each");
+  OffsetFrame f;
+  f.nx.resize(n), f.ny.resize(n), f.lo.resize(n), f.hi.resize(n);
+  for (int i = 0; i < n; ++i) {
+    // The unit tangent by central differences; the normal is it turned left.
+    const int a = (i + n - 1) % n, b = (i + 1) % n;
+    const double dx = line.x[b] - line.x[a], dy = line.y[b] - line.y[a], l = std::max(std::hypot(dx, dy), 1e-12);
+    f.nx[i] = -(dy / l);
+    f.ny[i] = dx / l;
+    f.lo[i] = -(line.width_right[i] - margin);
+    f.hi[i] = line.width_left[i] - margin;
+    if (f.lo[i] > f.hi[i]) f.lo[i] = f.hi[i] = 0.5 * (f.lo[i] + f.hi[i]);  // narrower than the car and margins: the middle
+  }
+  return f;
+}
+
+MinCurvatureResult min_curvature_line(const ClosedLine& line, const MinCurvatureParams& p) {
+  const OffsetFrame frame = offset_frame(line, p.margin, "min_curvature_line");
+  const int n = static_cast<int>(line.x.size());
+  std::vector<Vec2> normal(n);
   std::vector<double> h2(n);
   Eigen::VectorXd lo(n), hi(n);
   for (int i = 0; i < n; ++i) {
     const int a = (i + n - 1) % n, b = (i + 1) % n;
     const double h = 0.5 * (std::hypot(line.x[b] - line.x[i], line.y[b] - line.y[i]) + std::hypot(line.x[i] - line.x[a], line.y[i] - line.y[a]));
     h2[i] = h * h;
-    lo(i) = -(line.width_right[i] - p.margin);
-    hi(i) = line.width_left[i] - p.margin;
-    if (lo(i) > hi(i)) lo(i) = hi(i) = 0.5 * (lo(i) + hi(i));  // narrower than the car and margins: the middle
+    normal[i] = {frame.nx[i], frame.ny[i]};
+    lo(i) = frame.lo[i];
+    hi(i) = frame.hi[i];
   }
   // The true objective, Σ κ_i², the curvature as the linearisation below writes it.
   auto objective = [&](const Eigen::VectorXd& al) {

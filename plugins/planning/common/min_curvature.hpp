@@ -32,6 +32,14 @@ struct MinCurvatureResult {
   int active_set_rounds = 0;    // over all iterations
 };
 
+// The frame the offsets live in: unit left normals of the input line (central differences) and
+// the box lo ≤ α ≤ hi, the edges less the margin (where the track is narrower than two margins,
+// its middle). Throws std::invalid_argument, naming `who`, for fewer than 4 points or missing widths.
+struct OffsetFrame {
+  std::vector<double> nx, ny, lo, hi;
+};
+OffsetFrame offset_frame(const ClosedLine& line, double margin, const char* who);
+
 MinCurvatureResult min_curvature_line(const ClosedLine& line, const MinCurvatureParams& p = {});
 
 // Σ κ_i² · ds_i of a closed line (three-point curvature), the quantity minimised; 1/m.

@@ -30,4 +30,14 @@ std::vector<double> speed_profile(const std::vector<double>& ds, const std::vect
 // Σ ds_i / mean(v_i, v_i+1): the time to drive the profile, s.
 double profile_time(const std::vector<double>& ds, const std::vector<double>& v, bool closed);
 
+// The lap time of a closed line, profile_time(ds, speed_profile(ds, kappa, lim, true), true), and
+// its derivatives by each point's curvature (d_kappa) and each step (d_ds), by reverse
+// accumulation through the passes: every speed is its curvature's cap, the braking limit from the
+// next point or the push from the previous one, whichever is least, so the lap time's sensitivity
+// flows back along those links. Where the ellipse's budget is near zero its slope is infinite; it
+// is taken at a budget of at least 0.05 (a finite, conservative slope; the caller's line search
+// judges by the true time).
+double closed_lap_time_gradient(const std::vector<double>& ds, const std::vector<double>& kappa, const VehicleLimits& lim,
+                                std::vector<double>& d_kappa, std::vector<double>& d_ds);
+
 }  // namespace brickyard::planning

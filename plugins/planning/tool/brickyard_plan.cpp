@@ -1,13 +1,15 @@
 // brickyard-plan: the offline half of planning.
-//   brickyard-plan line  --track FILE [--margin M] --out FILE [--profile FILE]
+//   brickyard-plan line  --track FILE [--margin M] --out FILE [--profile FILE] [limits] [--min-time on|off] [--curvature-slack S]
 //   brickyard-plan graph --track FILE --raceline FILE [--edge-margin M] [graph options] --out FILE
-// `line` optimises the minimum-curvature racing line and writes it as x_m,y_m (TUM's format,
-// which planning.racing_line and planning.road_graph read); --profile also writes
+// `line` optimises the minimum-curvature racing line, refines it for minimum time under the
+// vehicle limits given (--min-time off: not), and writes it as x_m,y_m (TUM's format, which
+// planning.racing_line and planning.road_graph read); --profile also writes
 // s_m,x_m,y_m,kappa_radpm,vx_mps with the ggv + drag speed profile and prints the lap time.
 // `graph` builds the road graph planning.road_graph would build at start and saves it
 // (graph_file=...). Bad input: a message naming the file or option, exit 2.
 #include "common/line_setup.hpp"
 #include "common/min_curvature.hpp"
+#include "common/min_time.hpp"
 #include "common/road_graph.hpp"
 #include "common/speed_profile.hpp"
 
@@ -32,6 +34,7 @@ struct Usage : std::runtime_error {
 const char* kUsage =
     "usage: brickyard-plan line  --track FILE [--margin M] --out FILE [--profile FILE]\n"
     "                            [--v-max V --a-lat A --a-accel A --a-decel A --drag K --power P]\n"
+    "                            [--min-time on|off] [--curvature-slack S]\n"
     "       brickyard-plan graph --track FILE --raceline FILE --out FILE [--edge-margin M]\n"
     "                            [--layer-spacing M --layer-spacing-turn M --lateral-step M --half-width M\n"
     "                             --graph-edge-margin M --max-curvature K --max-edge-length M]\n";
@@ -84,14 +87,35 @@ int line_cmd(std::map<std::string, std::string> o) {
   l.a_decel = number(o, "a-decel", l.a_decel);
   l.drag = number(o, "drag", l.drag);
   l.power = number(o, "power", l.power);
+  const std::string refine = o.count("min-time") ? text(o, "min-time") : "on";
+  if (refine != "on" && refine != "off") throw Usage("--min-time " + refine + ": expected on or off");
+  MinTimeParams mp;
+  mp.margin = p.margin;
+  const std::string slack_text = o.count("curvature-slack") ? o["curvature-slack"] : "";
+  mp.curvature_slack = number(o, "curvature-slack", mp.curvature_slack);
+  if (!(mp.curvature_slack >= 0)) throw Usage("--curvature-slack " + slack_text + ": must be >= 0");
   no_leftovers(o);
   const sim::CenterLine c = sim::load_centerline_csv(track);
+  const ClosedLine line{c.x, c.y, c.width_left, c.width_right};
   const auto t0 = std::chrono::steady_clock::now();
-  const MinCurvatureResult r = min_curvature_line({c.x, c.y, c.width_left, c.width_right}, p);
+  MinCurvatureResult r = min_curvature_line(line, p);
   const double ms = since_ms(t0);
+  std::string what = "minimum-curvature racing line";
+  char refined[200] = "";
+  if (refine == "on") {
+    const auto t1 = std::chrono::steady_clock::now();
+    MinTimeResult m = min_time_refine(line, r.offset, l, mp);
+    std::snprintf(refined, sizeof refined,
+                  "min-time refinement: lap time %.3f -> %.3f s (three-point curvature), sum k^2 ds %.5f -> %.5f 1/m, %d steps, %.0f ms\n",
+                  m.start_time, m.time, m.start_energy, m.energy, m.iterations, since_ms(t1));
+    r.x = std::move(m.x), r.y = std::move(m.y), r.offset = std::move(m.offset);
+    char slack[32];
+    std::snprintf(slack, sizeof slack, "%g", mp.curvature_slack);
+    what += ", refined for minimum time (curvature slack " + std::string(slack) + ")";
+  }
   std::ofstream f(out);
   if (!f) throw std::runtime_error(out + ": cannot open for writing");
-  f << "# minimum-curvature racing line by brickyard-plan from " << track << ", margin " << p.margin << " m\n# x_m,y_m\n";
+  f << "# " << what << " by brickyard-plan from " << track << ", margin " << p.margin << " m\n# x_m,y_m\n";
   char row[128];
   for (std::size_t i = 0; i < r.x.size(); ++i) {
     std::snprintf(row, sizeof row, "%.4f,%.4f\n", r.x[i], r.y[i]);
@@ -99,6 +123,7 @@ int line_cmd(std::map<std::string, std::string> o) {
   }
   std::printf("%s: %zu points, sum k^2 ds %.5f 1/m, %d linearisations, %.0f ms\n", out.c_str(), r.x.size(),
               summed_squared_curvature(r.x, r.y), r.iterations, ms);
+  std::fputs(refined, stdout);
   if (!profile.empty()) {
     const std::size_t n = r.x.size();
     std::vector<double> ds(n), k = sim::signed_curvature(sim::CenterLine{"", r.x, r.y, {}, {}}, 30);

@@ -1,0 +1,172 @@
+#include "min_time.hpp"
+
+#include "box_qp.hpp"
+
+#include <Eigen/Sparse>
+#include <Eigen/SparseCholesky>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace brickyard::planning {
+
+namespace {
+
+// Menger curvature at b of the points a, b, c, and the residual κ √(½(|ab| + |bc|)) whose square
+// is summed_squared_curvature's term (0 for coinciding points, as there).
+void menger(double ax, double ay, double bx, double by, double cx, double cy, double& k, double& r) {
+  const double ux = bx - ax, uy = by - ay, vx = cx - bx, vy = cy - by;
+  const double l1 = std::hypot(ux, uy), l2 = std::hypot(vx, vy), l3 = std::hypot(cx - ax, cy - ay);
+  if (l1 * l2 * l3 <= 0) {
+    k = r = 0;
+    return;
+  }
+  k = 2 * (ux * vy - uy * vx) / (l1 * l2 * l3);
+  r = k * std::sqrt(0.5 * (l1 + l2));
+}
+
+// Steps and curvatures of a closed line, as lap_time() measures it.
+void measure(const std::vector<double>& x, const std::vector<double>& y, std::vector<double>& ds, std::vector<double>& k) {
+  const int n = static_cast<int>(x.size());
+  ds.resize(n), k.resize(n);
+  double r;
+  for (int i = 0; i < n; ++i) {
+    const int a = (i + n - 1) % n, b = (i + 1) % n;
+    ds[i] = std::hypot(x[b] - x[i], y[b] - y[i]);
+    menger(x[a], y[a], x[i], y[i], x[b], y[b], k[i], r);
+  }
+}
+
+}  // namespace
+
+double lap_time(const std::vector<double>& x, const std::vector<double>& y, const VehicleLimits& limits) {
+  if (x.size() < 3 || y.size() != x.size()) throw std::invalid_argument("lap_time: needs at least 3 points with x and y each");
+  std::vector<double> ds, k;
+  measure(x, y, ds, k);
+  return profile_time(ds, speed_profile(ds, k, limits, true), true);
+}
+
+MinTimeResult min_time_refine(const ClosedLine& line, const std::vector<double>& start, const VehicleLimits& limits,
+                              const MinTimeParams& p) {
+  const OffsetFrame f = offset_frame(line, p.margin, "min_time_refine");
+  const int n = static_cast<int>(line.x.size());
+  if (!start.empty() && static_cast<int>(start.size()) != n)
+    throw std::invalid_argument("min_time_refine: one start offset per point");
+  if (!(p.curvature_slack >= 0) || !(p.smoothing > 0) || !std::isfinite(p.smoothing) || p.max_iterations < 0 || !(p.tolerance >= 0))
+    throw std::invalid_argument("min_time_refine: needs curvature_slack >= 0, smoothing > 0, max_iterations >= 0, tolerance >= 0");
+  std::vector<double> alpha(n, 0.0);
+  for (int i = 0; i < n; ++i) alpha[i] = std::clamp(start.empty() ? 0.0 : start[i], f.lo[i], f.hi[i]);
+
+  MinTimeResult res;
+  auto place = [&](const std::vector<double>& a, std::vector<double>& x, std::vector<double>& y) {
+    x.resize(n), y.resize(n);
+    for (int i = 0; i < n; ++i) x[i] = line.x[i] + a[i] * f.nx[i], y[i] = line.y[i] + a[i] * f.ny[i];
+  };
+  place(alpha, res.x, res.y);
+  res.start_time = res.time = lap_time(res.x, res.y, limits);
+  res.start_energy = res.energy = summed_squared_curvature(res.x, res.y);
+  const double energy_max = res.start_energy * (1 + p.curvature_slack);
+
+  // The smoothing metric S = I + (ℓ/h)⁴ D₂ᵀD₂ (cyclic), fixed for the whole refinement.
+  double length = 0;
+  for (int i = 0; i < n; ++i) length += std::hypot(line.x[(i + 1) % n] - line.x[i], line.y[(i + 1) % n] - line.y[i]);
+  Eigen::SparseMatrix<double> S(n, n);
+  {
+    const double w = std::pow(p.smoothing / (length / n), 4);
+    std::vector<Eigen::Triplet<double>> t;
+    for (int i = 0; i < n; ++i) {
+      t.emplace_back(i, i, 1 + 6 * w);
+      t.emplace_back(i, (i + 1) % n, -4 * w), t.emplace_back(i, (i + n - 1) % n, -4 * w);
+      t.emplace_back(i, (i + 2) % n, w), t.emplace_back(i, (i + n - 2) % n, w);
+    }
+    S.setFromTriplets(t.begin(), t.end());  // duplicates (n < 5) add up, as D₂ᵀD₂ would
+  }
+
+  Eigen::VectorXd lo(n), hi(n), g(n), r(n), d(n);
+  Eigen::SparseMatrix<double> J(n, n), JtJ;
+  std::vector<int> bound;  // the QP's bound set, a guess for the next
+  double rho = -1, nu = 0;
+  bool fresh = false;  // g, J, r belong to the current offsets
+  std::vector<double> ds, k, dk, dds, tx, ty;
+  for (int it = 0; it < p.max_iterations; ++it) {
+    if (!fresh) {
+      // dT/dα by the chain rule: dT/dκ and dT/dds from the profile, dκ/dα and dds/dα of the
+      // three-point formulas by central differences of the one point moved (only its neighbours'
+      // values change; the line search judges by the true lap time).
+      measure(res.x, res.y, ds, k);
+      closed_lap_time_gradient(ds, k, limits, dk, dds);
+      std::vector<Eigen::Triplet<double>> trip;
+      const double h = 1e-5;
+      for (int j = 0; j < n; ++j) {
+        double gj = 0;
+        double x[5], y[5];  // points j-2 .. j+2
+        for (int q = -2; q <= 2; ++q) x[q + 2] = res.x[(j + q + 2 * n) % n], y[q + 2] = res.y[(j + q + 2 * n) % n];
+        for (int side = -1; side <= 1; side += 2) {
+          x[2] = res.x[j] + side * h * f.nx[j], y[2] = res.y[j] + side * h * f.ny[j];
+          for (int q = -1; q <= 1; ++q) {
+            double kq, rq;
+            menger(x[q + 1], y[q + 1], x[q + 2], y[q + 2], x[q + 3], y[q + 3], kq, rq);
+            gj += side * dk[(j + q + n) % n] * kq / (2 * h);
+            trip.emplace_back((j + q + n) % n, j, side * rq / (2 * h));
+          }
+          gj += side * dds[(j + n - 1) % n] * std::hypot(x[2] - x[1], y[2] - y[1]) / (2 * h);
+          gj += side * dds[j] * std::hypot(x[3] - x[2], y[3] - y[2]) / (2 * h);
+        }
+        g(j) = gj;
+      }
+      J.setFromTriplets(trip.begin(), trip.end());  // the two sides' entries add up
+      JtJ = Eigen::SparseMatrix<double>(J.transpose()) * J;
+      for (int i = 0; i < n; ++i) {
+        double kk, rr;
+        menger(res.x[(i + n - 1) % n], res.y[(i + n - 1) % n], res.x[i], res.y[i], res.x[(i + 1) % n], res.y[(i + 1) % n], kk, rr);
+        r(i) = rr;
+        lo(i) = f.lo[i] - alpha[i];
+        hi(i) = f.hi[i] - alpha[i];
+      }
+      if (rho < 0) {
+        // The first ρ: a free step of the smoothing metric alone would move the line 0.5 m at most.
+        Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(S);
+        const double most = (ldlt.solve(g)).cwiseAbs().maxCoeff();
+        if (!(most > 0) || !std::isfinite(most)) break;  // nothing to gain (or nothing to measure)
+        rho = most / 0.5;
+      }
+      fresh = true;
+    }
+    Eigen::SparseMatrix<double> H = rho * S;
+    Eigen::VectorXd lin = g;
+    if (nu > 0) {
+      H += 2 * nu * JtJ;
+      lin += 2 * nu * (J.transpose() * r);
+    }
+    d.setZero();
+    res.active_set_rounds += box_qp(H, lin, lo, hi, d, &bound);
+    res.iterations = it + 1;
+    if (d.cwiseAbs().maxCoeff() < 1e-4) break;  // steps of less than 0.1 mm: converged
+    std::vector<double> next(n);
+    for (int i = 0; i < n; ++i) next[i] = std::clamp(alpha[i] + d(i), f.lo[i], f.hi[i]);
+    place(next, tx, ty);
+    const double t = lap_time(tx, ty, limits), e = summed_squared_curvature(tx, ty);
+    if (t < res.time && e <= energy_max) {
+      const double gain = res.time - t;
+      alpha.swap(next), res.x.swap(tx), res.y.swap(ty);
+      res.time = t, res.energy = e;
+      ++res.accepted;
+      fresh = false;
+      rho *= 0.5;
+      if (gain < p.tolerance) break;
+    } else if (t < res.time) {
+      // Faster but past the slack: price the bending (ν from the scale where the Gauss-Newton
+      // term weighs as much as the metric, doubling on each such refusal).
+      double tr = 0;
+      for (int c = 0; c < JtJ.outerSize(); ++c) tr += JtJ.coeff(c, c);
+      nu = std::max(2 * nu, rho * n / (2 * std::max(tr, 1e-300)));
+    } else {
+      rho *= 4;
+    }
+  }
+  res.offset = alpha;
+  return res;
+}
+
+}  // namespace brickyard::planning
