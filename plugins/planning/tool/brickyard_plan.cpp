@@ -4,7 +4,8 @@
 // `line` optimises the minimum-curvature racing line, refines it for minimum time under the
 // vehicle limits given (--min-time off: not), and writes it as x_m,y_m (TUM's format, which
 // planning.racing_line and planning.road_graph read); --profile also writes
-// s_m,x_m,y_m,kappa_radpm,vx_mps with the ggv + drag speed profile and prints the lap time.
+// s_m,x_m,y_m,kappa_radpm,vx_mps with the ggv + drag speed profile (curvature averaged over 30 m,
+// as the driving stack sees the line: lap_profile) and prints the lap time.
 // `graph` builds the road graph planning.road_graph would build at start and saves it
 // (graph_file=...). Bad input: a message naming the file or option, exit 2.
 #include "common/line_setup.hpp"
@@ -101,13 +102,15 @@ int line_cmd(std::map<std::string, std::string> o) {
   MinCurvatureResult r = min_curvature_line(line, p);
   const double ms = since_ms(t0);
   std::string what = "minimum-curvature racing line";
-  char refined[200] = "";
+  char refined[300] = "";
   if (refine == "on") {
     const auto t1 = std::chrono::steady_clock::now();
     MinTimeResult m = min_time_refine(line, r.offset, l, mp);
     std::snprintf(refined, sizeof refined,
-                  "min-time refinement: lap time %.3f -> %.3f s (three-point curvature), sum k^2 ds %.5f -> %.5f 1/m, %d steps, %.0f ms\n",
-                  m.start_time, m.time, m.start_energy, m.energy, m.iterations, since_ms(t1));
+                  "min-time refinement: lap time %.3f -> %.3f s (three-point curvature), %.3f -> %.3f s (averaged over %g m), "
+                  "sum k^2 ds %.5f -> %.5f 1/m, %d steps, %.0f ms\n",
+                  m.start_time, m.time, m.start_averaged_time, m.averaged_time, mp.averaged_over, m.start_energy, m.energy,
+                  m.iterations, since_ms(t1));
     r.x = std::move(m.x), r.y = std::move(m.y), r.offset = std::move(m.offset);
     char slack[32];
     std::snprintf(slack, sizeof slack, "%g", mp.curvature_slack);
@@ -125,20 +128,21 @@ int line_cmd(std::map<std::string, std::string> o) {
               summed_squared_curvature(r.x, r.y), r.iterations, ms);
   std::fputs(refined, stdout);
   if (!profile.empty()) {
+    // The curvature averaged as the driving stack does (sim::make_racing_line's 30 m), the window
+    // of the refinement's second measure.
+    const LapProfile lp = lap_profile(r.x, r.y, l, mp.averaged_over);
     const std::size_t n = r.x.size();
-    std::vector<double> ds(n), k = sim::signed_curvature(sim::CenterLine{"", r.x, r.y, {}, {}}, 30);
-    for (std::size_t i = 0; i < n; ++i) ds[i] = std::hypot(r.x[(i + 1) % n] - r.x[i], r.y[(i + 1) % n] - r.y[i]);
-    const std::vector<double> v = speed_profile(ds, k, l, true);
+    const std::vector<double>& ds = lp.ds;
     std::ofstream g(profile);
     if (!g) throw std::runtime_error(profile + ": cannot open for writing");
     g << "# s_m,x_m,y_m,kappa_radpm,vx_mps\n";
     double s = 0;
     for (std::size_t i = 0; i < n; ++i) {
-      std::snprintf(row, sizeof row, "%.3f,%.4f,%.4f,%.6f,%.3f\n", s, r.x[i], r.y[i], k[i], v[i]);
+      std::snprintf(row, sizeof row, "%.3f,%.4f,%.4f,%.6f,%.3f\n", s, r.x[i], r.y[i], lp.kappa[i], lp.v[i]);
       g << row;
       s += ds[i];
     }
-    std::printf("%s: lap time %.2f s\n", profile.c_str(), profile_time(ds, v, true));
+    std::printf("%s: lap time %.2f s\n", profile.c_str(), lp.time);
   }
   return 0;
 }

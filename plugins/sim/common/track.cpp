@@ -202,7 +202,7 @@ bool counter_clockwise(const CenterLine& c) {
 
 std::vector<double> signed_curvature(const CenterLine& c, double smooth_m) {
   const int n = static_cast<int>(c.x.size());
-  std::vector<double> k(n), len(n);
+  std::vector<double> k(n);
   for (int i = 0; i < n; ++i) {
     int a = (i + n - 1) % n, b = (i + 1) % n;
     Eigen::Vector2d p0(c.x[a], c.y[a]), p1(c.x[i], c.y[i]), p2(c.x[b], c.y[b]);
@@ -210,16 +210,28 @@ std::vector<double> signed_curvature(const CenterLine& c, double smooth_m) {
     double cross = e1.x() * e2.y() - e1.y() * e2.x();
     // Menger curvature of three points: 2 sin(angle) / chord.
     k[i] = 2 * cross / (e1.norm() * e2.norm() * (p2 - p0).norm());
-    len[i] = e2.norm();
   }
   if (smooth_m <= 0) return k;
+  return cyclic_average(k, curvature_window(c, smooth_m));
+}
+
+int curvature_window(const CenterLine& c, double smooth_m) {
+  if (smooth_m <= 0) return 0;
+  const int n = static_cast<int>(c.x.size());
   double mean_len = 0;
-  for (double l : len) mean_len += l / n;
-  int half = std::max(0, static_cast<int>(std::round(smooth_m / mean_len / 2)));
+  for (int i = 0; i < n; ++i) {
+    const int b = (i + 1) % n;
+    mean_len += Eigen::Vector2d(c.x[b] - c.x[i], c.y[b] - c.y[i]).norm() / n;
+  }
+  return std::max(0, static_cast<int>(std::round(smooth_m / mean_len / 2)));
+}
+
+std::vector<double> cyclic_average(const std::vector<double>& v, int half) {
+  const int n = static_cast<int>(v.size());
   std::vector<double> out(n);
   for (int i = 0; i < n; ++i) {
     double sum = 0;
-    for (int j = -half; j <= half; ++j) sum += k[(i + j + n) % n];
+    for (int j = -half; j <= half; ++j) sum += v[((i + j) % n + n) % n];
     out[i] = sum / (2 * half + 1);
   }
   return out;

@@ -109,8 +109,19 @@ class Track {
 // the right.
 bool counter_clockwise(const CenterLine& line);
 
-// Signed curvature (1/m, left turns positive) per point, averaged over `smooth_m` of track.
+// Signed curvature (1/m, left turns positive) per point, averaged over `smooth_m` of track: the
+// Menger (three-point) curvature of each point, then cyclic_average over curvature_window points
+// each side.
 std::vector<double> signed_curvature(const CenterLine& line, double smooth_m);
+
+// The half width, in points, of signed_curvature's average: smooth_m / 2 in mean steps of the
+// closed line, rounded (0 for smooth_m <= 0).
+int curvature_window(const CenterLine& line, double smooth_m);
+
+// The cyclic moving average of v over the 2·half + 1 points around each. A symmetric linear map,
+// so it is its own adjoint: derivatives by the averaged values become derivatives by the raw
+// ones through the same function.
+std::vector<double> cyclic_average(const std::vector<double>& v, int half);
 
 struct BankSpec {
   std::string mode = "none";          // none | constant | curvature | segments
