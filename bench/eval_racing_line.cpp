@@ -5,6 +5,7 @@
 // comparison gives ours the same room (margin 0.6 m); the default margin for driving (1.5 m: half
 // the AV-21's width and a margin) is shown beside it. Prints the tables of docs/planning.md.
 #include "common/min_curvature.hpp"
+#include "common/line_setup.hpp"
 #include "common/min_time.hpp"
 #include "common/speed_profile.hpp"
 #include "common/track.hpp"
@@ -30,15 +31,9 @@ double length(const std::vector<double>& x, const std::vector<double>& y) {
 }  // namespace
 
 int main() {
-  // The simulator's AV-21 (plugins/sim/common/vehicle_model.hpp): μ g = 15.7 m/s² less a margin,
-  // 9 kN drive and 370 kW on 815 kg, brakes at the grip, drag ρ Cd A / 2m; downforce ignored.
-  planning::VehicleLimits car;
-  car.v_max = 90;
-  car.a_lat = 15;
-  car.a_accel = 9000.0 / 815;
-  car.a_decel = 15;
-  car.power = 370e3 / 815;
-  car.drag = 1.2 * 0.85 / (2 * 815);
+  // The simulator's AV-21 (planning::av21_limits: 9 kN drive and 370 kW on 815 kg, lateral grip
+  // and brakes 15 m/s², drag ρ Cd A / 2m; downforce ignored).
+  const planning::VehicleLimits car = planning::av21_limits();
   std::vector<std::string> times, refined, smoothed;
   const std::string data = std::string(BRICKYARD_SOURCE_DIR) + "/data";
   std::printf("| track | points | centre line Σκ²ds | TUM Σκ²ds | ours, margin 0.6 m | ours / TUM | time | ours, margin 1.5 m | time |\n");

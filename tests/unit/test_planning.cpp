@@ -1,5 +1,6 @@
 // Planning algorithms on synthetic tracks with known answers.
 #include "common/min_curvature.hpp"
+#include "common/line_setup.hpp"
 #include "common/min_time.hpp"
 #include "common/speed_profile.hpp"
 #include "common/track.hpp"
@@ -63,16 +64,7 @@ ClosedLine ellipse(double a, double b, int n, double half) {
 }
 
 // The simulator's AV-21, as bench/eval_racing_line.cpp compares the lines.
-VehicleLimits av21() {
-  VehicleLimits l;
-  l.v_max = 90;
-  l.a_lat = 15;
-  l.a_accel = 9000.0 / 815;
-  l.a_decel = 15;
-  l.power = 370e3 / 815;
-  l.drag = 1.2 * 0.85 / (2 * 815);
-  return l;
-}
+VehicleLimits av21() { return av21_limits(); }
 
 }  // namespace
 

@@ -1,8 +1,22 @@
 #include "line_setup.hpp"
 
+#include "../../sim/common/vehicle_model.hpp"
+
 #include <cstring>
 
 namespace brickyard::planning {
+
+VehicleLimits av21_limits() {
+  const sim::VehicleParams p;
+  VehicleLimits l;
+  l.v_max = 90;
+  l.a_lat = 15;
+  l.a_accel = p.max_drive_force / p.mass;
+  l.a_decel = 15;
+  l.power = p.max_power / p.mass;
+  l.drag = p.air_density * p.drag_area / (2 * p.mass);
+  return l;
+}
 
 Reference make_reference(const sim::CenterLine& file_line, const sim::Track* track, double edge_margin,
                          const sim::SpeedLimits& limits) {

@@ -3,6 +3,7 @@
 // (the simulator's track library serves as the map for now; docs/algorithms.md), as a RefLine for
 // the road graph. Framework-free.
 #include "road_graph.hpp"
+#include "speed_profile.hpp"
 
 #include "../../sim/common/pure_pursuit.hpp"
 #include "../../sim/common/track.hpp"
@@ -16,6 +17,11 @@ struct Reference {
   RefLine line;                // the same points as a Frenet frame
   std::vector<double> speed;   // per point
 };
+
+// The simulator's AV-21 (sim::VehicleParams) as speed-profile limits: drive force, power and drag
+// per mass from its parameters; lateral grip 15 m/s² (μ g = 15.7 less a margin) and the brakes at
+// the grip; downforce ignored. brickyard-plan's default car and the racing-line comparison's.
+VehicleLimits av21_limits();
 
 // `track` may be null (no world): the line is used as the file has it.
 Reference make_reference(const sim::CenterLine& line, const sim::Track* track, double edge_margin,

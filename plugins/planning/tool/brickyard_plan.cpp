@@ -81,7 +81,7 @@ int line_cmd(std::map<std::string, std::string> o) {
   const std::string profile = o.count("profile") ? text(o, "profile") : "";
   MinCurvatureParams p;
   p.margin = number(o, "margin", p.margin);
-  VehicleLimits l;
+  VehicleLimits l = av21_limits();  // the simulator's car unless told otherwise
   l.v_max = number(o, "v-max", l.v_max);
   l.a_lat = number(o, "a-lat", l.a_lat);
   l.a_accel = number(o, "a-accel", l.a_accel);
