@@ -32,6 +32,7 @@ struct LidarSpec {
   bool use_blocks = true;                           // off: walk every slab (benchmark baseline)
   bool coherent_columns = true;                     // off: every ray marches from the sensor
   bool skip_escaped_rows = true;                    // off: rows above an escaped row are cast (tests)
+  bool simd = true;                                 // off: ray by ray, not 4 columns in AVX2 lanes (tests; same bits)
   double reflectivity_road = 0.15, reflectivity_wall = 0.6, reflectivity_pylon = 0.9;
 };
 
@@ -91,6 +92,17 @@ class LidarCaster {
                          const std::vector<int>& near_pylons, const Eigen::Vector3d& o) const;
   RayHit march(const Eigen::Vector3d& o, const Eigen::Vector3d& v, int seg, const Resume* from, double shift,
                double shift_rest, Resume* checkpoint) const;
+  // scan for W neighbouring columns at a time, their rays of a row marched together in SIMD lanes
+  // (march_lanes: each lane does march's operations in march's order, so the same bits).
+  template <int W> struct Lanes;
+  template <int W> void march_lanes(const Eigen::Vector3d& o, int seg, Lanes<W>& L) const;
+  template <int W>
+  std::size_t scan_lanes(const Eigen::Isometry3d& world_from_body, int seg_hint, Rng& rng, double noise_factor,
+                         PointBuffers& out) const;
+  std::size_t scan_one_by_one(const Eigen::Isometry3d& world_from_body, int seg_hint, Rng& rng, double noise_factor,
+                              PointBuffers& out) const;
+  std::size_t scan_avx2(const Eigen::Isometry3d& world_from_body, int seg_hint, Rng& rng, double noise_factor,
+                        PointBuffers& out) const;
   // Per segment, everything as a function of a (m along the segment from its start).
   struct Seg {
     double px, py, tx, ty, len;
