@@ -577,8 +577,19 @@ template <int W>
       auto cd = [&](D t) __attribute__((always_inline)) { return (oy + vy * t - B.cy) * B.ctx - (ox + vx * t - B.cx) * B.cty; };
       const D di = cd(t0), de = cd(t_out);
       const M skip = act & c1 & c2 & (vmax(di, de) < B.dl_safe) & (vmin(di, de) > B.dr_safe);
-      to_scalar |= skip;
-      act &= ~skip;
+      if (any(act & ~skip)) {  // some lanes skip the block, some not: those that skip go to march
+        to_scalar |= skip;
+        act &= ~skip;
+      } else if (any(skip)) {  // all skip it, in lockstep
+        margin = vmin(vmin(margin, B.dl_safe - vmax(di, de)), vmin(di, de) - B.dr_safe);
+        const M out = act & (t_out >= max_t);
+        escape(out, vmax_t);
+        act &= ~out;
+        t0 = t_out;
+        k = dir > 0 ? std::min(n, (k / kBlock + 1) * kBlock) % n : ((k / kBlock) * kBlock - 1 + n) % n;
+        steps += kBlock - 1;
+        continue;
+      }
       if (!any(act)) break;
     }
     const double rx = ox - g.px, ry = oy - g.py;
