@@ -505,7 +505,7 @@ template <int W> struct LidarCaster::Lanes {
   M rest_esc;
   M ck_seg;
   D range, cos;                               // out: the hits
-  Surface surf[W];
+  M surf;                                     // out: the Surfaces
 };
 
 // march for the W rays of a row in neighbouring columns, in lockstep while all stay in the common
@@ -534,7 +534,7 @@ template <int W>
   const M ckm = act & L.want_ck;
   L.range = zero;
   L.cos = zero + 1.0;
-  for (int l = 0; l < W; ++l) L.surf[l] = Surface::none;
+  L.surf = M{};
   // Resume{0, -1, 0, false} for the lanes keeping a checkpoint.
   D ck_t = ckm ? zero : L.ck_t, ck_m = ckm ? zero : L.ck_m, esc_t = ckm ? zero : L.esc_t, esc_m = ckm ? zero : L.esc_m;
   M rest_esc = ckm ? M{} : L.rest_esc;
@@ -630,8 +630,7 @@ template <int W>
       const D inv_n = !on_road ? zero + 1.0 : g.dtb == 0 ? zero + g.inv_n0 : 1 / vsqrt(1 + tb * tb);
       L.range = road ? t : L.range;
       L.cos = road ? vabs(-gx * vx - gy * vy + vz) * inv_n : L.cos;
-      for (int l = 0; l < W; ++l)
-        if (road[l]) L.surf[l] = Surface::road;
+      L.surf = road ? M{} + static_cast<long>(Surface::road) : L.surf;
       act &= ~road;
     }
     const M wall = act & (t_wall <= tf);
@@ -639,7 +638,7 @@ template <int W>
       for (int l = 0; l < W; ++l)
         if (wall[l] && f1[l] <= wall_h_) {
           L.range[l] = t_wall[l];
-          L.surf[l] = Surface::wall;
+          L.surf[l] = static_cast<long>(Surface::wall);
           L.cos[l] = std::abs(vd[l]);
         }
       act &= ~wall;
@@ -663,7 +662,7 @@ template <int W>
     const RayHit h = cast(o, Eigen::Vector3d(vx[l], vy[l], vz[l]), seg, L.use_from[l] ? &from : nullptr, shift[l], rest[l],
                           L.want_ck[l] ? &ck : nullptr);
     L.range[l] = h.range;
-    L.surf[l] = h.surface;
+    L.surf[l] = static_cast<long>(h.surface);
     L.cos[l] = h.cos_incidence;
     if (L.want_ck[l]) {
       L.ck_t[l] = ck.t; L.ck_seg[l] = ck.seg; L.ck_m[l] = ck.margin; L.rest_esc[l] = ck.rest_escape ? -1 : 0;
@@ -705,7 +704,7 @@ template <int W>
   auto store = [](double* p, typename V<W>::D v) __attribute__((always_inline)) { std::memcpy(p, &v, sizeof v); };
   using D = typename V<W>::D;
   const D zero{};
-  std::vector<Surface> hsurf(W * rows);
+  std::vector<long> hsurf(W * rows);
   std::vector<float> px(W * rows), py(W * rows), pz(W * rows), pi(W * rows);
   std::vector<Surface> ps(W * rows);
   // Pylons a ray of this frame can reach, for rows_above_escape.
@@ -722,10 +721,9 @@ template <int W>
     Lanes<W> L;
     // The column's rays and the row pairs' shift and rest (as in march's caller, lane by lane).
     M done{};
-    int ncast[W];
+    M ncast{};  // rows cast
     D ux{}, uy{}, uz{};
     for (int l = 0; l < W; ++l) {
-      ncast[l] = 0;
       if (l >= nl) {
         done[l] = -1;
         continue;
@@ -769,15 +767,14 @@ template <int W>
       L.from_m = L.ck_m;
       L.from_seg = L.ck_seg;
       L.use_from = L.want_ck & (L.ck_seg >= 0);
-      for (int l = 0; l < W; ++l) {
-        if (!L.on[l]) continue;
-        hsurf[r * W + l] = L.surf[l];
-        ncast[l] = r + 1;
-        const bool ck = L.want_ck[l];
-        if (L.surf[l] != Surface::none || !ck) continue;
-        if (L.rest_esc[l]) {
-          done[l] = -1;
-        } else if (spec_.skip_escaped_rows && L.esc_t[l] > 0) {
+      std::memcpy(&hsurf[r * W], &L.surf, sizeof L.surf);
+      ncast = L.on ? M{} + (r + 1) : ncast;
+      const M escaped = L.on & L.want_ck & (L.surf == static_cast<long>(Surface::none));
+      if (any(escaped)) {
+        done |= escaped & L.rest_esc;
+        const M check = escaped & ~L.rest_esc & (L.esc_t > 0);
+        for (int l = 0; l < W; ++l) {
+          if (!check[l] || !spec_.skip_escaped_rows) continue;
           Resume e;
           e.escape_t = L.esc_t[l];
           e.escape_margin = L.esc_m[l];
@@ -792,7 +789,7 @@ template <int W>
     for (int l = 0; l < nl; ++l) {
       const int c = c0 + l;
       for (int r = 0; r < ncast[l]; ++r) {
-        const RayHit h{hrange[r * W + l], hsurf[r * W + l], hcos[r * W + l]};
+        const RayHit h{hrange[r * W + l], static_cast<Surface>(hsurf[r * W + l]), hcos[r * W + l]};
         if (h.surface == Surface::none) continue;
         double range = h.range + (sigma > 0 ? rng.normal_fast(sigma) : 0.0);
         if (spec_.dropout > 0 && rng.uniform() < spec_.dropout) continue;
