@@ -447,8 +447,10 @@ template <class Seg, class D, class M>
   M nc{};  // 0, -1 or -2: minus the number of cuts
   D cut0 = zero, cut1 = zero;
   auto cut = [&](double num, D den) __attribute__((always_inline)) {
+    const M s = on & ((num - den * ta) * (num - den * tb) < 0) & (vabs(den) > 1e-12);
+    if (!any(s)) return;  // (divisions only where needed: they are the dearest operations)
     const D t = num / den;
-    const M c = ((num - den * ta) * (num - den * tb) < 0) & (vabs(den) > 1e-12) & (t > ta) & (t < tb);
+    const M c = s & (t > ta) & (t < tb);
     cut1 = (c & (nc != 0)) ? t : cut1;
     cut0 = (c & (nc == 0)) ? t : cut0;
     nc += c;
@@ -473,16 +475,20 @@ template <class Seg, class D, class M>
     const D f_hi = last ? f_tb : C + hi * (B + A * hi);
     const M here = left & ~(f_hi > 0);
     if (any(here)) {
-      const D root_lin = B != 0 ? -C / B : hi;
-      const D disc = B * B - 4 * A * C;
-      const M sign = (M)(-zero);
-      const D q = -0.5 * (B + (D)(((M)vsqrt(disc) & ~sign) | ((M)B & sign)));
-      const D r1 = q / A, r2 = q != 0 ? C / q : r1;
-      const D eps = 1e-9 * (1 + vabs(hi));
-      D rq = hi;
-      rq = (r1 >= lo - eps) & (r1 <= hi + eps) ? vmin(rq, r1) : rq;
-      rq = (r2 >= lo - eps) & (r2 <= hi + eps) ? vmin(rq, r2) : rq;
-      const D root = vabs(A) * (hi - lo) < 1e-12 * vabs(B) ? root_lin : disc >= 0 ? rq : hi;
+      const M lin = vabs(A) * (hi - lo) < 1e-12 * vabs(B);
+      D root = hi;
+      if (any(here & lin)) root = lin & (B != 0) ? -C / B : root;
+      if (any(here & ~lin)) {
+        const D disc = B * B - 4 * A * C;
+        const M sign = (M)(-zero);
+        const D q = -0.5 * (B + (D)(((M)vsqrt(disc) & ~sign) | ((M)B & sign)));
+        const D r1 = q / A, r2 = q != 0 ? C / q : r1;
+        const D eps = 1e-9 * (1 + vabs(hi));
+        D rq = hi;
+        rq = (r1 >= lo - eps) & (r1 <= hi + eps) ? vmin(rq, r1) : rq;
+        rq = (r2 >= lo - eps) & (r2 <= hi + eps) ? vmin(rq, r2) : rq;
+        root = lin ? root : disc >= 0 ? rq : hi;
+      }
       res = here ? vclamp(root, lo, hi) : res;
       left &= ~here;
     }
@@ -610,9 +616,10 @@ template <int W>
     const D ae = vclamp(a0 + va * te, zero, len), de = d0 + vd * te;
     const M wl = de >= g.wall_l + g.dwl * ae, wr = ~wl & (de <= g.wall_r - g.dwr * ae);
     const D denl = vd - g.dwl * va, denr = vd + g.dwr * va;
-    const D twl = vclamp((g.wall_l + g.dwl * a0 - d0) / denl, t0, te);
-    const D twr = vclamp((g.wall_r - g.dwr * a0 - d0) / denr, t0, te);
-    const D t_wall = (wl & (denl > 1e-12)) ? twl : (wr & (denr < -1e-12)) ? twr : inf;
+    const M wlc = act & wl & (denl > 1e-12), wrc = act & wr & (denr < -1e-12);
+    D t_wall = inf;
+    if (any(wlc)) t_wall = wlc ? vclamp((g.wall_l + g.dwl * a0 - d0) / denl, t0, te) : t_wall;
+    if (any(wrc)) t_wall = wrc ? vclamp((g.wall_r - g.dwr * a0 - d0) / denr, t0, te) : t_wall;
     const D tf = vmin(vmin(te, t_wall), vmax_t);
     auto above = [&](D t) __attribute__((always_inline)) {
       const D a = vclamp(a0 + va * t, zero, len), d = d0 + vd * t;
@@ -622,12 +629,13 @@ template <int W>
     const M road = act & (f1 <= 0);
     if (any(road)) {
       const D flo = above(t0);
-      const D t = flo > 0 ? road_root_lanes(g, road & (flo > 0), a0, va, d0, vd, oz, vz, t0, tf, f1) : t0;
+      const M above_t0 = road & (flo > 0);
+      const D t = any(above_t0) ? (above_t0 ? road_root_lanes(g, above_t0, a0, va, d0, vd, oz, vz, t0, tf, f1) : t0) : t0;
       const D a = vclamp(a0 + va * t, zero, len), d = d0 + vd * t;
       const M on_road = (d <= g.wl0 + g.dwl * a) & (d >= -(g.wr0 + g.dwr * a));
       const D tb = on_road ? g.tb0 + g.dtb * a : zero;
       const D gx = -tb * g.ty, gy = tb * g.tx;
-      const D inv_n = !on_road ? zero + 1.0 : g.dtb == 0 ? zero + g.inv_n0 : 1 / vsqrt(1 + tb * tb);
+      const D inv_n = on_road ? (g.dtb == 0 ? zero + g.inv_n0 : 1 / vsqrt(1 + tb * tb)) : zero + 1.0;
       L.range = road ? t : L.range;
       L.cos = road ? vabs(-gx * vx - gy * vy + vz) * inv_n : L.cos;
       L.surf = road ? M{} + static_cast<long>(Surface::road) : L.surf;
