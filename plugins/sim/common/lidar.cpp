@@ -515,9 +515,10 @@ template <int W> struct LidarCaster::Lanes {
 };
 
 // march for the W rays of a row in neighbouring columns, in lockstep while all stay in the common
-// case: one slab for all (its fields broadcast), no pylons, no block crossed. A lane that leaves it
-// (another start slab or direction, a block it would skip, a slab with pylons) is cast again by
-// march from its start: march is a pure function of its arguments, so that is exact.
+// case: one slab for all (its fields broadcast), no pylons, a block crossed by all or none. A lane
+// that leaves it (a start slab more than two slabs off, another direction, a block only some lanes
+// skip, a slab with pylons) is cast again by march from its start: march is a pure function of its
+// arguments, so that is exact.
 template <int W>
 [[gnu::always_inline]] inline void LidarCaster::march_lanes(const Eigen::Vector3d& o, int seg, Lanes<W>& L) const {
   using D = typename V<W>::D;
@@ -528,16 +529,33 @@ template <int W>
   const D vx = L.vx, vy = L.vy, vz = L.vz, shift = L.shift, rest = L.rest;
   const M fr = L.on & L.use_from;
   D t0 = fr ? L.from_t : zero, margin = fr ? L.from_m : inf;
-  M act = L.on, to_scalar{};
-  // The start slab: the first lane's; lanes starting elsewhere go to march.
+  M act = L.on, to_scalar{}, waiting{};
+  // Start slabs. The march starts at the first lane's, or up to two slabs behind it where another
+  // lane starts there; the lanes starting ahead join when the march reaches their slab (each with
+  // its own t0 and margin, as march would start it). Lanes further off go to march.
   const M kl = fr ? L.from_seg : M{} + seg;
   int f = 0;
   while (!act[f]) ++f;
   int k = static_cast<int>(kl[f]);
-  to_scalar = act & (kl != k);
-  if (!std::isfinite(max_t)) to_scalar = act;  // (the lanes' march assumes a finite range)
-  act &= ~to_scalar;
-  const M ckm = act & L.want_ck;
+  int dir = vx[f] * seg_[k].tx + vy[f] * seg_[k].ty >= 0 ? 1 : -1;  // lane f's, as march sets it
+  if (any(act & (kl != k))) {
+    int back = 0, off[W];
+    for (int l = 0; l < W; ++l) {
+      off[l] = ((static_cast<int>(kl[l]) - k) * dir % n + n) % n;  // slabs ahead of k along dir
+      if (off[l] > n / 2) off[l] -= n;
+      if (act[l] && off[l] < 0 && off[l] >= -2) back = std::min(back, off[l]);
+    }
+    k = ((k + back * dir) % n + n) % n;
+    for (int l = 0; l < W; ++l)
+      if (act[l] && (off[l] < back || off[l] > back + 2)) to_scalar[l] = -1;
+  }
+  waiting = act & ~to_scalar;  // all join at their start slab (the first step for most)
+  act = M{};
+  if (!std::isfinite(max_t)) {  // (the lanes' march assumes a finite range)
+    to_scalar |= waiting;
+    waiting = M{};
+  }
+  const M ckm = waiting & L.want_ck;
   L.range = zero;
   L.cos = zero + 1.0;
   L.surf = M{};
@@ -552,11 +570,14 @@ template <int W>
     esc_t = em ? t : esc_t;
     esc_m = em ? margin : esc_m;
   };
-  int dir = 0;
-  for (int steps = 0; any(act); ++steps) {
+  for (int steps = 0; any(act | waiting); ++steps) {
+    const M fresh = waiting & (kl == k);  // lanes starting in this slab
+    act |= fresh;
+    waiting &= ~fresh;
     const Seg& g = seg_[k];
     if (steps >= n || g.pylon_begin < g.pylon_end) {
-      to_scalar |= act;
+      to_scalar |= act | waiting;
+      act = waiting = M{};
       break;
     }
     {
@@ -570,7 +591,7 @@ template <int W>
       const M e = act & (vz >= 0) & (oz + vz * t0 > blocks_[k / kBlock].z_top_near);
       escape(e, t0);
       act &= ~e;
-      if (!any(act)) break;
+      if (!any(act | waiting)) break;
     }
     if (spec_.use_blocks && steps > 0 && (dir > 0 ? k % kBlock == 0 : (k % kBlock == kBlock - 1 || k == n - 1))) {
       const Block& B = blocks_[k / kBlock];
@@ -582,30 +603,27 @@ template <int W>
       const M c2 = (t_out > t0) & (vmin(oz + vz * t0, oz + vz * vmin(t_out, vmax_t)) > B.z_max);
       auto cd = [&](D t) __attribute__((always_inline)) { return (oy + vy * t - B.cy) * B.ctx - (ox + vx * t - B.cx) * B.cty; };
       const D di = cd(t0), de = cd(t_out);
-      const M skip = act & c1 & c2 & (vmax(di, de) < B.dl_safe) & (vmin(di, de) > B.dr_safe);
+      const M skip = act & ~fresh & c1 & c2 & (vmax(di, de) < B.dl_safe) & (vmin(di, de) > B.dr_safe);
       if (any(act & ~skip)) {  // some lanes skip the block, some not: those that skip go to march
         to_scalar |= skip;
         act &= ~skip;
       } else if (any(skip)) {  // all skip it, in lockstep
-        margin = vmin(vmin(margin, B.dl_safe - vmax(di, de)), vmin(di, de) - B.dr_safe);
+        margin = act ? vmin(vmin(margin, B.dl_safe - vmax(di, de)), vmin(di, de) - B.dr_safe) : margin;
         const M out = act & (t_out >= max_t);
         escape(out, vmax_t);
         act &= ~out;
-        t0 = t_out;
+        t0 = act ? t_out : t0;
         k = dir > 0 ? std::min(n, (k / kBlock + 1) * kBlock) % n : ((k / kBlock) * kBlock - 1 + n) % n;
         steps += kBlock - 1;
         continue;
       }
-      if (!any(act)) break;
+      if (!any(act | waiting)) break;
     }
     const double rx = ox - g.px, ry = oy - g.py;
     const double a0 = rx * g.tx + ry * g.ty, d0 = ry * g.tx - rx * g.ty;
     const D va = vx * g.tx + vy * g.ty, vd = vy * g.tx - vx * g.ty;
-    if (dir == 0) {  // the first lane's direction along the line; lanes going the other way: march
-      int f = 0;
-      while (!act[f]) ++f;
-      dir = va[f] >= 0 ? 1 : -1;
-      const M other = act & (dir > 0 ? ~(va >= 0) : (va >= 0));
+    if (any(fresh)) {  // lanes going the other way along the line: march
+      const M other = fresh & (dir > 0 ? ~(va >= 0) : (va >= 0));
       to_scalar |= other;
       act &= ~other;
     }
@@ -653,14 +671,15 @@ template <int W>
     }
     for (D t : {t0, tf}) {
       const D a = vclamp(a0 + va * t, zero, len), d = d0 + vd * t;
-      margin = vmin(vmin(margin, g.wall_l + g.dwl * a - d), d - (g.wall_r - g.dwr * a));
+      margin = act ? vmin(vmin(margin, g.wall_l + g.dwl * a - d), d - (g.wall_r - g.dwr * a)) : margin;
     }
     const M fin = act & (tf >= max_t);
     escape(fin, vmax_t);
     act &= ~fin & ~(t1 >= max_t);
-    t0 = t1;
+    t0 = act ? t1 : t0;
     k = dir > 0 ? (k + 1 == n ? 0 : k + 1) : (k == 0 ? n - 1 : k - 1);
   }
+  to_scalar |= waiting;  // (the march passed their slab in a block, or ended before it)
   L.ck_t = ck_t; L.ck_m = ck_m; L.esc_t = esc_t; L.esc_m = esc_m; L.rest_esc = rest_esc;
   L.ck_seg = ck_seg;
   if (!any(to_scalar)) return;
