@@ -411,9 +411,6 @@ bool LidarCaster::rows_above_escape(const Eigen::Vector3d* dw, int r, int rows, 
   return true;
 }
 
-// The lane helpers take and return 32-byte vectors; all are inlined into scan_avx2, so the
-// warning that their ABI differs without AVX does not apply.
-#pragma GCC diagnostic ignored "-Wpsabi"
 namespace {
 // W doubles in SIMD lanes (GCC vector extensions) and their comparison masks. The helpers are
 // std::min / std::max / std::clamp lane by lane, with libstdc++'s exact semantics.
@@ -728,7 +725,7 @@ template <int W>
     std::memcpy(&v, p, sizeof v);
     return v;
   };
-  auto store = [](double* p, typename V<W>::D v) __attribute__((always_inline)) { std::memcpy(p, &v, sizeof v); };
+  auto store = [](double* p, const typename V<W>::D& v) __attribute__((always_inline)) { std::memcpy(p, &v, sizeof v); };
   using D = typename V<W>::D;
   const D zero{};
   std::vector<long> hsurf(W * rows);
