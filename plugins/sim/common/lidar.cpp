@@ -204,8 +204,7 @@ std::size_t LidarCaster::scan_one_by_one(const Eigen::Isometry3d& world_from_bod
   const int rows = static_cast<int>(row_c_.size());
   std::vector<Eigen::Vector3d> dw(rows);
   std::vector<double> shift(rows), rest(rows);
-  std::vector<float> px(rows), py(rows), pz(rows), pi(rows);
-  std::vector<Surface> ps(rows);
+  Staging st(rows);
   // Pylons a ray of this frame can reach, for rows_above_escape.
   std::vector<int> near_pylons;
   for (std::size_t i = 0; i < pylons_.size(); ++i)
@@ -227,7 +226,6 @@ std::size_t LidarCaster::scan_one_by_one(const Eigen::Isometry3d& world_from_bod
     }
     Resume from, checkpoint;
     bool resume = false;
-    int m = 0;
     for (int r = 0; r < rows; ++r) {
       RayHit h = march(o, dw[r], seg, resume ? &from : nullptr, shift[r], rest[r], shift[r] >= 0 ? &checkpoint : nullptr);
       resume = shift[r] >= 0 && checkpoint.seg >= 0;
@@ -238,24 +236,9 @@ std::size_t LidarCaster::scan_one_by_one(const Eigen::Isometry3d& world_from_bod
           break;
         continue;
       }
-      double range = h.range + (sigma > 0 ? rng.normal_fast(sigma) : 0.0);
-      if (spec_.dropout > 0 && rng.uniform() < spec_.dropout) continue;
-      if (range < spec_.min_range || range > spec_.max_range) continue;
-      double refl = h.surface == Surface::road ? spec_.reflectivity_road
-                    : h.surface == Surface::wall ? spec_.reflectivity_wall
-                                                 : spec_.reflectivity_pylon;
-      px[m] = static_cast<float>(range * (row_c_[r] * col_c_[c]));
-      py[m] = static_cast<float>(range * (row_c_[r] * col_s_[c]));
-      pz[m] = static_cast<float>(range * row_s_[r]);
-      pi[m] = static_cast<float>(refl * h.cos_incidence);
-      ps[m++] = h.surface;
+      add_point(h, r, c, sigma, rng, st);
     }
-    // A column's points are appended at once (one capacity check per buffer, not per point).
-    out.x.insert(out.x.end(), px.begin(), px.begin() + m);
-    out.y.insert(out.y.end(), py.begin(), py.begin() + m);
-    out.z.insert(out.z.end(), pz.begin(), pz.begin() + m);
-    out.intensity.insert(out.intensity.end(), pi.begin(), pi.begin() + m);
-    if (out.record_surface) out.surface.insert(out.surface.end(), ps.begin(), ps.begin() + m);
+    st.flush(out);
   }
   return rays;
 }

@@ -92,6 +92,10 @@ class LidarCaster {
                          const std::vector<int>& near_pylons, const Eigen::Vector3d& o) const;
   RayHit march(const Eigen::Vector3d& o, const Eigen::Vector3d& v, int seg, const Resume* from, double shift,
                double shift_rest, Resume* checkpoint) const;
+  // A hit's point (range noise, dropout, range limits, intensity) into staging buffers that are
+  // appended to the frame a column, or a group of columns, at a time.
+  struct Staging;
+  void add_point(const RayHit& h, int r, int c, double sigma, Rng& rng, Staging& st) const;
   // scan for W neighbouring columns at a time, their rays of a row marched together in SIMD lanes
   // (march_lanes: each lane does march's operations in march's order, so the same bits).
   template <int W> struct Lanes;

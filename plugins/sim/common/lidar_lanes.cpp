@@ -324,8 +324,7 @@ template <int W>
   using D = typename V<W>::D;
   const D zero{};
   std::vector<long> hsurf(W * rows);
-  std::vector<float> px(W * rows), py(W * rows), pz(W * rows), pi(W * rows);
-  std::vector<Surface> ps(W * rows);
+  Staging st(W * rows);
   // Pylons a ray of this frame can reach, for rows_above_escape.
   std::vector<int> near_pylons;
   for (std::size_t i = 0; i < pylons_.size(); ++i)
@@ -404,30 +403,15 @@ template <int W>
     }
     // The points, column by column and rows lowest first (the order of the noise draws), the
     // group's appended at once (one capacity check per buffer).
-    int m = 0;
     for (int l = 0; l < nl; ++l) {
       const int c = c0 + l;
       for (int r = 0; r < ncast[l]; ++r) {
         const RayHit h{hrange[r * W + l], static_cast<Surface>(hsurf[r * W + l]), hcos[r * W + l]};
         if (h.surface == Surface::none) continue;
-        double range = h.range + (sigma > 0 ? rng.normal_fast(sigma) : 0.0);
-        if (spec_.dropout > 0 && rng.uniform() < spec_.dropout) continue;
-        if (range < spec_.min_range || range > spec_.max_range) continue;
-        double refl = h.surface == Surface::road ? spec_.reflectivity_road
-                      : h.surface == Surface::wall ? spec_.reflectivity_wall
-                                                   : spec_.reflectivity_pylon;
-        px[m] = static_cast<float>(range * (row_c_[r] * col_c_[c]));
-        py[m] = static_cast<float>(range * (row_c_[r] * col_s_[c]));
-        pz[m] = static_cast<float>(range * row_s_[r]);
-        pi[m] = static_cast<float>(refl * h.cos_incidence);
-        ps[m++] = h.surface;
+        add_point(h, r, c, sigma, rng, st);
       }
     }
-    out.x.insert(out.x.end(), px.begin(), px.begin() + m);
-    out.y.insert(out.y.end(), py.begin(), py.begin() + m);
-    out.z.insert(out.z.end(), pz.begin(), pz.begin() + m);
-    out.intensity.insert(out.intensity.end(), pi.begin(), pi.begin() + m);
-    if (out.record_surface) out.surface.insert(out.surface.end(), ps.begin(), ps.begin() + m);
+    st.flush(out);
   }
   return rays;
 }

@@ -239,4 +239,35 @@ using lidar_detail::road_root;
   return best;
 }
 
+struct LidarCaster::Staging {
+  std::vector<float> x, y, z, i;
+  std::vector<Surface> s;
+  int m = 0;
+  explicit Staging(std::size_t n) : x(n), y(n), z(n), i(n), s(n) {}
+  // Appended at once: one capacity check per buffer, not per point.
+  void flush(PointBuffers& out) {
+    out.x.insert(out.x.end(), x.begin(), x.begin() + m);
+    out.y.insert(out.y.end(), y.begin(), y.begin() + m);
+    out.z.insert(out.z.end(), z.begin(), z.begin() + m);
+    out.intensity.insert(out.intensity.end(), i.begin(), i.begin() + m);
+    if (out.record_surface) out.surface.insert(out.surface.end(), s.begin(), s.begin() + m);
+    m = 0;
+  }
+};
+
+[[gnu::always_inline]] inline void LidarCaster::add_point(const RayHit& h, int r, int c, double sigma, Rng& rng,
+                                                          Staging& st) const {
+  const double range = h.range + (sigma > 0 ? rng.normal_fast(sigma) : 0.0);
+  if (spec_.dropout > 0 && rng.uniform() < spec_.dropout) return;
+  if (range < spec_.min_range || range > spec_.max_range) return;
+  const double refl = h.surface == Surface::road   ? spec_.reflectivity_road
+                      : h.surface == Surface::wall ? spec_.reflectivity_wall
+                                                   : spec_.reflectivity_pylon;
+  st.x[st.m] = static_cast<float>(range * (row_c_[r] * col_c_[c]));
+  st.y[st.m] = static_cast<float>(range * (row_c_[r] * col_s_[c]));
+  st.z[st.m] = static_cast<float>(range * row_s_[r]);
+  st.i[st.m] = static_cast<float>(refl * h.cos_incidence);
+  st.s[st.m++] = h.surface;
+}
+
 }  // namespace brickyard::sim
