@@ -95,6 +95,17 @@ class LidarCaster {
   // A hit's point (range noise, dropout, range limits, intensity) into staging buffers that are
   // appended to the frame a column, or a group of columns, at a time.
   struct Staging;
+  // What both scans work out first for a frame: the sensor's origin and axes in the world, its
+  // segment, the noise, the ray count (the output reserved for it) and the pylons within reach.
+  struct Frame {
+    Eigen::Vector3d o;
+    Eigen::Matrix3d R;
+    int seg = 0;
+    double sigma = 0;
+    std::size_t rays = 0;
+    std::vector<int> near_pylons;
+  };
+  Frame begin_frame(const Eigen::Isometry3d& world_from_body, int seg_hint, double noise_factor, PointBuffers& out) const;
   void add_point(const RayHit& h, int r, int c, double sigma, Rng& rng, Staging& st) const;
   // scan for W neighbouring columns at a time, their rays of a row marched together in SIMD lanes
   // (march_lanes: each lane does march's operations in march's order, so the same bits).

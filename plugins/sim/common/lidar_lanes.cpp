@@ -294,21 +294,9 @@ template <int W>
 [[gnu::always_inline]] inline std::size_t LidarCaster::scan_lanes(const Eigen::Isometry3d& world_from_body,
                                                                    int seg_hint, Rng& rng, double noise_factor,
                                                                    PointBuffers& out) const {
-  const Eigen::Isometry3d ws = world_from_body * body_from_sensor_;
-  const Eigen::Vector3d o = ws.translation();
-  const Eigen::Matrix3d R = ws.linear();
-  const int seg = track_.project(o.x(), o.y(), seg_hint).seg;
-  const double sigma = spec_.range_noise * noise_factor;
-  const std::size_t rays = static_cast<std::size_t>(spec_.columns) * row_c_.size();
-  out.x.reserve(out.x.size() + rays);
-  out.y.reserve(out.y.size() + rays);
-  out.z.reserve(out.z.size() + rays);
-  out.intensity.reserve(out.intensity.size() + rays);
-  // Rows go from the lowest up. The next row's ray lies within `shift` * t of this one
-  // horizontally and higher by more than the road can rise over that distance, so it passes
-  // over all road this one passed over; if this one also kept more than shift * t from the walls
-  // and met no pylon, the next starts where this one's last slab began (`checkpoint`), and when
-  // this one escapes (to max range, or above everything), so do all above it.
+  const Frame f = begin_frame(world_from_body, seg_hint, noise_factor, out);
+  const auto& [o, R, seg, sigma, rays, near_pylons] = f;
+  // Rows go from the lowest up, resuming and ending columns as scan_one_by_one does (lidar.cpp).
   const int rows = static_cast<int>(row_c_.size());
   std::vector<Eigen::Vector3d> dw(rows);  // one column's rays, for rows_above_escape
   // A row of the W columns as vectors: the rays, shift and rest; the hits.
@@ -325,11 +313,6 @@ template <int W>
   const D zero{};
   std::vector<long> hsurf(W * rows);
   Staging st(W * rows);
-  // Pylons a ray of this frame can reach, for rows_above_escape.
-  std::vector<int> near_pylons;
-  for (std::size_t i = 0; i < pylons_.size(); ++i)
-    if (std::hypot(pylons_[i].x - o.x(), pylons_[i].y - o.y()) <= spec_.max_range + pylons_[i].radius)
-      near_pylons.push_back(static_cast<int>(i));
   // A ray's direction is row_c (col_c, col_s, 0) + row_s (0, 0, 1) in the sensor frame: in the
   // world, row_c U + row_s Z with U per column and Z per frame (6 flops a ray, not a 3x3 product).
   const Eigen::Vector3d Z = R.col(2);
