@@ -206,8 +206,7 @@ LidarCaster::Frame LidarCaster::begin_frame(const Eigen::Isometry3d& world_from_
 // Ray by ray (no AVX2, or spec.simd off).
 std::size_t LidarCaster::scan_one_by_one(const Eigen::Isometry3d& world_from_body, int seg_hint, Rng& rng,
                                          double noise_factor, PointBuffers& out) const {
-  const Frame f = begin_frame(world_from_body, seg_hint, noise_factor, out);
-  const auto& [o, R, seg, sigma, rays, near_pylons] = f;
+  const auto [o, R, seg, sigma, rays, near_pylons] = begin_frame(world_from_body, seg_hint, noise_factor, out);
   // Rows go from the lowest up. The next row's ray lies within `shift` * t of this one
   // horizontally and higher by more than the road can rise over that distance, so it passes
   // over all road this one passed over; if this one also kept more than shift * t from the walls

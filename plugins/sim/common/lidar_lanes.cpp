@@ -294,8 +294,7 @@ template <int W>
 [[gnu::always_inline]] inline std::size_t LidarCaster::scan_lanes(const Eigen::Isometry3d& world_from_body,
                                                                    int seg_hint, Rng& rng, double noise_factor,
                                                                    PointBuffers& out) const {
-  const Frame f = begin_frame(world_from_body, seg_hint, noise_factor, out);
-  const auto& [o, R, seg, sigma, rays, near_pylons] = f;
+  const auto [o, R, seg, sigma, rays, near_pylons] = begin_frame(world_from_body, seg_hint, noise_factor, out);
   // Rows go from the lowest up, resuming and ending columns as scan_one_by_one does (lidar.cpp).
   const int rows = static_cast<int>(row_c_.size());
   std::vector<Eigen::Vector3d> dw(rows);  // one column's rays, for rows_above_escape
