@@ -145,16 +145,22 @@ MinCurvatureResult min_curvature_line(const ClosedLine& line, const MinCurvature
   return r;
 }
 
+double menger_curvature(double ax, double ay, double bx, double by, double cx, double cy, double* sides) {
+  const Vec2 e1{bx - ax, by - ay}, e2{cx - bx, cy - by};
+  const double l1 = std::hypot(e1.x, e1.y), l2 = std::hypot(e2.x, e2.y), l3 = std::hypot(cx - ax, cy - ay);
+  if (sides) *sides = l1 + l2;
+  if (l1 * l2 * l3 <= 0) return 0;
+  return 2 * cross(e1, e2) / (l1 * l2 * l3);
+}
+
 double summed_squared_curvature(const std::vector<double>& x, const std::vector<double>& y) {
   const int n = static_cast<int>(x.size());
   double sum = 0;
   for (int i = 0; i < n; ++i) {
     const int a = (i + n - 1) % n, b = (i + 1) % n;
-    const Vec2 e1{x[i] - x[a], y[i] - y[a]}, e2{x[b] - x[i], y[b] - y[i]};
-    const double l1 = std::hypot(e1.x, e1.y), l2 = std::hypot(e2.x, e2.y), l3 = std::hypot(x[b] - x[a], y[b] - y[a]);
-    if (l1 * l2 * l3 <= 0) continue;
-    const double k = 2 * cross(e1, e2) / (l1 * l2 * l3);  // Menger curvature
-    sum += k * k * 0.5 * (l1 + l2);
+    double sides;
+    const double k = menger_curvature(x[a], y[a], x[i], y[i], x[b], y[b], &sides);
+    if (k != 0) sum += k * k * 0.5 * sides;
   }
   return sum;
 }

@@ -15,16 +15,11 @@ namespace brickyard::planning {
 namespace {
 
 // Menger curvature at b of the points a, b, c, and the residual κ √(½(|ab| + |bc|)) whose square
-// is summed_squared_curvature's term (0 for coinciding points, as there).
+// is summed_squared_curvature's term.
 void menger(double ax, double ay, double bx, double by, double cx, double cy, double& k, double& r) {
-  const double ux = bx - ax, uy = by - ay, vx = cx - bx, vy = cy - by;
-  const double l1 = std::hypot(ux, uy), l2 = std::hypot(vx, vy), l3 = std::hypot(cx - ax, cy - ay);
-  if (l1 * l2 * l3 <= 0) {
-    k = r = 0;
-    return;
-  }
-  k = 2 * (ux * vy - uy * vx) / (l1 * l2 * l3);
-  r = k * std::sqrt(0.5 * (l1 + l2));
+  double sides;
+  k = menger_curvature(ax, ay, bx, by, cx, cy, &sides);
+  r = k * std::sqrt(0.5 * sides);
 }
 
 // Steps and curvatures of a closed line, as lap_time() measures it.

@@ -341,8 +341,7 @@ template <int W>
       D sh = zero - 1, re = zero - 1;
       if (r + 1 < rows && spec_.coherent_columns) {
         const D ax = load(&sx[(r + 1) * W]) - load(&sx[r * W]), ay = load(&sy[(r + 1) * W]) - load(&sy[r * W]);
-        D apart = ax * ax + ay * ay;
-        for (int l = 0; l < W; ++l) apart[l] = std::sqrt(apart[l]);
+        const D apart = vsqrt(ax * ax + ay * ay);
         const M bad = load(&sz[(r + 1) * W]) - load(&sz[r * W]) <= slope_max_ * apart;
         sh = bad ? sh : apart;
         re = bad ? re : r + 2 == rows ? apart : re_up >= 0 ? apart + re_up : zero - 1;
