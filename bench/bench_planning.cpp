@@ -9,6 +9,7 @@
 // One thread; medians.
 #include "common/graph_search.hpp"
 #include "common/line_setup.hpp"
+#include "common/track.hpp"
 #include "common/min_curvature.hpp"
 #include "common/road_graph_planner.hpp"
 
@@ -49,8 +50,8 @@ int main(int argc, char** argv) {
   }
   const sim::Track track(w);
   const sim::CenterLine raw = sim::load_xy_csv(src + "/data/racelines/IMS.csv");
-  sim::SpeedLimits lim;
-  lim.v_max = 31;
+  const motion::VehicleLimits d;
+  const motion::VehicleLimits lim = motion::independent_limits(31, d.a_lat, d.a_accel, d.a_decel);
   const double edge_margin = 3.5;
   const Reference ref = make_reference(raw, &track, edge_margin, lim);
   const RoadGraphParams gp;

@@ -7,8 +7,10 @@
 #include "common/min_curvature.hpp"
 #include "common/line_setup.hpp"
 #include "common/min_time.hpp"
-#include "common/speed_profile.hpp"
-#include "common/track.hpp"
+#include "motion/speed_profile.hpp"
+#include "motion/vehicle_limits.hpp"
+#include "track/centre_line.hpp"
+#include "vehicle/vehicle.hpp"
 
 #include <chrono>
 #include <cmath>
@@ -31,16 +33,17 @@ double length(const std::vector<double>& x, const std::vector<double>& y) {
 }  // namespace
 
 int main() {
-  // The simulator's AV-21 (planning::av21_limits: 9 kN drive and 370 kW on 815 kg, lateral grip
-  // and brakes 15 m/s², drag ρ Cd A / 2m; downforce ignored).
-  const planning::VehicleLimits car = planning::av21_limits();
+  // The AV-21 (data/vehicles/av21.json through motion::vehicle_limits: 9 kN drive and 370 kW on
+  // 815 kg, lateral grip and brakes 15 m/s², drag ρ Cd A / 2m; downforce ignored).
+  const motion::VehicleLimits car =
+      motion::vehicle_limits(vehicle::load_vehicle(std::string(BRICKYARD_SOURCE_DIR) + "/data/vehicles/av21.json"));
   std::vector<std::string> times, refined, smoothed;
   const std::string data = std::string(BRICKYARD_SOURCE_DIR) + "/data";
   std::printf("| track | points | centre line Σκ²ds | TUM Σκ²ds | ours, margin 0.6 m | ours / TUM | time | ours, margin 1.5 m | time |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|\n");
   for (const char* name : {"IMS", "Monza", "Spielberg", "Hockenheim"}) {
-    const auto c = sim::load_centerline_csv(data + "/tracks/" + name + ".csv");
-    const auto tum = sim::load_xy_csv(data + "/racelines/" + name + ".csv");
+    const auto c = track::load_centerline_csv(data + "/tracks/" + name + ".csv");
+    const auto tum = track::load_xy_csv(data + "/racelines/" + name + ".csv");
     const planning::ClosedLine line{c.x, c.y, c.width_left, c.width_right};
     planning::MinCurvatureResult ours;  // margin 0.6 m
     double cost[2], ms[2];

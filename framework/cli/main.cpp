@@ -41,7 +41,8 @@ options:
   --seed N             seed of every random source (default 0)
   --process NAME       run only the nodes of process NAME; other processes meet over DDS
   --domain N           DDS domain id; overrides transport.domain
-  --plugin-path DIR    search DIR for plugin libraries first; repeatable
+  --plugin-path DIR    search DIR for plugin libraries first (its plugins override those of
+                       the same name found later); repeatable
   --quiet              only warnings and errors
   --progress S         a progress line every S seconds (default: 0.25 on a terminal, one
                        updating line; 5 otherwise, plain lines); 0: none
@@ -132,12 +133,13 @@ Args parse_args(int argc, char** argv) {
   return a;
 }
 
+// The plugins of every folder in search order (--plugin-path first); an earlier folder's plugin
+// overrides a later one of the same name, and says so on stderr (not with --quiet).
 Registry load_registry(const Args& a, const GraphDecl* g) {
   Registry reg;
-  for (const auto& d : a.plugin_paths) reg.add_directory(d);
-  if (g)
-    for (const auto& d : g->plugin_path) reg.add_directory(d);
-  for (const auto& d : default_plugin_dirs()) reg.add_directory(d);
+  for (const auto& d : plugin_search_dirs(a.plugin_paths, g ? g->plugin_path : std::vector<std::string>{})) reg.add_directory(d);
+  if (!a.quiet)
+    for (const auto& n : reg.notices()) std::fprintf(stderr, "notice: %s\n", n.c_str());
   return reg;
 }
 

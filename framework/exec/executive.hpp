@@ -1,7 +1,10 @@
 #pragma once
 // Runs a resolved graph: builds the nodes of this process, wires them, steps them on the sim
 // clock (one thread, ordered, reproducible) or the real clock (a thread per node).
+// executive.cpp: a run's lifecycle; wiring.cpp: the nodes and wires; sim_scheduler.cpp and
+// real_scheduler.cpp: the two clocks; console, summary, recording, file_search, seeding: the rest.
 #include "exec/channels.hpp"
+#include "exec/console.hpp"
 #include "graph/resolve.hpp"
 #include "record/recorder.hpp"
 
@@ -79,13 +82,7 @@ class Executive {
 
   std::int64_t sim_now_ns_ = 0;
   std::int64_t real_start_ns_ = 0;
-  std::mutex log_m_;
-  // Progress: status fields by node (in graph order), the line's timing.
-  std::mutex status_m_;
-  std::vector<std::pair<std::string, std::vector<std::pair<std::string, std::string>>>> status_;
-  bool tty_ = false, line_open_ = false;
-  double progress_every_s_ = 0;
-  std::chrono::steady_clock::time_point wall0_, last_progress_;
+  Console console_;  // log lines and the progress line
 };
 
 }  // namespace brickyard::fw

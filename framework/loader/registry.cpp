@@ -88,14 +88,17 @@ void Registry::add_directory(const std::string& dir) {
     return;
   }
   dirs_.push_back(dir);
+  const std::size_t folder = folders_++;
   std::vector<std::string> libs;
   for (const auto& e : fs::directory_iterator(dir, ec))
     if (e.path().extension() == ".so" && !e.is_directory()) libs.push_back(e.path().string());
   std::sort(libs.begin(), libs.end());
-  for (const auto& l : libs) load_library(l);
+  for (const auto& l : libs) load(l, folder);
 }
 
-void Registry::load_library(const std::string& path) {
+void Registry::load_library(const std::string& path) { load(path, folders_++); }
+
+void Registry::load(const std::string& path, std::size_t folder) {
   std::error_code ec;
   std::string canon = fs::weakly_canonical(path, ec).string();
   if (std::find(loaded_.begin(), loaded_.end(), canon) != loaded_.end()) return;
@@ -147,6 +150,7 @@ void Registry::load_library(const std::string& path) {
   }
   const auto* descs = static_cast<const PluginDescriptor*>(info->plugins);
   std::vector<PluginEntry> found;
+  std::vector<std::string> overridden;  // by a plugin of an earlier folder: notices, not entries
   for (std::uint32_t i = 0; i < info->plugin_count; ++i) {
     PluginEntry e;
     try {
@@ -156,8 +160,13 @@ void Registry::load_library(const std::string& path) {
       continue;
     }
     for (auto& m : check_manifest(e.manifest)) fail(m);
-    if (const PluginEntry* other = find(e.manifest.name))
-      fail("plugin '" + e.manifest.name + "' is also provided by " + other->library);
+    auto same_folder = std::find_if(providers_.begin(), providers_.end(), [&](const Provider& p) {
+      return p.folder == folder && p.name == e.manifest.name;
+    });
+    if (same_folder != providers_.end())
+      fail("plugin '" + e.manifest.name + "' is also provided by " + same_folder->library);
+    else if (const PluginEntry* earlier = find(e.manifest.name))
+      overridden.push_back("plugin '" + e.manifest.name + "' from " + earlier->library + " overrides the one in " + path);
     for (const auto& f : found)
       if (f.manifest.name == e.manifest.name) fail("plugin '" + e.manifest.name + "' declared twice");
     e.descriptor = &descs[i];
@@ -169,7 +178,11 @@ void Registry::load_library(const std::string& path) {
     problems_.push_back(lp);
     return;
   }
-  for (auto& e : found) plugins_.push_back(std::move(e));
+  for (auto& n : overridden) notices_.push_back(std::move(n));
+  for (auto& e : found) {
+    providers_.push_back({e.manifest.name, e.library, folder});
+    if (!find(e.manifest.name)) plugins_.push_back(std::move(e));
+  }
 }
 
 const PluginEntry* Registry::find(const std::string& name) const {
@@ -207,6 +220,14 @@ std::vector<std::string> default_plugin_dirs() {
     fs::path d = fs::path(prefix) / "lib" / "brickyard" / "plugins";
     if (fs::is_directory(d, ec)) dirs.push_back(d.string());
   }
+  return dirs;
+}
+
+std::vector<std::string> plugin_search_dirs(const std::vector<std::string>& command_line,
+                                            const std::vector<std::string>& graph) {
+  std::vector<std::string> dirs = command_line;
+  dirs.insert(dirs.end(), graph.begin(), graph.end());
+  for (auto& d : default_plugin_dirs()) dirs.push_back(std::move(d));
   return dirs;
 }
 

@@ -2,13 +2,13 @@
 // Command -> ControlCommand, shared by the control plugins.
 #include <brickyard/msgs/ControlCommand.h>
 
-#include "common/command.hpp"
+#include "motion/command.hpp"
 
 #include <string>
 
 namespace brickyard::control {
 
-inline msgs::ControlCommand command_message(const Command& c, const std::string& source, std::int64_t stamp_ns, std::uint32_t seq) {
+inline msgs::ControlCommand command_message(const motion::Command& c, const std::string& source, std::int64_t stamp_ns, std::uint32_t seq) {
   msgs::ControlCommand m;
   m.header().stamp_ns(stamp_ns);
   m.header().seq(seq);

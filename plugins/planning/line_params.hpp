@@ -3,14 +3,15 @@
 // swap by the plugin's name: declared once, read once. Plugin-side (SDK), used by plugin.cpp files.
 #include <brickyard/plugin.hpp>
 
-#include "../sim/common/pure_pursuit.hpp"
+#include "motion/racing_line.hpp"
+#include "track/centre_line.hpp"
 
 #include <string>
 
 namespace brickyard::planning {
 
 inline Manifest with_line_params(Manifest m) {
-  const sim::SpeedLimits l;
+  const motion::VehicleLimits l;
   m.param(ParamSpec::string("raceline", "racelines/IMS.csv").doc("x_m,y_m file of the racing line"))
       .param(ParamSpec::number("v_max", l.v_max).in_unit("m/s").at_least(1))
       .param(ParamSpec::number("a_lat", l.a_lat).in_unit("m/s^2").at_least(0.5))
@@ -22,8 +23,8 @@ inline Manifest with_line_params(Manifest m) {
 
 struct LineParams {
   std::string file;          // the racing line file, found
-  sim::CenterLine line;      // its points
-  sim::SpeedLimits limits;
+  track::CenterLine line;    // its points
+  motion::VehicleLimits limits;  // lateral and longitudinal each on its own (no ellipse)
   double edge_margin = 2.5;
 };
 
@@ -33,15 +34,12 @@ inline LineParams read_line_params(Context& ctx) {
   LineParams out;
   out.file = ctx.find_file(p.string("raceline"));
   try {
-    out.line = sim::load_xy_csv(out.file);
-  } catch (const sim::TrackFileError& e) {
+    out.line = track::load_xy_csv(out.file);
+  } catch (const track::TrackFileError& e) {
     throw BadInput(std::string("raceline file ") + e.what());
   }
   if (out.line.x.size() < 3) throw BadInput("raceline file " + out.file + ": fewer than 3 points");
-  out.limits.v_max = p.number("v_max");
-  out.limits.a_lat = p.number("a_lat");
-  out.limits.a_accel = p.number("a_accel");
-  out.limits.a_decel = p.number("a_decel");
+  out.limits = motion::independent_limits(p.number("v_max"), p.number("a_lat"), p.number("a_accel"), p.number("a_decel"));
   out.edge_margin = p.number("edge_margin");
   return out;
 }

@@ -8,6 +8,7 @@
 #include <Eigen/Geometry>
 
 #include "common/track.hpp"
+#include "newest.hpp"
 
 namespace brickyard::sim {
 
@@ -62,12 +63,7 @@ inline Eigen::Isometry3d body_pose(const msgs::VehicleState& s) {
          Eigen::AngleAxisd(s.pitch(), Eigen::Vector3d::UnitY()) * Eigen::AngleAxisd(s.roll(), Eigen::Vector3d::UnitX());
 }
 
-// The newest sample of an input read by "latest value" nodes; drains the queue so the run's
-// summary does not count the skipped samples as dropped.
-template <class T> std::shared_ptr<const T> newest(Input<T>& in) {
-  auto v = in.take();
-  return v.empty() ? in.latest() : v.back();
-}
+using plugins::newest;
 
 inline std::int64_t stamp(const msgs::VehicleState& s) { return s.header().stamp_ns(); }
 

@@ -3,6 +3,8 @@
 #include "common/system_manager.hpp"
 #include "common/wall_follower.hpp"
 
+#include "av21.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -10,6 +12,13 @@
 using namespace brickyard::control;
 
 namespace {
+
+// The path tracker steering the AV-21.
+TrackerParams av21_tracker() {
+  TrackerParams tp;
+  tp.wheelbase = av21_vehicle().wheelbase;
+  return tp;
+}
 
 // A circle of radius r (counter-clockwise) at constant speed v, points every metre.
 std::vector<PathPoint> circle(double r, double v) {
@@ -27,10 +36,10 @@ std::vector<PathPoint> circle(double r, double v) {
 // On a circle, pure pursuit's steady steer is atan(wheelbase * curvature) (the look-ahead point
 // on the circle subtends the arc the car drives); left turn: positive.
 TEST(PathTracker, SteersTheCircleAndHoldsItsSpeed) {
-  PathTracker t;
+  PathTracker t(av21_tracker());
   t.set_path(circle(100, 30));
   const Command c = t.control(100, 0, M_PI / 2, 30);  // on the circle, heading along it
-  EXPECT_NEAR(c.steer, std::atan(2.97 / 100), 1e-3);
+  EXPECT_NEAR(c.steer, std::atan(t.params().wheelbase / 100), 1e-3);
   EXPECT_NEAR(t.cross_track(), 0, 1e-6);
   EXPECT_NEAR(c.target_speed, 30, 1e-9);
   EXPECT_DOUBLE_EQ(c.throttle, 0);
@@ -48,7 +57,7 @@ TEST(PathTracker, SteersTheCircleAndHoldsItsSpeed) {
 TEST(PathTracker, BrakesAheadOfASlowerStretch) {
   std::vector<PathPoint> p;
   for (int i = 0; i <= 600; ++i) p.push_back({static_cast<double>(i), 0, i < 300 ? 60.0 : 20.0});
-  TrackerParams tp;
+  TrackerParams tp = av21_tracker();
   tp.closed = false;
   PathTracker t(tp);
   t.set_path(p);
@@ -59,7 +68,7 @@ TEST(PathTracker, BrakesAheadOfASlowerStretch) {
   EXPECT_GT(c.brake, 0.9);
   EXPECT_NEAR(c.steer, 0, 1e-9);
   // No path: brake, wheel straight.
-  PathTracker none;
+  PathTracker none(av21_tracker());
   const Command stop = none.control(0, 0, 0, 10);
   EXPECT_DOUBLE_EQ(stop.brake, 1);
   EXPECT_DOUBLE_EQ(stop.steer, 0);

@@ -2,7 +2,6 @@
 // by hand, the metre-valued distance, the filter, the baselines' behaviour and the manager.
 #include "common/localization_manager.hpp"
 #include "common/localizer.hpp"
-#include "common/localization_score.hpp"
 #include "common/update_selection.hpp"
 
 #include <gtest/gtest.h>
@@ -181,23 +180,6 @@ TEST(LocalizationManager, WarningEmergencyAndHysteresis) {
   EXPECT_EQ(m.update(t0 + 0.3), Status::warning);    // both silent since t0 + 0.25 (seen at 0.3)
   EXPECT_EQ(m.update(t0 + 0.55), Status::warning);
   EXPECT_EQ(m.update(t0 + 0.61), Status::emergency);  // 0.31 s after it was first seen
-}
-
-TEST(LocalizationScore, FlagTimesAndFalseAlarms) {
-  brickyard::sim::ScoreParams p;
-  p.windows = {{10, 12}};
-  p.warmup_s = 1;
-  brickyard::sim::LocalizationScore s(p);
-  for (int i = 0; i <= 2000; ++i) s.truth(i * 0.01, i * 0.01, 0);
-  s.estimate(5.0, 5.0, 0.3, 1);   // an alarm outside the window: false alarm
-  s.estimate(6.0, 6.0, 0.0, 0);
-  s.estimate(10.2, 10.2, 2.0, 0);  // NORMAL with 2 m error
-  s.estimate(10.4, 10.4, 0.0, 2);  // flagged and EMERGENCY 0.4 s in
-  EXPECT_EQ(s.false_alarms(), 1);
-  EXPECT_NEAR(s.time_to_flag(), 0.4, 1e-9);
-  EXPECT_NEAR(s.time_to_emergency(), 0.4, 1e-9);
-  EXPECT_NEAR(s.max_error_normal(), 2.0, 1e-12);
-  EXPECT_NEAR(s.max_error(), 2.0, 1e-12);
 }
 
 TEST(Localizer, HeadingFromTravelThenRollFromTheImu) {

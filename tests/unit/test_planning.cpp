@@ -2,8 +2,11 @@
 #include "common/min_curvature.hpp"
 #include "common/line_setup.hpp"
 #include "common/min_time.hpp"
-#include "common/speed_profile.hpp"
-#include "common/track.hpp"
+#include "motion/speed_profile.hpp"
+#include "motion/vehicle_limits.hpp"
+#include "track/curvature.hpp"
+
+#include "av21.hpp"
 
 #include <gtest/gtest.h>
 
@@ -63,8 +66,8 @@ ClosedLine ellipse(double a, double b, int n, double half) {
   return c;
 }
 
-// The simulator's AV-21, as bench/eval_racing_line.cpp compares the lines.
-VehicleLimits av21() { return av21_limits(); }
+// The AV-21's limits, as bench/eval_racing_line.cpp compares the lines.
+VehicleLimits av21() { return brickyard::motion::vehicle_limits(av21_vehicle()); }
 
 }  // namespace
 
@@ -141,7 +144,7 @@ TEST(MinTime, LapTimeGradientMatchesDifferences) {
   }
 }
 
-// The averaged measure (lap_profile's average_m): its curvature is sim::signed_curvature's, the
+// The averaged measure (lap_profile's average_m): its curvature is track::signed_curvature's, the
 // Menger curvature averaged over curvature_window points each side; its derivatives by the raw
 // curvatures are the averaged measure's mapped back through the same average (its own adjoint).
 // Checked against central differences on an ellipse (400 × 150 m: the car is at its cornering
@@ -153,21 +156,21 @@ TEST(MinTime, AveragedLapTimeGradientThroughTheAverage) {
   const ClosedLine c = ellipse(400, 150, n, 7.5);
   const VehicleLimits l = av21();
   const LapProfile raw = lap_profile(c.x, c.y, l), avg = lap_profile(c.x, c.y, l, 30);
-  const brickyard::sim::CenterLine cl{"", c.x, c.y, {}, {}};
-  const int half = brickyard::sim::curvature_window(cl, 30);
+  const brickyard::track::CenterLine cl{"", c.x, c.y, {}, {}};
+  const int half = brickyard::track::curvature_window(cl, 30);
   EXPECT_EQ(half, 3);  // 30 m in steps of about 5.4 m: 3 each side
-  EXPECT_EQ(avg.kappa, brickyard::sim::signed_curvature(cl, 30));
+  EXPECT_EQ(avg.kappa, brickyard::track::signed_curvature(cl, 30));
   EXPECT_EQ(avg.ds, raw.ds);
   EXPECT_EQ(avg.time, profile_time(avg.ds, speed_profile(avg.ds, avg.kappa, l, true), true));
   EXPECT_EQ(raw.time, lap_time(c.x, c.y, l));
   EXPECT_EQ(avg.time, lap_time(c.x, c.y, l, 30));
   EXPECT_LT(avg.time, raw.time);  // the average lowers the peaks of curvature
-  const std::vector<double> mean = brickyard::sim::cyclic_average(raw.kappa, half);
+  const std::vector<double> mean = brickyard::track::cyclic_average(raw.kappa, half);
   for (int i = 0; i < n; ++i) EXPECT_NEAR(mean[i], avg.kappa[i], 1e-15) << i;
 
   std::vector<double> dk, dds;
   closed_lap_time_gradient(avg.ds, avg.kappa, l, dk, dds);
-  const std::vector<double> back = brickyard::sim::cyclic_average(dk, half);
+  const std::vector<double> back = brickyard::track::cyclic_average(dk, half);
   int peak = 0;
   for (int i = 0; i < n; ++i)
     if (std::abs(dk[i]) > std::abs(dk[peak])) peak = i;
@@ -175,7 +178,7 @@ TEST(MinTime, AveragedLapTimeGradientThroughTheAverage) {
     auto lap = [&](double e) {
       std::vector<double> k = raw.kappa;
       k[j] += e;
-      const std::vector<double> ka = brickyard::sim::cyclic_average(k, half);
+      const std::vector<double> ka = brickyard::track::cyclic_average(k, half);
       return profile_time(avg.ds, speed_profile(avg.ds, ka, l, true), true);
     };
     const double e = 1e-7, measured = (lap(e) - lap(-e)) / (2 * e);

@@ -3,7 +3,7 @@
 #include "common/graph_search.hpp"
 #include "common/road_graph.hpp"
 #include "common/road_graph_planner.hpp"
-#include "common/speed_profile.hpp"
+#include "motion/speed_profile.hpp"
 
 #include <gtest/gtest.h>
 

@@ -2,10 +2,13 @@
 // model against the analytical bicycle model, LiDAR ray casting, fault windows, the referee.
 #include "common/faults.hpp"
 #include "common/lidar.hpp"
+#include "common/localization_score.hpp"
 #include "common/perception_score.hpp"
 #include "common/referee.hpp"
 #include "common/track.hpp"
 #include "common/vehicle_model.hpp"
+
+#include "av21.hpp"
 
 #include <gtest/gtest.h>
 
@@ -121,13 +124,13 @@ TEST(Track, ProjectionRoundTrip) {
 // Steady-state cornering of the linear single-track model: yaw rate r = v delta / (L + K v^2)
 // with the understeer gradient K = m (lr / Cf - lf / Cr) / L.
 TEST(Vehicle, SteadyStateCorneringMatchesTheBicycleModel) {
-  VehicleParams p;
+  VehicleParams p = av21_vehicle();
   p.tyre = "linear";
   p.mu = 100;  // no saturation
   p.drag_area = p.lift_area = p.rolling_resistance = 0;
   p.steer_delay = 0;
   p.max_steer_rate = 10;
-  const double L = p.wheelbase();
+  const double L = p.lf + p.lr;
   const double K = p.mass * (p.lr / p.cornering_front - p.lf / p.cornering_rear) / L;
   for (double v : {15.0, 30.0, 50.0}) {
     VehicleModel m(p);
@@ -148,14 +151,14 @@ TEST(Vehicle, SteadyStateCorneringMatchesTheBicycleModel) {
 }
 
 TEST(Vehicle, SlopedRoadPullsTheCarDownhill) {
-  VehicleModel m(VehicleParams{});
+  VehicleModel m(av21_vehicle());
   // Rolling slowly (kinematic regime) with the nose up a 10 % slope and no drive: gravity along
   // the road, g * 0.1, plus rolling resistance and drag slows the car.
-  const VehicleParams p;
+  const VehicleParams p = av21_vehicle();
   m.state().vx = 2.0;
   m.step(0.002, Command{}, Eigen::Vector2d(0.1, 0));
   const double drag = 0.5 * p.air_density * 4.0 * p.drag_area / p.mass;
-  EXPECT_NEAR(m.state().ax, -p.gravity * 0.1 - p.rolling_resistance * p.gravity - drag, 1e-9);
+  EXPECT_NEAR(m.state().ax, -brickyard::vehicle::gravity * 0.1 - p.rolling_resistance * brickyard::vehicle::gravity - drag, 1e-9);
 }
 
 TEST(Lidar, RayToAWallAtAKnownDistance) {
@@ -549,4 +552,21 @@ TEST(PerceptionScore, WallTruthFalseObstaclesAndPylonRange) {
   EXPECT_EQ(s.false_obstacles(), 1u);
   ASSERT_EQ(s.pylon_ranges().size(), 1u);
   EXPECT_NEAR(s.pylon_ranges()[0], std::hypot(120, 2), 1e-6);  // 170 m was a lucky frame, 160 m was missed
+}
+
+TEST(LocalizationScore, FlagTimesAndFalseAlarms) {
+  brickyard::sim::ScoreParams p;
+  p.windows = {{10, 12}};
+  p.warmup_s = 1;
+  brickyard::sim::LocalizationScore s(p);
+  for (int i = 0; i <= 2000; ++i) s.truth(i * 0.01, i * 0.01, 0);
+  s.estimate(5.0, 5.0, 0.3, 1);   // an alarm outside the window: false alarm
+  s.estimate(6.0, 6.0, 0.0, 0);
+  s.estimate(10.2, 10.2, 2.0, 0);  // NORMAL with 2 m error
+  s.estimate(10.4, 10.4, 0.0, 2);  // flagged and EMERGENCY 0.4 s in
+  EXPECT_EQ(s.false_alarms(), 1);
+  EXPECT_NEAR(s.time_to_flag(), 0.4, 1e-9);
+  EXPECT_NEAR(s.time_to_emergency(), 0.4, 1e-9);
+  EXPECT_NEAR(s.max_error_normal(), 2.0, 1e-12);
+  EXPECT_NEAR(s.max_error(), 2.0, 1e-12);
 }

@@ -8,18 +8,21 @@
 //  - Speed: the lowest path speed over the next preview_time * v metres, and the speed from which
 //    the car can still brake (at `decel`) to each slower point further on within that preview —
 //    so it is slow at the corner, not after it. Pedals proportional to the speed error.
-#include "command.hpp"
+#include "motion/command.hpp"
 
 #include <vector>
 
 namespace brickyard::control {
+
+using motion::Command;
+using motion::pedals_for;
 
 struct PathPoint {
   double x, y, speed;
 };
 
 struct TrackerParams {
-  double wheelbase = 2.97;  // m (AV-21)
+  double wheelbase = 0;     // m: the vehicle description's
   double lookahead_min = 10, lookahead_time = 0.6, lookahead_max = 60;  // m, s, m
   double max_steer = 0.35;  // rad
   double speed_gain = 0.5;  // pedal per m/s of error

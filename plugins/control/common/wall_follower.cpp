@@ -1,13 +1,13 @@
 #include "wall_follower.hpp"
 
-#include "polynomial.hpp"
+#include "math/polynomial.hpp"
 
 #include <algorithm>
 #include <cmath>
 
 namespace brickyard::control {
 
-using plugins::poly_value;
+using math::poly_value;
 
 void WallFollower::engage(double t, double speed) {
   t0_ = t;

@@ -10,11 +10,14 @@
 // Speed while it drives: `hold` the speed it took over at, or `reduce` to fallback_speed at
 // `decel` (never above the speed it took over at); either way at most sqrt(a_lat / κ) for the
 // wall's curvature κ at the look-ahead.
-#include "command.hpp"
+#include "motion/command.hpp"
 
 #include <vector>
 
 namespace brickyard::control {
+
+using motion::Command;
+using motion::pedals_for;
 
 struct WallFollowerParams {
   int side = -1;               // -1: the wall on the right

@@ -5,6 +5,7 @@
 #include <brickyard/plugin.hpp>
 
 #include "../command_msg.hpp"
+#include "vehicle_param.hpp"
 #include "common/path_tracker.hpp"
 
 namespace {
@@ -21,7 +22,7 @@ class PathTrackerNode : public Plugin {
         .input<msgs::Path>("path", "the path to follow (the newest replaces the last)", true, 2)
         .input<msgs::LocalizationEstimate>("estimate", "where the car is: x, y, yaw, speed of base_link", true, 8)
         .output<msgs::ControlCommand>("command", "steer and pedals, source \"path_tracker\"")
-        .param(ParamSpec::number("wheelbase", d.wheelbase).in_unit("m").at_least(0.5))
+        .param(plugins::vehicle_param().doc("the car's description file: the wheelbase pure pursuit steers with"))
         .param(ParamSpec::number("lookahead_min", d.lookahead_min).in_unit("m").at_least(0.5))
         .param(ParamSpec::number("lookahead_time", d.lookahead_time).in_unit("s").at_least(0).doc("look-ahead = this x speed, clamped"))
         .param(ParamSpec::number("lookahead_max", d.lookahead_max).in_unit("m").at_least(0.5))
@@ -36,7 +37,7 @@ class PathTrackerNode : public Plugin {
   void configure(Context& ctx) override {
     const Params& p = ctx.params();
     TrackerParams tp;
-    tp.wheelbase = p.number("wheelbase");
+    tp.wheelbase = plugins::read_vehicle(ctx).wheelbase;
     tp.lookahead_min = p.number("lookahead_min");
     tp.lookahead_time = p.number("lookahead_time");
     tp.lookahead_max = p.number("lookahead_max");

@@ -17,7 +17,7 @@
 // the fit therefore carries one more unknown, the lean k, and fits y = p(x) + k·z. The polynomial
 // p is the wall at z = 0. (lean: false fits p alone, the plain projection.)
 #include "points.hpp"
-#include "polynomial.hpp"
+#include "math/polynomial.hpp"
 
 #include <vector>
 
@@ -58,6 +58,6 @@ int longest_cluster_on_side(const Points& points, const std::vector<std::vector<
 // Fits the wall to the chosen cluster (see WallParams for validity).
 WallFit fit_wall(const Points& points, const std::vector<std::vector<int>>& clusters, const WallParams& p);
 
-using plugins::poly_value;  // y of a polynomial, or a derivative, at x
+using math::poly_value;  // y of a polynomial, or a derivative, at x
 
 }  // namespace brickyard::perception

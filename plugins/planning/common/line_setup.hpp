@@ -1,38 +1,35 @@
 #pragma once
-// The racing line as both planners use it: kept inside the track's edges, with its speed profile
-// (the simulator's track library serves as the map for now; docs/algorithms.md), as a RefLine for
-// the road graph. Framework-free.
+// The racing line as both planners use it: kept inside the map's edges, with its speed profile
+// (libs/motion), as a RefLine for the road graph. Framework-free.
 #include "road_graph.hpp"
-#include "speed_profile.hpp"
 
-#include "../../sim/common/pure_pursuit.hpp"
-#include "../../sim/common/track.hpp"
+#include "motion/racing_line.hpp"
+#include "motion/speed_profile.hpp"
+#include "track/centre_line.hpp"
+#include "track/track.hpp"
 
 #include <cstdint>
 
 namespace brickyard::planning {
 
+using motion::VehicleLimits;
+
 struct Reference {
-  sim::RacingLine racing;      // points, s, curvature (smoothed), speed profile
+  motion::RacingLine racing;   // points, s, curvature (smoothed), speed profile
   RefLine line;                // the same points as a Frenet frame
   std::vector<double> speed;   // per point
 };
 
-// The simulator's AV-21 (sim::VehicleParams) as speed-profile limits: drive force, power and drag
-// per mass from its parameters; lateral grip 15 m/s² (μ g = 15.7 less a margin) and the brakes at
-// the grip; downforce ignored. brickyard-plan's default car and the racing-line comparison's.
-VehicleLimits av21_limits();
-
-// `track` may be null (no world): the line is used as the file has it.
-Reference make_reference(const sim::CenterLine& line, const sim::Track* track, double edge_margin,
-                         const sim::SpeedLimits& limits);
+// `track` may be null (no map): the line is used as the file has it.
+Reference make_reference(const track::CenterLine& line, const track::Track* track, double edge_margin,
+                         const VehicleLimits& limits);
 
 // The track's edges across the line, for RoadGraph::build.
-TrackRoom track_room(const sim::Track& track, const RefLine& line);
+TrackRoom track_room(const track::Track& track, const RefLine& line);
 
 // Identifies what a graph file was built from — the racing line file's points, the edge margin
 // and the graph parameters — so a mismatch is caught in configure, before anything runs. (The
-// track itself is not in it: the world arrives as a message, after configure.)
-std::uint64_t reference_digest(const sim::CenterLine& raceline, double edge_margin, const RoadGraphParams& p);
+// track itself is not in it: the map arrives as a message, after configure.)
+std::uint64_t reference_digest(const track::CenterLine& raceline, double edge_margin, const RoadGraphParams& p);
 
 }  // namespace brickyard::planning

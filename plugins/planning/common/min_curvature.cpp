@@ -1,6 +1,7 @@
 #include "min_curvature.hpp"
 
 #include "box_qp.hpp"
+#include "track/curvature.hpp"
 
 #include <Eigen/Sparse>
 
@@ -145,21 +146,13 @@ MinCurvatureResult min_curvature_line(const ClosedLine& line, const MinCurvature
   return r;
 }
 
-double menger_curvature(double ax, double ay, double bx, double by, double cx, double cy, double* sides) {
-  const Vec2 e1{bx - ax, by - ay}, e2{cx - bx, cy - by};
-  const double l1 = std::hypot(e1.x, e1.y), l2 = std::hypot(e2.x, e2.y), l3 = std::hypot(cx - ax, cy - ay);
-  if (sides) *sides = l1 + l2;
-  if (l1 * l2 * l3 <= 0) return 0;
-  return 2 * cross(e1, e2) / (l1 * l2 * l3);
-}
-
 double summed_squared_curvature(const std::vector<double>& x, const std::vector<double>& y) {
   const int n = static_cast<int>(x.size());
   double sum = 0;
   for (int i = 0; i < n; ++i) {
     const int a = (i + n - 1) % n, b = (i + 1) % n;
     double sides;
-    const double k = menger_curvature(x[a], y[a], x[i], y[i], x[b], y[b], &sides);
+    const double k = track::menger_curvature(x[a], y[a], x[i], y[i], x[b], y[b], &sides);
     if (k != 0) sum += k * k * 0.5 * sides;
   }
   return sum;

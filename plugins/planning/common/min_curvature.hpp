@@ -42,11 +42,7 @@ OffsetFrame offset_frame(const ClosedLine& line, double margin, const char* who)
 
 MinCurvatureResult min_curvature_line(const ClosedLine& line, const MinCurvatureParams& p = {});
 
-// Menger (three-point) curvature at b of the points a, b, c, 1/m, left positive; 0 when two of them
-// coincide. `sides`, when given: |ab| + |bc|.
-double menger_curvature(double ax, double ay, double bx, double by, double cx, double cy, double* sides = nullptr);
-
-// Σ κ_i² · ds_i of a closed line (three-point curvature), the quantity minimised; 1/m.
+// Σ κ_i² · ds_i of a closed line (three-point curvature: track::menger_curvature), the quantity minimised; 1/m.
 double summed_squared_curvature(const std::vector<double>& x, const std::vector<double>& y);
 
 }  // namespace brickyard::planning

@@ -1,7 +1,7 @@
 #include "min_time.hpp"
 
 #include "box_qp.hpp"
-#include "../../sim/common/track.hpp"
+#include "track/curvature.hpp"
 
 #include <Eigen/Sparse>
 #include <Eigen/SparseCholesky>
@@ -18,7 +18,7 @@ namespace {
 // is summed_squared_curvature's term.
 void menger(double ax, double ay, double bx, double by, double cx, double cy, double& k, double& r) {
   double sides;
-  k = menger_curvature(ax, ay, bx, by, cx, cy, &sides);
+  k = track::menger_curvature(ax, ay, bx, by, cx, cy, &sides);
   r = k * std::sqrt(0.5 * sides);
 }
 
@@ -41,7 +41,7 @@ LapProfile lap_profile(const std::vector<double>& x, const std::vector<double>& 
   if (x.size() < 3 || y.size() != x.size()) throw std::invalid_argument("lap_profile: needs at least 3 points with x and y each");
   LapProfile r;
   measure(x, y, r.ds, r.kappa);
-  if (average_m > 0) r.kappa = sim::signed_curvature(sim::CenterLine{"", x, y, {}, {}}, average_m);
+  if (average_m > 0) r.kappa = track::signed_curvature(track::CenterLine{"", x, y, {}, {}}, average_m);
   r.v = speed_profile(r.ds, r.kappa, limits, true);
   r.time = profile_time(r.ds, r.v, true);
   return r;
@@ -107,10 +107,10 @@ MinTimeResult min_time_refine(const ClosedLine& line, const std::vector<double>&
       if (averaged) {
         // The averaged measure: T(ds, A κ) with A signed_curvature's moving average, so dT/dκ =
         // Aᵀ dT/d(Aκ) = A dT/d(Aκ) (A is symmetric); the steps enter as they are.
-        const sim::CenterLine now{"", res.x, res.y, {}, {}};
+        const track::CenterLine now{"", res.x, res.y, {}, {}};
         std::vector<double> dka, ddsa;
-        closed_lap_time_gradient(ds, sim::signed_curvature(now, p.averaged_over), limits, dka, ddsa);
-        dka = sim::cyclic_average(dka, sim::curvature_window(now, p.averaged_over));
+        closed_lap_time_gradient(ds, track::signed_curvature(now, p.averaged_over), limits, dka, ddsa);
+        dka = track::cyclic_average(dka, track::curvature_window(now, p.averaged_over));
         for (int i = 0; i < n; ++i) dk[i] += dka[i], dds[i] += ddsa[i];
       }
       std::vector<Eigen::Triplet<double>> trip;

@@ -4,7 +4,7 @@
 // time inside the same box, with the bending energy Σ κ² ds kept within a slack of the start's.
 // Two measures of the lap time, both the ggv + drag profile of speed_profile.hpp: T_p with the
 // Menger curvature of each point (the comparison's measure), and T_a with that curvature averaged
-// over `averaged_over` m by sim::signed_curvature (as brickyard-plan --profile writes the line and
+// over `averaged_over` m by track::signed_curvature (as brickyard-plan --profile writes the line and
 // the driving stack sees it). The objective is T = T_p + T_a (T_p alone with averaged_over 0).
 //
 // Each step is the box-constrained QP  min gᵀd + ½ dᵀ(ρ S + 2ν JᵀJ) d + 2ν (Jᵀr)ᵀd,
@@ -17,11 +17,16 @@
 // down, neither T_p nor T_a goes up and the true Σ κ² ds stays within the slack; otherwise ρ
 // grows (a shorter step). docs/planning.md has the comparison with TUM's lines.
 #include "min_curvature.hpp"
-#include "speed_profile.hpp"
+#include "motion/speed_profile.hpp"
 
 #include <vector>
 
 namespace brickyard::planning {
+
+using motion::VehicleLimits;
+using motion::closed_lap_time_gradient;
+using motion::profile_time;
+using motion::speed_profile;
 
 struct MinTimeParams {
   double margin = 1.5;             // m kept from each edge: the same box as MinCurvatureParams'
@@ -60,7 +65,7 @@ struct LapProfile {
 // The closed line's lap under the limits (the closed ggv + drag profile) with each point's
 // curvature the Menger (three-point) curvature of it and its neighbours (average_m 0: the
 // measure of the comparison with TUM's lines), or that averaged over average_m of line by
-// sim::signed_curvature (30 m: as `brickyard-plan line --profile` writes it and the driving
+// track::signed_curvature (30 m: as `brickyard-plan line --profile` writes it and the driving
 // stack sees it). Throws std::invalid_argument for fewer than 3 points or x, y of unequal size.
 LapProfile lap_profile(const std::vector<double>& x, const std::vector<double>& y, const VehicleLimits& limits,
                        double average_m = 0);

@@ -18,12 +18,17 @@
 // route opens.
 #include "graph_search.hpp"
 #include "road_graph.hpp"
-#include "speed_profile.hpp"
+#include "motion/speed_profile.hpp"
 
 #include <cstdint>
 #include <vector>
 
 namespace brickyard::planning {
+
+using motion::VehicleLimits;
+using motion::closed_lap_time_gradient;
+using motion::profile_time;
+using motion::speed_profile;
 
 struct PlannerParams {
   SearchParams search;

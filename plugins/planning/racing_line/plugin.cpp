@@ -1,23 +1,24 @@
 // planning.racing_line: publishes the optimal racing line as a Path — points, heading, curvature
 // and a speed profile from lateral and longitudinal acceleration limits — for the path tracker.
-// With the world wired, the line is kept edge_margin inside the track (TUM's IMS line passes
+// With the map wired, the line is kept edge_margin inside the track (TUM's IMS line passes
 // 0.6 m from the edges, closer than half the car's width).
 #include <brickyard/msgs/LocalizationEstimate.h>
 #include <brickyard/msgs/ObstacleList.h>
 #include <brickyard/msgs/Path.h>
-#include <brickyard/msgs/TrackWorld.h>
+#include <brickyard/msgs/TrackMap.h>
 #include <brickyard/plugin.hpp>
 
-#include "../../sim/common/pure_pursuit.hpp"
-#include "../../sim/world_msg.hpp"
 #include "../line_params.hpp"
+#include "map_msg.hpp"
+#include "motion/racing_line.hpp"
+#include "newest.hpp"
+#include "track/track.hpp"
 
 #include <cmath>
 
 namespace {
 
 using namespace brickyard;
-using namespace brickyard::sim;
 using brickyard::planning::LineParams;
 using brickyard::planning::read_line_params;
 using brickyard::planning::with_line_params;
@@ -28,7 +29,7 @@ class RacingLineNode : public Plugin {
     return with_line_params(
                Manifest("planning.racing_line", "1.0.0")
                    .describe("the racing line as a Path with a speed profile (lateral and longitudinal limits)")
-                   .input<msgs::TrackWorld>("world", "when wired, the line is kept edge_margin inside the track", false, 1)
+                   .input<msgs::TrackMap>("map", "when wired, the line is kept edge_margin inside the track", false, 1)
                    // Read by planning.road_graph; accepted here so the two planners swap by the plugin's name.
                    .input<msgs::LocalizationEstimate>("estimate", "not used: this planner ignores where the car is", false, 1)
                    .input<msgs::ObstacleList>("obstacles", "not used: this planner does not avoid obstacles", false, 1)
@@ -42,7 +43,7 @@ class RacingLineNode : public Plugin {
     line_ = lp.line;
     limits_ = lp.limits;
     margin_ = lp.edge_margin;
-    world_ = ctx.input<msgs::TrackWorld>("world");
+    map_ = ctx.input<msgs::TrackMap>("map");
     estimate_ = ctx.input<msgs::LocalizationEstimate>("estimate");
     obstacles_ = ctx.input<msgs::ObstacleList>("obstacles");
     out_ = ctx.output<msgs::Path>("path");
@@ -52,17 +53,17 @@ class RacingLineNode : public Plugin {
     estimate_.take();  // drained, unused
     obstacles_.take();
     if (!path_) {
-      CenterLine line = line_;
-      if (world_.connected()) {
-        auto w = newest(world_);
+      track::CenterLine line = line_;
+      if (map_.connected()) {
+        auto w = plugins::newest(map_);
         if (!w) return;
         try {
-          line = keep_inside(line_, Track(from_message(*w)), margin_);
-        } catch (const std::exception& e) {  // a malformed world: the line as the file has it
-          ctx.log(LogLevel::warn, std::string("world unusable (") + e.what() + "): the racing line is not kept inside the edges");
+          line = motion::keep_inside(line_, track::Track(plugins::from_message(*w)), margin_);
+        } catch (const std::exception& e) {  // a malformed map: the line as the file has it
+          ctx.log(LogLevel::warn, std::string("map unusable (") + e.what() + "): the racing line is not kept inside the edges");
         }
       }
-      const RacingLine r = make_racing_line(line, limits_);
+      const motion::RacingLine r = motion::make_racing_line(line, limits_);
       auto m = std::make_shared<msgs::Path>();
       m->header().frame_id("map");
       const std::size_t n = r.x.size();
@@ -91,12 +92,12 @@ class RacingLineNode : public Plugin {
   }
 
  private:
-  CenterLine line_;
-  SpeedLimits limits_;
+  track::CenterLine line_;
+  motion::VehicleLimits limits_;
   double margin_ = 2.5;
   std::shared_ptr<const msgs::Path> path_;
   std::uint32_t seq_ = 0;
-  Input<msgs::TrackWorld> world_;
+  Input<msgs::TrackMap> map_;
   Input<msgs::LocalizationEstimate> estimate_;
   Input<msgs::ObstacleList> obstacles_;
   Output<msgs::Path> out_;

@@ -1,5 +1,5 @@
 // planning.road_graph: the paper's obstacle-avoiding planner. A lattice along the racing line
-// (built from the world at start, or loaded from a file `brickyard-plan graph` wrote) is searched
+// (built from the map at start, or loaded from a file `brickyard-plan graph` wrote) is searched
 // at rate_hz from the car's estimate around the obstacles perception reports; the Path it
 // publishes runs horizon metres ahead with speeds. Same ports and line parameters as
 // planning.racing_line, so the two swap by the plugin's name. Algorithms:
@@ -7,14 +7,14 @@
 #include <brickyard/msgs/LocalizationEstimate.h>
 #include <brickyard/msgs/ObstacleList.h>
 #include <brickyard/msgs/Path.h>
-#include <brickyard/msgs/TrackWorld.h>
+#include <brickyard/msgs/TrackMap.h>
 #include <brickyard/plugin.hpp>
 
-#include "../../sim/common/pure_pursuit.hpp"
-#include "../../sim/world_msg.hpp"
 #include "../common/line_setup.hpp"
 #include "../line_params.hpp"
 #include "../common/road_graph_planner.hpp"
+#include "map_msg.hpp"
+#include "newest.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -35,12 +35,12 @@ class RoadGraphNode : public Plugin {
     const PlannerParams pp;
     return with_line_params(Manifest("planning.road_graph", "1.0.0")
         .describe("obstacle avoidance on a road graph (Frenet lattice) along the racing line; a Path with speeds, replanned at rate_hz")
-        .input<msgs::TrackWorld>("world", "the track: the graph's room and the line's edge margin (must be wired)", false, 1)
+        .input<msgs::TrackMap>("map", "the track: the graph's room and the line's edge margin (must be wired)", false, 1)
         .input<msgs::LocalizationEstimate>("estimate", "where the car is (base_link, map frame)", false, 64)
         .input<msgs::ObstacleList>("obstacles", "obstacles in the vehicle frame, placed with the estimate of their stamp", false, 16)
         .output<msgs::Path>("path", "horizon m of path from just behind the car, with speeds (open)"))
         .param(ParamSpec::number("rate_hz", 20).in_unit("Hz").at_least(0.1).doc("replanning rate"))
-        .param(ParamSpec::string("graph_file", "").doc("a graph written by `brickyard-plan graph`; empty: built from the world at start"))
+        .param(ParamSpec::string("graph_file", "").doc("a graph written by `brickyard-plan graph`; empty: built from the map at start"))
         .param(ParamSpec::number("layer_spacing", g.layer_spacing).in_unit("m").range(1, 100))
         .param(ParamSpec::number("layer_spacing_turn", g.layer_spacing_turn).in_unit("m").range(1, 100))
         .param(ParamSpec::number("lateral_step", g.lateral_step).in_unit("m").range(0.1, 5))
@@ -93,11 +93,7 @@ class RoadGraphNode : public Plugin {
     pp_.commit_min = p.number("commit_min");
     pp_.obstacle_memory = p.number("obstacle_memory");
     pp_.confirmations = static_cast<int>(p.integer("obstacle_confirmations"));
-    pp_.limits.v_max = limits_.v_max;
-    pp_.limits.a_lat = limits_.a_lat;
-    pp_.limits.a_accel = limits_.a_accel;
-    pp_.limits.a_decel = limits_.a_decel;
-    pp_.limits.ellipse = false;  // as the racing line's profile: the two planners agree on a clear track
+    pp_.limits = limits_;  // as the racing line's profile (no ellipse): the two planners agree on a clear track
     const std::string gf = p.string("graph_file");
     if (!gf.empty()) {
       graph_file_ = ctx.find_file(gf);
@@ -111,10 +107,10 @@ class RoadGraphNode : public Plugin {
       if (loaded_->source_digest() != reference_digest(line_, margin_, gp_))
         throw BadInput("graph_file " + graph_file_ + " was built for another racing line, edge_margin or graph parameters (rebuild it with brickyard-plan graph)");
     }
-    world_ = ctx.input<msgs::TrackWorld>("world");
-    // The line is kept inside the track's edges as the graph was built: the world is needed even
+    map_ = ctx.input<msgs::TrackMap>("map");
+    // The line is kept inside the track's edges as the graph was built: the map is needed even
     // with a graph file, or the nodes would sit on another line.
-    if (!world_.connected()) throw BadInput("input 'world' must be wired: the racing line is kept inside its edges");
+    if (!map_.connected()) throw BadInput("input 'map' must be wired: the racing line is kept inside its edges");
     estimate_ = ctx.input<msgs::LocalizationEstimate>("estimate");
     obstacles_ = ctx.input<msgs::ObstacleList>("obstacles");
     out_ = ctx.output<msgs::Path>("path");
@@ -226,21 +222,21 @@ class RoadGraphNode : public Plugin {
   }
 
  private:
-  // The racing line, the graph and the planner, once the world is known.
+  // The racing line, the graph and the planner, once the map is known.
   bool setup(Context& ctx) {
-    std::shared_ptr<const msgs::TrackWorld> w;
-    if (world_.connected()) {
-      w = sim::newest(world_);
+    std::shared_ptr<const msgs::TrackMap> w;
+    if (map_.connected()) {
+      w = plugins::newest(map_);
       if (!w) return false;
     }
     try {
-      std::unique_ptr<sim::Track> track;
-      if (w) track = std::make_unique<sim::Track>(sim::from_message(*w));
+      std::unique_ptr<track::Track> track;
+      if (w) track = std::make_unique<track::Track>(plugins::from_message(*w));
       line_ready_ = make_reference(line_, track.get(), margin_, limits_);
       if (loaded_) {
         graph_ = std::move(loaded_);
       } else {
-        if (!track) throw BadInput("no world to build the road graph from");
+        if (!track) throw BadInput("no map to build the road graph from");
         graph_ = std::make_unique<RoadGraph>(RoadGraph::build(line_ready_.line, track_room(*track, line_ready_.line), gp_, reference_digest(line_, margin_, gp_)));
       }
       planner_ = std::make_unique<RoadGraphPlanner>(*graph_, line_ready_.line, line_ready_.speed, pp_);
@@ -249,7 +245,7 @@ class RoadGraphNode : public Plugin {
     } catch (const std::exception& e) {
       throw BadInput(std::string("road graph for ") + line_file_ + ": " + e.what());
     }
-    ctx.log(LogLevel::info, "road graph " + (graph_file_.empty() ? std::string("built from the world") : "loaded from " + graph_file_) +
+    ctx.log(LogLevel::info, "road graph " + (graph_file_.empty() ? std::string("built from the map") : "loaded from " + graph_file_) +
                                 ": " + std::to_string(graph_->layers().size()) + " layers, " + std::to_string(graph_->node_count()) +
                                 " nodes, " + std::to_string(graph_->edge_count()) + " edges");
     return true;
@@ -265,9 +261,9 @@ class RoadGraphNode : public Plugin {
     return *best;
   }
 
-  sim::CenterLine line_;
+  track::CenterLine line_;
   std::string line_file_, graph_file_;
-  sim::SpeedLimits limits_;
+  VehicleLimits limits_;
   double margin_ = 2.5;
   RoadGraphParams gp_;
   PlannerParams pp_;
@@ -280,7 +276,7 @@ class RoadGraphNode : public Plugin {
   bool stopping_ = false;
   double max_offset_ = 0;
   std::set<int> shown_layers_;
-  Input<msgs::TrackWorld> world_;
+  Input<msgs::TrackMap> map_;
   Input<msgs::LocalizationEstimate> estimate_;
   Input<msgs::ObstacleList> obstacles_;
   Output<msgs::Path> out_;

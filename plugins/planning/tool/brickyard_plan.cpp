@@ -1,8 +1,9 @@
 // brickyard-plan: the offline half of planning.
-//   brickyard-plan line  --track FILE [--margin M] --out FILE [--profile FILE] [limits] [--min-time on|off] [--curvature-slack S]
+//   brickyard-plan line  --track FILE [--margin M] --out FILE [--profile FILE] [--vehicle FILE] [limits] [--min-time on|off] [--curvature-slack S]
 //   brickyard-plan graph --track FILE --raceline FILE [--edge-margin M] [graph options] --out FILE
 // `line` optimises the minimum-curvature racing line, refines it for minimum time under the
-// vehicle limits given (--min-time off: not), and writes it as x_m,y_m (TUM's format, which
+// vehicle limits given (the vehicle file's, AV-21 by default, each overridable; --min-time off:
+// not), and writes it as x_m,y_m (TUM's format, which
 // planning.racing_line and planning.road_graph read); --profile also writes
 // s_m,x_m,y_m,kappa_radpm,vx_mps with the ggv + drag speed profile (curvature averaged over 30 m,
 // as the driving stack sees the line: lap_profile) and prints the lap time.
@@ -12,12 +13,17 @@
 #include "common/min_curvature.hpp"
 #include "common/min_time.hpp"
 #include "common/road_graph.hpp"
-#include "common/speed_profile.hpp"
+#include "motion/speed_profile.hpp"
+#include "motion/vehicle_limits.hpp"
+#include "track/centre_line.hpp"
+#include "track/track.hpp"
+#include "vehicle/vehicle.hpp"
 
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <stdexcept>
@@ -33,7 +39,7 @@ struct Usage : std::runtime_error {
 };
 
 const char* kUsage =
-    "usage: brickyard-plan line  --track FILE [--margin M] --out FILE [--profile FILE]\n"
+    "usage: brickyard-plan line  --track FILE [--margin M] --out FILE [--profile FILE] [--vehicle FILE]\n"
     "                            [--v-max V --a-lat A --a-accel A --a-decel A --drag K --power P]\n"
     "                            [--min-time on|off] [--curvature-slack S]\n"
     "       brickyard-plan graph --track FILE --raceline FILE --out FILE [--edge-margin M]\n"
@@ -72,6 +78,20 @@ void no_leftovers(const std::map<std::string, std::string>& o) {
   if (!o.empty()) throw Usage("--" + o.begin()->first + ": unknown option");
 }
 
+// The vehicle file: --vehicle, else the AV-21's from the data folder beside the executable
+// (<prefix>/share/brickyard/data, in the build tree and once installed).
+vehicle::Vehicle car(std::map<std::string, std::string>& o) {
+  std::string path;
+  if (o.count("vehicle")) {
+    path = text(o, "vehicle");
+  } else {
+    std::error_code ec;
+    const auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+    path = (exe.parent_path() / ".." / "share" / "brickyard" / "data" / "vehicles" / "av21.json").string();
+  }
+  return vehicle::load_vehicle(path);
+}
+
 double since_ms(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
@@ -81,7 +101,7 @@ int line_cmd(std::map<std::string, std::string> o) {
   const std::string profile = o.count("profile") ? text(o, "profile") : "";
   MinCurvatureParams p;
   p.margin = number(o, "margin", p.margin);
-  VehicleLimits l = av21_limits();  // the simulator's car unless told otherwise
+  VehicleLimits l = motion::vehicle_limits(car(o));  // the AV-21 unless told otherwise
   l.v_max = number(o, "v-max", l.v_max);
   l.a_lat = number(o, "a-lat", l.a_lat);
   l.a_accel = number(o, "a-accel", l.a_accel);
@@ -96,7 +116,7 @@ int line_cmd(std::map<std::string, std::string> o) {
   mp.curvature_slack = number(o, "curvature-slack", mp.curvature_slack);
   if (!(mp.curvature_slack >= 0)) throw Usage("--curvature-slack " + slack_text + ": must be >= 0");
   no_leftovers(o);
-  const sim::CenterLine c = sim::load_centerline_csv(track);
+  const track::CenterLine c = track::load_centerline_csv(track);
   const ClosedLine line{c.x, c.y, c.width_left, c.width_right};
   const auto t0 = std::chrono::steady_clock::now();
   MinCurvatureResult r = min_curvature_line(line, p);
@@ -128,7 +148,7 @@ int line_cmd(std::map<std::string, std::string> o) {
               summed_squared_curvature(r.x, r.y), r.iterations, ms);
   std::fputs(refined, stdout);
   if (!profile.empty()) {
-    // The curvature averaged as the driving stack does (sim::make_racing_line's 30 m), the window
+    // The curvature averaged as the driving stack does (motion::make_racing_line's 30 m), the window
     // of the refinement's second measure.
     const LapProfile lp = lap_profile(r.x, r.y, l, mp.averaged_over);
     const std::size_t n = r.x.size();
@@ -159,11 +179,12 @@ int graph_cmd(std::map<std::string, std::string> o) {
   p.max_curvature = number(o, "max-curvature", p.max_curvature);
   p.max_edge_length = number(o, "max-edge-length", p.max_edge_length);
   no_leftovers(o);
-  sim::WorldSpec w;
-  w.line = sim::load_centerline_csv(track);
-  const sim::Track t(w);
-  const sim::CenterLine raw = sim::load_xy_csv(raceline);
-  const Reference ref = make_reference(raw, &t, edge_margin, sim::SpeedLimits{});
+  track::TrackGeometry w;
+  w.line = track::load_centerline_csv(track);
+  const track::Track t(w);
+  const track::CenterLine raw = track::load_xy_csv(raceline);
+  const VehicleLimits d;  // the line's speeds play no part in the graph: the planners' defaults
+  const Reference ref = make_reference(raw, &t, edge_margin, motion::independent_limits(d.v_max, d.a_lat, d.a_accel, d.a_decel));
   const auto t0 = std::chrono::steady_clock::now();
   const RoadGraph g = RoadGraph::build(ref.line, track_room(t, ref.line), p, reference_digest(raw, edge_margin, p));
   const double ms = since_ms(t0);

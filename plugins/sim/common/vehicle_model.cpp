@@ -27,7 +27,7 @@ void VehicleModel::step(double dt, const Command& cmd, const Eigen::Vector2d& gr
   const double max_ds = p_.max_steer_rate * dt;
   s_.steer += std::clamp(steer_target_ - s_.steer, -max_ds, max_ds);
 
-  const double m = p_.mass, g = p_.gravity, L = p_.wheelbase();
+  const double m = p_.mass, g = vehicle::gravity, L = p_.lf + p_.lr;  // the model's axles, as its forces use them
   const double d = s_.steer, cd = std::cos(d), sd = std::sin(d);
   const double vx = s_.vx, vy = s_.vy, r = s_.r;
   const double cy = std::cos(s_.yaw), sy = std::sin(s_.yaw);

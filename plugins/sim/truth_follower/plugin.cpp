@@ -3,6 +3,8 @@
 #include <brickyard/msgs/ControlCommand.h>
 #include <brickyard/plugin.hpp>
 
+#include "vehicle_param.hpp"
+
 #include "../common/pure_pursuit.hpp"
 #include "../world_msg.hpp"
 
@@ -14,8 +16,8 @@ using namespace brickyard::sim;
 class TruthFollower : public Plugin {
  public:
   static Manifest manifest() {
-    SpeedLimits l;
-    PursuitParams pp;
+    const motion::VehicleLimits l;
+    const PursuitParams pp;
     return Manifest("sim.truth_follower", "1.0.0")
         .describe("Pure pursuit on a racing line from ground truth (a stand-in driver for simulator graphs)")
         .input<msgs::VehicleState>("truth", "ground truth", true, 1)
@@ -32,6 +34,7 @@ class TruthFollower : public Plugin {
         .param(ParamSpec::number("lookahead_min", pp.lookahead_min).in_unit("m").at_least(0.5))
         .param(ParamSpec::number("lookahead_time", pp.lookahead_time).in_unit("s").at_least(0))
         .param(ParamSpec::number("speed_gain", pp.speed_gain).at_least(0))
+        .param(plugins::vehicle_param())
         .periodic("rate_hz");
   }
 
@@ -46,12 +49,11 @@ class TruthFollower : public Plugin {
     }
     line_ = xy;
     margin_ = p.number("edge_margin");
-    SpeedLimits& l = limits_;
-    l.v_max = p.number("v_max");
-    l.a_lat = p.number("a_lat");
-    l.a_accel = p.number("a_accel");
-    l.a_decel = p.number("a_decel");
+    limits_ = motion::independent_limits(p.number("v_max"), p.number("a_lat"), p.number("a_accel"), p.number("a_decel"));
+    const vehicle::Vehicle car = plugins::read_vehicle(ctx);
     PursuitParams& pp = pursuit_params_;
+    pp.wheelbase = car.wheelbase;
+    pp.max_steer = car.max_steer;
     pp.lookahead_min = p.number("lookahead_min");
     pp.lookahead_time = p.number("lookahead_time");
     pp.speed_gain = p.number("speed_gain");
@@ -68,9 +70,9 @@ class TruthFollower : public Plugin {
         auto w = newest(world_);
         if (!w) return;
         Track t(from_message(*w));
-        line = keep_inside(line_, t, margin_);
+        line = motion::keep_inside(line_, t, margin_);
       }
-      pursuit_ = std::make_unique<PurePursuit>(make_racing_line(line, limits_), pursuit_params_);
+      pursuit_ = std::make_unique<PurePursuit>(motion::make_racing_line(line, limits_), pursuit_params_);
     }
     auto s = newest(truth_);
     if (!s) return;
@@ -90,7 +92,7 @@ class TruthFollower : public Plugin {
  private:
   CenterLine line_;
   double margin_ = 2.5;
-  SpeedLimits limits_;
+  motion::VehicleLimits limits_;
   PursuitParams pursuit_params_;
   std::unique_ptr<PurePursuit> pursuit_;
   Input<msgs::TrackWorld> world_;

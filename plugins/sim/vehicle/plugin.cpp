@@ -5,6 +5,8 @@
 
 #include <cmath>
 
+#include "vehicle_param.hpp"
+
 #include "../common/vehicle_model.hpp"
 #include "../world_msg.hpp"
 
@@ -16,9 +18,8 @@ using namespace brickyard::sim;
 class Vehicle : public Plugin {
  public:
   static Manifest manifest() {
-    VehicleParams d;
     return Manifest("sim.vehicle", "1.0.0")
-        .describe("Dynamic single-track race car (AV-21 defaults) on the world's banked road; publishes ground truth")
+        .describe("Dynamic single-track race car (the vehicle file's, AV-21 by default) on the world's banked road; publishes ground truth")
         .input<msgs::TrackWorld>("world", "the world to drive in", true, 1)
         .input<msgs::ControlCommand>("command", "steer, throttle, brake (latest one holds)", false, 1)
         .output<msgs::VehicleState>("truth", "ground truth at base_link (rear-axle centre), every step")
@@ -26,42 +27,13 @@ class Vehicle : public Plugin {
         .param(ParamSpec::number("start_s", 0).in_unit("m").doc("start position along the centre line"))
         .param(ParamSpec::number("start_d", 0).in_unit("m").doc("start lateral offset, left positive"))
         .param(ParamSpec::number("start_speed", 0).in_unit("m/s").at_least(0))
-        .param(ParamSpec::number("mass", d.mass).in_unit("kg").at_least(1))
-        .param(ParamSpec::number("yaw_inertia", d.yaw_inertia).in_unit("kg m^2").at_least(1))
-        .param(ParamSpec::number("lf", d.lf).in_unit("m").at_least(0.1).doc("CG to front axle"))
-        .param(ParamSpec::number("lr", d.lr).in_unit("m").at_least(0.1).doc("CG to rear axle"))
-        .param(ParamSpec::string("tyre", d.tyre).one_of({"linear", "pacejka"}))
-        .param(ParamSpec::number("cornering_front", d.cornering_front).in_unit("N/rad").at_least(1))
-        .param(ParamSpec::number("cornering_rear", d.cornering_rear).in_unit("N/rad").at_least(1))
-        .param(ParamSpec::number("mu", d.mu).at_least(0.1))
-        .param(ParamSpec::number("drag_area", d.drag_area).in_unit("m^2").at_least(0))
-        .param(ParamSpec::number("lift_area", d.lift_area).in_unit("m^2").at_least(0).doc("downforce Cl*A"))
-        .param(ParamSpec::number("max_power", d.max_power).in_unit("W").at_least(0))
-        .param(ParamSpec::number("max_brake_force", d.max_brake_force).in_unit("N").at_least(0))
-        .param(ParamSpec::number("max_steer", d.max_steer).in_unit("rad").at_least(0.01).doc("road wheel"))
-        .param(ParamSpec::number("max_steer_rate", d.max_steer_rate).in_unit("rad/s").at_least(0.01))
-        .param(ParamSpec::number("steer_delay", d.steer_delay).in_unit("s").at_least(0))
+        .param(plugins::vehicle_param())
         .periodic("rate_hz");
   }
 
   void configure(Context& ctx) override {
     const Params& p = ctx.params();
-    VehicleParams v;
-    v.mass = p.number("mass");
-    v.yaw_inertia = p.number("yaw_inertia");
-    v.lf = p.number("lf");
-    v.lr = p.number("lr");
-    v.tyre = p.string("tyre");
-    v.cornering_front = p.number("cornering_front");
-    v.cornering_rear = p.number("cornering_rear");
-    v.mu = p.number("mu");
-    v.drag_area = p.number("drag_area");
-    v.lift_area = p.number("lift_area");
-    v.max_power = p.number("max_power");
-    v.max_brake_force = p.number("max_brake_force");
-    v.max_steer = p.number("max_steer");
-    v.max_steer_rate = p.number("max_steer_rate");
-    v.steer_delay = p.number("steer_delay");
+    const VehicleParams v = plugins::read_vehicle(ctx);
     model_ = std::make_unique<VehicleModel>(v);
     dt_ = 1.0 / p.number("rate_hz");
     start_s_ = p.number("start_s");

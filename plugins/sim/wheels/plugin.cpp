@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "vehicle_param.hpp"
 #include "../common/digest.hpp"
 #include "../common/rng.hpp"
 #include "../sensor_faults.hpp"
@@ -25,8 +26,7 @@ class Wheels : public Plugin {
         .param(ParamSpec::number("rate_hz", 100).in_unit("Hz").at_least(1))
         .param(ParamSpec::number("noise", 0.05).in_unit("m/s").at_least(0))
         .param(ParamSpec::number("scale", 1.0).at_least(0.5).doc("tyre radius error as a factor"))
-        .param(ParamSpec::number("wheelbase", 2.97).in_unit("m").at_least(0.5))
-        .param(ParamSpec::number("track_width", 1.64).in_unit("m").at_least(0.5))
+        .param(plugins::vehicle_param().doc("the car's description file: wheelbase and track width"))
         .param(ParamSpec::json("faults", "[]").doc("windows over (fl, fr, rl, rr): bias, drift, noise, freeze, dropout, spikes"))
         .periodic("rate_hz");
   }
@@ -35,8 +35,9 @@ class Wheels : public Plugin {
     const Params& p = ctx.params();
     noise_ = p.number("noise");
     scale_ = p.number("scale");
-    wb_ = p.number("wheelbase");
-    half_track_ = p.number("track_width") / 2;
+    const vehicle::Vehicle car = plugins::read_vehicle(ctx);
+    wb_ = car.wheelbase;
+    half_track_ = car.track_width / 2;
     faults_ = read_faults(p, 4, {"bias", "drift", "noise", "freeze", "dropout", "spikes"});
     rng_ = Rng(ctx.seed());
     truth_ = ctx.input<msgs::VehicleState>("truth");
@@ -78,7 +79,7 @@ class Wheels : public Plugin {
 
  private:
   Digest digest_;
-  double noise_ = 0, scale_ = 1, wb_ = 2.97, half_track_ = 0.82;
+  double noise_ = 0, scale_ = 1, wb_ = 0, half_track_ = 0;
   FaultSchedule faults_;
   Rng rng_;
   std::uint32_t seq_ = 0;

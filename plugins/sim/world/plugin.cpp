@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "bank_params.hpp"
 #include "../world_msg.hpp"
 
 namespace {
@@ -38,35 +39,16 @@ std::vector<Pylon> parse_pylons(const std::string& text) {
   return out;
 }
 
-std::vector<BankSpec::Range> parse_bank_segments(const std::string& text) {
-  auto j = nlohmann::json::parse(text);
-  std::vector<BankSpec::Range> out;
-  if (!j.is_array()) throw BadInput("parameter 'bank_segments': must be an array of [s0, s1, degrees]");
-  for (std::size_t i = 0; i < j.size(); ++i) {
-    const auto& r = j[i];
-    if (!r.is_array() || r.size() != 3 || !r[0].is_number() || !r[1].is_number() || !r[2].is_number())
-      throw BadInput("parameter 'bank_segments' /" + std::to_string(i) + ": must be [s0, s1, degrees]");
-    out.push_back({r[0].get<double>(), r[1].get<double>(), r[2].get<double>()});
-  }
-  return out;
-}
-
 class World : public Plugin {
  public:
   static Manifest manifest() {
-    return Manifest("sim.world", "1.0.0")
-        .describe("The simulated world: a track file (TUM racetrack-database format), banking, walls and pylons")
-        .output<msgs::TrackWorld>("world", "the static world, republished at rate_hz for late joiners")
-        .param(ParamSpec::string("track", "tracks/IMS.csv").doc("centre-line file: x_m,y_m,w_tr_right_m,w_tr_left_m"))
-        .param(ParamSpec::string("name", "").doc("track name; default: the file's stem"))
-        .param(ParamSpec::string("bank_mode", "curvature").one_of({"none", "constant", "curvature", "segments"})
-                   .doc("where the road is banked: nowhere, everywhere, in turns, or in listed ranges of s"))
-        .param(ParamSpec::number("bank_deg", 9.2).in_unit("deg").range(-45, 45)
-                   .doc("bank angle raising the outside (IMS turns: 9 deg 12 min)"))
-        .param(ParamSpec::number("bank_curvature_threshold", 0.002).in_unit("1/m").at_least(0)
-                   .doc("curvature mode: a point is in a turn above this curvature"))
-        .param(ParamSpec::number("bank_transition_m", 100).in_unit("m").at_least(0).doc("length of the bank ramps"))
-        .param(ParamSpec::json("bank_segments", "[]").doc("segments mode: [[s0, s1, degrees], ...]"))
+    return plugins::with_bank_params(
+               Manifest("sim.world", "1.0.0")
+                   .describe("The simulated world: a track file (TUM racetrack-database format), banking, walls and pylons")
+                   .output<msgs::TrackWorld>("world", "the static world, republished at rate_hz for late joiners")
+                   .param(ParamSpec::string("track", "tracks/IMS.csv").doc("centre-line file: x_m,y_m,w_tr_right_m,w_tr_left_m"))
+                   .param(ParamSpec::string("name", "").doc("track name; default: the file's stem")),
+               "curvature", 9.2)
         .param(ParamSpec::string("outer_side", "auto").one_of({"auto", "left", "right"})
                    .doc("side of the outer wall; auto: the outside of the loop"))
         .param(ParamSpec::boolean("outer_wall", true))
@@ -89,13 +71,7 @@ class World : public Plugin {
       throw BadInput(std::string("track file ") + e.what());
     }
     w.name = p.string("name").empty() ? std::filesystem::path(path).stem().string() : p.string("name");
-    BankSpec b;
-    b.mode = p.string("bank_mode");
-    b.degrees = p.number("bank_deg");
-    b.curvature_threshold = p.number("bank_curvature_threshold");
-    b.transition_m = p.number("bank_transition_m");
-    b.segments = parse_bank_segments(p.json("bank_segments"));
-    w.bank = bank_profile(w.line, b);
+    w.bank = bank_profile(w.line, plugins::read_bank_params(p));
     std::string outer = p.string("outer_side");
     if (outer == "auto") outer = counter_clockwise(w.line) ? "right" : "left";
     const bool outer_left = outer == "left";

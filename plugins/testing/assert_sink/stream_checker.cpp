@@ -12,10 +12,6 @@ std::string num(double v) {
   s << v;
   return s.str();
 }
-void mix(std::uint64_t& h, const void* p, std::size_t n) {
-  const auto* b = static_cast<const unsigned char*>(p);
-  for (std::size_t i = 0; i < n; ++i) h = (h ^ b[i]) * 1099511628211ull;
-}
 }  // namespace
 
 std::optional<std::string> StreamChecker::observe(std::int64_t stamp_ns, double value) {
@@ -42,8 +38,8 @@ std::optional<std::string> StreamChecker::observe(std::int64_t stamp_ns, double 
   last_stamp_ = stamp_ns;
   last_value_ = value;
   ++count_;
-  mix(hash_, &stamp_ns, sizeof stamp_ns);
-  mix(hash_, &value, sizeof value);
+  hash_.add(&stamp_ns, sizeof stamp_ns);
+  hash_.add(&value, sizeof value);
   return v;
 }
 
@@ -67,7 +63,7 @@ std::vector<std::string> StreamChecker::finish() const {
 
 std::string StreamChecker::digest() const {
   char buf[17];
-  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(hash_));
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(hash_.value()));
   return buf;
 }
 

@@ -1,6 +1,8 @@
 #pragma once
 // Assertions over a stream of (stamp, value) samples: count, rate, value range, ordering and
 // an exact expected prefix. Framework-free: the assertion sink plugin is a thin adapter.
+#include "math/fnv1a.hpp"
+
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -38,7 +40,7 @@ class StreamChecker {
   std::int64_t count_ = 0;
   std::int64_t first_stamp_ = 0, last_stamp_ = 0;
   double last_value_ = 0, min_ = 0, max_ = 0;
-  std::uint64_t hash_ = 1469598103934665603ull;
+  math::Fnv1a hash_;
 };
 
 }  // namespace brickyard::testing

@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <vector>
 
-namespace brickyard::planning {
+namespace brickyard::motion {
 namespace {
 // Share of the longitudinal budget left at speed v on curvature k.
 double budget(const VehicleLimits& l, double v, double k) {
@@ -164,4 +164,4 @@ double closed_lap_time_gradient(const std::vector<double>& ds, const std::vector
   return t;
 }
 
-}  // namespace brickyard::planning
+}  // namespace brickyard::motion

@@ -1,9 +1,9 @@
 #pragma once
-// Small math shared by plugins of different areas (framework-free, header-only).
+// Polynomials as coefficient vectors, shared by perception and control (framework-free, header-only).
 #include <cstddef>
 #include <vector>
 
-namespace brickyard::plugins {
+namespace brickyard::math {
 
 // y of the polynomial c0 + c1 x + c2 x^2 + ... at x, or its first or second derivative.
 inline double poly_value(const std::vector<double>& c, double x, int derivative = 0) {
@@ -16,4 +16,4 @@ inline double poly_value(const std::vector<double>& c, double x, int derivative 
   return y;
 }
 
-}  // namespace brickyard::plugins
+}  // namespace brickyard::math

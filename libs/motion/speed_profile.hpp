@@ -6,7 +6,7 @@
 // Framework-free.
 #include <vector>
 
-namespace brickyard::planning {
+namespace brickyard::motion {
 
 struct VehicleLimits {
   double v_max = 80;          // m/s
@@ -40,4 +40,4 @@ double profile_time(const std::vector<double>& ds, const std::vector<double>& v,
 double closed_lap_time_gradient(const std::vector<double>& ds, const std::vector<double>& kappa, const VehicleLimits& lim,
                                 std::vector<double>& d_kappa, std::vector<double>& d_ds);
 
-}  // namespace brickyard::planning
+}  // namespace brickyard::motion

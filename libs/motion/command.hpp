@@ -1,6 +1,7 @@
 #pragma once
-// What a controller asks of the car, framework-free: road-wheel angle and pedals.
-namespace brickyard::control {
+// What a controller asks of the car, framework-free: road-wheel angle and pedals. The control
+// stack sends it; the simulated car and its ground-truth driver use the same struct.
+namespace brickyard::motion {
 
 struct Command {
   double steer = 0;         // rad, left positive
@@ -17,4 +18,4 @@ inline void pedals_for(double target, double speed, double gain, Command& c) {
   c.target_speed = target;
 }
 
-}  // namespace brickyard::control
+}  // namespace brickyard::motion

@@ -1,0 +1,53 @@
+#pragma once
+// A node of this process during a run: its plugin instance, ports, context and counters, and the
+// wake-up state each scheduler keeps for it.
+#include "exec/channels.hpp"
+#include "exec/node_context.hpp"
+#include "graph/resolve.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <condition_variable>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace brickyard::fw {
+
+class NodeRuntime {
+ public:
+  const ResolvedNode* rn;
+  std::string name;
+  Plugin* instance = nullptr;
+  std::vector<std::unique_ptr<InputQueue>> inputs;
+  std::vector<std::unique_ptr<OutputPort>> outputs;
+  std::unique_ptr<NodeContext> ctx;
+  Trigger trigger;
+  nlohmann::json metrics = nlohmann::json::object();
+  std::uint64_t steps = 0;
+  std::uint64_t seed = 0;
+  // sim: queued for an input-triggered step at this instant
+  bool queued = false;
+  std::string queued_port;
+  // real: wake-up for input triggers
+  std::mutex m;
+  std::condition_variable cv;
+  bool input_pending = false;
+  std::string pending_port;
+
+  const std::string& plugin_name() const { return rn->plugin->manifest.name; }
+  InputQueue* input(std::string_view port) {
+    for (auto& i : inputs)
+      if (i->name() == port) return i.get();
+    return nullptr;
+  }
+  OutputPort* output(std::string_view port) {
+    for (auto& o : outputs)
+      if (o->name() == port) return o.get();
+    return nullptr;
+  }
+};
+
+}  // namespace brickyard::fw

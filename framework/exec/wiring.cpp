@@ -1,0 +1,72 @@
+// Executive::build: this process's nodes with their ports — a DDS writer per output, a recording
+// tap per recorded output — then the wires: same-process inputs by pointer, inputs whose writer
+// runs in another process through a DDS reader.
+#include "exec/executive.hpp"
+#include "exec/node_runtime.hpp"
+#include "exec/seeding.hpp"
+
+#include <algorithm>
+#include <map>
+#include <set>
+
+namespace brickyard::fw {
+
+void Executive::build() {
+  const GraphDecl& g = *graph_.decl;
+  DdsSettings ds;
+  ds.domain = opt_.domain.value_or(g.transport.domain);
+  ds.interfaces = g.transport.interfaces;
+  ds.peers = g.transport.peers;
+  transport_ = std::make_unique<DdsTransport>(ds);
+
+  std::map<std::string, NodeRuntime*> here;
+  for (const auto& rn : graph_.nodes) {
+    auto n = std::make_unique<NodeRuntime>();
+    n->rn = &rn;
+    n->name = rn.decl->name;
+    n->seed = node_seed(opt_.seed, n->name);
+    std::set<std::string> wired;
+    for (const auto& w : g.wires)
+      if (w.to.node == n->name) wired.insert(w.to.port);
+    for (const auto& p : rn.plugin->manifest.ports) {
+      if (p.direction == PortDirection::input)
+        n->inputs.push_back(std::make_unique<InputQueue>(p.name, p.type_name, p.depth, wired.count(p.name) > 0));
+      else {
+        n->outputs.push_back(std::make_unique<OutputPort>(p.name, p.type_name));
+        n->outputs.back()->writer = transport_->make_writer(topic_name(n->name, p.name), p.type_name);
+        const std::string topic = n->name + "." + p.name;
+        const bool skip = std::find(opt_.record_skip_types.begin(), opt_.record_skip_types.end(), p.type_name) != opt_.record_skip_types.end();
+        if (recorder_ && !skip && (opt_.record_only.empty() || topic_selected(topic, opt_.record_only))) {
+          const int id = recorder_->add_topic(topic, p.type_name);
+          // A failed write stops the run; it must not unwind through the publishing plugin.
+          n->outputs.back()->tap = [this, id](const void* m) {
+            try {
+              recorder_->write(id, now_ns(), m);
+            } catch (const std::exception& e) {
+              request_stop(RunResult::failed, e.what());
+            }
+          };
+        }
+      }
+    }
+    n->ctx = std::make_unique<NodeContext>(*this, *n);
+    console_.add_node(n->name);
+    here[n->name] = n.get();
+    nodes_.push_back(std::move(n));
+  }
+  for (const auto& w : g.wires) {
+    auto to = here.find(w.to.node);
+    if (to == here.end()) continue;  // its reader lives in another process
+    InputQueue* in = to->second->input(w.to.port);
+    auto from = here.find(w.from.node);
+    if (from != here.end()) {
+      from->second->output(w.from.port)->local.push_back(in);
+    } else {
+      const PortSpec* ps = to->second->rn->plugin->manifest.port(w.to.port);
+      transport_->make_reader(topic_name(w.from.node, w.from.port), ps->type_name, ps->depth,
+                              [in](std::shared_ptr<const void> s) { in->push(std::move(s)); });
+    }
+  }
+}
+
+}  // namespace brickyard::fw

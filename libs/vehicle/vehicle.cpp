@@ -1,0 +1,168 @@
+#include "vehicle.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+namespace brickyard::vehicle {
+namespace {
+
+using json = nlohmann::json;
+
+// Reads one object of the file, refusing keys it does not know (a misspelt key is never ignored).
+class Section {
+ public:
+  Section(const json& j, std::string pointer, const std::string& file) : j_(j), ptr_(std::move(pointer)), file_(file) {
+    if (!j_.is_object()) fail(ptr_, "expected an object");
+  }
+  ~Section() noexcept(false) {
+    if (std::uncaught_exceptions()) return;
+    for (auto it = j_.begin(); it != j_.end(); ++it)
+      if (!seen_.count(it.key())) fail(ptr_ + "/" + it.key(), "unknown key");
+  }
+  double number(const std::string& key, double lo, double hi) {
+    const json& v = at(key);
+    if (!v.is_number()) fail(ptr_ + "/" + key, "expected a number");
+    const double x = v.get<double>();
+    if (!std::isfinite(x) || x < lo || x > hi) {
+      std::ostringstream m;
+      m << "expected a number from " << lo << " to " << hi << ", found " << x;
+      fail(ptr_ + "/" + key, m.str());
+    }
+    return x;
+  }
+  std::string string(const std::string& key) {
+    const json& v = at(key);
+    if (!v.is_string()) fail(ptr_ + "/" + key, "expected a string");
+    return v.get<std::string>();
+  }
+  std::array<double, 3> triple(const json& v, const std::string& pointer) {
+    if (!v.is_array() || v.size() != 3) fail(pointer, "expected [x, y, z]");
+    std::array<double, 3> out{};
+    for (std::size_t i = 0; i < 3; ++i) {
+      if (!v[i].is_number() || !std::isfinite(v[i].get<double>())) fail(pointer + "/" + std::to_string(i), "expected a number");
+      out[i] = v[i].get<double>();
+    }
+    return out;
+  }
+  const json& at(const std::string& key) {
+    if (!j_.contains(key)) fail(ptr_, "missing key \"" + key + "\"");
+    seen_.insert(key);
+    return j_.at(key);
+  }
+  const std::string& pointer() const { return ptr_; }
+  [[noreturn]] void fail(const std::string& pointer, const std::string& what) const {
+    throw VehicleFileError(file_ + ": " + (pointer.empty() ? "/" : pointer) + ": " + what);
+  }
+
+ private:
+  const json& j_;
+  std::string ptr_;
+  const std::string& file_;
+  std::set<std::string> seen_;
+};
+
+}  // namespace
+
+const Mount& Vehicle::mount(const std::string& n) const {
+  auto it = mounts.find(n);
+  if (it == mounts.end()) throw VehicleFileError("vehicle '" + name + "' has no mount \"" + n + "\"");
+  return it->second;
+}
+
+Vehicle parse_vehicle(const std::string& text, const std::string& file) {
+  json j;
+  try {
+    j = json::parse(text);
+  } catch (const json::parse_error& e) {
+    throw VehicleFileError(file + ": invalid JSON: " + e.what());
+  }
+  Vehicle v;
+  Section top(j, "", file);
+  v.name = top.string("name");
+  if (j.contains("source")) v.source = top.string("source");
+  {
+    Section g(top.at("geometry"), "/geometry", file);
+    v.wheelbase = g.number("wheelbase_m", 0.5, 10);
+    v.lf = g.number("lf_m", 0.1, 10);
+    v.lr = g.number("lr_m", 0.1, 10);
+    if (std::abs(v.lf + v.lr - v.wheelbase) > 1e-6) g.fail("/geometry", "lf_m + lr_m must equal wheelbase_m");
+    v.track_width = g.number("track_width_m", 0.3, 5);
+    v.front = g.number("front_m", 0, 20);
+    v.rear = g.number("rear_m", 0, 20);
+    v.half_width = g.number("half_width_m", 0.1, 5);
+  }
+  {
+    Section m(top.at("mass"), "/mass", file);
+    v.mass = m.number("mass_kg", 1, 1e5);
+    v.yaw_inertia = m.number("yaw_inertia_kgm2", 1, 1e7);
+  }
+  {
+    Section s(top.at("steering"), "/steering", file);
+    v.steering_ratio = s.number("ratio", 1, 100);
+    v.max_steer = s.number("max_steer_rad", 0.01, 1.5);
+    v.max_steer_rate = s.number("max_steer_rate_radps", 0.01, 100);
+    v.steer_delay = s.number("delay_s", 0, 1);
+  }
+  {
+    Section t(top.at("tyres"), "/tyres", file);
+    v.tyre = t.string("model");
+    if (v.tyre != "linear" && v.tyre != "pacejka") t.fail("/tyres/model", "expected \"linear\" or \"pacejka\", found \"" + v.tyre + "\"");
+    v.cornering_front = t.number("cornering_front_npr", 1, 1e8);
+    v.cornering_rear = t.number("cornering_rear_npr", 1, 1e8);
+    v.mu = t.number("mu", 0.1, 5);
+    v.pacejka_c = t.number("pacejka_c", 0.1, 5);
+    v.pacejka_e = t.number("pacejka_e", -10, 1);
+  }
+  {
+    Section a(top.at("aero"), "/aero", file);
+    v.drag_area = a.number("drag_area_m2", 0, 20);
+    v.lift_area = a.number("lift_area_m2", 0, 50);
+    v.downforce_front = a.number("downforce_front", 0, 1);
+    v.air_density = a.number("air_density_kgpm3", 0.1, 5);
+  }
+  {
+    Section p(top.at("powertrain"), "/powertrain", file);
+    v.max_power = p.number("max_power_w", 0, 1e7);
+    v.max_drive_force = p.number("max_drive_force_n", 0, 1e6);
+    v.max_brake_force = p.number("max_brake_force_n", 0, 1e6);
+    v.brake_front = p.number("brake_front", 0, 1);
+    v.rolling_resistance = p.number("rolling_resistance", 0, 1);
+  }
+  {
+    Section l(top.at("limits"), "/limits", file);
+    v.v_max = l.number("v_max_mps", 1, 200);
+    v.a_lat = l.number("a_lat_mps2", 0.5, 100);
+    v.a_decel = l.number("a_decel_mps2", 0.1, 100);
+  }
+  {
+    const json& mounts = top.at("mounts");
+    if (!mounts.is_object()) top.fail("/mounts", "expected an object");
+    for (auto it = mounts.begin(); it != mounts.end(); ++it) {
+      const std::string ptr = "/mounts/" + it.key();
+      Mount m;
+      if (it->is_array()) {
+        m.xyz = top.triple(*it, ptr);
+      } else {
+        Section s(*it, ptr, file);
+        m.xyz = s.triple(s.at("xyz"), ptr + "/xyz");
+        m.rpy_deg = s.triple(s.at("rpy_deg"), ptr + "/rpy_deg");
+      }
+      v.mounts[it.key()] = m;
+    }
+  }
+  return v;
+}
+
+Vehicle load_vehicle(const std::string& path) {
+  std::ifstream f(path);
+  if (!f) throw VehicleFileError(path + ": cannot open");
+  std::stringstream s;
+  s << f.rdbuf();
+  return parse_vehicle(s.str(), path);
+}
+
+}  // namespace brickyard::vehicle

@@ -1,0 +1,29 @@
+#pragma once
+// The `vehicle` parameter of every plugin that needs the car's facts: the vehicle description
+// file (libs/vehicle), found like any data file and loaded in configure. Plugin-side (SDK), shared
+// by the adapters of several areas; the algorithms take the loaded vehicle::Vehicle.
+#include <brickyard/plugin.hpp>
+
+#include "vehicle/vehicle.hpp"
+
+#include <string>
+
+namespace brickyard::plugins {
+
+inline constexpr const char* default_vehicle_file = "vehicles/av21.json";
+
+inline ParamSpec vehicle_param() {
+  return ParamSpec::string("vehicle", default_vehicle_file).doc("the car's description file (data/vehicles/)");
+}
+
+// Throws BadInput naming the parameter and the file (and the JSON pointer) when it cannot be read.
+inline vehicle::Vehicle read_vehicle(Context& ctx) {
+  const std::string path = ctx.find_file(ctx.params().string("vehicle"));
+  try {
+    return vehicle::load_vehicle(path);
+  } catch (const vehicle::VehicleFileError& e) {
+    throw BadInput(std::string("parameter 'vehicle': ") + e.what());
+  }
+}
+
+}  // namespace brickyard::plugins

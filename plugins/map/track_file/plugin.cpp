@@ -1,0 +1,82 @@
+// map.track_file: the car's map from a track file — today's TUM racetrack-database format
+// (x_m,y_m,w_tr_right_m,w_tr_left_m), later the output of a mapping run — published as a TrackMap
+// (centre line, widths, banking; geometry only) for the planners and controllers. The car stack's
+// counterpart of the simulator's sim.world, which it never reads.
+#include <brickyard/msgs/TrackMap.h>
+#include <brickyard/plugin.hpp>
+
+#include "bank_params.hpp"
+#include "map_msg.hpp"
+#include "track/banking.hpp"
+#include "track/centre_line.hpp"
+#include "track/track.hpp"
+
+#include <filesystem>
+#include <memory>
+
+namespace {
+
+using namespace brickyard;
+
+class TrackFileMap : public Plugin {
+ public:
+  static Manifest manifest() {
+    return plugins::with_bank_params(
+               Manifest("map.track_file", "1.0.0")
+                   .describe("the car's map of the track from a track file: centre line, widths and banking (no obstacles)")
+                   .output<msgs::TrackMap>("map", "the map, republished at rate_hz for late joiners")
+                   .param(ParamSpec::string("track", "tracks/IMS.csv").doc("centre-line file: x_m,y_m,w_tr_right_m,w_tr_left_m"))
+                   .param(ParamSpec::string("name", "").doc("track name; default: the file's stem")),
+               "none", 0)
+        .param(ParamSpec::number("rate_hz", 1.0).in_unit("Hz").at_least(0.01))
+        .periodic("rate_hz");
+  }
+
+  void configure(Context& ctx) override {
+    const Params& p = ctx.params();
+    const std::string path = ctx.find_file(p.string("track"));
+    track::TrackGeometry g;
+    try {
+      g.line = track::load_centerline_csv(path);
+    } catch (const track::TrackFileError& e) {
+      throw BadInput(std::string("track file ") + e.what());
+    }
+    g.name = p.string("name").empty() ? std::filesystem::path(path).stem().string() : p.string("name");
+    g.bank = track::bank_profile(g.line, plugins::read_bank_params(p));
+    try {
+      const track::Track t(g);  // the geometry the readers will build: refused here, not downstream
+      length_ = t.length();
+    } catch (const std::invalid_argument& e) {
+      throw BadInput("track file " + path + ": " + e.what());
+    }
+    points_ = g.line.x.size();
+    msg_ = std::make_shared<msgs::TrackMap>(plugins::to_message(g));
+    msg_->header().frame_id("map");
+    out_ = ctx.output<msgs::TrackMap>("map");
+    ctx.log(LogLevel::info, "map '" + g.name + "' from " + path + ": " + std::to_string(points_) + " points, " +
+                                std::to_string(length_) + " m");
+  }
+
+  void step(Context& ctx) override {
+    // The map is static: the same object every time (readers in this process share it).
+    if (published_ == 0) msg_->header().stamp_ns(ctx.now_ns());
+    out_.publish(std::shared_ptr<const msgs::TrackMap>(msg_));
+    ++published_;
+  }
+
+  void deactivate(Context& ctx) override {
+    ctx.metric("length_m", length_);
+    ctx.metric("points", static_cast<double>(points_));
+  }
+
+ private:
+  std::shared_ptr<msgs::TrackMap> msg_;
+  Output<msgs::TrackMap> out_;
+  std::uint64_t published_ = 0;
+  double length_ = 0;
+  std::size_t points_ = 0;
+};
+
+}  // namespace
+
+BRICKYARD_PLUGINS(TrackFileMap)
