@@ -7,8 +7,9 @@
 
 namespace brickyard::plugins {
 
-inline msgs::TrackMap to_message(const track::TrackGeometry& g) {
-  msgs::TrackMap m;
+// The geometry's fields of any message that carries them under these names (TrackMap; the
+// simulator's TrackWorld adds walls and pylons to the same fields).
+template <class M> void write_geometry(M& m, const track::TrackGeometry& g) {
   m.name(g.name);
   m.source(g.line.source);
   m.x(g.line.x);
@@ -16,11 +17,9 @@ inline msgs::TrackMap to_message(const track::TrackGeometry& g) {
   m.width_right(g.line.width_right);
   m.width_left(g.line.width_left);
   m.bank(g.bank);
-  return m;
 }
 
-inline track::TrackGeometry from_message(const msgs::TrackMap& m) {
-  track::TrackGeometry g;
+template <class M> void read_geometry(const M& m, track::TrackGeometry& g) {
   g.name = m.name();
   g.line.source = m.source();
   g.line.x = m.x();
@@ -28,6 +27,17 @@ inline track::TrackGeometry from_message(const msgs::TrackMap& m) {
   g.line.width_right = m.width_right();
   g.line.width_left = m.width_left();
   g.bank = m.bank();
+}
+
+inline msgs::TrackMap to_message(const track::TrackGeometry& g) {
+  msgs::TrackMap m;
+  write_geometry(m, g);
+  return m;
+}
+
+inline track::TrackGeometry from_message(const msgs::TrackMap& m) {
+  track::TrackGeometry g;
+  read_geometry(m, g);
   return g;
 }
 

@@ -8,6 +8,7 @@
 #include <Eigen/Geometry>
 
 #include "common/track.hpp"
+#include "map_msg.hpp"
 #include "newest.hpp"
 
 namespace brickyard::sim {
@@ -15,13 +16,7 @@ namespace brickyard::sim {
 inline msgs::TrackWorld to_message(const Track& t) {
   const WorldSpec& w = t.spec();
   msgs::TrackWorld m;
-  m.name(w.name);
-  m.source(w.line.source);
-  m.x(w.line.x);
-  m.y(w.line.y);
-  m.width_right(w.line.width_right);
-  m.width_left(w.line.width_left);
-  m.bank(w.bank);
+  plugins::write_geometry(m, w);
   m.wall_left(w.walls.left);
   m.wall_left_offset_m(w.walls.left_offset);
   m.wall_right(w.walls.right);
@@ -37,13 +32,7 @@ inline msgs::TrackWorld to_message(const Track& t) {
 
 inline WorldSpec from_message(const msgs::TrackWorld& m) {
   WorldSpec w;
-  w.name = m.name();
-  w.line.source = m.source();
-  w.line.x = m.x();
-  w.line.y = m.y();
-  w.line.width_right = m.width_right();
-  w.line.width_left = m.width_left();
-  w.bank = m.bank();
+  plugins::read_geometry(m, w);
   w.walls.left = m.wall_left();
   w.walls.left_offset = m.wall_left_offset_m();
   w.walls.right = m.wall_right();

@@ -9,6 +9,8 @@ function(brickyard_add_plugin target)
     message(FATAL_ERROR "brickyard_add_plugin(${target}): SOURCES is required")
   endif()
   add_library(${target} MODULE ${ARG_SOURCES})
+  # brickyard_add_graph_test() puts the folder of every plugin of the project on the plugin path.
+  set_property(GLOBAL APPEND PROPERTY BRICKYARD_PLUGIN_TARGETS ${target})
   target_link_libraries(${target} PRIVATE brickyard::sdk ${ARG_LINK})
   target_compile_features(${target} PRIVATE cxx_std_17)
   set_target_properties(${target} PROPERTIES

@@ -1,5 +1,6 @@
 #pragma once
 // Every message type of the SDK by name: how the host builds a DDS topic for a port.
+// Host-only (target brickyard::msgs_dds, in sdk/host/): not installed, never seen by a plugin.
 #include <cstddef>
 
 namespace eprosima::fastdds::dds { class TopicDataType; }

@@ -1,0 +1,22 @@
+# Run by the tests of brickyard_add_graph_test() (cmake -P, through the file it generates, which
+# sets BRICKYARD_EXE, GRAPH, EXPECT_EXIT, EXPECT_OUTPUT, RUN_ARGS and PLUGIN_PATH): runs the graph,
+# shows its output, and fails unless both the exit code and the output are as expected.
+set(cmd "${BRICKYARD_EXE}" run "${GRAPH}")
+foreach(d IN LISTS PLUGIN_PATH)
+  list(APPEND cmd --plugin-path "${d}")
+endforeach()
+list(APPEND cmd ${RUN_ARGS})
+list(JOIN cmd " " shown)
+message("$ ${shown}")
+execute_process(COMMAND ${cmd} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)
+message("${out}--- exit code ${rc} (expected ${EXPECT_EXIT})")
+set(why "")
+if(NOT "${rc}" STREQUAL "${EXPECT_EXIT}")
+  string(APPEND why "\n  exit code ${rc}, expected ${EXPECT_EXIT}")
+endif()
+if(NOT "${EXPECT_OUTPUT}" STREQUAL "" AND NOT "${out}" MATCHES "${EXPECT_OUTPUT}")
+  string(APPEND why "\n  the output does not match: ${EXPECT_OUTPUT}")
+endif()
+if(why)
+  message(FATAL_ERROR "graph test ${GRAPH} failed:${why}")
+endif()
