@@ -2,6 +2,7 @@
 // known answers.
 #include "common/graph_search.hpp"
 #include "common/road_graph.hpp"
+#include "common/plan_frames.hpp"
 #include "common/road_graph_planner.hpp"
 #include "motion/speed_profile.hpp"
 
@@ -411,3 +412,40 @@ TEST(RoadGraph, BuildRefusesParametersOutOfRange) {
 }
 
 }  // namespace
+
+// The adapter's geometry (plan_frames.hpp): obstacles into the map with the pose of their stamp,
+// and a plan as a Path's poses.
+TEST(PlanFrames, ObstaclesIntoTheMapFrame) {
+  const StampedPose car{0, 10, 20, M_PI / 2};  // facing +y
+  const auto m = obstacle_in_map(car, 5, 1, 0.4, 0.6);  // 5 m ahead, 1 m left
+  ASSERT_TRUE(m.has_value());
+  EXPECT_NEAR(m->x, 9, 1e-12);
+  EXPECT_NEAR(m->y, 25, 1e-12);
+  EXPECT_DOUBLE_EQ(m->radius, 0.3);
+  EXPECT_DOUBLE_EQ(obstacle_in_map(car, 1, 0, 0.01, 0.01)->radius, 0.1);  // at least 0.1 m
+  EXPECT_DOUBLE_EQ(obstacle_in_map(car, 1, 0, NAN, 1)->radius, 5.0);     // unknown size: blocks
+  EXPECT_FALSE(obstacle_in_map(car, NAN, 0, 1, 1).has_value());
+  EXPECT_FALSE(obstacle_in_map({0, 1e308, 0, 0}, 1e308, 0, 1, 1).has_value());  // overflows
+}
+
+TEST(PlanFrames, NearestPoseByStamp) {
+  const std::vector<StampedPose> poses{{100, 0, 0, 0}, {200, 1, 0, 0}, {300, 2, 0, 0}};
+  EXPECT_EQ(nearest_pose(poses, 190), 1);
+  EXPECT_EQ(nearest_pose(poses, -5), 0);
+  EXPECT_EQ(nearest_pose(poses, 250), 2);  // a tie: the newest stays
+  EXPECT_EQ(nearest_pose(poses, INT64_MAX), 2);
+  EXPECT_EQ(nearest_pose({}, 0), -1);
+}
+
+TEST(PlanFrames, PathGeometryHeadingAndArcLength) {
+  const std::vector<PathSample> pts{{0, 0, 0, 0.5, 0.01}, {3, 4, 5, -1.5, 0.02}, {3, 10, 11, 0, 0}};
+  const PathGeometry g = path_geometry(pts);
+  ASSERT_EQ(g.x.size(), 3u);
+  EXPECT_DOUBLE_EQ(g.yaw[0], std::atan2(4.0, 3.0));
+  EXPECT_DOUBLE_EQ(g.yaw[2], M_PI / 2);  // the last looks back at the one before
+  EXPECT_DOUBLE_EQ(g.s[1], 5);
+  EXPECT_DOUBLE_EQ(g.s[2], 11);
+  EXPECT_EQ(g.curvature, (std::vector<double>{0.01, 0.02, 0}));
+  EXPECT_DOUBLE_EQ(g.max_offset, 1.5);
+  EXPECT_TRUE(path_geometry({}).x.empty());
+}

@@ -3,7 +3,7 @@
 // at rate_hz from the car's estimate around the obstacles perception reports; the Path it
 // publishes runs horizon metres ahead with speeds. Same ports and line parameters as
 // planning.racing_line, so the two swap by the plugin's name. Algorithms:
-// ../common/road_graph_planner.hpp.
+// ../common/road_graph_planner.hpp; the frames and the Path's geometry: ../common/plan_frames.hpp.
 #include <brickyard/msgs/LocalizationEstimate.h>
 #include <brickyard/msgs/ObstacleList.h>
 #include <brickyard/msgs/Path.h>
@@ -12,6 +12,7 @@
 
 #include "../common/line_setup.hpp"
 #include "../line_params.hpp"
+#include "../common/plan_frames.hpp"
 #include "../common/road_graph_planner.hpp"
 #include "map_msg.hpp"
 #include "newest.hpp"
@@ -125,19 +126,13 @@ class RoadGraphNode : public Plugin {
     if (poses_.empty()) return;
     // Obstacles into the map frame with the estimate nearest their stamp.
     std::vector<MapObstacle> seen;
+    std::vector<StampedPose> poses;
     for (auto& list : obstacles_.take()) {
-      const msgs::LocalizationEstimate& at = nearest_pose(list->header().stamp_ns());
-      const double c = std::cos(at.yaw()), sn = std::sin(at.yaw());
-      for (const auto& o : list->obstacles()) {
-        MapObstacle m;
-        m.x = at.x() + c * o.x() - sn * o.y();
-        m.y = at.y() + sn * o.x() + c * o.y();
-        if (!std::isfinite(m.x) || !std::isfinite(m.y)) continue;
-        // An unknown (non-finite) size is taken as the largest: the obstacle still blocks.
-        const double r = 0.5 * std::max(o.size_x(), o.size_y());
-        m.radius = std::isfinite(r) ? std::clamp(r, 0.1, 5.0) : 5.0;
-        seen.push_back(m);
-      }
+      if (poses.empty())
+        for (const auto& e : poses_) poses.push_back({e->header().stamp_ns(), e->x(), e->y(), e->yaw()});
+      const StampedPose& at = poses[nearest_pose(poses, list->header().stamp_ns())];
+      for (const auto& o : list->obstacles())
+        if (auto m = obstacle_in_map(at, o.x(), o.y(), o.size_x(), o.size_y())) seen.push_back(*m);
     }
     planner_->observe(seen, ctx.now_ns());
     // The layers around the obstacles met, for the report's drawing of the lattice.
@@ -176,21 +171,17 @@ class RoadGraphNode : public Plugin {
     m->header().frame_id("map");
     m->header().stamp_ns(ctx.now_ns());
     m->header().seq(seq_++);
-    double s = 0;
-    const auto& pts = plan.points;
-    for (std::size_t i = 0; i < pts.size(); ++i) {
-      const std::size_t j = i + 1 < pts.size() ? i + 1 : i;
-      const std::size_t k = i + 1 < pts.size() ? i : i - 1;
+    const PathGeometry g = path_geometry(plan.points);
+    for (std::size_t i = 0; i < g.x.size(); ++i) {
       msgs::Pose2D pose;
-      pose.x(pts[i].x);
-      pose.y(pts[i].y);
-      pose.yaw(std::atan2(pts[j].y - pts[k].y, pts[j].x - pts[k].x));
+      pose.x(g.x[i]);
+      pose.y(g.y[i]);
+      pose.yaw(g.yaw[i]);
       m->poses().push_back(pose);
-      m->curvature().push_back(pts[i].kappa);
-      if (i > 0) s += std::hypot(pts[i].x - pts[i - 1].x, pts[i].y - pts[i - 1].y);
-      m->s().push_back(s);
-      max_offset_ = std::max(max_offset_, std::abs(pts[i].d));
     }
+    m->curvature(g.curvature);
+    m->s(g.s);
+    max_offset_ = std::max(max_offset_, g.max_offset);
     m->speed(plan.speed);
     out_.publish(std::shared_ptr<const msgs::Path>(m));
   }
@@ -249,16 +240,6 @@ class RoadGraphNode : public Plugin {
                                 ": " + std::to_string(graph_->layers().size()) + " layers, " + std::to_string(graph_->node_count()) +
                                 " nodes, " + std::to_string(graph_->edge_count()) + " edges");
     return true;
-  }
-
-  const msgs::LocalizationEstimate& nearest_pose(std::int64_t stamp) const {
-    const msgs::LocalizationEstimate* best = poses_.back().get();
-    auto apart = [stamp](const msgs::LocalizationEstimate& e) {  // in double: no overflow on odd stamps
-      return std::abs(static_cast<double>(e.header().stamp_ns()) - static_cast<double>(stamp));
-    };
-    for (const auto& p : poses_)
-      if (apart(*p) < apart(*best)) best = p.get();
-    return *best;
   }
 
   track::CenterLine line_;

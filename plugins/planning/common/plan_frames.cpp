@@ -1,0 +1,47 @@
+#include "plan_frames.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace brickyard::planning {
+
+std::optional<MapObstacle> obstacle_in_map(const StampedPose& at, double ox, double oy, double sx, double sy) {
+  const double c = std::cos(at.yaw), sn = std::sin(at.yaw);
+  MapObstacle m;
+  m.x = at.x + c * ox - sn * oy;
+  m.y = at.y + sn * ox + c * oy;
+  if (!std::isfinite(m.x) || !std::isfinite(m.y)) return std::nullopt;
+  const double r = 0.5 * std::max(sx, sy);
+  m.radius = std::isfinite(r) ? std::clamp(r, 0.1, 5.0) : 5.0;
+  return m;
+}
+
+int nearest_pose(const std::vector<StampedPose>& poses, std::int64_t stamp) {
+  if (poses.empty()) return -1;
+  auto apart = [stamp](const StampedPose& e) {
+    return std::abs(static_cast<double>(e.stamp_ns) - static_cast<double>(stamp));
+  };
+  int best = static_cast<int>(poses.size()) - 1;
+  for (int i = 0; i < static_cast<int>(poses.size()); ++i)
+    if (apart(poses[i]) < apart(poses[best])) best = i;
+  return best;
+}
+
+PathGeometry path_geometry(const std::vector<PathSample>& pts) {
+  PathGeometry g;
+  double s = 0;
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    const std::size_t j = i + 1 < pts.size() ? i + 1 : i;
+    const std::size_t k = i + 1 < pts.size() ? i : i - 1;
+    g.x.push_back(pts[i].x);
+    g.y.push_back(pts[i].y);
+    g.yaw.push_back(std::atan2(pts[j].y - pts[k].y, pts[j].x - pts[k].x));
+    g.curvature.push_back(pts[i].kappa);
+    if (i > 0) s += std::hypot(pts[i].x - pts[i - 1].x, pts[i].y - pts[i - 1].y);
+    g.s.push_back(s);
+    g.max_offset = std::max(g.max_offset, std::abs(pts[i].d));
+  }
+  return g;
+}
+
+}  // namespace brickyard::planning

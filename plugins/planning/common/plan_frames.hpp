@@ -1,0 +1,37 @@
+#pragma once
+// The road-graph planner's adapter geometry, framework-free: obstacles from the vehicle frame into
+// the map with the car's pose of their stamp, the pose nearest a stamp, and a planned path as the
+// poses (heading from the neighbours), curvature and arc length a Path message carries.
+#include "road_graph_planner.hpp"
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+namespace brickyard::planning {
+
+struct StampedPose {
+  std::int64_t stamp_ns = 0;
+  double x = 0, y = 0, yaw = 0;  // base_link in the map frame
+};
+
+// An obstacle at (ox, oy) in the vehicle frame of `at`, of size sx by sy, in the map frame; none
+// when the result is not finite. A non-finite size is taken as the largest (5 m radius): the
+// obstacle still blocks. The radius is half the larger side, within 0.1 to 5 m.
+std::optional<MapObstacle> obstacle_in_map(const StampedPose& at, double ox, double oy, double sx, double sy);
+
+// The index of the pose whose stamp is nearest `stamp_ns`: the last pose unless another is
+// strictly nearer (then the first of those); compared in double so that odd stamps cannot
+// overflow. -1 for no poses.
+int nearest_pose(const std::vector<StampedPose>& poses, std::int64_t stamp_ns);
+
+struct PathGeometry {
+  std::vector<double> x, y, yaw, curvature, s;
+  double max_offset = 0;  // the largest |d| from the racing line
+};
+
+// The planned points as a Path's poses: yaw toward the next point (the last toward itself from
+// the one before), arc length from the first point.
+PathGeometry path_geometry(const std::vector<PathSample>& points);
+
+}  // namespace brickyard::planning
