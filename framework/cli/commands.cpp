@@ -60,6 +60,9 @@ nlohmann::json manifest_to_json(const PluginEntry& p) {
     if (!ps.choices.empty()) pj["choices"] = ps.choices;
     j["params"].push_back(pj);
   }
+  j["constraints"] = nlohmann::json::array();
+  for (const auto& c : m.constraints)
+    j["constraints"].push_back({{"lower", c.lower}, {"upper", c.upper}, {"strict", c.strict}});
   j["triggers"] = nlohmann::json::array();
   for (const auto& t : m.triggers) {
     if (t.kind == TriggerSpec::Kind::periodic) j["triggers"].push_back({{"kind", "periodic"}, {"rate_param", t.ref}});
@@ -88,6 +91,8 @@ std::string plugins_text(const Registry& reg) {
       if (!ps.description.empty()) o << "  — " << ps.description;
       o << "\n";
     }
+    for (const auto& c : m.constraints)
+      o << "  constraint " << c.lower << (c.strict ? " < " : " <= ") << c.upper << "\n";
     for (const auto& t : m.triggers)
       o << "  trigger " << (t.kind == TriggerSpec::Kind::periodic ? "periodic at param " : "on input ") << t.ref << "\n";
     o << "\n";

@@ -141,6 +141,16 @@ ResolvedGraph resolve_graph(const GraphDecl& g, const Registry& reg, const std::
       if (spec.default_value) rn.params.set(spec.name, *spec.default_value);
       else err(ptr + "/params", "missing required parameter \"" + spec.name + "\" (" + to_string(spec.type) + ") of plugin " + m.name);
     }
+    // Constraints between parameters (a minimum above its maximum), once every value is known.
+    // The pointer names the one the graph set (the later of the two when both), else /params.
+    for (const auto& c : m.constraints) {
+      const std::string e = c.violation(rn.params);
+      if (e.empty()) continue;
+      std::string culprit = nd.params.contains(c.upper) ? c.upper : nd.params.contains(c.lower) ? c.lower : "";
+      auto o = nd.param_origin.find(culprit);
+      std::string from = o == nd.param_origin.end() ? "" : " (from " + o->second + ")";
+      err(ptr + "/params" + (culprit.empty() ? "" : "/" + pointer_escape(culprit)), e + from);
+    }
     for (const auto& t : m.triggers) {
       if (t.kind == TriggerSpec::Kind::on_input) {
         rn.trigger_inputs.insert(t.ref);

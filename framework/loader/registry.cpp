@@ -67,6 +67,21 @@ std::vector<std::string> check_manifest(const Manifest& m) {
     if (ps.default_value && !value_matches(ps.type, *ps.default_value))
       p.push_back(who + ": default of param '" + ps.name + "' is not a " + to_string(ps.type));
   }
+  Params defaults;
+  for (const auto& ps : m.params)
+    if (ps.default_value && value_matches(ps.type, *ps.default_value)) defaults.set(ps.name, *ps.default_value);
+  for (const auto& c : m.constraints) {
+    bool numbers = true;
+    for (const std::string* n : {&c.lower, &c.upper}) {
+      const ParamSpec* ps = m.param_spec(*n);
+      if (!ps || (ps->type != ParamType::number && ps->type != ParamType::integer)) {
+        p.push_back(who + ": constraint names '" + *n + "', which is not a number param");
+        numbers = false;
+      }
+    }
+    if (!numbers) continue;
+    if (auto e = c.violation(defaults); !e.empty()) p.push_back(who + ": its defaults break its own constraint: " + e);
+  }
   for (const auto& t : m.triggers) {
     if (t.kind == TriggerSpec::Kind::periodic) {
       const ParamSpec* ps = m.param_spec(t.ref);

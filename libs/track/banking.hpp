@@ -11,7 +11,7 @@ namespace brickyard::track {
 struct BankSpec {
   std::string mode = "none";          // none | constant | curvature | segments
   double degrees = 0;                 // constant and curvature modes
-  double curvature_threshold = 1e-3;  // 1/m: a point is in a turn above this (curvature mode)
+  double curvature_threshold = 0.002;  // 1/m: a point is in a turn above this (curvature mode)
   double transition_m = 100;          // m over which the bank ramps in and out
   struct Range { double s0, s1, degrees; };
   std::vector<Range> segments;        // segments mode

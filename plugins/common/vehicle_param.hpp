@@ -10,15 +10,18 @@
 
 namespace brickyard::plugins {
 
+// The one default car; a settings struct initialises its vehicle file member with it.
 inline constexpr const char* default_vehicle_file = "vehicles/av21.json";
 
-inline ParamSpec vehicle_param() {
-  return ParamSpec::string("vehicle", default_vehicle_file).doc("the car's description file (data/vehicles/)");
+// Binds `vehicle` to the std::string member at `path` (initialised to default_vehicle_file).
+template <class S, class... M> ParamSpec& bind_vehicle(ParamBinding<S>& b, M... path) {
+  return b.bind("vehicle", path...).doc("the car's description file (data/vehicles/)");
 }
 
-// Throws BadInput naming the parameter and the file (and the JSON pointer) when it cannot be read.
-inline vehicle::Vehicle read_vehicle(Context& ctx) {
-  const std::string path = ctx.find_file(ctx.params().string("vehicle"));
+// Loads the file a `vehicle` parameter names. Throws BadInput naming the parameter and the file
+// (and the JSON pointer) when it cannot be read.
+inline vehicle::Vehicle read_vehicle(Context& ctx, const std::string& file) {
+  const std::string path = ctx.find_file(file);
   try {
     return vehicle::load_vehicle(path);
   } catch (const vehicle::VehicleFileError& e) {

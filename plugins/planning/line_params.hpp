@@ -1,6 +1,6 @@
 #pragma once
 // The racing line's parameters, shared by planning.racing_line and planning.road_graph so the two
-// swap by the plugin's name: declared once, read once. Plugin-side (SDK), used by plugin.cpp files.
+// swap by the plugin's name: bound once, loaded once. Plugin-side (SDK), used by plugin.cpp files.
 #include <brickyard/plugin.hpp>
 
 #include "motion/racing_line.hpp"
@@ -10,17 +10,14 @@
 
 namespace brickyard::planning {
 
-inline Manifest with_line_params(Manifest m) {
-  const motion::VehicleLimits l;
-  m.param(ParamSpec::string("raceline", "racelines/IMS.csv").doc("x_m,y_m file of the racing line"))
-      .param(ParamSpec::number("v_max", l.v_max).in_unit("m/s").at_least(1))
-      .param(ParamSpec::number("a_lat", l.a_lat).in_unit("m/s^2").at_least(0.5))
-      .param(ParamSpec::number("a_accel", l.a_accel).in_unit("m/s^2").at_least(0.1))
-      .param(ParamSpec::number("a_decel", l.a_decel).in_unit("m/s^2").at_least(0.1))
-      .param(ParamSpec::number("edge_margin", 2.5).in_unit("m").at_least(0).doc("closest the racing line may come to a track edge"));
-  return m;
-}
+// What the graph says about the line.
+struct LineSettings {
+  std::string raceline = "racelines/IMS.csv";
+  motion::VehicleLimits limits;  // v_max and the accelerations; lateral and longitudinal apart
+  double edge_margin = 2.5;
+};
 
+// What the planners use: the settings with the file read.
 struct LineParams {
   std::string file;          // the racing line file, found
   track::CenterLine line;    // its points
@@ -28,19 +25,30 @@ struct LineParams {
   double edge_margin = 2.5;
 };
 
+// Binds raceline, v_max, a_lat, a_accel, a_decel and edge_margin to the LineSettings at `path`.
+template <class S, class... M> void bind_line(ParamBinding<S>& b, M... path) {
+  using L = LineSettings;
+  using V = motion::VehicleLimits;
+  b.bind("raceline", path..., &L::raceline).doc("x_m,y_m file of the racing line");
+  b.bind("v_max", path..., &L::limits, &V::v_max).in_unit("m/s").at_least(1);
+  b.bind("a_lat", path..., &L::limits, &V::a_lat).in_unit("m/s^2").at_least(0.5);
+  b.bind("a_accel", path..., &L::limits, &V::a_accel).in_unit("m/s^2").at_least(0.1);
+  b.bind("a_decel", path..., &L::limits, &V::a_decel).in_unit("m/s^2").at_least(0.1);
+  b.bind("edge_margin", path..., &L::edge_margin).in_unit("m").at_least(0).doc("closest the racing line may come to a track edge");
+}
+
 // Throws BadInput naming the file when it cannot be read.
-inline LineParams read_line_params(Context& ctx) {
-  const Params& p = ctx.params();
+inline LineParams load_line(Context& ctx, const LineSettings& s) {
   LineParams out;
-  out.file = ctx.find_file(p.string("raceline"));
+  out.file = ctx.find_file(s.raceline);
   try {
     out.line = track::load_xy_csv(out.file);
   } catch (const track::TrackFileError& e) {
     throw BadInput(std::string("raceline file ") + e.what());
   }
   if (out.line.x.size() < 3) throw BadInput("raceline file " + out.file + ": fewer than 3 points");
-  out.limits = motion::independent_limits(p.number("v_max"), p.number("a_lat"), p.number("a_accel"), p.number("a_decel"));
-  out.edge_margin = p.number("edge_margin");
+  out.limits = motion::independent_limits(s.limits.v_max, s.limits.a_lat, s.limits.a_accel, s.limits.a_decel);
+  out.edge_margin = s.edge_margin;
   return out;
 }
 

@@ -31,6 +31,19 @@ namespace {
 
 using namespace brickyard;
 
+struct Settings {
+  std::string file, topic;
+  double rate_hz = 1000;
+};
+
+ParamBinding<Settings> bindings() {
+  ParamBinding<Settings> b;
+  b.bind("file", &Settings::file).doc("the recording (brickyard run --record FILE)");
+  b.bind("topic", &Settings::topic).doc("the recorded topic, NODE.PORT as in the recording");
+  b.bind("rate_hz", &Settings::rate_hz).in_unit("Hz").at_least(1).doc("how often due samples are sent");
+  return b;
+}
+
 template <class T, class PubSub, const char* Name>
 class Replay : public Plugin {
  public:
@@ -38,18 +51,16 @@ class Replay : public Plugin {
     return Manifest(std::string("replay.") + Name, "1.0.0")
         .describe(std::string("republishes a recorded topic of ") + message_traits<T>::name + " at the times it was published")
         .template output<T>("out", "the recorded samples, each at its recorded time")
-        .param(ParamSpec::string("file", "").doc("the recording (brickyard run --record FILE)"))
-        .param(ParamSpec::string("topic", "").doc("the recorded topic, NODE.PORT as in the recording"))
-        .param(ParamSpec::number("rate_hz", 1000).in_unit("Hz").at_least(1).doc("how often due samples are sent"))
+        .parameters(bindings())
         .periodic("rate_hz");
   }
 
   void configure(Context& ctx) override {
-    const Params& p = ctx.params();
-    const std::string topic = p.string("topic");
-    if (p.string("file").empty()) throw BadInput("parameter 'file': the recording to replay is required");
+    const Settings s = bindings().read(ctx.params());
+    const std::string& topic = s.topic;
+    if (s.file.empty()) throw BadInput("parameter 'file': the recording to replay is required");
     if (topic.empty()) throw BadInput("parameter 'topic': the recorded topic (NODE.PORT) is required");
-    const std::string file = ctx.find_file(p.string("file"));
+    const std::string file = ctx.find_file(s.file);
     try {
       replay::Recording rec(file);
       // Stamps are the recording run's clock: sim time from 0, or the epoch on the real clock.

@@ -81,6 +81,18 @@ TEST(Resolve, ParamErrors) {
   EXPECT_TRUE(has(errors(chain(), {"src.count=1.5"}), "g.json#/nodes/src/params/count", "expected integer"));
 }
 
+TEST(Resolve, ConstraintsBetweenParams) {
+  // testing.assert_sink binds min_value <= max_value: the pointer names the value the graph set.
+  EXPECT_TRUE(has(errors(chain(R"(, "s2": {"plugin": "testing.assert_sink", "params": {"min_value": 3, "max_value": 1}})",
+                               R"(, {"from": "t.out", "to": "s2.in"})")),
+                  "g.json#/nodes/s2/params/max_value", "parameter 'min_value' (3) must be at most 'max_value' (1)"));
+  EXPECT_TRUE(has(errors(chain(), {"sink.min_rate_hz=5", "sink.max_rate_hz=4"}), "g.json#/nodes/sink/params/max_rate_hz",
+                  "must be at most 'max_rate_hz' (4) (from --set sink.max_rate_hz=4)"));
+  // Equal bounds keep the order; a NaN (off) bound keeps every order.
+  EXPECT_TRUE(errors(chain(), {"sink.min_value=5", "sink.max_value=5"}).empty());
+  EXPECT_TRUE(errors(chain(), {"sink.min_value=5"}).empty());
+}
+
 TEST(Resolve, WireErrors) {
   EXPECT_TRUE(has(errors(chain("", R"(, {"from": "src.outt", "to": "sink.in"})")), "g.json#/wires/2/from", "has no port \"outt\""));
   EXPECT_TRUE(has(errors(chain("", R"(, {"from": "nope.out", "to": "sink.in"})")), "g.json#/wires/2/from", "no node named"));

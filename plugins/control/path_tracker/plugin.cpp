@@ -13,42 +13,44 @@ namespace {
 using namespace brickyard;
 using namespace brickyard::control;
 
+struct Settings {
+  std::string vehicle = plugins::default_vehicle_file;
+  TrackerParams tracker;  // its wheelbase comes from the vehicle file
+};
+
+ParamBinding<Settings> bindings() {
+  using T = TrackerParams;
+  ParamBinding<Settings> b;
+  plugins::bind_vehicle(b, &Settings::vehicle).doc("the car's description file: the wheelbase pure pursuit steers with");
+  b.bind("lookahead_min", &Settings::tracker, &T::lookahead_min).in_unit("m").at_least(0.5);
+  b.bind("lookahead_time", &Settings::tracker, &T::lookahead_time).in_unit("s").at_least(0).doc("look-ahead = this x speed, clamped");
+  b.bind("lookahead_max", &Settings::tracker, &T::lookahead_max).in_unit("m").at_least(0.5);
+  b.bind("max_steer", &Settings::tracker, &T::max_steer).in_unit("rad").at_least(0.01);
+  b.bind("speed_gain", &Settings::tracker, &T::speed_gain).at_least(0).doc("pedal per m/s of speed error");
+  b.bind("preview_time", &Settings::tracker, &T::preview_time).in_unit("s").at_least(0).doc("path ahead the speed looks at");
+  b.bind("decel", &Settings::tracker, &T::decel).in_unit("m/s^2").at_least(0.1).doc("braking the speed plan assumes");
+  b.bind("closed", &Settings::tracker, &T::closed)
+      .doc("the path may be a loop: it is one when its end lies within two of its longest steps of its start (a racing line); false: always open");
+  b.not_above("lookahead_min", "lookahead_max");
+  return b;
+}
+
 class PathTrackerNode : public Plugin {
  public:
   static Manifest manifest() {
-    const TrackerParams d;
     return Manifest("control.path_tracker", "1.0.0")
         .describe("pure pursuit on the path with a speed-scheduled look-ahead; speed from the path, braking ahead of slower stretches")
         .input<msgs::Path>("path", "the path to follow (the newest replaces the last)", true, 2)
         .input<msgs::LocalizationEstimate>("estimate", "where the car is: x, y, yaw, speed of base_link", true, 8)
         .output<msgs::ControlCommand>("command", "steer and pedals, source \"path_tracker\"")
-        .param(plugins::vehicle_param().doc("the car's description file: the wheelbase pure pursuit steers with"))
-        .param(ParamSpec::number("lookahead_min", d.lookahead_min).in_unit("m").at_least(0.5))
-        .param(ParamSpec::number("lookahead_time", d.lookahead_time).in_unit("s").at_least(0).doc("look-ahead = this x speed, clamped"))
-        .param(ParamSpec::number("lookahead_max", d.lookahead_max).in_unit("m").at_least(0.5))
-        .param(ParamSpec::number("max_steer", d.max_steer).in_unit("rad").at_least(0.01))
-        .param(ParamSpec::number("speed_gain", d.speed_gain).at_least(0).doc("pedal per m/s of speed error"))
-        .param(ParamSpec::number("preview_time", d.preview_time).in_unit("s").at_least(0).doc("path ahead the speed looks at"))
-        .param(ParamSpec::number("decel", d.decel).in_unit("m/s^2").at_least(0.1).doc("braking the speed plan assumes"))
-        .param(ParamSpec::boolean("closed", d.closed).doc("the path may be a loop: it is one when its end lies within two of its longest steps of its start (a racing line); false: always open"))
+        .parameters(bindings())
         .on_input("estimate");
   }
 
   void configure(Context& ctx) override {
-    const Params& p = ctx.params();
-    TrackerParams tp;
-    tp.wheelbase = plugins::read_vehicle(ctx).wheelbase;
-    tp.lookahead_min = p.number("lookahead_min");
-    tp.lookahead_time = p.number("lookahead_time");
-    tp.lookahead_max = p.number("lookahead_max");
-    if (tp.lookahead_min > tp.lookahead_max)
-      throw BadInput("parameter 'lookahead_min' (" + std::to_string(tp.lookahead_min) + ") exceeds 'lookahead_max' (" +
-                     std::to_string(tp.lookahead_max) + ")");
-    tp.max_steer = p.number("max_steer");
-    tp.speed_gain = p.number("speed_gain");
-    tp.preview_time = p.number("preview_time");
-    tp.decel = p.number("decel");
-    tp.closed = p.boolean("closed");
+    const Settings s = bindings().read(ctx.params());
+    TrackerParams tp = s.tracker;
+    tp.wheelbase = plugins::read_vehicle(ctx, s.vehicle).wheelbase;
     tracker_ = PathTracker(tp);
     path_ = ctx.input<msgs::Path>("path");
     estimate_ = ctx.input<msgs::LocalizationEstimate>("estimate");

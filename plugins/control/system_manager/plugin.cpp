@@ -15,10 +15,26 @@ namespace {
 using namespace brickyard;
 using namespace brickyard::control;
 
+struct Settings {
+  double rate_hz = 100;
+  ManagerParams manager;
+};
+
+ParamBinding<Settings> bindings() {
+  using M = ManagerParams;
+  ParamBinding<Settings> b;
+  b.bind("rate_hz", &Settings::rate_hz).in_unit("Hz").at_least(1);
+  b.bind("recover_after_s", &Settings::manager, &M::recover_after_s).in_unit("s").at_least(0)
+      .doc("NORMAL this long before the path tracker drives again");
+  b.bind("wall_timeout_s", &Settings::manager, &M::wall_timeout_s).in_unit("s").at_least(0).doc("no valid wall this long: safe stop");
+  b.bind("status_timeout_s", &Settings::manager, &M::status_timeout_s).in_unit("s").at_least(0)
+      .doc("no localization status this long counts as EMERGENCY");
+  return b;
+}
+
 class SystemManagerNode : public Plugin {
  public:
   static Manifest manifest() {
-    const ManagerParams d;
     return Manifest("control.system_manager", "1.0.0")
         .describe("localization EMERGENCY hands steering to the wall follower; back to the path tracker once NORMAL has held; "
                   "a safe stop when the wall is lost too")
@@ -28,22 +44,12 @@ class SystemManagerNode : public Plugin {
         .input<msgs::ControlCommand>("wall_command", "the wall follower's command", true, 8)
         .output<msgs::ControlCommand>("command", "to the car")
         .output<msgs::ModeStatus>("mode", "PATH / WALL_FOLLOW / SAFE_STOP, on change and every step")
-        .param(ParamSpec::number("rate_hz", 100).in_unit("Hz").at_least(1))
-        .param(ParamSpec::number("recover_after_s", d.recover_after_s).in_unit("s").at_least(0)
-                   .doc("NORMAL this long before the path tracker drives again"))
-        .param(ParamSpec::number("wall_timeout_s", d.wall_timeout_s).in_unit("s").at_least(0).doc("no valid wall this long: safe stop"))
-        .param(ParamSpec::number("status_timeout_s", d.status_timeout_s).in_unit("s").at_least(0)
-                   .doc("no localization status this long counts as EMERGENCY"))
+        .parameters(bindings())
         .periodic("rate_hz");
   }
 
   void configure(Context& ctx) override {
-    const Params& p = ctx.params();
-    ManagerParams mp;
-    mp.recover_after_s = p.number("recover_after_s");
-    mp.wall_timeout_s = p.number("wall_timeout_s");
-    mp.status_timeout_s = p.number("status_timeout_s");
-    manager_ = SystemManager(mp);
+    manager_ = SystemManager(bindings().read(ctx.params()).manager);
     loc_ = ctx.input<msgs::ModeStatus>("localization");
     wall_ = ctx.input<msgs::WallEstimate>("wall");
     path_cmd_ = ctx.input<msgs::ControlCommand>("path_command");

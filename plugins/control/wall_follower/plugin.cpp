@@ -13,48 +13,41 @@ namespace {
 using namespace brickyard;
 using namespace brickyard::control;
 
+ParamBinding<WallFollowerParams> bindings() {
+  using P = WallFollowerParams;
+  ParamBinding<P> b;
+  b.bind_choice("side", {{"right", -1}, {"left", 1}}, &P::side).doc("the wall followed");
+  b.bind("w_theta", &P::w_theta).doc("rad of steer per unit of the wall's slope at the look-ahead");
+  b.bind("w_d", &P::w_d).in_unit("rad/m").doc("rad of steer per m of gap error");
+  b.bind("gap", &P::gap).in_unit("m").at_least(0).doc("distance kept to the wall");
+  b.bind("lookahead", &P::lookahead).in_unit("m").at_least(0);
+  b.bind("max_steer", &P::max_steer).in_unit("rad").at_least(0.01);
+  b.bind("schedule_above", &P::schedule_above).in_unit("m/s").at_least(0)
+      .doc("above this speed the look-ahead grows and the gains shrink with speed as a pure pursuit's; 0: fixed");
+  b.bind_choice("speed_policy", {{"reduce", true}, {"hold", false}}, &P::reduce_speed)
+      .doc("while following: slow to fallback_speed, or hold");
+  b.bind("fallback_speed", &P::fallback_speed).in_unit("m/s").at_least(0);
+  b.bind("decel", &P::decel).in_unit("m/s^2").at_least(0.1);
+  b.bind("a_lat", &P::a_lat).in_unit("m/s^2").at_least(0).doc("the wall's bend caps the speed at sqrt(a_lat / curvature); 0: off");
+  b.bind("speed_gain", &P::speed_gain).at_least(0);
+  return b;
+}
+
 class WallFollowerNode : public Plugin {
  public:
   static Manifest manifest() {
-    const WallFollowerParams d;
     return Manifest("control.wall_follower", "1.0.0")
         .describe("the paper's wall-following command u_w = w_theta y'(L) + w_d (d_w - d_gap), holding or reducing speed")
         .input<msgs::WallEstimate>("wall", "the wall detector's estimate", true, 4)
         .input<msgs::WheelSpeeds>("wheels", "speed, independent of GNSS", true, 16)
         .input<msgs::ModeStatus>("mode", "the system manager's mode: taking over starts the speed policy (optional)", false, 8)
         .output<msgs::ControlCommand>("command", "steer and pedals, source \"wall_follower\"")
-        .param(ParamSpec::string("side", "right").one_of({"right", "left"}).doc("the wall followed"))
-        .param(ParamSpec::number("w_theta", d.w_theta).doc("rad of steer per unit of the wall's slope at the look-ahead"))
-        .param(ParamSpec::number("w_d", d.w_d).in_unit("rad/m").doc("rad of steer per m of gap error"))
-        .param(ParamSpec::number("gap", d.gap).in_unit("m").at_least(0).doc("distance kept to the wall"))
-        .param(ParamSpec::number("lookahead", d.lookahead).in_unit("m").at_least(0))
-        .param(ParamSpec::number("max_steer", d.max_steer).in_unit("rad").at_least(0.01))
-        .param(ParamSpec::number("schedule_above", d.schedule_above).in_unit("m/s").at_least(0)
-                   .doc("above this speed the look-ahead grows and the gains shrink with speed as a pure pursuit's; 0: fixed"))
-        .param(ParamSpec::string("speed_policy", "reduce").one_of({"reduce", "hold"}).doc("while following: slow to fallback_speed, or hold"))
-        .param(ParamSpec::number("fallback_speed", d.fallback_speed).in_unit("m/s").at_least(0))
-        .param(ParamSpec::number("decel", d.decel).in_unit("m/s^2").at_least(0.1))
-        .param(ParamSpec::number("a_lat", d.a_lat).in_unit("m/s^2").at_least(0).doc("the wall's bend caps the speed at sqrt(a_lat / curvature); 0: off"))
-        .param(ParamSpec::number("speed_gain", d.speed_gain).at_least(0))
+        .parameters(bindings())
         .on_input("wall");
   }
 
   void configure(Context& ctx) override {
-    const Params& p = ctx.params();
-    WallFollowerParams wp;
-    wp.side = p.string("side") == "left" ? 1 : -1;
-    wp.w_theta = p.number("w_theta");
-    wp.w_d = p.number("w_d");
-    wp.gap = p.number("gap");
-    wp.lookahead = p.number("lookahead");
-    wp.max_steer = p.number("max_steer");
-    wp.schedule_above = p.number("schedule_above");
-    wp.reduce_speed = p.string("speed_policy") == "reduce";
-    wp.fallback_speed = p.number("fallback_speed");
-    wp.decel = p.number("decel");
-    wp.a_lat = p.number("a_lat");
-    wp.speed_gain = p.number("speed_gain");
-    follower_ = WallFollower(wp);
+    follower_ = WallFollower(bindings().read(ctx.params()));
     wall_ = ctx.input<msgs::WallEstimate>("wall");
     wheels_ = ctx.input<msgs::WheelSpeeds>("wheels");
     mode_ = ctx.input<msgs::ModeStatus>("mode");

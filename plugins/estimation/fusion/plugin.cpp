@@ -25,82 +25,91 @@ using namespace brickyard::estimation;
 
 template <class T> double stamp_s(const T& m) { return static_cast<double>(m.header().stamp_ns()) * 1e-9; }
 
-Manifest common_manifest(Manifest m) {
+Manifest common_ports(Manifest m) {
   return m.input<msgs::Imu>("imu", "IMU: the yaw rate drives the prediction", true, 256)
       .input<msgs::WheelSpeeds>("wheels", "wheel speeds: the rear axle's speed drives the prediction", true, 256)
       .input<msgs::GnssFix>("gnss0", "fixes of the first receiver", true, 64)
       .input<msgs::GnssFix>("gnss1", "fixes of the second receiver (optional)", false, 64)
       .output<msgs::LocalizationEstimate>("estimate", "pose, covariance, the update case, delta per receiver, status")
-      .output<msgs::ModeStatus>("mode", "the localization manager's status, on change and at 10 Hz")
-      .param(ParamSpec::numbers("antenna0", {1.606, 0.05, 1.0}).doc("first receiver's antenna in base_link, m (x, y, z)"))
-      .param(ParamSpec::numbers("antenna1", {1.606, -0.05, 1.0}).doc("second receiver's antenna in base_link, m (x, y, z)"))
-      .param(ParamSpec::number("roll_filter_s", 1.0).in_unit("s").at_least(0).doc("time constant of the roll taken from the IMU; 0: roll not used"))
-      .param(ParamSpec::number("speed_sigma", 0.05).in_unit("m/s").at_least(0).doc("wheel speed input noise"))
-      .param(ParamSpec::number("gyro_sigma", 0.002).in_unit("rad/s").at_least(0).doc("yaw rate input noise"))
-      .param(ParamSpec::number("process_position", 0.05).in_unit("m/sqrt(s)").at_least(0))
-      .param(ParamSpec::number("process_yaw", 0.002).in_unit("rad/sqrt(s)").at_least(0))
-      .param(ParamSpec::number("process_slip_gain", 1e-4).in_unit("s^2/m/sqrt(s)").at_least(0))
-      .param(ParamSpec::number("init_distance", 5).in_unit("m").at_least(0.5).doc("travel before the heading is taken from the fixes"))
-      .param(ParamSpec::number("emergency_after_s", 0.3).in_unit("s").at_least(0).doc("every receiver rejected or silent this long: EMERGENCY"))
-      .param(ParamSpec::number("recover_after_s", 1.0).in_unit("s").at_least(0).doc("hysteresis: a level clears after this long without its cause"))
-      .param(ParamSpec::number("fix_timeout_s", 0.25).in_unit("s").at_least(0.01).doc("a receiver silent this long counts as rejected"))
-      .on_input("imu");
+      .output<msgs::ModeStatus>("mode", "the localization manager's status, on change and at 10 Hz");
+}
+
+// An antenna's lever arm: a number array of exactly 3 in the manifest, an Eigen vector inside.
+void bind_antenna(ParamBinding<LocalizerParams>& b, int r, const char* doc) {
+  const std::string name = std::string("antenna") + char('0' + r);
+  const Eigen::Vector3d& d = b.defaults().lever[r];
+  b.bind_with(ParamSpec::numbers(name, {d.x(), d.y(), d.z()}).doc(doc), [name, r](const Params& p, LocalizerParams& lp) {
+    const auto& a = p.numbers(name);
+    if (a.size() != 3) throw BadInput("parameter '" + name + "': needs 3 numbers (x, y, z)");
+    lp.lever[r] = {a[0], a[1], a[2]};
+  });
+}
+
+// The three estimators' parameters: the common ones, then their policy's.
+template <Policy P> ParamBinding<LocalizerParams> bindings() {
+  using L = LocalizerParams;
+  using N = FilterNoise;
+  using M = ManagerParams;
+  using S = PolicyParams;
+  L defaults;
+  defaults.policy = P;
+  ParamBinding<L> b(defaults);
+  bind_antenna(b, 0, "first receiver's antenna in base_link, m (x, y, z)");
+  bind_antenna(b, 1, "second receiver's antenna in base_link, m (x, y, z)");
+  b.bind("roll_filter_s", &L::roll_filter_s).in_unit("s").at_least(0).doc("time constant of the roll taken from the IMU; 0: roll not used");
+  b.bind("speed_sigma", &L::noise, &N::speed).in_unit("m/s").at_least(0).doc("wheel speed input noise");
+  b.bind("gyro_sigma", &L::noise, &N::yaw_rate).in_unit("rad/s").at_least(0).doc("yaw rate input noise");
+  b.bind("process_position", &L::noise, &N::position).in_unit("m/sqrt(s)").at_least(0);
+  b.bind("process_yaw", &L::noise, &N::yaw).in_unit("rad/sqrt(s)").at_least(0);
+  b.bind("process_slip_gain", &L::noise, &N::slip_gain).in_unit("s^2/m/sqrt(s)").at_least(0);
+  b.bind("init_distance", &L::init_distance).in_unit("m").at_least(0.5).doc("travel before the heading is taken from the fixes");
+  b.bind("emergency_after_s", &L::manager, &M::emergency_after_s).in_unit("s").at_least(0)
+      .doc("every receiver rejected or silent this long: EMERGENCY");
+  b.bind("recover_after_s", &L::manager, &M::recover_after_s).in_unit("s").at_least(0)
+      .doc("hysteresis: a level clears after this long without its cause");
+  b.bind("fix_timeout_s", &L::manager, &M::fix_timeout_s).in_unit("s").at_least(0.01).doc("a receiver silent this long counts as rejected");
+  if constexpr (P == Policy::resilient) {
+    b.bind("epsilon_m", &L::selection, &S::epsilon).in_unit("m").at_least(0)
+        .doc("every fix within this: all qualified (weighting paper: the closest one alone)");
+    b.bind("delta_m", &L::selection, &S::delta).in_unit("m").at_least(0).doc("fixes beyond this are rejected");
+    b.bind_choice("weighting", {{"likelihood", Weighting::likelihood}, {"paper", Weighting::paper}}, &L::selection, &S::weighting)
+        .doc("weights: likelihood (exp(-max(0, d^2 - 9)/2), d Mahalanobis) or paper (1 - delta/sum); docs/algorithms.md");
+    b.not_above("epsilon_m", "delta_m");
+  } else if constexpr (P == Policy::gated) {
+    b.bind("gate_chi2", &L::selection, &S::gate_chi2).at_least(0).doc("squared Mahalanobis threshold (2 dof; 13.8 = 99.9 %)");
+  }
+  return b;
 }
 
 template <Policy P> class Estimator : public Plugin {
  public:
   static Manifest manifest() {
     if constexpr (P == Policy::resilient)
-      return common_manifest(Manifest("estimation.resilient_fusion", "1.0.0")
-                                 .describe("multi-GNSS Kalman filter with the paper's Bayesian update selection (eps, delta) and the localization manager"))
-          .param(ParamSpec::number("epsilon_m", 0.2).in_unit("m").at_least(0).doc("every fix within this: all qualified (weighting paper: the closest one alone)"))
-          .param(ParamSpec::number("delta_m", 5.0).in_unit("m").at_least(0).doc("fixes beyond this are rejected"))
-          .param(ParamSpec::string("weighting", "likelihood").one_of({"likelihood", "paper"})
-                     .doc("weights: likelihood (exp(-max(0, d^2 - 9)/2), d Mahalanobis) or paper (1 - delta/sum); docs/algorithms.md"));
+      return common_ports(Manifest("estimation.resilient_fusion", "1.0.0")
+                              .describe("multi-GNSS Kalman filter with the paper's Bayesian update selection (eps, delta) and the localization manager"))
+          .parameters(bindings<P>())
+          .on_input("imu");
     else if constexpr (P == Policy::gated)
-      return common_manifest(Manifest("estimation.ekf_gated", "1.0.0")
-                                 .describe("baseline: the same filter with a per-receiver chi-square gate (robot_localization style)"))
-          .param(ParamSpec::number("gate_chi2", 13.816).at_least(0).doc("squared Mahalanobis threshold (2 dof; 13.8 = 99.9 %)"));
+      return common_ports(Manifest("estimation.ekf_gated", "1.0.0")
+                              .describe("baseline: the same filter with a per-receiver chi-square gate (robot_localization style)"))
+          .parameters(bindings<P>())
+          .on_input("imu");
     else
-      return common_manifest(Manifest("estimation.ekf_naive", "1.0.0").describe("baseline: the same filter fusing every fix"));
+      return common_ports(Manifest("estimation.ekf_naive", "1.0.0").describe("baseline: the same filter fusing every fix"))
+          .parameters(bindings<P>())
+          .on_input("imu");
   }
 
   void configure(Context& ctx) override {
-    const Params& p = ctx.params();
-    LocalizerParams lp;
-    lp.policy = P;
-    for (int r = 0; r < 2; ++r) {
-      const auto& a = p.numbers(r == 0 ? "antenna0" : "antenna1");
-      if (a.size() != 3) throw BadInput(std::string("parameter 'antenna") + char('0' + r) + "': needs 3 numbers (x, y, z)");
-      lp.lever[r] = {a[0], a[1], a[2]};
-    }
-    lp.noise.speed = p.number("speed_sigma");
-    lp.noise.yaw_rate = p.number("gyro_sigma");
-    lp.noise.position = p.number("process_position");
-    lp.noise.yaw = p.number("process_yaw");
-    lp.noise.slip_gain = p.number("process_slip_gain");
-    lp.init_distance = p.number("init_distance");
-    lp.roll_filter_s = p.number("roll_filter_s");
-    if constexpr (P == Policy::resilient) {
-      lp.selection.epsilon = p.number("epsilon_m");
-      lp.selection.delta = p.number("delta_m");
-      epsilon_ = lp.selection.epsilon;
-      delta_ = lp.selection.delta;
-      if (lp.selection.epsilon > lp.selection.delta)
-        throw BadInput("parameter 'epsilon_m' (" + std::to_string(lp.selection.epsilon) + ") must not exceed 'delta_m' (" +
-                       std::to_string(lp.selection.delta) + ")");
-      lp.selection.weighting = p.string("weighting") == "paper" ? Weighting::paper : Weighting::likelihood;
-    }
-    if constexpr (P == Policy::gated) lp.selection.gate_chi2 = p.number("gate_chi2");
+    LocalizerParams lp = bindings<P>().read(ctx.params());
+    epsilon_ = lp.selection.epsilon;
+    delta_ = lp.selection.delta;
     imu_ = ctx.input<msgs::Imu>("imu");
     wheels_ = ctx.input<msgs::WheelSpeeds>("wheels");
     gnss_[0] = ctx.input<msgs::GnssFix>("gnss0");
     gnss_[1] = ctx.input<msgs::GnssFix>("gnss1");
     receivers_ = gnss_[1].connected() ? 2 : 1;
     lp.manager.receivers = receivers_;
-    lp.manager.emergency_after_s = p.number("emergency_after_s");
-    lp.manager.recover_after_s = p.number("recover_after_s");
-    lp.manager.fix_timeout_s = p.number("fix_timeout_s");
     loc_.emplace(lp);
     for (int r = 0; r < 2; ++r) lever_[r] = lp.lever[r];
     estimate_ = ctx.output<msgs::LocalizationEstimate>("estimate");

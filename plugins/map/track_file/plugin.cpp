@@ -18,31 +18,43 @@ namespace {
 
 using namespace brickyard;
 
+struct Settings {
+  std::string track = "tracks/IMS.csv";
+  std::string name;
+  track::BankSpec bank;  // flat unless the graph says otherwise
+  double rate_hz = 1.0;
+};
+
+ParamBinding<Settings> bindings() {
+  ParamBinding<Settings> b;
+  b.bind("track", &Settings::track).doc("centre-line file: x_m,y_m,w_tr_right_m,w_tr_left_m");
+  b.bind("name", &Settings::name).doc("track name; default: the file's stem");
+  plugins::bind_bank(b, &Settings::bank);
+  b.bind("rate_hz", &Settings::rate_hz).in_unit("Hz").at_least(0.01);
+  return b;
+}
+
 class TrackFileMap : public Plugin {
  public:
   static Manifest manifest() {
-    return plugins::with_bank_params(
-               Manifest("map.track_file", "1.0.0")
-                   .describe("the car's map of the track from a track file: centre line, widths and banking (no obstacles)")
-                   .output<msgs::TrackMap>("map", "the map, republished at rate_hz for late joiners")
-                   .param(ParamSpec::string("track", "tracks/IMS.csv").doc("centre-line file: x_m,y_m,w_tr_right_m,w_tr_left_m"))
-                   .param(ParamSpec::string("name", "").doc("track name; default: the file's stem")),
-               "none", 0)
-        .param(ParamSpec::number("rate_hz", 1.0).in_unit("Hz").at_least(0.01))
+    return Manifest("map.track_file", "1.0.0")
+        .describe("the car's map of the track from a track file: centre line, widths and banking (no obstacles)")
+        .output<msgs::TrackMap>("map", "the map, republished at rate_hz for late joiners")
+        .parameters(bindings())
         .periodic("rate_hz");
   }
 
   void configure(Context& ctx) override {
-    const Params& p = ctx.params();
-    const std::string path = ctx.find_file(p.string("track"));
+    const Settings s = bindings().read(ctx.params());
+    const std::string path = ctx.find_file(s.track);
     track::TrackGeometry g;
     try {
       g.line = track::load_centerline_csv(path);
     } catch (const track::TrackFileError& e) {
       throw BadInput(std::string("track file ") + e.what());
     }
-    g.name = p.string("name").empty() ? std::filesystem::path(path).stem().string() : p.string("name");
-    g.bank = track::bank_profile(g.line, plugins::read_bank_params(p));
+    g.name = s.name.empty() ? std::filesystem::path(path).stem().string() : s.name;
+    g.bank = track::bank_profile(g.line, s.bank);
     try {
       const track::Track t(g);  // the geometry the readers will build: refused here, not downstream
       length_ = t.length();

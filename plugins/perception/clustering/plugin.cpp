@@ -11,29 +11,28 @@ namespace {
 using namespace brickyard;
 using namespace brickyard::perception;
 
+ParamBinding<ClusterParams> bindings() {
+  ParamBinding<ClusterParams> b;
+  b.bind("tolerance", &ClusterParams::tolerance).in_unit("m").range(0.01, 100).doc("points closer than this are connected");
+  b.bind("min_size", &ClusterParams::min_size).at_least(1).doc("smaller clusters are dropped");
+  b.bind("max_size", &ClusterParams::max_size).at_least(1).doc("larger clusters are dropped, not split (as PCL)");
+  b.not_above("min_size", "max_size");
+  return b;
+}
+
 class ClusteringNode : public Plugin {
  public:
   static Manifest manifest() {
-    const ClusterParams d;
     return Manifest("perception.clustering", "1.0.0")
         .describe("Euclidean clustering (hash grid + union-find; the same partition as PCL's EuclideanClusterExtraction)")
         .input<msgs::PointCloud>("points", "points to cluster (any frame the message's sensor pose maps to the vehicle's)", true, 4)
         .output<msgs::ClusterList>("clusters", "clusters in the vehicle frame, in order of their first point")
-        .param(ParamSpec::number("tolerance", d.tolerance).in_unit("m").range(0.01, 100).doc("points closer than this are connected"))
-        .param(ParamSpec::integer("min_size", d.min_size).at_least(1).doc("smaller clusters are dropped"))
-        .param(ParamSpec::integer("max_size", d.max_size).at_least(1).doc("larger clusters are dropped, not split (as PCL)"))
+        .parameters(bindings())
         .on_input("points");
   }
 
   void configure(Context& ctx) override {
-    const Params& p = ctx.params();
-    ClusterParams c;
-    c.tolerance = static_cast<float>(p.number("tolerance"));
-    c.min_size = static_cast<int>(p.integer("min_size"));
-    c.max_size = static_cast<int>(p.integer("max_size"));
-    if (c.min_size > c.max_size)
-      throw BadInput("parameter 'min_size' (" + std::to_string(c.min_size) + ") exceeds 'max_size' (" + std::to_string(c.max_size) + ")");
-    clustering_ = EuclideanClustering(c);
+    clustering_ = EuclideanClustering(bindings().read(ctx.params()));
     in_ = ctx.input<msgs::PointCloud>("points");
     out_ = ctx.output<msgs::ClusterList>("clusters");
   }

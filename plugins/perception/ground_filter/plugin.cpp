@@ -17,10 +17,28 @@ using namespace brickyard::perception;
 
 using CloudPtr = std::shared_ptr<const msgs::PointCloud>;
 
+struct Settings {
+  GroundParams filter;  // the defaults live with the algorithm
+  double sync_window_s = 0.025;
+};
+
+ParamBinding<Settings> bindings() {
+  using G = GroundParams;
+  ParamBinding<Settings> b;
+  b.bind("leaf", &Settings::filter, &G::leaf).in_unit("m").range(0.01, 10).doc("voxel size");
+  b.bind("cell", &Settings::filter, &G::cell).in_unit("m").range(0.01, 10).doc("2-D vote grid");
+  b.bind("min_votes", &Settings::filter, &G::min_votes).range(1, 1000).doc("voxels in a cell for a vertical feature");
+  b.bind("min_height", &Settings::filter, &G::min_height).in_unit("m").at_least(0).doc("z extent of a vertical feature's voxels");
+  b.bind("ground_band", &Settings::filter, &G::ground_band).in_unit("m").at_least(0)
+      .doc("in a vertical cell, voxels this close to the road it stands on are road");
+  b.bind("sync_window_s", &Settings::sync_window_s).in_unit("s").range(0, 1)
+      .doc("clouds stamped within this of the frame's first belong to one frame");
+  return b;
+}
+
 class GroundFilterNode : public Plugin {
  public:
   static Manifest manifest() {
-    const GroundParams d;  // the defaults live with the algorithm
     return Manifest("perception.ground_filter", "1.0.0")
         .describe("merges up to 3 LiDARs into the vehicle frame, voxel filter, then the paper's hashed z-vote: "
                   "cells of few voxels or little height are ground (no slope limit: holds on banked turns)")
@@ -29,34 +47,22 @@ class GroundFilterNode : public Plugin {
         .input<msgs::PointCloud>("lidar2", "a third LiDAR (optional)", false, 4)
         .output<msgs::PointCloud>("points", "vertical features: the non-ground voxel centroids, vehicle frame")
         .output<msgs::PointCloud>("ground", "the ground voxel centroids, vehicle frame")
-        .param(ParamSpec::number("leaf", d.leaf).in_unit("m").range(0.01, 10).doc("voxel size"))
-        .param(ParamSpec::number("cell", d.cell).in_unit("m").range(0.01, 10).doc("2-D vote grid"))
-        .param(ParamSpec::integer("min_votes", d.min_votes).range(1, 1000).doc("voxels in a cell for a vertical feature"))
-        .param(ParamSpec::number("min_height", d.min_height).in_unit("m").at_least(0).doc("z extent of a vertical feature's voxels"))
-        .param(ParamSpec::number("ground_band", d.ground_band).in_unit("m").at_least(0)
-                   .doc("in a vertical cell, voxels this close to the road it stands on are road"))
-        .param(ParamSpec::number("sync_window_s", 0.025).in_unit("s").range(0, 1)
-                   .doc("clouds stamped within this of the frame's first belong to one frame"))
+        .parameters(bindings())
         .on_input("lidar0")
         .on_input("lidar1")
         .on_input("lidar2");
   }
 
   void configure(Context& ctx) override {
-    const Params& p = ctx.params();
-    GroundParams g;
-    g.leaf = static_cast<float>(p.number("leaf"));
-    g.cell = static_cast<float>(p.number("cell"));
-    g.min_votes = static_cast<int>(p.integer("min_votes"));
-    g.min_height = static_cast<float>(p.number("min_height"));
-    g.ground_band = static_cast<float>(p.number("ground_band"));
+    const Settings s = bindings().read(ctx.params());
+    const GroundParams& g = s.filter;
     filter_ = GroundFilter(g);
     int sensors = 0;
     for (int i = 0; i < 3; ++i) {
       in_[i] = ctx.input<msgs::PointCloud>("lidar" + std::to_string(i));
       if (in_[i].connected()) slot_[i] = sensors++;
     }
-    sets_.emplace(sensors, static_cast<std::int64_t>(p.number("sync_window_s") * 1e9));
+    sets_.emplace(sensors, static_cast<std::int64_t>(s.sync_window_s * 1e9));
     points_ = ctx.output<msgs::PointCloud>("points");
     ground_ = ctx.output<msgs::PointCloud>("ground");
   }

@@ -20,48 +20,43 @@ using namespace brickyard::perception;
 
 using WallPtr = std::shared_ptr<const msgs::WallEstimate>;
 
+ParamBinding<ObstacleParams> bindings() {
+  using O = ObstacleParams;
+  ParamBinding<O> b;
+  b.bind("max_lateral", &O::max_lateral).in_unit("m").at_least(0).doc("corridor half width when no wall is fitted");
+  b.bind("corridor_width", &O::corridor_width).in_unit("m").at_least(0)
+      .doc("corridor: this far inward of the fitted wall, following it round turns");
+  b.bind("max_range", &O::max_range).in_unit("m").at_least(0).doc("how far ahead");
+  b.bind("max_behind", &O::max_behind).in_unit("m").at_least(0).doc("how far behind");
+  b.bind("wall_margin", &O::wall_margin).in_unit("m").at_least(0).doc("a cluster this close to a fitted wall is wall");
+  b.bind("max_length", &O::max_length).in_unit("m").at_least(0).doc("longer clusters are structure, not obstacles");
+  b.bind("min_height", &O::min_height).in_unit("m").at_least(0).doc("less z extent: a scan row's streak, not an obstacle");
+  b.bind("flat_thickness", &O::flat_thickness).in_unit("m").at_least(0)
+      .doc("a cluster thinner than this across its best plane, lying within flat_tilt_deg of level, is ground");
+  b.bind("flat_tilt_deg", &O::flat_tilt_deg).in_unit("deg").range(0, 90);
+  b.bind("stack_gap", &O::stack_gap).in_unit("m").at_least(0)
+      .doc("clusters whose footprints come this close are one object (a far pylon's row streaks)");
+  b.bind("min_points", &O::min_points).at_least(1);
+  return b;
+}
+
 class ObstacleDetectorNode : public Plugin {
  public:
   static Manifest manifest() {
-    const ObstacleParams d;
     return Manifest("perception.obstacle_detector", "1.0.0")
         .describe("clusters inside the drivable corridor (|y| limit, cut by the fitted walls) that are not wall -> obstacles")
         .input<msgs::ClusterList>("clusters", "clusters, vehicle frame", true, 8)
         .input<msgs::WallEstimate>("wall_right", "the right wall fit of the same frames (optional)", false, 8)
         .input<msgs::WallEstimate>("wall_left", "the left wall fit of the same frames (optional)", false, 8)
         .output<msgs::ObstacleList>("obstacles", "obstacles, vehicle frame, every frame")
-        .param(ParamSpec::number("max_lateral", d.max_lateral).in_unit("m").at_least(0).doc("corridor half width when no wall is fitted"))
-        .param(ParamSpec::number("corridor_width", d.corridor_width).in_unit("m").at_least(0)
-                   .doc("corridor: this far inward of the fitted wall, following it round turns"))
-        .param(ParamSpec::number("max_range", d.max_range).in_unit("m").at_least(0).doc("how far ahead"))
-        .param(ParamSpec::number("max_behind", d.max_behind).in_unit("m").at_least(0).doc("how far behind"))
-        .param(ParamSpec::number("wall_margin", d.wall_margin).in_unit("m").at_least(0).doc("a cluster this close to a fitted wall is wall"))
-        .param(ParamSpec::number("max_length", d.max_length).in_unit("m").at_least(0).doc("longer clusters are structure, not obstacles"))
-        .param(ParamSpec::number("min_height", d.min_height).in_unit("m").at_least(0).doc("less z extent: a scan row's streak, not an obstacle"))
-        .param(ParamSpec::number("flat_thickness", d.flat_thickness).in_unit("m").at_least(0)
-                   .doc("a cluster thinner than this across its best plane, lying within flat_tilt_deg of level, is ground"))
-        .param(ParamSpec::number("flat_tilt_deg", d.flat_tilt_deg).in_unit("deg").range(0, 90))
-        .param(ParamSpec::number("stack_gap", d.stack_gap).in_unit("m").at_least(0)
-                   .doc("clusters whose footprints come this close are one object (a far pylon's row streaks)"))
-        .param(ParamSpec::integer("min_points", d.min_points).at_least(1))
+        .parameters(bindings())
         .on_input("clusters")
         .on_input("wall_right")
         .on_input("wall_left");
   }
 
   void configure(Context& ctx) override {
-    const Params& p = ctx.params();
-    op_.max_lateral = p.number("max_lateral");
-    op_.corridor_width = p.number("corridor_width");
-    op_.max_range = p.number("max_range");
-    op_.max_behind = p.number("max_behind");
-    op_.wall_margin = p.number("wall_margin");
-    op_.max_length = p.number("max_length");
-    op_.min_points = static_cast<int>(p.integer("min_points"));
-    op_.min_height = p.number("min_height");
-    op_.stack_gap = p.number("stack_gap");
-    op_.flat_thickness = p.number("flat_thickness");
-    op_.flat_tilt_deg = p.number("flat_tilt_deg");
+    op_ = bindings().read(ctx.params());
     in_ = ctx.input<msgs::ClusterList>("clusters");
     walls_in_[0] = ctx.input<msgs::WallEstimate>("wall_right");
     walls_in_[1] = ctx.input<msgs::WallEstimate>("wall_left");

@@ -12,43 +12,38 @@ namespace {
 using namespace brickyard;
 using namespace brickyard::perception;
 
+ParamBinding<WallParams> bindings() {
+  using W = WallParams;
+  ParamBinding<W> b;
+  b.bind_choice("side", {{"right", -1}, {"left", 1}}, &W::side);
+  b.bind("degree", &W::degree).range(1, 5).doc("of the polynomial y(x)");
+  b.bind("lean", &W::lean).doc("also fit y = p(x) + k z: the wall's lean in a rolled car (banking)");
+  b.bind("lookahead", &W::lookahead).in_unit("m").at_least(0).doc("where heading and curvature are taken");
+  b.bind("min_points", &W::min_points).at_least(1).doc("fewer points: not valid");
+  b.bind("min_length", &W::min_length).in_unit("m").at_least(0).doc("shorter x extent: not valid");
+  b.bind("max_residual", &W::max_residual).in_unit("m").at_least(0).doc("larger RMS residual: not valid");
+  b.bind("join_gap", &W::join_gap).in_unit("m").at_least(0)
+      .doc("a cluster starting this far past the wall's end may continue it (far stripes of a grazed wall)");
+  b.bind("join_margin", &W::join_margin).in_unit("m").at_least(0).doc("from the wall's extrapolated local fit...");
+  b.bind("join_slope", &W::join_slope).at_least(0).doc("...plus this per metre past the end");
+  b.bind("fit_range", &W::fit_range).in_unit("m").at_least(1).doc("the polynomial fits the wall's points with |x| <= this");
+  return b;
+}
+
 class WallDetectorNode : public Plugin {
  public:
   static Manifest manifest() {
-    const WallParams d;
     return Manifest("perception.wall_detector", "1.0.0")
         .describe("the longest cluster on the configured side is the wall, grown through the clusters that continue it; "
                   "least-squares polynomial y(x) at z = 0 (Eigen), d_w = y(0), heading and curvature at a look-ahead")
         .input<msgs::ClusterList>("clusters", "clusters, vehicle frame", true, 4)
         .output<msgs::WallEstimate>("wall", "the fitted wall, every frame (valid: false when there is none)")
-        .param(ParamSpec::string("side", "right").one_of({"right", "left"}))
-        .param(ParamSpec::integer("degree", d.degree).range(1, 5).doc("of the polynomial y(x)"))
-        .param(ParamSpec::boolean("lean", d.lean).doc("also fit y = p(x) + k z: the wall's lean in a rolled car (banking)"))
-        .param(ParamSpec::number("lookahead", d.lookahead).in_unit("m").at_least(0).doc("where heading and curvature are taken"))
-        .param(ParamSpec::integer("min_points", d.min_points).at_least(1).doc("fewer points: not valid"))
-        .param(ParamSpec::number("min_length", d.min_length).in_unit("m").at_least(0).doc("shorter x extent: not valid"))
-        .param(ParamSpec::number("max_residual", d.max_residual).in_unit("m").at_least(0).doc("larger RMS residual: not valid"))
-        .param(ParamSpec::number("join_gap", d.join_gap).in_unit("m").at_least(0)
-                   .doc("a cluster starting this far past the wall's end may continue it (far stripes of a grazed wall)"))
-        .param(ParamSpec::number("join_margin", d.join_margin).in_unit("m").at_least(0).doc("from the wall's extrapolated local fit..."))
-        .param(ParamSpec::number("join_slope", d.join_slope).at_least(0).doc("...plus this per metre past the end"))
-        .param(ParamSpec::number("fit_range", d.fit_range).in_unit("m").at_least(1).doc("the polynomial fits the wall's points with |x| <= this"))
+        .parameters(bindings())
         .on_input("clusters");
   }
 
   void configure(Context& ctx) override {
-    const Params& p = ctx.params();
-    wp_.side = p.string("side") == "left" ? 1 : -1;
-    wp_.degree = static_cast<int>(p.integer("degree"));
-    wp_.lean = p.boolean("lean");
-    wp_.lookahead = p.number("lookahead");
-    wp_.min_points = static_cast<int>(p.integer("min_points"));
-    wp_.min_length = p.number("min_length");
-    wp_.max_residual = p.number("max_residual");
-    wp_.join_gap = p.number("join_gap");
-    wp_.join_margin = p.number("join_margin");
-    wp_.join_slope = p.number("join_slope");
-    wp_.fit_range = p.number("fit_range");
+    wp_ = bindings().read(ctx.params());
     in_ = ctx.input<msgs::ClusterList>("clusters");
     out_ = ctx.output<msgs::WallEstimate>("wall");
   }

@@ -20,26 +20,36 @@ namespace {
 
 using namespace brickyard;
 using brickyard::planning::LineParams;
-using brickyard::planning::read_line_params;
-using brickyard::planning::with_line_params;
+using brickyard::planning::LineSettings;
+
+struct Settings {
+  LineSettings line;
+  double rate_hz = 1;
+};
+
+ParamBinding<Settings> bindings() {
+  ParamBinding<Settings> b;
+  planning::bind_line(b, &Settings::line);
+  b.bind("rate_hz", &Settings::rate_hz).in_unit("Hz").at_least(0.01).doc("how often the path is sent again");
+  return b;
+}
 
 class RacingLineNode : public Plugin {
  public:
   static Manifest manifest() {
-    return with_line_params(
-               Manifest("planning.racing_line", "1.0.0")
-                   .describe("the racing line as a Path with a speed profile (lateral and longitudinal limits)")
-                   .input<msgs::TrackMap>("map", "when wired, the line is kept edge_margin inside the track", false, 1)
-                   // Read by planning.road_graph; accepted here so the two planners swap by the plugin's name.
-                   .input<msgs::LocalizationEstimate>("estimate", "not used: this planner ignores where the car is", false, 1)
-                   .input<msgs::ObstacleList>("obstacles", "not used: this planner does not avoid obstacles", false, 1)
-                   .output<msgs::Path>("path", "the line: poses, curvature, speed, s (a closed loop); sent at rate_hz"))
-        .param(ParamSpec::number("rate_hz", 1).in_unit("Hz").at_least(0.01).doc("how often the path is sent again"))
+    return Manifest("planning.racing_line", "1.0.0")
+        .describe("the racing line as a Path with a speed profile (lateral and longitudinal limits)")
+        .input<msgs::TrackMap>("map", "when wired, the line is kept edge_margin inside the track", false, 1)
+        // Read by planning.road_graph; accepted here so the two planners swap by the plugin's name.
+        .input<msgs::LocalizationEstimate>("estimate", "not used: this planner ignores where the car is", false, 1)
+        .input<msgs::ObstacleList>("obstacles", "not used: this planner does not avoid obstacles", false, 1)
+        .output<msgs::Path>("path", "the line: poses, curvature, speed, s (a closed loop); sent at rate_hz")
+        .parameters(bindings())
         .periodic("rate_hz");
   }
 
   void configure(Context& ctx) override {
-    const LineParams lp = read_line_params(ctx);
+    const LineParams lp = planning::load_line(ctx, bindings().read(ctx.params()).line);
     line_ = lp.line;
     limits_ = lp.limits;
     margin_ = lp.edge_margin;

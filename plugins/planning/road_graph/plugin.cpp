@@ -28,74 +28,74 @@ namespace {
 using namespace brickyard;
 using namespace brickyard::planning;
 
+struct Settings {
+  LineSettings line;
+  double rate_hz = 20;
+  std::string graph_file;
+  RoadGraphParams graph;
+  PlannerParams planner;
+};
+
+ParamBinding<Settings> bindings() {
+  using G = RoadGraphParams;
+  using S = SearchParams;
+  using P = PlannerParams;
+  constexpr auto graph = &Settings::graph;
+  constexpr auto planner = &Settings::planner;
+  constexpr auto search = &P::search;
+  ParamBinding<Settings> b;
+  bind_line(b, &Settings::line);
+  b.bind("rate_hz", &Settings::rate_hz).in_unit("Hz").at_least(0.1).doc("replanning rate");
+  b.bind("graph_file", &Settings::graph_file).doc("a graph written by `brickyard-plan graph`; empty: built from the map at start");
+  b.bind("layer_spacing", graph, &G::layer_spacing).in_unit("m").range(1, 100);
+  b.bind("layer_spacing_turn", graph, &G::layer_spacing_turn).in_unit("m").range(1, 100);
+  b.bind("lateral_step", graph, &G::lateral_step).in_unit("m").range(0.1, 5);
+  b.bind("half_width", graph, &G::half_width).in_unit("m").range(0.1, 5).doc("half the car's width");
+  b.bind("graph_edge_margin", graph, &G::edge_margin).in_unit("m").at_least(0)
+      .doc("nodes keep this much beyond half the width from the track edges");
+  b.bind("max_curvature", graph, &G::max_curvature).in_unit("1/m").range(0.001, 1).doc("sharper edges are dropped");
+  b.bind("max_edge_length", graph, &G::max_edge_length).in_unit("m").range(5, 500);
+  b.bind("horizon", planner, search, &S::horizon).in_unit("m").range(20, 2000);
+  b.bind("clearance", planner, search, &S::clearance).in_unit("m").at_least(0).doc("least gap between the car's side and an obstacle");
+  b.bind("soft_clearance", planner, search, &S::soft_clearance).in_unit("m").at_least(0);
+  b.bind("car_front", planner, search, &S::car_front).in_unit("m").at_least(0).doc("car ahead of base_link");
+  b.bind("car_rear", planner, search, &S::car_rear).in_unit("m").at_least(0).doc("car behind base_link");
+  b.bind("k_length", planner, search, &S::k_length).at_least(0);
+  b.bind("k_curvature", planner, search, &S::k_curvature).at_least(0);
+  b.bind("k_deviation", planner, search, &S::k_deviation).at_least(0);
+  b.bind("k_proximity", planner, search, &S::k_proximity).at_least(0);
+  b.bind("commit_time", planner, &P::commit_time).in_unit("s").at_least(0);
+  b.bind("commit_min", planner, &P::commit_min).in_unit("m").at_least(1);
+  b.bind("obstacle_memory", planner, &P::obstacle_memory).in_unit("s").range(0, 3600);
+  b.bind("obstacle_confirmations", planner, &P::confirmations).range(1, 100)
+      .doc("frames an obstacle must be detected in before it is planned around");
+  return b;
+}
+
 class RoadGraphNode : public Plugin {
  public:
   static Manifest manifest() {
-    const RoadGraphParams g;
-    const SearchParams s;
-    const PlannerParams pp;
-    return with_line_params(Manifest("planning.road_graph", "1.0.0")
+    return Manifest("planning.road_graph", "1.0.0")
         .describe("obstacle avoidance on a road graph (Frenet lattice) along the racing line; a Path with speeds, replanned at rate_hz")
         .input<msgs::TrackMap>("map", "the track: the graph's room and the line's edge margin (must be wired)", false, 1)
         .input<msgs::LocalizationEstimate>("estimate", "where the car is (base_link, map frame)", false, 64)
         .input<msgs::ObstacleList>("obstacles", "obstacles in the vehicle frame, placed with the estimate of their stamp", false, 16)
-        .output<msgs::Path>("path", "horizon m of path from just behind the car, with speeds (open)"))
-        .param(ParamSpec::number("rate_hz", 20).in_unit("Hz").at_least(0.1).doc("replanning rate"))
-        .param(ParamSpec::string("graph_file", "").doc("a graph written by `brickyard-plan graph`; empty: built from the map at start"))
-        .param(ParamSpec::number("layer_spacing", g.layer_spacing).in_unit("m").range(1, 100))
-        .param(ParamSpec::number("layer_spacing_turn", g.layer_spacing_turn).in_unit("m").range(1, 100))
-        .param(ParamSpec::number("lateral_step", g.lateral_step).in_unit("m").range(0.1, 5))
-        .param(ParamSpec::number("half_width", g.half_width).in_unit("m").range(0.1, 5).doc("half the car's width"))
-        .param(ParamSpec::number("graph_edge_margin", g.edge_margin).in_unit("m").at_least(0).doc("nodes keep this much beyond half the width from the track edges"))
-        .param(ParamSpec::number("max_curvature", g.max_curvature).in_unit("1/m").range(0.001, 1).doc("sharper edges are dropped"))
-        .param(ParamSpec::number("max_edge_length", g.max_edge_length).in_unit("m").range(5, 500))
-        .param(ParamSpec::number("horizon", s.horizon).in_unit("m").range(20, 2000))
-        .param(ParamSpec::number("clearance", s.clearance).in_unit("m").at_least(0).doc("least gap between the car's side and an obstacle"))
-        .param(ParamSpec::number("soft_clearance", s.soft_clearance).in_unit("m").at_least(0))
-        .param(ParamSpec::number("car_front", s.car_front).in_unit("m").at_least(0).doc("car ahead of base_link"))
-        .param(ParamSpec::number("car_rear", s.car_rear).in_unit("m").at_least(0).doc("car behind base_link"))
-        .param(ParamSpec::number("k_length", s.k_length).at_least(0))
-        .param(ParamSpec::number("k_curvature", s.k_curvature).at_least(0))
-        .param(ParamSpec::number("k_deviation", s.k_deviation).at_least(0))
-        .param(ParamSpec::number("k_proximity", s.k_proximity).at_least(0))
-        .param(ParamSpec::number("commit_time", pp.commit_time).in_unit("s").at_least(0))
-        .param(ParamSpec::number("commit_min", pp.commit_min).in_unit("m").at_least(1))
-        .param(ParamSpec::number("obstacle_memory", pp.obstacle_memory).in_unit("s").range(0, 3600))
-        .param(ParamSpec::integer("obstacle_confirmations", pp.confirmations).range(1, 100)
-                   .doc("frames an obstacle must be detected in before it is planned around"))
+        .output<msgs::Path>("path", "horizon m of path from just behind the car, with speeds (open)")
+        .parameters(bindings())
         .periodic("rate_hz");
   }
 
   void configure(Context& ctx) override {
-    const Params& p = ctx.params();
-    const LineParams lp = read_line_params(ctx);
+    const Settings set = bindings().read(ctx.params());
+    const LineParams lp = load_line(ctx, set.line);
     line_file_ = lp.file;
     line_ = lp.line;
     limits_ = lp.limits;
     margin_ = lp.edge_margin;
-    gp_.layer_spacing = p.number("layer_spacing");
-    gp_.layer_spacing_turn = p.number("layer_spacing_turn");
-    gp_.lateral_step = p.number("lateral_step");
-    gp_.half_width = p.number("half_width");
-    gp_.edge_margin = p.number("graph_edge_margin");
-    gp_.max_curvature = p.number("max_curvature");
-    gp_.max_edge_length = p.number("max_edge_length");
-    SearchParams& s = pp_.search;
-    s.horizon = p.number("horizon");
-    s.clearance = p.number("clearance");
-    s.soft_clearance = p.number("soft_clearance");
-    s.car_front = p.number("car_front");
-    s.car_rear = p.number("car_rear");
-    s.k_length = p.number("k_length");
-    s.k_curvature = p.number("k_curvature");
-    s.k_deviation = p.number("k_deviation");
-    s.k_proximity = p.number("k_proximity");
-    pp_.commit_time = p.number("commit_time");
-    pp_.commit_min = p.number("commit_min");
-    pp_.obstacle_memory = p.number("obstacle_memory");
-    pp_.confirmations = static_cast<int>(p.integer("obstacle_confirmations"));
+    gp_ = set.graph;
+    pp_ = set.planner;
     pp_.limits = limits_;  // as the racing line's profile (no ellipse): the two planners agree on a clear track
-    const std::string gf = p.string("graph_file");
+    const std::string& gf = set.graph_file;
     if (!gf.empty()) {
       graph_file_ = ctx.find_file(gf);
       try {

@@ -7,25 +7,35 @@ namespace {
 
 using namespace brickyard;
 
+struct Settings {
+  double steer = 0, throttle = 0, brake = 0, start_s = 0;
+};
+
+ParamBinding<Settings> bindings() {
+  ParamBinding<Settings> b;
+  b.bind("steer", &Settings::steer).in_unit("rad").doc("road-wheel angle, left positive");
+  b.bind("throttle", &Settings::throttle).range(0, 1);
+  b.bind("brake", &Settings::brake).range(0, 1);
+  b.bind("start_s", &Settings::start_s).in_unit("s").at_least(0);
+  b.declare(ParamSpec::number("rate_hz", 50).in_unit("Hz").at_least(0.1));  // the host's trigger only
+  return b;
+}
+
 class ConstantCommand : public Plugin {
  public:
   static Manifest manifest() {
     return Manifest("sim.constant_command", "1.0.0")
         .describe("Open-loop command for tests: constant steer, throttle and brake")
         .output<msgs::ControlCommand>("command", "the command")
-        .param(ParamSpec::number("steer", 0).in_unit("rad").doc("road-wheel angle, left positive"))
-        .param(ParamSpec::number("throttle", 0).range(0, 1))
-        .param(ParamSpec::number("brake", 0).range(0, 1))
-        .param(ParamSpec::number("start_s", 0).in_unit("s").at_least(0))
-        .param(ParamSpec::number("rate_hz", 50).in_unit("Hz").at_least(0.1))
+        .parameters(bindings())
         .periodic("rate_hz");
   }
   void configure(Context& ctx) override {
-    const Params& p = ctx.params();
-    steer_ = p.number("steer");
-    throttle_ = p.number("throttle");
-    brake_ = p.number("brake");
-    start_ = p.number("start_s");
+    const Settings s = bindings().read(ctx.params());
+    steer_ = s.steer;
+    throttle_ = s.throttle;
+    brake_ = s.brake;
+    start_ = s.start_s;
     out_ = ctx.output<msgs::ControlCommand>("command");
   }
   void step(Context& ctx) override {

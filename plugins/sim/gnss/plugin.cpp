@@ -13,6 +13,33 @@ namespace {
 using namespace brickyard;
 using namespace brickyard::sim;
 
+// The fault windows a receiver takes, over (x, y, z).
+const std::vector<std::string> kFaultTypes = {"bias", "drift", "noise", "freeze", "dropout", "spikes", "sigma"};
+
+struct Settings {
+  std::uint8_t receiver_id = 0;
+  std::vector<double> antenna = {1.606, 0.05, 1.0};
+  double sigma_m = 0.015, sigma_z_m = 0.03, reported_sigma_m = -1;
+  int fix_type = 3;
+  FaultSchedule faults{"[]", 3, kFaultTypes};  // as declared: no window
+};
+
+ParamBinding<Settings> bindings() {
+  ParamBinding<Settings> b;
+  b.bind("receiver_id", &Settings::receiver_id).range(0, 255);
+  b.declare(ParamSpec::number("rate_hz", 20).in_unit("Hz").at_least(0.1));  // the host's trigger only
+  b.bind("antenna", &Settings::antenna).doc("antenna position in base_link, m (x, y, z)");
+  b.bind("sigma_m", &Settings::sigma_m).in_unit("m").at_least(0).doc("horizontal noise, 1 sigma (RTK fixed: 1-2 cm)");
+  b.bind("sigma_z_m", &Settings::sigma_z_m).in_unit("m").at_least(0);
+  b.bind("reported_sigma_m", &Settings::reported_sigma_m).in_unit("m").doc("sigma the receiver reports; < 0: sigma_m");
+  b.bind("fix_type", &Settings::fix_type).range(0, 3).doc("0 none, 1 single, 2 float RTK, 3 fixed RTK");
+  // The windows are parsed as the parameters are read: a bad one is refused naming its JSON pointer.
+  b.bind_with(ParamSpec::json("faults", "[]")
+                  .doc("fault windows: bias, drift, noise, freeze, dropout, spikes, sigma (see docs/simulator.md)"),
+              [](const Params& p, Settings& s) { s.faults = read_faults(p, 3, kFaultTypes); });
+  return b;
+}
+
 class Gnss : public Plugin {
  public:
   static Manifest manifest() {
@@ -20,28 +47,21 @@ class Gnss : public Plugin {
         .describe("GNSS receiver (NovAtel PwrPak7 on the AV-21): antenna position with RTK noise and fault windows")
         .input<msgs::VehicleState>("truth", "ground truth", true, 1)
         .output<msgs::GnssFix>("fix", "position fixes in the map frame")
-        .param(ParamSpec::integer("receiver_id", 0).range(0, 255))
-        .param(ParamSpec::number("rate_hz", 20).in_unit("Hz").at_least(0.1))
-        .param(ParamSpec::numbers("antenna", {1.606, 0.05, 1.0}).doc("antenna position in base_link, m (x, y, z)"))
-        .param(ParamSpec::number("sigma_m", 0.015).in_unit("m").at_least(0).doc("horizontal noise, 1 sigma (RTK fixed: 1-2 cm)"))
-        .param(ParamSpec::number("sigma_z_m", 0.03).in_unit("m").at_least(0))
-        .param(ParamSpec::number("reported_sigma_m", -1).in_unit("m").doc("sigma the receiver reports; < 0: sigma_m"))
-        .param(ParamSpec::integer("fix_type", 3).range(0, 3).doc("0 none, 1 single, 2 float RTK, 3 fixed RTK"))
-        .param(ParamSpec::json("faults", "[]").doc("fault windows: bias, drift, noise, freeze, dropout, spikes, sigma (see docs/simulator.md)"))
+        .parameters(bindings())
         .periodic("rate_hz");
   }
 
   void configure(Context& ctx) override {
-    const Params& p = ctx.params();
-    id_ = static_cast<std::uint8_t>(p.integer("receiver_id"));
-    const auto& a = p.numbers("antenna");
+    const Settings s = bindings().read(ctx.params());
+    id_ = s.receiver_id;
+    const auto& a = s.antenna;
     if (a.size() != 3) throw BadInput("parameter 'antenna': needs 3 numbers (x, y, z), has " + std::to_string(a.size()));
     antenna_ = {a[0], a[1], a[2]};
-    sigma_ = p.number("sigma_m");
-    sigma_z_ = p.number("sigma_z_m");
-    reported_ = p.number("reported_sigma_m") < 0 ? sigma_ : p.number("reported_sigma_m");
-    fix_type_ = static_cast<int>(p.integer("fix_type"));
-    faults_ = read_faults(p, 3, {"bias", "drift", "noise", "freeze", "dropout", "spikes", "sigma"});
+    sigma_ = s.sigma_m;
+    sigma_z_ = s.sigma_z_m;
+    reported_ = s.reported_sigma_m < 0 ? sigma_ : s.reported_sigma_m;
+    fix_type_ = s.fix_type;
+    faults_ = s.faults;
     rng_ = Rng(ctx.seed());
     truth_ = ctx.input<msgs::VehicleState>("truth");
     out_ = ctx.output<msgs::GnssFix>("fix");

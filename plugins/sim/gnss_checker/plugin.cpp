@@ -17,6 +17,27 @@ namespace {
 using namespace brickyard;
 using namespace brickyard::sim;
 
+// The windows whose offsets are expected, over (x, y, z).
+const std::vector<std::string> kFaultTypes = {"bias", "drift"};
+
+struct Settings {
+  std::vector<double> antenna = {1.606, 0.05, 1.0};
+  FaultSchedule faults{"[]", 3, kFaultTypes};  // as declared: no window
+  double tolerance_m = 1e-9;
+  std::int64_t min_checked = 1;
+};
+
+ParamBinding<Settings> bindings() {
+  ParamBinding<Settings> b;
+  b.bind("antenna", &Settings::antenna).doc("the receiver's antenna in base_link, m");
+  // The windows are parsed as the parameters are read: a bad one is refused naming its JSON pointer.
+  b.bind_with(ParamSpec::json("faults", "[]").doc("expected offsets: bias and drift windows as given to sim.gnss"),
+              [](const Params& p, Settings& s) { s.faults = read_faults(p, 3, kFaultTypes); });
+  b.bind("tolerance_m", &Settings::tolerance_m).in_unit("m").at_least(0);
+  b.bind("min_checked", &Settings::min_checked).at_least(0);
+  return b;
+}
+
 class GnssChecker : public Plugin {
  public:
   static Manifest manifest() {
@@ -24,21 +45,18 @@ class GnssChecker : public Plugin {
         .describe("Test assertion: GNSS fixes equal the antenna's true position plus the expected fault offset")
         .input<msgs::VehicleState>("truth", "ground truth", true, 4096)
         .input<msgs::GnssFix>("fix", "fixes to check", true, 64)
-        .param(ParamSpec::numbers("antenna", {1.606, 0.05, 1.0}).doc("the receiver's antenna in base_link, m"))
-        .param(ParamSpec::json("faults", "[]").doc("expected offsets: bias and drift windows as given to sim.gnss"))
-        .param(ParamSpec::number("tolerance_m", 1e-9).in_unit("m").at_least(0))
-        .param(ParamSpec::integer("min_checked", 1).at_least(0))
+        .parameters(bindings())
         .on_input("fix");
   }
 
   void configure(Context& ctx) override {
-    const Params& p = ctx.params();
-    const auto& a = p.numbers("antenna");
+    const Settings s = bindings().read(ctx.params());
+    const auto& a = s.antenna;
     if (a.size() != 3) throw BadInput("parameter 'antenna': needs 3 numbers");
     antenna_ = {a[0], a[1], a[2]};
-    expect_ = read_faults(p, 3, {"bias", "drift"});
-    tol_ = p.number("tolerance_m");
-    min_checked_ = p.integer("min_checked");
+    expect_ = s.faults;
+    tol_ = s.tolerance_m;
+    min_checked_ = s.min_checked;
     truth_ = ctx.input<msgs::VehicleState>("truth");
     fix_ = ctx.input<msgs::GnssFix>("fix");
   }

@@ -13,6 +13,29 @@ namespace {
 using namespace brickyard;
 using namespace brickyard::sim;
 
+// The fault windows an IMU takes, over (ax, ay, az, gx, gy, gz).
+const std::vector<std::string> kFaultTypes = {"bias", "drift", "noise", "freeze", "dropout", "spikes"};
+
+struct Settings {
+  double accel_noise = 0.05, gyro_noise = 0.002;
+  std::vector<double> accel_bias = {0.02, -0.01, 0.0}, gyro_bias = {0.0005, -0.0003, 0.0002};
+  FaultSchedule faults{"[]", 6, kFaultTypes};  // as declared: no window
+};
+
+ParamBinding<Settings> bindings() {
+  ParamBinding<Settings> b;
+  b.declare(ParamSpec::number("rate_hz", 125).in_unit("Hz").at_least(1));  // the host's trigger only
+  b.bind("accel_noise", &Settings::accel_noise).in_unit("m/s^2").at_least(0);
+  b.bind("gyro_noise", &Settings::gyro_noise).in_unit("rad/s").at_least(0);
+  b.bind("accel_bias", &Settings::accel_bias).doc("m/s^2, x y z");
+  b.bind("gyro_bias", &Settings::gyro_bias).doc("rad/s, x y z");
+  // The windows are parsed as the parameters are read: a bad one is refused naming its JSON pointer.
+  b.bind_with(ParamSpec::json("faults", "[]")
+                  .doc("windows over (ax, ay, az, gx, gy, gz): bias, drift, noise, freeze, dropout, spikes"),
+              [](const Params& p, Settings& s) { s.faults = read_faults(p, 6, kFaultTypes); });
+  return b;
+}
+
 class ImuSensor : public Plugin {
  public:
   static Manifest manifest() {
@@ -20,26 +43,21 @@ class ImuSensor : public Plugin {
         .describe("IMU: specific force (accelerometer) and angular rate (gyro) with noise, bias and fault windows")
         .input<msgs::VehicleState>("truth", "ground truth", true, 1)
         .output<msgs::Imu>("imu", "measurements in the vehicle frame (x forward, y left, z up)")
-        .param(ParamSpec::number("rate_hz", 125).in_unit("Hz").at_least(1))
-        .param(ParamSpec::number("accel_noise", 0.05).in_unit("m/s^2").at_least(0))
-        .param(ParamSpec::number("gyro_noise", 0.002).in_unit("rad/s").at_least(0))
-        .param(ParamSpec::numbers("accel_bias", {0.02, -0.01, 0.0}).doc("m/s^2, x y z"))
-        .param(ParamSpec::numbers("gyro_bias", {0.0005, -0.0003, 0.0002}).doc("rad/s, x y z"))
-        .param(ParamSpec::json("faults", "[]").doc("windows over (ax, ay, az, gx, gy, gz): bias, drift, noise, freeze, dropout, spikes"))
+        .parameters(bindings())
         .periodic("rate_hz");
   }
 
   void configure(Context& ctx) override {
-    const Params& p = ctx.params();
-    an_ = p.number("accel_noise");
-    gn_ = p.number("gyro_noise");
-    for (const char* k : {"accel_bias", "gyro_bias"})
-      if (p.numbers(k).size() != 3) throw BadInput(std::string("parameter '") + k + "': needs 3 numbers");
+    const Settings s = bindings().read(ctx.params());
+    an_ = s.accel_noise;
+    gn_ = s.gyro_noise;
+    if (s.accel_bias.size() != 3) throw BadInput("parameter 'accel_bias': needs 3 numbers");
+    if (s.gyro_bias.size() != 3) throw BadInput("parameter 'gyro_bias': needs 3 numbers");
     for (int i = 0; i < 3; ++i) {
-      bias_[i] = p.numbers("accel_bias")[i];
-      bias_[3 + i] = p.numbers("gyro_bias")[i];
+      bias_[i] = s.accel_bias[i];
+      bias_[3 + i] = s.gyro_bias[i];
     }
-    faults_ = read_faults(p, 6, {"bias", "drift", "noise", "freeze", "dropout", "spikes"});
+    faults_ = s.faults;
     rng_ = Rng(ctx.seed());
     truth_ = ctx.input<msgs::VehicleState>("truth");
     out_ = ctx.output<msgs::Imu>("imu");

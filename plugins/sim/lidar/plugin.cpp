@@ -15,6 +15,49 @@ using namespace brickyard::sim;
 
 constexpr double kDeg = M_PI / 180.0;
 
+// The fault windows a LiDAR takes, over (range).
+const std::vector<std::string> kFaultTypes = {"noise", "frame_loss", "freeze", "dropout"};
+
+struct Settings {
+  std::uint8_t sensor_id = 0;
+  std::vector<double> mount = {2.342, 0.0, 0.448}, mount_rpy_deg = {0.0, 0.0, 0.0};
+  double h_fov_deg = 120;
+  int rows = 32;
+  double v_min_deg = -15, v_max_deg = 15;
+  std::string row_spacing = "horizon";
+  double horizon_exponent = 2.0;
+  std::vector<double> row_angles_deg;
+  LidarSpec spec;  // columns, ranges, noise and dropout; the rest is computed in configure
+  FaultSchedule faults{"[]", 1, kFaultTypes};  // as declared: no window
+};
+
+ParamBinding<Settings> bindings() {
+  using L = LidarSpec;
+  ParamBinding<Settings> b;
+  b.bind("sensor_id", &Settings::sensor_id).range(0, 255);
+  b.declare(ParamSpec::number("rate_hz", 20).in_unit("Hz").at_least(0.1));  // the host's trigger only
+  b.bind("mount", &Settings::mount).doc("sensor position in base_link, m (AV-21 front Hydra)");
+  b.bind("mount_rpy_deg", &Settings::mount_rpy_deg).doc("sensor roll, pitch, yaw in base_link, deg");
+  b.bind("h_fov_deg", &Settings::h_fov_deg).in_unit("deg").range(1, 360);
+  b.bind("columns", &Settings::spec, &L::columns).range(1, 100000);
+  b.bind("rows", &Settings::rows).range(1, 1024);
+  b.bind("v_min_deg", &Settings::v_min_deg).in_unit("deg").range(-90, 90);
+  b.bind("v_max_deg", &Settings::v_max_deg).in_unit("deg").range(-90, 90);
+  b.bind("row_spacing", &Settings::row_spacing).one_of({"horizon", "uniform"})
+      .doc("horizon: rows concentrated near 0 deg as on the Hydra; uniform: evenly spaced");
+  b.bind("horizon_exponent", &Settings::horizon_exponent).at_least(1).doc("horizon spacing: elevation ~ |u|^exponent");
+  b.bind("row_angles_deg", &Settings::row_angles_deg).doc("explicit row elevations, deg; overrides rows and spacing");
+  b.bind("min_range", &Settings::spec, &L::min_range).in_unit("m").at_least(0);
+  b.bind("max_range", &Settings::spec, &L::max_range).in_unit("m").at_least(1);
+  b.bind("range_noise", &Settings::spec, &L::range_noise).in_unit("m").at_least(0).doc("1 sigma");
+  b.bind("dropout", &Settings::spec, &L::dropout).range(0, 1).doc("probability that a return is lost");
+  // The windows are parsed as the parameters are read: a bad one is refused naming its JSON pointer.
+  b.bind_with(ParamSpec::json("faults", "[]").doc("windows: noise (range sigma x factor), frame_loss, freeze, dropout"),
+              [](const Params& p, Settings& s) { s.faults = read_faults(p, 1, kFaultTypes); });
+  b.below("v_min_deg", "v_max_deg");
+  return b;
+}
+
 class Lidar : public Plugin {
  public:
   static Manifest manifest() {
@@ -23,52 +66,29 @@ class Lidar : public Plugin {
         .input<msgs::TrackWorld>("world", "the world to scan", true, 1)
         .input<msgs::VehicleState>("truth", "vehicle pose", true, 1)
         .output<msgs::PointCloud>("cloud", "points in the sensor frame")
-        .param(ParamSpec::integer("sensor_id", 0).range(0, 255))
-        .param(ParamSpec::number("rate_hz", 20).in_unit("Hz").at_least(0.1))
-        .param(ParamSpec::numbers("mount", {2.342, 0.0, 0.448}).doc("sensor position in base_link, m (AV-21 front Hydra)"))
-        .param(ParamSpec::numbers("mount_rpy_deg", {0.0, 0.0, 0.0}).doc("sensor roll, pitch, yaw in base_link, deg"))
-        .param(ParamSpec::number("h_fov_deg", 120).in_unit("deg").range(1, 360))
-        .param(ParamSpec::integer("columns", 850).range(1, 100000))
-        .param(ParamSpec::integer("rows", 32).range(1, 1024))
-        .param(ParamSpec::number("v_min_deg", -15).in_unit("deg").range(-90, 90))
-        .param(ParamSpec::number("v_max_deg", 15).in_unit("deg").range(-90, 90))
-        .param(ParamSpec::string("row_spacing", "horizon").one_of({"horizon", "uniform"})
-                   .doc("horizon: rows concentrated near 0 deg as on the Hydra; uniform: evenly spaced"))
-        .param(ParamSpec::number("horizon_exponent", 2.0).at_least(1).doc("horizon spacing: elevation ~ |u|^exponent"))
-        .param(ParamSpec::numbers("row_angles_deg", {}).doc("explicit row elevations, deg; overrides rows and spacing"))
-        .param(ParamSpec::number("min_range", 1.0).in_unit("m").at_least(0))
-        .param(ParamSpec::number("max_range", 200.0).in_unit("m").at_least(1))
-        .param(ParamSpec::number("range_noise", 0.02).in_unit("m").at_least(0).doc("1 sigma"))
-        .param(ParamSpec::number("dropout", 0.0).range(0, 1).doc("probability that a return is lost"))
-        .param(ParamSpec::json("faults", "[]").doc("windows: noise (range sigma x factor), frame_loss, freeze, dropout"))
+        .parameters(bindings())
         .periodic("rate_hz");
   }
 
   void configure(Context& ctx) override {
-    const Params& p = ctx.params();
-    id_ = static_cast<std::uint8_t>(p.integer("sensor_id"));
-    const auto& m = p.numbers("mount");
-    const auto& r = p.numbers("mount_rpy_deg");
+    const Settings s = bindings().read(ctx.params());
+    id_ = s.sensor_id;
+    const auto& m = s.mount;
+    const auto& r = s.mount_rpy_deg;
     if (m.size() != 3) throw BadInput("parameter 'mount': needs 3 numbers (x, y, z)");
     if (r.size() != 3) throw BadInput("parameter 'mount_rpy_deg': needs 3 numbers (roll, pitch, yaw)");
-    if (p.number("v_min_deg") >= p.number("v_max_deg")) throw BadInput("parameter 'v_min_deg': must be below v_max_deg");
+    spec_ = s.spec;
     spec_.mount = {m[0], m[1], m[2]};
     spec_.roll = r[0] * kDeg;
     spec_.pitch = r[1] * kDeg;
     spec_.yaw = r[2] * kDeg;
-    spec_.h_fov = p.number("h_fov_deg") * kDeg;
-    spec_.columns = static_cast<int>(p.integer("columns"));
-    if (!p.numbers("row_angles_deg").empty()) {
-      for (double a : p.numbers("row_angles_deg")) spec_.elevations.push_back(a * kDeg);
+    spec_.h_fov = s.h_fov_deg * kDeg;
+    if (!s.row_angles_deg.empty()) {
+      for (double a : s.row_angles_deg) spec_.elevations.push_back(a * kDeg);
     } else {
-      spec_.elevations = row_elevations(static_cast<int>(p.integer("rows")), p.number("v_min_deg"), p.number("v_max_deg"),
-                                        p.string("row_spacing"), p.number("horizon_exponent"));
+      spec_.elevations = row_elevations(s.rows, s.v_min_deg, s.v_max_deg, s.row_spacing, s.horizon_exponent);
     }
-    spec_.min_range = p.number("min_range");
-    spec_.max_range = p.number("max_range");
-    spec_.range_noise = p.number("range_noise");
-    spec_.dropout = p.number("dropout");
-    faults_ = read_faults(p, 1, {"noise", "frame_loss", "freeze", "dropout"});
+    faults_ = s.faults;
     rng_ = Rng(ctx.seed());
     world_ = ctx.input<msgs::TrackWorld>("world");
     truth_ = ctx.input<msgs::VehicleState>("truth");

@@ -17,6 +17,41 @@ namespace {
 using namespace brickyard;
 using namespace brickyard::sim;
 
+// Reads `[[start_s, end_s], ...]`; throws BadInput naming the parameter and the element.
+std::vector<std::pair<double, double>> parse_windows(const std::string& text) {
+  const auto w = nlohmann::json::parse(text, nullptr, false);
+  if (!w.is_array()) throw BadInput("parameter 'windows': expected an array of [start_s, end_s]");
+  std::vector<std::pair<double, double>> out;
+  for (std::size_t i = 0; i < w.size(); ++i) {
+    const auto& e = w[i];
+    if (!e.is_array() || e.size() != 2 || !e[0].is_number() || !e[1].is_number() || e[0].get<double>() > e[1].get<double>())
+      throw BadInput("parameter 'windows' /" + std::to_string(i) + ": expected [start_s, end_s] with start <= end");
+    out.emplace_back(e[0].get<double>(), e[1].get<double>());
+  }
+  return out;
+}
+
+struct Settings {
+  ScoreParams score;
+  double require_max_error_m = -1, require_emergency_within_s = -1, require_normal_error_below_m = -1;
+};
+
+ParamBinding<Settings> bindings() {
+  ParamBinding<Settings> b;
+  b.bind_with(ParamSpec::json("windows", "[]").doc("fault windows [[start_s, end_s], ...]"),
+              [](const Params& p, Settings& s) { s.score.windows = parse_windows(p.json("windows")); });
+  b.bind("warmup_s", &Settings::score, &ScoreParams::warmup_s).in_unit("s").at_least(0).doc("nothing counts before this");
+  b.bind("grace_s", &Settings::score, &ScoreParams::grace_s).in_unit("s").at_least(0)
+      .doc("after a window: recovery, not a false alarm");
+  b.bind("require_max_error_m", &Settings::require_max_error_m).in_unit("m")
+      .doc("fail the run above this max error; < 0: off");
+  b.bind("require_emergency_within_s", &Settings::require_emergency_within_s).in_unit("s")
+      .doc("fail unless EMERGENCY within this of the first window; < 0: off");
+  b.bind("require_normal_error_below_m", &Settings::require_normal_error_below_m).in_unit("m")
+      .doc("fail if NORMAL while the error exceeds this; < 0: off");
+  return b;
+}
+
 class Scorer : public Plugin {
  public:
   static Manifest manifest() {
@@ -24,32 +59,16 @@ class Scorer : public Plugin {
         .describe("scores a localization estimate against ground truth around fault windows")
         .input<msgs::VehicleState>("truth", "ground truth", true, 4096)
         .input<msgs::LocalizationEstimate>("estimate", "the estimate to score", true, 4096)
-        .param(ParamSpec::json("windows", "[]").doc("fault windows [[start_s, end_s], ...]"))
-        .param(ParamSpec::number("warmup_s", 5).in_unit("s").at_least(0).doc("nothing counts before this"))
-        .param(ParamSpec::number("grace_s", 2).in_unit("s").at_least(0).doc("after a window: recovery, not a false alarm"))
-        .param(ParamSpec::number("require_max_error_m", -1).in_unit("m").doc("fail the run above this max error; < 0: off"))
-        .param(ParamSpec::number("require_emergency_within_s", -1).in_unit("s").doc("fail unless EMERGENCY within this of the first window; < 0: off"))
-        .param(ParamSpec::number("require_normal_error_below_m", -1).in_unit("m").doc("fail if NORMAL while the error exceeds this; < 0: off"))
+        .parameters(bindings())
         .on_input("estimate");
   }
 
   void configure(Context& ctx) override {
-    const Params& p = ctx.params();
-    ScoreParams sp;
-    const auto w = nlohmann::json::parse(p.json("windows"), nullptr, false);
-    if (!w.is_array()) throw BadInput("parameter 'windows': expected an array of [start_s, end_s]");
-    for (std::size_t i = 0; i < w.size(); ++i) {
-      const auto& e = w[i];
-      if (!e.is_array() || e.size() != 2 || !e[0].is_number() || !e[1].is_number() || e[0].get<double>() > e[1].get<double>())
-        throw BadInput("parameter 'windows' /" + std::to_string(i) + ": expected [start_s, end_s] with start <= end");
-      sp.windows.emplace_back(e[0].get<double>(), e[1].get<double>());
-    }
-    sp.warmup_s = p.number("warmup_s");
-    sp.grace_s = p.number("grace_s");
-    score_.emplace(sp);
-    max_error_ = p.number("require_max_error_m");
-    emergency_within_ = p.number("require_emergency_within_s");
-    normal_below_ = p.number("require_normal_error_below_m");
+    const Settings s = bindings().read(ctx.params());
+    score_.emplace(s.score);
+    max_error_ = s.require_max_error_m;
+    emergency_within_ = s.require_emergency_within_s;
+    normal_below_ = s.require_normal_error_below_m;
     truth_ = ctx.input<msgs::VehicleState>("truth");
     est_ = ctx.input<msgs::LocalizationEstimate>("estimate");
   }

@@ -18,6 +18,29 @@ namespace {
 using namespace brickyard;
 using namespace brickyard::sim;
 
+struct Settings {
+  PerceptionScoreParams score;
+  double require_wall_p95_m = -1, require_wall_valid_fraction = -1;
+  std::int64_t require_max_false_obstacles = -1;
+  double require_pylon_range_m = -1;
+};
+
+ParamBinding<Settings> bindings() {
+  using P = PerceptionScoreParams;
+  ParamBinding<Settings> b;
+  b.bind_choice("wall_side", {{"right", -1}, {"left", 1}}, &Settings::score, &P::wall_side);
+  b.bind("match_radius_m", &Settings::score, &P::match_radius).in_unit("m").at_least(0)
+      .doc("an obstacle this close to a pylon is that pylon");
+  b.bind("require_wall_p95_m", &Settings::require_wall_p95_m).in_unit("m")
+      .doc("fail above this p95 of |d_w error|; < 0: off");
+  b.bind("require_wall_valid_fraction", &Settings::require_wall_valid_fraction)
+      .doc("fail if fewer frames carry a valid fit; < 0: off");
+  b.bind("require_max_false_obstacles", &Settings::require_max_false_obstacles).doc("fail above this many; < 0: off");
+  b.bind("require_pylon_range_m", &Settings::require_pylon_range_m).in_unit("m")
+      .doc("fail if a pylon in view is not reliably detected from this far; < 0: off");
+  return b;
+}
+
 class PerceptionScorer : public Plugin {
  public:
   static Manifest manifest() {
@@ -27,24 +50,18 @@ class PerceptionScorer : public Plugin {
         .input<msgs::VehicleState>("truth", "ground truth", true, 4096)
         .input<msgs::WallEstimate>("wall", "a wall detector's output (optional)", false, 256)
         .input<msgs::ObstacleList>("obstacles", "an obstacle detector's output (optional)", false, 256)
-        .param(ParamSpec::string("wall_side", "right").one_of({"right", "left"}))
-        .param(ParamSpec::number("match_radius_m", 1.0).in_unit("m").at_least(0).doc("an obstacle this close to a pylon is that pylon"))
-        .param(ParamSpec::number("require_wall_p95_m", -1).in_unit("m").doc("fail above this p95 of |d_w error|; < 0: off"))
-        .param(ParamSpec::number("require_wall_valid_fraction", -1).doc("fail if fewer frames carry a valid fit; < 0: off"))
-        .param(ParamSpec::integer("require_max_false_obstacles", -1).doc("fail above this many; < 0: off"))
-        .param(ParamSpec::number("require_pylon_range_m", -1).in_unit("m").doc("fail if a pylon in view is not reliably detected from this far; < 0: off"))
+        .parameters(bindings())
         .on_input("wall")
         .on_input("obstacles");
   }
 
   void configure(Context& ctx) override {
-    const Params& p = ctx.params();
-    sp_.wall_side = p.string("wall_side") == "left" ? 1 : -1;
-    sp_.match_radius = p.number("match_radius_m");
-    wall_p95_ = p.number("require_wall_p95_m");
-    wall_valid_ = p.number("require_wall_valid_fraction");
-    max_false_ = p.integer("require_max_false_obstacles");
-    pylon_range_ = p.number("require_pylon_range_m");
+    const Settings s = bindings().read(ctx.params());
+    sp_ = s.score;
+    wall_p95_ = s.require_wall_p95_m;
+    wall_valid_ = s.require_wall_valid_fraction;
+    max_false_ = s.require_max_false_obstacles;
+    pylon_range_ = s.require_pylon_range_m;
     world_ = ctx.input<msgs::TrackWorld>("world");
     truth_ = ctx.input<msgs::VehicleState>("truth");
     wall_ = ctx.input<msgs::WallEstimate>("wall");

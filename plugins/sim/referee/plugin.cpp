@@ -14,33 +14,43 @@ namespace {
 using namespace brickyard;
 using namespace brickyard::sim;
 
+struct Settings {
+  bool crash_ends_run = true;
+  double obstacle_clearance_required = -1;
+  std::int64_t laps = 0;
+  Footprint car;
+};
+
+ParamBinding<Settings> bindings() {
+  ParamBinding<Settings> b;
+  b.bind("crash_ends_run", &Settings::crash_ends_run).doc("a wall contact fails the run (exit 1)");
+  b.bind("obstacle_clearance_required", &Settings::obstacle_clearance_required).in_unit("m")
+      .doc("passing an obstacle nearer than this fails the run (exit 1); negative: off (hits are counted only)");
+  b.bind("laps", &Settings::laps).at_least(0).doc("finish the run after this many laps; 0: never");
+  b.bind("car_front", &Settings::car, &Footprint::front).in_unit("m").at_least(0).doc("from the rear axle");
+  b.bind("car_rear", &Settings::car, &Footprint::rear).in_unit("m").at_least(0);
+  b.bind("car_half_width", &Settings::car, &Footprint::half_width).in_unit("m").at_least(0);
+  return b;
+}
+
 class RefereeNode : public Plugin {
  public:
   static Manifest manifest() {
-    Footprint f;
     return Manifest("sim.referee", "1.0.0")
         .describe("Laps, lap times, speed, wall contacts, track limits, clearances and localization error")
         .input<msgs::TrackWorld>("world", "the world", true, 1)
         .input<msgs::VehicleState>("truth", "ground truth", true, 1024)
         .input<msgs::LocalizationEstimate>("estimate", "a localization estimate to score (optional)", false, 1024)
-        .param(ParamSpec::boolean("crash_ends_run", true).doc("a wall contact fails the run (exit 1)"))
-        .param(ParamSpec::number("obstacle_clearance_required", -1).in_unit("m")
-                   .doc("passing an obstacle nearer than this fails the run (exit 1); negative: off (hits are counted only)"))
-        .param(ParamSpec::integer("laps", 0).at_least(0).doc("finish the run after this many laps; 0: never"))
-        .param(ParamSpec::number("car_front", f.front).in_unit("m").at_least(0).doc("from the rear axle"))
-        .param(ParamSpec::number("car_rear", f.rear).in_unit("m").at_least(0))
-        .param(ParamSpec::number("car_half_width", f.half_width).in_unit("m").at_least(0))
+        .parameters(bindings())
         .on_input("truth");
   }
 
   void configure(Context& ctx) override {
-    const Params& p = ctx.params();
-    crash_ends_ = p.boolean("crash_ends_run");
-    laps_ = p.integer("laps");
-    clearance_required_ = p.number("obstacle_clearance_required");
-    fp_.front = p.number("car_front");
-    fp_.rear = p.number("car_rear");
-    fp_.half_width = p.number("car_half_width");
+    const Settings s = bindings().read(ctx.params());
+    crash_ends_ = s.crash_ends_run;
+    laps_ = s.laps;
+    clearance_required_ = s.obstacle_clearance_required;
+    fp_ = s.car;
     world_ = ctx.input<msgs::TrackWorld>("world");
     truth_ = ctx.input<msgs::VehicleState>("truth");
     est_ = ctx.input<msgs::LocalizationEstimate>("estimate");

@@ -13,34 +13,48 @@ namespace {
 using namespace brickyard;
 using namespace brickyard::sim;
 
+struct Settings {
+  std::string raceline = "racelines/IMS.csv";
+  motion::VehicleLimits limits;  // v_max and the accelerations bound; independent_limits() sets the rest
+  double edge_margin = 2.5;
+  PursuitParams pursuit;  // the look-ahead and the speed gain; the car's facts come from its file
+  std::string vehicle = plugins::default_vehicle_file;
+};
+
+ParamBinding<Settings> bindings() {
+  using L = motion::VehicleLimits;
+  using P = PursuitParams;
+  ParamBinding<Settings> b;
+  b.bind("raceline", &Settings::raceline).doc("x_m,y_m file of the line to follow");
+  b.declare(ParamSpec::number("rate_hz", 100).in_unit("Hz").at_least(1));  // the host's trigger only
+  b.bind("v_max", &Settings::limits, &L::v_max).in_unit("m/s").at_least(1);
+  b.bind("a_lat", &Settings::limits, &L::a_lat).in_unit("m/s^2").at_least(0.5);
+  b.bind("a_accel", &Settings::limits, &L::a_accel).in_unit("m/s^2").at_least(0.1);
+  b.bind("a_decel", &Settings::limits, &L::a_decel).in_unit("m/s^2").at_least(0.1);
+  b.bind("edge_margin", &Settings::edge_margin).in_unit("m").at_least(0)
+      .doc("closest the line's points may come to a track edge (needs the world input)");
+  b.bind("lookahead_min", &Settings::pursuit, &P::lookahead_min).in_unit("m").at_least(0.5);
+  b.bind("lookahead_time", &Settings::pursuit, &P::lookahead_time).in_unit("s").at_least(0);
+  b.bind("speed_gain", &Settings::pursuit, &P::speed_gain).at_least(0);
+  plugins::bind_vehicle(b, &Settings::vehicle);
+  return b;
+}
+
 class TruthFollower : public Plugin {
  public:
   static Manifest manifest() {
-    const motion::VehicleLimits l;
-    const PursuitParams pp;
     return Manifest("sim.truth_follower", "1.0.0")
         .describe("Pure pursuit on a racing line from ground truth (a stand-in driver for simulator graphs)")
         .input<msgs::VehicleState>("truth", "ground truth", true, 1)
         .input<msgs::TrackWorld>("world", "when wired, the line is kept edge_margin inside the track", false, 1)
         .output<msgs::ControlCommand>("command", "steer, throttle, brake")
-        .param(ParamSpec::string("raceline", "racelines/IMS.csv").doc("x_m,y_m file of the line to follow"))
-        .param(ParamSpec::number("rate_hz", 100).in_unit("Hz").at_least(1))
-        .param(ParamSpec::number("v_max", l.v_max).in_unit("m/s").at_least(1))
-        .param(ParamSpec::number("a_lat", l.a_lat).in_unit("m/s^2").at_least(0.5))
-        .param(ParamSpec::number("a_accel", l.a_accel).in_unit("m/s^2").at_least(0.1))
-        .param(ParamSpec::number("a_decel", l.a_decel).in_unit("m/s^2").at_least(0.1))
-        .param(ParamSpec::number("edge_margin", 2.5).in_unit("m").at_least(0)
-                   .doc("closest the line's points may come to a track edge (needs the world input)"))
-        .param(ParamSpec::number("lookahead_min", pp.lookahead_min).in_unit("m").at_least(0.5))
-        .param(ParamSpec::number("lookahead_time", pp.lookahead_time).in_unit("s").at_least(0))
-        .param(ParamSpec::number("speed_gain", pp.speed_gain).at_least(0))
-        .param(plugins::vehicle_param())
+        .parameters(bindings())
         .periodic("rate_hz");
   }
 
   void configure(Context& ctx) override {
-    const Params& p = ctx.params();
-    const std::string path = ctx.find_file(p.string("raceline"));
+    const Settings s = bindings().read(ctx.params());
+    const std::string path = ctx.find_file(s.raceline);
     CenterLine xy;
     try {
       xy = load_xy_csv(path);
@@ -48,15 +62,13 @@ class TruthFollower : public Plugin {
       throw BadInput(std::string("raceline file ") + e.what());
     }
     line_ = xy;
-    margin_ = p.number("edge_margin");
-    limits_ = motion::independent_limits(p.number("v_max"), p.number("a_lat"), p.number("a_accel"), p.number("a_decel"));
-    const vehicle::Vehicle car = plugins::read_vehicle(ctx);
-    PursuitParams& pp = pursuit_params_;
-    pp.wheelbase = car.wheelbase;
-    pp.max_steer = car.max_steer;
-    pp.lookahead_min = p.number("lookahead_min");
-    pp.lookahead_time = p.number("lookahead_time");
-    pp.speed_gain = p.number("speed_gain");
+    margin_ = s.edge_margin;
+    const motion::VehicleLimits& l = s.limits;
+    limits_ = motion::independent_limits(l.v_max, l.a_lat, l.a_accel, l.a_decel);
+    const vehicle::Vehicle car = plugins::read_vehicle(ctx, s.vehicle);
+    pursuit_params_ = s.pursuit;
+    pursuit_params_.wheelbase = car.wheelbase;
+    pursuit_params_.max_steer = car.max_steer;
     world_ = ctx.input<msgs::TrackWorld>("world");
     truth_ = ctx.input<msgs::VehicleState>("truth");
     out_ = ctx.output<msgs::ControlCommand>("command");

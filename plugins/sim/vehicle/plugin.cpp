@@ -15,6 +15,22 @@ namespace {
 using namespace brickyard;
 using namespace brickyard::sim;
 
+struct Settings {
+  double rate_hz = 500;  // the trigger's rate, and 1 / rate_hz the integration step
+  double start_s = 0, start_d = 0, start_speed = 0;
+  std::string vehicle = plugins::default_vehicle_file;
+};
+
+ParamBinding<Settings> bindings() {
+  ParamBinding<Settings> b;
+  b.bind("rate_hz", &Settings::rate_hz).in_unit("Hz").at_least(100).doc("integration rate");
+  b.bind("start_s", &Settings::start_s).in_unit("m").doc("start position along the centre line");
+  b.bind("start_d", &Settings::start_d).in_unit("m").doc("start lateral offset, left positive");
+  b.bind("start_speed", &Settings::start_speed).in_unit("m/s").at_least(0);
+  plugins::bind_vehicle(b, &Settings::vehicle);
+  return b;
+}
+
 class Vehicle : public Plugin {
  public:
   static Manifest manifest() {
@@ -23,22 +39,18 @@ class Vehicle : public Plugin {
         .input<msgs::TrackWorld>("world", "the world to drive in", true, 1)
         .input<msgs::ControlCommand>("command", "steer, throttle, brake (latest one holds)", false, 1)
         .output<msgs::VehicleState>("truth", "ground truth at base_link (rear-axle centre), every step")
-        .param(ParamSpec::number("rate_hz", 500).in_unit("Hz").at_least(100).doc("integration rate"))
-        .param(ParamSpec::number("start_s", 0).in_unit("m").doc("start position along the centre line"))
-        .param(ParamSpec::number("start_d", 0).in_unit("m").doc("start lateral offset, left positive"))
-        .param(ParamSpec::number("start_speed", 0).in_unit("m/s").at_least(0))
-        .param(plugins::vehicle_param())
+        .parameters(bindings())
         .periodic("rate_hz");
   }
 
   void configure(Context& ctx) override {
-    const Params& p = ctx.params();
-    const VehicleParams v = plugins::read_vehicle(ctx);
+    const Settings s = bindings().read(ctx.params());
+    const VehicleParams v = plugins::read_vehicle(ctx, s.vehicle);
     model_ = std::make_unique<VehicleModel>(v);
-    dt_ = 1.0 / p.number("rate_hz");
-    start_s_ = p.number("start_s");
-    start_d_ = p.number("start_d");
-    start_speed_ = p.number("start_speed");
+    dt_ = 1.0 / s.rate_hz;
+    start_s_ = s.start_s;
+    start_d_ = s.start_d;
+    start_speed_ = s.start_speed;
     world_in_ = ctx.input<msgs::TrackWorld>("world");
     cmd_in_ = ctx.input<msgs::ControlCommand>("command");
     out_ = ctx.output<msgs::VehicleState>("truth");

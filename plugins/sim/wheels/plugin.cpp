@@ -16,6 +16,28 @@ namespace {
 using namespace brickyard;
 using namespace brickyard::sim;
 
+// The fault windows wheel speed sensors take, over (fl, fr, rl, rr).
+const std::vector<std::string> kFaultTypes = {"bias", "drift", "noise", "freeze", "dropout", "spikes"};
+
+struct Settings {
+  double noise = 0.05, scale = 1.0;
+  std::string vehicle = plugins::default_vehicle_file;
+  FaultSchedule faults{"[]", 4, kFaultTypes};  // as declared: no window
+};
+
+ParamBinding<Settings> bindings() {
+  ParamBinding<Settings> b;
+  b.declare(ParamSpec::number("rate_hz", 100).in_unit("Hz").at_least(1));  // the host's trigger only
+  b.bind("noise", &Settings::noise).in_unit("m/s").at_least(0);
+  b.bind("scale", &Settings::scale).at_least(0.5).doc("tyre radius error as a factor");
+  plugins::bind_vehicle(b, &Settings::vehicle).doc("the car's description file: wheelbase and track width");
+  // The windows are parsed as the parameters are read: a bad one is refused naming its JSON pointer.
+  b.bind_with(ParamSpec::json("faults", "[]")
+                  .doc("windows over (fl, fr, rl, rr): bias, drift, noise, freeze, dropout, spikes"),
+              [](const Params& p, Settings& s) { s.faults = read_faults(p, 4, kFaultTypes); });
+  return b;
+}
+
 class Wheels : public Plugin {
  public:
   static Manifest manifest() {
@@ -23,22 +45,18 @@ class Wheels : public Plugin {
         .describe("Wheel speed sensors: speed of each wheel centre along the wheel's heading, with noise and faults")
         .input<msgs::VehicleState>("truth", "ground truth", true, 1)
         .output<msgs::WheelSpeeds>("speeds", "m/s at the tyre")
-        .param(ParamSpec::number("rate_hz", 100).in_unit("Hz").at_least(1))
-        .param(ParamSpec::number("noise", 0.05).in_unit("m/s").at_least(0))
-        .param(ParamSpec::number("scale", 1.0).at_least(0.5).doc("tyre radius error as a factor"))
-        .param(plugins::vehicle_param().doc("the car's description file: wheelbase and track width"))
-        .param(ParamSpec::json("faults", "[]").doc("windows over (fl, fr, rl, rr): bias, drift, noise, freeze, dropout, spikes"))
+        .parameters(bindings())
         .periodic("rate_hz");
   }
 
   void configure(Context& ctx) override {
-    const Params& p = ctx.params();
-    noise_ = p.number("noise");
-    scale_ = p.number("scale");
-    const vehicle::Vehicle car = plugins::read_vehicle(ctx);
+    const Settings s = bindings().read(ctx.params());
+    noise_ = s.noise;
+    scale_ = s.scale;
+    const vehicle::Vehicle car = plugins::read_vehicle(ctx, s.vehicle);
     wb_ = car.wheelbase;
     half_track_ = car.track_width / 2;
-    faults_ = read_faults(p, 4, {"bias", "drift", "noise", "freeze", "dropout", "spikes"});
+    faults_ = s.faults;
     rng_ = Rng(ctx.seed());
     truth_ = ctx.input<msgs::VehicleState>("truth");
     out_ = ctx.output<msgs::WheelSpeeds>("speeds");

@@ -39,50 +39,75 @@ std::vector<Pylon> parse_pylons(const std::string& text) {
   return out;
 }
 
+// The simulator's road is banked in its turns by default (IMS: 9 deg 12 min), unlike the map's.
+track::BankSpec default_bank() {
+  track::BankSpec b;
+  b.mode = "curvature";
+  b.degrees = 9.2;
+  return b;
+}
+
+struct Settings {
+  std::string track = "tracks/IMS.csv";
+  std::string name;
+  track::BankSpec bank = default_bank();
+  std::string outer_side = "auto";
+  bool outer_wall = true;
+  double outer_wall_offset_m = 0.0;
+  bool inner_wall = false;
+  double inner_wall_offset_m = 2.0, wall_height_m = 1.2;
+  std::string pylons = "[]";  // parsed in configure, after the track is read
+};
+
+ParamBinding<Settings> bindings() {
+  ParamBinding<Settings> b;
+  b.bind("track", &Settings::track).doc("centre-line file: x_m,y_m,w_tr_right_m,w_tr_left_m");
+  b.bind("name", &Settings::name).doc("track name; default: the file's stem");
+  plugins::bind_bank(b, &Settings::bank);
+  b.bind("outer_side", &Settings::outer_side).one_of({"auto", "left", "right"})
+      .doc("side of the outer wall; auto: the outside of the loop");
+  b.bind("outer_wall", &Settings::outer_wall);
+  b.bind("outer_wall_offset_m", &Settings::outer_wall_offset_m).in_unit("m").at_least(0).doc("beyond the track edge");
+  b.bind("inner_wall", &Settings::inner_wall);
+  b.bind("inner_wall_offset_m", &Settings::inner_wall_offset_m).in_unit("m").at_least(0);
+  b.bind("wall_height_m", &Settings::wall_height_m).in_unit("m").at_least(0.1);
+  b.bind_json("pylons", &Settings::pylons).doc("[{\"s\": m, \"d\": m, \"radius\": 0.2, \"height\": 0.7}, ...]");
+  b.declare(ParamSpec::number("rate_hz", 1.0).in_unit("Hz").at_least(0.01));  // the host's trigger only
+  return b;
+}
+
 class World : public Plugin {
  public:
   static Manifest manifest() {
-    return plugins::with_bank_params(
-               Manifest("sim.world", "1.0.0")
-                   .describe("The simulated world: a track file (TUM racetrack-database format), banking, walls and pylons")
-                   .output<msgs::TrackWorld>("world", "the static world, republished at rate_hz for late joiners")
-                   .param(ParamSpec::string("track", "tracks/IMS.csv").doc("centre-line file: x_m,y_m,w_tr_right_m,w_tr_left_m"))
-                   .param(ParamSpec::string("name", "").doc("track name; default: the file's stem")),
-               "curvature", 9.2)
-        .param(ParamSpec::string("outer_side", "auto").one_of({"auto", "left", "right"})
-                   .doc("side of the outer wall; auto: the outside of the loop"))
-        .param(ParamSpec::boolean("outer_wall", true))
-        .param(ParamSpec::number("outer_wall_offset_m", 0.0).in_unit("m").at_least(0).doc("beyond the track edge"))
-        .param(ParamSpec::boolean("inner_wall", false))
-        .param(ParamSpec::number("inner_wall_offset_m", 2.0).in_unit("m").at_least(0))
-        .param(ParamSpec::number("wall_height_m", 1.2).in_unit("m").at_least(0.1))
-        .param(ParamSpec::json("pylons", "[]").doc("[{\"s\": m, \"d\": m, \"radius\": 0.2, \"height\": 0.7}, ...]"))
-        .param(ParamSpec::number("rate_hz", 1.0).in_unit("Hz").at_least(0.01))
+    return Manifest("sim.world", "1.0.0")
+        .describe("The simulated world: a track file (TUM racetrack-database format), banking, walls and pylons")
+        .output<msgs::TrackWorld>("world", "the static world, republished at rate_hz for late joiners")
+        .parameters(bindings())
         .periodic("rate_hz");
   }
 
   void configure(Context& ctx) override {
-    const Params& p = ctx.params();
-    const std::string path = ctx.find_file(p.string("track"));
+    const Settings s = bindings().read(ctx.params());
+    const std::string path = ctx.find_file(s.track);
     WorldSpec w;
     try {
       w.line = load_centerline_csv(path);
     } catch (const TrackFileError& e) {
       throw BadInput(std::string("track file ") + e.what());
     }
-    w.name = p.string("name").empty() ? std::filesystem::path(path).stem().string() : p.string("name");
-    w.bank = bank_profile(w.line, plugins::read_bank_params(p));
-    std::string outer = p.string("outer_side");
+    w.name = s.name.empty() ? std::filesystem::path(path).stem().string() : s.name;
+    w.bank = bank_profile(w.line, s.bank);
+    std::string outer = s.outer_side;
     if (outer == "auto") outer = counter_clockwise(w.line) ? "right" : "left";
     const bool outer_left = outer == "left";
-    w.walls.height = p.number("wall_height_m");
+    w.walls.height = s.wall_height_m;
     auto set_side = [&](bool left, bool on, double off) {
       (left ? w.walls.left : w.walls.right) = on;
       (left ? w.walls.left_offset : w.walls.right_offset) = off;
     };
-    set_side(outer_left, p.boolean("outer_wall"), p.number("outer_wall_offset_m"));
-    set_side(!outer_left, p.boolean("inner_wall"), p.number("inner_wall_offset_m"));
-    w.pylons = parse_pylons(p.json("pylons"));
+    set_side(outer_left, s.outer_wall, s.outer_wall_offset_m);
+    set_side(!outer_left, s.inner_wall, s.inner_wall_offset_m);
+    w.pylons = parse_pylons(s.pylons);
     track_ = std::make_unique<Track>(std::move(w));
     for (const auto& q : track_->spec().pylons) {
       Frenet f = track_->at(q.s, q.d);

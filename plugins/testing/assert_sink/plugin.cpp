@@ -4,51 +4,49 @@
 #include <brickyard/msgs/Scalar.h>
 #include <brickyard/plugin.hpp>
 
-#include <cmath>
-#include <limits>
 #include <optional>
 
 namespace {
 
 using namespace brickyard;
 
-std::optional<double> opt(const Params& p, const char* name) {
-  double v = p.number(name);
-  return std::isnan(v) ? std::nullopt : std::optional<double>(v);
+struct Settings {
+  testing::StreamExpectations expect;
+  std::int64_t finish_after = 0;
+};
+
+ParamBinding<Settings> bindings() {
+  using E = testing::StreamExpectations;
+  ParamBinding<Settings> b;
+  b.bind("min_count", &Settings::expect, &E::min_count).at_least(0);
+  b.bind("max_count", &Settings::expect, &E::max_count).at_least(-1).doc("-1: no limit");
+  b.bind("min_value", &Settings::expect, &E::min_value).doc("NaN: no check");
+  b.bind("max_value", &Settings::expect, &E::max_value).doc("NaN: no check");
+  b.bind("ordering", &Settings::expect, &E::ordering).one_of({"none", "increasing", "nondecreasing", "decreasing"});
+  b.bind("min_rate_hz", &Settings::expect, &E::min_rate_hz).in_unit("Hz").doc("over sample stamps; NaN: no check");
+  b.bind("max_rate_hz", &Settings::expect, &E::max_rate_hz).in_unit("Hz").doc("over sample stamps; NaN: no check");
+  b.bind("expect_values", &Settings::expect, &E::expect_values).doc("the first samples must equal these");
+  b.bind("finish_after", &Settings::finish_after).at_least(0)
+      .doc("end the run successfully after this many samples; 0: never");
+  b.not_above("min_value", "max_value");
+  b.not_above("min_rate_hz", "max_rate_hz");
+  return b;
 }
 
 class AssertSink : public Plugin {
  public:
   static Manifest manifest() {
-    const double off = std::numeric_limits<double>::quiet_NaN();
     return Manifest("testing.assert_sink", "1.0.0")
         .describe("Asserts count, rate, value range, ordering and exact values of a Scalar stream; fails the run when violated")
         .input<msgs::Scalar>("in", "the stream under test", true, 1024)
-        .param(ParamSpec::integer("min_count", 0).at_least(0))
-        .param(ParamSpec::integer("max_count", -1).at_least(-1).doc("-1: no limit"))
-        .param(ParamSpec::number("min_value", off).doc("NaN: no check"))
-        .param(ParamSpec::number("max_value", off).doc("NaN: no check"))
-        .param(ParamSpec::string("ordering", "none").one_of({"none", "increasing", "nondecreasing", "decreasing"}))
-        .param(ParamSpec::number("min_rate_hz", off).in_unit("Hz").doc("over sample stamps; NaN: no check"))
-        .param(ParamSpec::number("max_rate_hz", off).in_unit("Hz").doc("over sample stamps; NaN: no check"))
-        .param(ParamSpec::numbers("expect_values", {}).doc("the first samples must equal these"))
-        .param(ParamSpec::integer("finish_after", 0).at_least(0).doc("end the run successfully after this many samples; 0: never"))
+        .parameters(bindings())
         .on_input("in");
   }
 
   void configure(Context& ctx) override {
-    const Params& p = ctx.params();
-    testing::StreamExpectations e;
-    e.min_count = p.integer("min_count");
-    e.max_count = p.integer("max_count");
-    e.min_value = opt(p, "min_value");
-    e.max_value = opt(p, "max_value");
-    e.ordering = p.string("ordering");
-    e.min_rate_hz = opt(p, "min_rate_hz");
-    e.max_rate_hz = opt(p, "max_rate_hz");
-    e.expect_values = p.numbers("expect_values");
-    finish_after_ = p.integer("finish_after");
-    checker_.emplace(std::move(e));
+    Settings s = bindings().read(ctx.params());
+    finish_after_ = s.finish_after;
+    checker_.emplace(std::move(s.expect));
     in_ = ctx.input<msgs::Scalar>("in");
   }
 

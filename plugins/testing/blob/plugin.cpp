@@ -7,18 +7,39 @@ namespace {
 
 using namespace brickyard;
 
+struct SourceSettings {
+  std::size_t size_bytes = 0;
+  double rate_hz = 10.0;
+};
+
+ParamBinding<SourceSettings> source_bindings() {
+  ParamBinding<SourceSettings> b;
+  b.bind_required("size_bytes", &SourceSettings::size_bytes).range(0, 256 << 20).in_unit("B");
+  b.bind("rate_hz", &SourceSettings::rate_hz).in_unit("Hz").range(1e-3, 1e6);
+  return b;
+}
+
+struct SinkSettings {
+  std::int64_t min_count = 0;
+};
+
+ParamBinding<SinkSettings> sink_bindings() {
+  ParamBinding<SinkSettings> b;
+  b.bind("min_count", &SinkSettings::min_count).at_least(0);
+  return b;
+}
+
 class BlobSource : public Plugin {
  public:
   static Manifest manifest() {
     return Manifest("testing.blob_source", "1.0.0")
         .describe("Publishes Blob messages of size_bytes at rate_hz")
         .output<msgs::Blob>("out")
-        .param(ParamSpec::required_param("size_bytes", ParamType::integer).range(0, 256 << 20).in_unit("B"))
-        .param(ParamSpec::number("rate_hz", 10.0).in_unit("Hz").range(1e-3, 1e6))
+        .parameters(source_bindings())
         .periodic("rate_hz");
   }
   void configure(Context& ctx) override {
-    size_ = static_cast<std::size_t>(ctx.params().integer("size_bytes"));
+    size_ = source_bindings().read(ctx.params()).size_bytes;
     out_ = ctx.output<msgs::Blob>("out");
   }
   void step(Context& ctx) override {
@@ -41,11 +62,11 @@ class BlobSink : public Plugin {
     return Manifest("testing.blob_sink", "1.0.0")
         .describe("Counts Blob messages and bytes; fails when fewer than min_count arrive")
         .input<msgs::Blob>("in")
-        .param(ParamSpec::integer("min_count", 0).at_least(0))
+        .parameters(sink_bindings())
         .on_input("in");
   }
   void configure(Context& ctx) override {
-    min_count_ = ctx.params().integer("min_count");
+    min_count_ = sink_bindings().read(ctx.params()).min_count;
     in_ = ctx.input<msgs::Blob>("in");
   }
   void step(Context&) override {

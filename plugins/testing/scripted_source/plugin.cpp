@@ -11,27 +11,42 @@ namespace {
 
 using namespace brickyard;
 
+struct Settings {
+  double rate_hz = 10.0;
+  std::vector<double> values;
+  bool loop = false;
+  double start = 0.0, step = 1.0;
+  std::int64_t count = -1;
+  double noise_std = 0.0;
+};
+
+ParamBinding<Settings> bindings() {
+  ParamBinding<Settings> b;
+  b.bind("rate_hz", &Settings::rate_hz).in_unit("Hz").range(1e-3, 1e6).doc("publish rate");
+  b.bind("values", &Settings::values).doc("values to play in order; empty: use the ramp");
+  b.bind("loop", &Settings::loop).doc("repeat the values list");
+  b.bind("start", &Settings::start).doc("first ramp value");
+  b.bind("step", &Settings::step).doc("ramp increment per sample");
+  b.bind("count", &Settings::count).at_least(-1).doc("samples to publish; -1: unlimited");
+  b.bind("noise_std", &Settings::noise_std).at_least(0).doc("Gaussian noise added to each value, seeded by --seed");
+  return b;
+}
+
 class ScriptedSource : public Plugin {
  public:
   static Manifest manifest() {
     return Manifest("testing.scripted_source", "1.0.0")
         .describe("Publishes a scripted sequence of values: a list, or a ramp start + k*step")
         .output<msgs::Scalar>("out", "one value per step")
-        .param(ParamSpec::number("rate_hz", 10.0).in_unit("Hz").range(1e-3, 1e6).doc("publish rate"))
-        .param(ParamSpec::numbers("values", {}).doc("values to play in order; empty: use the ramp"))
-        .param(ParamSpec::boolean("loop", false).doc("repeat the values list"))
-        .param(ParamSpec::number("start", 0.0).doc("first ramp value"))
-        .param(ParamSpec::number("step", 1.0).doc("ramp increment per sample"))
-        .param(ParamSpec::integer("count", -1).at_least(-1).doc("samples to publish; -1: unlimited"))
-        .param(ParamSpec::number("noise_std", 0.0).at_least(0).doc("Gaussian noise added to each value, seeded by --seed"))
+        .parameters(bindings())
         .periodic("rate_hz");
   }
 
   void configure(Context& ctx) override {
-    const Params& p = ctx.params();
-    script_.emplace(p.numbers("values"), p.boolean("loop"), p.number("start"), p.number("step"), p.integer("count"));
+    const Settings s = bindings().read(ctx.params());
+    script_.emplace(s.values, s.loop, s.start, s.step, s.count);
     out_ = ctx.output<msgs::Scalar>("out");
-    noise_std_ = p.number("noise_std");
+    noise_std_ = s.noise_std;
     rng_.seed(ctx.seed());
   }
 

@@ -9,6 +9,24 @@ namespace {
 
 using namespace brickyard;
 
+enum class Fault { none, configure, step };
+
+struct Settings {
+  double gain = 1.0, offset = 0.0;
+  Fault fault = Fault::none;
+  std::int64_t fault_at = 0;
+};
+
+ParamBinding<Settings> bindings() {
+  ParamBinding<Settings> b;
+  b.bind("gain", &Settings::gain);
+  b.bind("offset", &Settings::offset);
+  b.bind_choice("fault", {{"none", Fault::none}, {"configure", Fault::configure}, {"step", Fault::step}}, &Settings::fault)
+      .doc("throw in configure, or in the step that handles sample number fault_at");
+  b.bind("fault_at", &Settings::fault_at).at_least(0);
+  return b;
+}
+
 class Transform : public Plugin {
  public:
   static Manifest manifest() {
@@ -16,21 +34,17 @@ class Transform : public Plugin {
         .describe("Affine transform of Scalar samples: y = gain * x + offset")
         .input<msgs::Scalar>("in", "samples to transform")
         .output<msgs::Scalar>("out", "transformed samples, same stamps")
-        .param(ParamSpec::number("gain", 1.0))
-        .param(ParamSpec::number("offset", 0.0))
-        .param(ParamSpec::string("fault", "none").one_of({"none", "configure", "step"})
-                   .doc("throw in configure, or in the step that handles sample number fault_at"))
-        .param(ParamSpec::integer("fault_at", 0).at_least(0))
+        .parameters(bindings())
         .on_input("in");
   }
 
   void configure(Context& ctx) override {
-    const Params& p = ctx.params();
-    if (p.string("fault") == "configure") throw std::runtime_error("configured to fail in configure");
-    gain_ = p.number("gain");
-    offset_ = p.number("offset");
-    fault_step_ = p.string("fault") == "step";
-    fault_at_ = p.integer("fault_at");
+    const Settings s = bindings().read(ctx.params());
+    if (s.fault == Fault::configure) throw std::runtime_error("configured to fail in configure");
+    gain_ = s.gain;
+    offset_ = s.offset;
+    fault_step_ = s.fault == Fault::step;
+    fault_at_ = s.fault_at;
     in_ = ctx.input<msgs::Scalar>("in");
     out_ = ctx.output<msgs::Scalar>("out");
   }

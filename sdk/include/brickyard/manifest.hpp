@@ -4,11 +4,15 @@
 #include <brickyard/message_traits.hpp>
 #include <brickyard/params.hpp>
 
+#include <cmath>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <vector>
 
 namespace brickyard {
+
+template <class S> class ParamBinding;
 
 enum class PortDirection { input, output };
 
@@ -69,6 +73,26 @@ struct ParamSpec {
   }
 };
 
+// Two number parameters that must keep their order (a minimum and its maximum): lower <= upper,
+// or lower < upper when strict. The host checks every node's values when it validates a graph.
+// A NaN value (the "off" of an optional bound) satisfies it.
+struct ParamConstraint {
+  std::string lower, upper;
+  bool strict = false;
+
+  // Empty when the order holds; else what is wrong, naming both parameters and their values.
+  std::string violation(const Params& p) const {
+    if (!p.has(lower) || !p.has(upper)) return {};
+    const double a = p.number(lower), b = p.number(upper);
+    if (a != a || b != b) return {};  // NaN: a bound that is off keeps every order
+    if (strict ? a < b : a <= b) return {};
+    std::ostringstream s;
+    s << "parameter '" << lower << "' (" << a << ") must be " << (strict ? "below" : "at most") << " '" << upper
+      << "' (" << b << ")";
+    return s.str();
+  }
+};
+
 struct TriggerSpec {
   enum class Kind { periodic, on_input };
   Kind kind = Kind::periodic;
@@ -83,6 +107,7 @@ struct Manifest {
   std::vector<PortSpec> ports;
   std::vector<ParamSpec> params;
   std::vector<TriggerSpec> triggers;
+  std::vector<ParamConstraint> constraints;  // ABI 2: appended to the manifest
 
   Manifest() = default;
   Manifest(std::string n, std::string v) : name(std::move(n)), version(std::move(v)) {}
@@ -102,6 +127,8 @@ struct Manifest {
     return *this;
   }
   Manifest& param(ParamSpec p) { params.push_back(std::move(p)); return *this; }
+  // Every parameter of a binding, and its constraints (brickyard/param_binding.hpp).
+  template <class S> Manifest& parameters(const ParamBinding<S>& b);
   // Step the node at the rate (Hz) held by the named number parameter.
   Manifest& periodic(std::string rate_param) {
     triggers.push_back({TriggerSpec::Kind::periodic, std::move(rate_param)});

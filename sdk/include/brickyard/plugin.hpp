@@ -5,6 +5,7 @@
 #include <brickyard/abi.hpp>
 #include <brickyard/context.hpp>
 #include <brickyard/manifest.hpp>
+#include <brickyard/param_binding.hpp>
 #include <brickyard/version.hpp>
 
 namespace brickyard {

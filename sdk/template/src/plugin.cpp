@@ -10,6 +10,18 @@ namespace {
 
 using namespace brickyard;
 
+// Each parameter is bound once to a member: its type, name and default are declared here and
+// nowhere else; configure() reads them all with bindings().read().
+struct Settings {
+  double alpha = 0.5;
+};
+
+ParamBinding<Settings> bindings() {
+  ParamBinding<Settings> b;
+  b.bind("alpha", &Settings::alpha).range(0.0, 1.0).doc("smoothing factor: 1 passes the input through");
+  return b;
+}
+
 class MyPlugin : public Plugin {
  public:
   static Manifest manifest() {
@@ -17,12 +29,12 @@ class MyPlugin : public Plugin {
         .describe("Low-pass filters a Scalar stream")
         .input<msgs::Scalar>("in", "raw samples")
         .output<msgs::Scalar>("out", "filtered samples, same stamps")
-        .param(ParamSpec::number("alpha", 0.5).range(0.0, 1.0).doc("smoothing factor: 1 passes the input through"))
+        .parameters(bindings())
         .on_input("in");
   }
 
   void configure(Context& ctx) override {
-    filter_.emplace(ctx.params().number("alpha"));
+    filter_.emplace(bindings().read(ctx.params()).alpha);
     in_ = ctx.input<msgs::Scalar>("in");
     out_ = ctx.output<msgs::Scalar>("out");
   }
