@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <regex>
+#include <cmath>
 #include <sstream>
 
 namespace fs = std::filesystem;
@@ -83,7 +84,9 @@ std::string plugins_text(const Registry& reg) {
         << (port.description.empty() ? "" : "  — " + port.description) << "\n";
     for (const auto& ps : m.params) {
       o << "  param " << ps.name << " : " << to_string(ps.type);
-      if (ps.default_value) o << " = " << value_json(*ps.default_value).dump();
+      const double* d = ps.default_value ? std::get_if<double>(&*ps.default_value) : nullptr;
+      if (d && std::isnan(*d)) o << " = NaN (off)";  // an optional value: off unless the graph sets it
+      else if (ps.default_value) o << " = " << value_json(*ps.default_value).dump();
       else o << " (required)";
       if (!ps.unit.empty()) o << " [" << ps.unit << "]";
       if (ps.min || ps.max)

@@ -93,7 +93,9 @@ TEST(RoadGraph, LayersNodesAndEdgesFollowTheParameters) {
     for (auto* e = g.edges_begin(n); e != g.edges_end(n); ++e) {
       const bool same_d = g.node_d(e->to) == g.node_d(n);
       along += same_d;
-      if (!same_d) ASSERT_LE(e->max_kappa, p.max_curvature + 1e-6);
+      if (!same_d) {
+        ASSERT_LE(e->max_kappa, p.max_curvature + 1e-6);
+      }
       ASSERT_GT(e->length, 0);
       double h = g.node_s(e->to) - g.node_s(n);
       if (h <= 0) h += g.length();

@@ -478,7 +478,7 @@ TEST(Referee, DetectsAWallContactAndCountsLaps) {
   w.line = oval();
   w.walls.right = true;
   Track t(w);
-  Referee r(t, Footprint{});
+  Referee r(t, Footprint{3.9, 1.0, 0.97});  // the AV-21's rectangle around the rear axle
   // Drive the centre line twice round at 50 m/s, then drift into the right wall.
   const double v = 50, dt = 0.01;
   double s = 0, time = 0;

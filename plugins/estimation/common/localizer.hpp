@@ -15,7 +15,8 @@ struct LocalizerParams {
   PolicyParams selection;
   FilterNoise noise;
   ManagerParams manager;                           // manager.receivers: 1 or 2
-  Eigen::Vector3d lever[2] = {{1.606, 0.05, 1.0}, {1.606, -0.05, 1.0}};  // antennas in base_link, m
+  // The antennas in base_link, m: the car's (the plugin takes them from the vehicle file).
+  Eigen::Vector3d lever[2] = {Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
   double init_distance = 5;                        // m of travel before the heading is taken
   double roll_filter_s = 1;                        // s; 0: roll not used
 };

@@ -11,6 +11,7 @@
 #include <brickyard/plugin.hpp>
 
 #include "../common/localizer.hpp"
+#include "vehicle_param.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -34,49 +35,50 @@ Manifest common_ports(Manifest m) {
       .output<msgs::ModeStatus>("mode", "the localization manager's status, on change and at 10 Hz");
 }
 
-// An antenna's lever arm: a number array of exactly 3 in the manifest, an Eigen vector inside.
-void bind_antenna(ParamBinding<LocalizerParams>& b, int r, const char* doc) {
-  const std::string name = std::string("antenna") + char('0' + r);
-  const Eigen::Vector3d& d = b.defaults().lever[r];
-  b.bind_with(ParamSpec::numbers(name, {d.x(), d.y(), d.z()}).doc(doc), [name, r](const Params& p, LocalizerParams& lp) {
-    const auto& a = p.numbers(name);
-    if (a.size() != 3) throw BadInput("parameter '" + name + "': needs 3 numbers (x, y, z)");
-    lp.lever[r] = {a[0], a[1], a[2]};
-  });
-}
+// What the graph says: the car's file and where on it the antennas sit, and the filter's own
+// parameters.
+struct Settings {
+  std::string vehicle = plugins::default_vehicle_file;
+  std::vector<double> antenna0, antenna1;  // empty: the mount's place in the vehicle file
+  std::string antenna0_mount = "gnss_left", antenna1_mount = "gnss_right";
+  LocalizerParams loc;
+};
 
 // The three estimators' parameters: the common ones, then their policy's.
-template <Policy P> ParamBinding<LocalizerParams> bindings() {
+template <Policy P> ParamBinding<Settings> bindings() {
   using L = LocalizerParams;
   using N = FilterNoise;
   using M = ManagerParams;
   using S = PolicyParams;
-  L defaults;
-  defaults.policy = P;
-  ParamBinding<L> b(defaults);
-  bind_antenna(b, 0, "first receiver's antenna in base_link, m (x, y, z)");
-  bind_antenna(b, 1, "second receiver's antenna in base_link, m (x, y, z)");
-  b.bind("roll_filter_s", &L::roll_filter_s).in_unit("s").at_least(0).doc("time constant of the roll taken from the IMU; 0: roll not used");
-  b.bind("speed_sigma", &L::noise, &N::speed).in_unit("m/s").at_least(0).doc("wheel speed input noise");
-  b.bind("gyro_sigma", &L::noise, &N::yaw_rate).in_unit("rad/s").at_least(0).doc("yaw rate input noise");
-  b.bind("process_position", &L::noise, &N::position).in_unit("m/sqrt(s)").at_least(0);
-  b.bind("process_yaw", &L::noise, &N::yaw).in_unit("rad/sqrt(s)").at_least(0);
-  b.bind("process_slip_gain", &L::noise, &N::slip_gain).in_unit("s^2/m/sqrt(s)").at_least(0);
-  b.bind("init_distance", &L::init_distance).in_unit("m").at_least(0.5).doc("travel before the heading is taken from the fixes");
-  b.bind("emergency_after_s", &L::manager, &M::emergency_after_s).in_unit("s").at_least(0)
+  Settings defaults;
+  defaults.loc.policy = P;
+  ParamBinding<Settings> b(defaults);
+  plugins::bind_vehicle(b, &Settings::vehicle).doc("the car's description file: where its GNSS antennas sit");
+  b.bind("antenna0", &Settings::antenna0).doc("first receiver's antenna in base_link, m (x, y, z); empty: antenna0_mount's");
+  b.bind("antenna1", &Settings::antenna1).doc("second receiver's antenna in base_link, m (x, y, z); empty: antenna1_mount's");
+  b.bind("antenna0_mount", &Settings::antenna0_mount).doc("the first receiver's mount in the vehicle file");
+  b.bind("antenna1_mount", &Settings::antenna1_mount).doc("the second receiver's mount in the vehicle file");
+  b.bind("roll_filter_s", &Settings::loc, &L::roll_filter_s).in_unit("s").at_least(0).doc("time constant of the roll taken from the IMU; 0: roll not used");
+  b.bind("speed_sigma", &Settings::loc, &L::noise, &N::speed).in_unit("m/s").at_least(0).doc("wheel speed input noise");
+  b.bind("gyro_sigma", &Settings::loc, &L::noise, &N::yaw_rate).in_unit("rad/s").at_least(0).doc("yaw rate input noise");
+  b.bind("process_position", &Settings::loc, &L::noise, &N::position).in_unit("m/sqrt(s)").at_least(0);
+  b.bind("process_yaw", &Settings::loc, &L::noise, &N::yaw).in_unit("rad/sqrt(s)").at_least(0);
+  b.bind("process_slip_gain", &Settings::loc, &L::noise, &N::slip_gain).in_unit("s^2/m/sqrt(s)").at_least(0);
+  b.bind("init_distance", &Settings::loc, &L::init_distance).in_unit("m").at_least(0.5).doc("travel before the heading is taken from the fixes");
+  b.bind("emergency_after_s", &Settings::loc, &L::manager, &M::emergency_after_s).in_unit("s").at_least(0)
       .doc("every receiver rejected or silent this long: EMERGENCY");
-  b.bind("recover_after_s", &L::manager, &M::recover_after_s).in_unit("s").at_least(0)
+  b.bind("recover_after_s", &Settings::loc, &L::manager, &M::recover_after_s).in_unit("s").at_least(0)
       .doc("hysteresis: a level clears after this long without its cause");
-  b.bind("fix_timeout_s", &L::manager, &M::fix_timeout_s).in_unit("s").at_least(0.01).doc("a receiver silent this long counts as rejected");
+  b.bind("fix_timeout_s", &Settings::loc, &L::manager, &M::fix_timeout_s).in_unit("s").at_least(0.01).doc("a receiver silent this long counts as rejected");
   if constexpr (P == Policy::resilient) {
-    b.bind("epsilon_m", &L::selection, &S::epsilon).in_unit("m").at_least(0)
+    b.bind("epsilon_m", &Settings::loc, &L::selection, &S::epsilon).in_unit("m").at_least(0)
         .doc("every fix within this: all qualified (weighting paper: the closest one alone)");
-    b.bind("delta_m", &L::selection, &S::delta).in_unit("m").at_least(0).doc("fixes beyond this are rejected");
-    b.bind_choice("weighting", {{"likelihood", Weighting::likelihood}, {"paper", Weighting::paper}}, &L::selection, &S::weighting)
+    b.bind("delta_m", &Settings::loc, &L::selection, &S::delta).in_unit("m").at_least(0).doc("fixes beyond this are rejected");
+    b.bind_choice("weighting", {{"likelihood", Weighting::likelihood}, {"paper", Weighting::paper}}, &Settings::loc, &L::selection, &S::weighting)
         .doc("weights: likelihood (exp(-max(0, d^2 - 9)/2), d Mahalanobis) or paper (1 - delta/sum); docs/algorithms.md");
     b.not_above("epsilon_m", "delta_m");
   } else if constexpr (P == Policy::gated) {
-    b.bind("gate_chi2", &L::selection, &S::gate_chi2).at_least(0).doc("squared Mahalanobis threshold (2 dof; 13.8 = 99.9 %)");
+    b.bind("gate_chi2", &Settings::loc, &L::selection, &S::gate_chi2).at_least(0).doc("squared Mahalanobis threshold (2 dof; 13.8 = 99.9 %)");
   }
   return b;
 }
@@ -101,7 +103,23 @@ template <Policy P> class Estimator : public Plugin {
   }
 
   void configure(Context& ctx) override {
-    LocalizerParams lp = bindings<P>().read(ctx.params());
+    const Settings set = bindings<P>().read(ctx.params());
+    LocalizerParams lp = set.loc;
+    const vehicle::Vehicle car = plugins::read_vehicle(ctx, set.vehicle);
+    for (int r = 0; r < 2; ++r) {
+      std::vector<double> a = r == 0 ? set.antenna0 : set.antenna1;
+      const std::string which = std::string("antenna") + char('0' + r);
+      if (a.empty()) {
+        try {
+          const auto& xyz = car.mount(r == 0 ? set.antenna0_mount : set.antenna1_mount).xyz;
+          a.assign(xyz.begin(), xyz.end());
+        } catch (const vehicle::VehicleFileError& e) {
+          throw BadInput("parameter '" + which + "_mount': " + e.what());
+        }
+      }
+      if (a.size() != 3) throw BadInput("parameter '" + which + "': needs 3 numbers (x, y, z)");
+      lp.lever[r] = {a[0], a[1], a[2]};
+    }
     epsilon_ = lp.selection.epsilon;
     delta_ = lp.selection.delta;
     imu_ = ctx.input<msgs::Imu>("imu");

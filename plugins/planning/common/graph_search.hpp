@@ -26,7 +26,9 @@ struct SearchParams {
   double horizon = 300;         // m of line ahead of the start node
   double clearance = 1.5;       // m between the car's side and an obstacle, at least
   double soft_clearance = 4.0;  // m: nearer than this costs k_proximity per m² short
-  double car_front = 4.0;       // m of car ahead of its reference point (base_link, the rear axle)
+  // The car's length around its reference point (base_link, the rear axle). These defaults serve
+  // the unit tests and benchmarks; planning.road_graph sets both from the vehicle file.
+  double car_front = 4.0;       // m of car ahead of base_link
   double car_rear = 1.0;        // m behind it
   double k_length = 1.0;
   double k_curvature = 2e4;     // per 1/m of ∫κ² dl

@@ -26,7 +26,7 @@ struct RoadGraphParams {
   double layer_spacing_turn = 5;      // m where the line's |κ| exceeds turn_curvature
   double turn_curvature = 1.0 / 500;  // 1/m
   double lateral_step = 0.5;          // m between nodes across the track
-  double half_width = 0.97;           // m, half the car's width (AV-21)
+  double half_width = 0.97;           // m, half the car's width: the AV-21's for tests; the plugin and brickyard-plan take the vehicle file's
   double edge_margin = 1.5;           // m kept from the track edges beyond half the width: the path
                                       // tracker strays up to ~1 m at 50 m/s (docs/planning.md)
   double max_curvature = 0.05;        // 1/m: sharper edges are dropped

@@ -16,12 +16,14 @@
 #include "../common/road_graph_planner.hpp"
 #include "map_msg.hpp"
 #include "newest.hpp"
+#include "vehicle_param.hpp"
 
 #include <cmath>
 #include <cstdio>
 #include <deque>
 #include <set>
 #include <memory>
+#include <optional>
 
 namespace {
 
@@ -29,6 +31,9 @@ using namespace brickyard;
 using namespace brickyard::planning;
 
 struct Settings {
+  std::string vehicle = plugins::default_vehicle_file;
+  // The car's size: the vehicle file's unless the graph overrides it (NaN: off).
+  std::optional<double> half_width, car_front, car_rear;
   LineSettings line;
   double rate_hz = 20;
   std::string graph_file;
@@ -44,13 +49,14 @@ ParamBinding<Settings> bindings() {
   constexpr auto planner = &Settings::planner;
   constexpr auto search = &P::search;
   ParamBinding<Settings> b;
+  plugins::bind_vehicle(b, &Settings::vehicle).doc("the car's description file: its width and length around base_link");
   bind_line(b, &Settings::line);
   b.bind("rate_hz", &Settings::rate_hz).in_unit("Hz").at_least(0.1).doc("replanning rate");
   b.bind("graph_file", &Settings::graph_file).doc("a graph written by `brickyard-plan graph`; empty: built from the map at start");
   b.bind("layer_spacing", graph, &G::layer_spacing).in_unit("m").range(1, 100);
   b.bind("layer_spacing_turn", graph, &G::layer_spacing_turn).in_unit("m").range(1, 100);
   b.bind("lateral_step", graph, &G::lateral_step).in_unit("m").range(0.1, 5);
-  b.bind("half_width", graph, &G::half_width).in_unit("m").range(0.1, 5).doc("half the car's width");
+  b.bind("half_width", &Settings::half_width).in_unit("m").range(0.1, 5).doc("half the car's width; default: the vehicle file's");
   b.bind("graph_edge_margin", graph, &G::edge_margin).in_unit("m").at_least(0)
       .doc("nodes keep this much beyond half the width from the track edges");
   b.bind("max_curvature", graph, &G::max_curvature).in_unit("1/m").range(0.001, 1).doc("sharper edges are dropped");
@@ -58,8 +64,8 @@ ParamBinding<Settings> bindings() {
   b.bind("horizon", planner, search, &S::horizon).in_unit("m").range(20, 2000);
   b.bind("clearance", planner, search, &S::clearance).in_unit("m").at_least(0).doc("least gap between the car's side and an obstacle");
   b.bind("soft_clearance", planner, search, &S::soft_clearance).in_unit("m").at_least(0);
-  b.bind("car_front", planner, search, &S::car_front).in_unit("m").at_least(0).doc("car ahead of base_link");
-  b.bind("car_rear", planner, search, &S::car_rear).in_unit("m").at_least(0).doc("car behind base_link");
+  b.bind("car_front", &Settings::car_front).in_unit("m").at_least(0).doc("car ahead of base_link; default: the vehicle file's");
+  b.bind("car_rear", &Settings::car_rear).in_unit("m").at_least(0).doc("car behind base_link; default: the vehicle file's");
   b.bind("k_length", planner, search, &S::k_length).at_least(0);
   b.bind("k_curvature", planner, search, &S::k_curvature).at_least(0);
   b.bind("k_deviation", planner, search, &S::k_deviation).at_least(0);
@@ -94,6 +100,10 @@ class RoadGraphNode : public Plugin {
     margin_ = lp.edge_margin;
     gp_ = set.graph;
     pp_ = set.planner;
+    const vehicle::Vehicle car = plugins::read_vehicle(ctx, set.vehicle);
+    gp_.half_width = set.half_width.value_or(car.half_width);
+    pp_.search.car_front = set.car_front.value_or(car.front);
+    pp_.search.car_rear = set.car_rear.value_or(car.rear);
     pp_.limits = limits_;  // as the racing line's profile (no ellipse): the two planners agree on a clear track
     const std::string& gf = set.graph_file;
     if (!gf.empty()) {

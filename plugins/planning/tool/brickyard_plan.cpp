@@ -1,6 +1,6 @@
 // brickyard-plan: the offline half of planning.
 //   brickyard-plan line  --track FILE [--margin M] --out FILE [--profile FILE] [--vehicle FILE] [limits] [--min-time on|off] [--curvature-slack S]
-//   brickyard-plan graph --track FILE --raceline FILE [--edge-margin M] [graph options] --out FILE
+//   brickyard-plan graph --track FILE --raceline FILE [--edge-margin M] [--vehicle FILE] [graph options] --out FILE
 // `line` optimises the minimum-curvature racing line, refines it for minimum time under the
 // vehicle limits given (the vehicle file's, AV-21 by default, each overridable; --min-time off:
 // not), and writes it as x_m,y_m (TUM's format, which
@@ -42,7 +42,7 @@ const char* kUsage =
     "usage: brickyard-plan line  --track FILE [--margin M] --out FILE [--profile FILE] [--vehicle FILE]\n"
     "                            [--v-max V --a-lat A --a-accel A --a-decel A --drag K --power P]\n"
     "                            [--min-time on|off] [--curvature-slack S]\n"
-    "       brickyard-plan graph --track FILE --raceline FILE --out FILE [--edge-margin M]\n"
+    "       brickyard-plan graph --track FILE --raceline FILE --out FILE [--edge-margin M] [--vehicle FILE]\n"
     "                            [--layer-spacing M --layer-spacing-turn M --lateral-step M --half-width M\n"
     "                             --graph-edge-margin M --max-curvature K --max-edge-length M]\n";
 
@@ -171,10 +171,11 @@ int graph_cmd(std::map<std::string, std::string> o) {
   const std::string track = text(o, "track"), raceline = text(o, "raceline"), out = text(o, "out");
   const double edge_margin = number(o, "edge-margin", 2.5);  // planning.road_graph's default
   RoadGraphParams p;
+  const double half_width = car(o).half_width;  // the vehicle file's, as planning.road_graph's
   p.layer_spacing = number(o, "layer-spacing", p.layer_spacing);
   p.layer_spacing_turn = number(o, "layer-spacing-turn", p.layer_spacing_turn);
   p.lateral_step = number(o, "lateral-step", p.lateral_step);
-  p.half_width = number(o, "half-width", p.half_width);
+  p.half_width = number(o, "half-width", half_width);
   p.edge_margin = number(o, "graph-edge-margin", p.edge_margin);
   p.max_curvature = number(o, "max-curvature", p.max_curvature);
   p.max_edge_length = number(o, "max-edge-length", p.max_edge_length);

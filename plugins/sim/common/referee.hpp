@@ -10,11 +10,12 @@
 
 namespace brickyard::sim {
 
-// The car's plan-view rectangle relative to base_link (rear-axle centre).
+// The car's plan-view rectangle relative to base_link (rear-axle centre): the vehicle file's
+// front, rear and half_width (libs/vehicle), unless the referee's parameters override them.
 struct Footprint {
-  double front = 3.9;       // m ahead of the rear axle (Dallara AV-21 is 4.9 m long)
-  double rear = 1.0;        // m behind it
-  double half_width = 0.97; // m
+  double front = 0;       // m ahead of the rear axle
+  double rear = 0;        // m behind it
+  double half_width = 0;  // m
 };
 
 struct TruthSample {

@@ -3,6 +3,7 @@
 #include <brickyard/msgs/GnssFix.h>
 #include <brickyard/plugin.hpp>
 
+#include "vehicle_param.hpp"
 #include "../common/digest.hpp"
 #include "../common/rng.hpp"
 #include "../sensor_faults.hpp"
@@ -18,7 +19,9 @@ const std::vector<std::string> kFaultTypes = {"bias", "drift", "noise", "freeze"
 
 struct Settings {
   std::uint8_t receiver_id = 0;
-  std::vector<double> antenna = {1.606, 0.05, 1.0};
+  std::string vehicle = plugins::default_vehicle_file;
+  std::string vehicle_mount = "gnss_left";
+  std::vector<double> antenna;  // empty: the vehicle file's mount
   double sigma_m = 0.015, sigma_z_m = 0.03, reported_sigma_m = -1;
   int fix_type = 3;
   FaultSchedule faults{"[]", 3, kFaultTypes};  // as declared: no window
@@ -28,7 +31,10 @@ ParamBinding<Settings> bindings() {
   ParamBinding<Settings> b;
   b.bind("receiver_id", &Settings::receiver_id).range(0, 255);
   b.declare(ParamSpec::number("rate_hz", 20).in_unit("Hz").at_least(0.1));  // the host's trigger only
-  b.bind("antenna", &Settings::antenna).doc("antenna position in base_link, m (x, y, z)");
+  plugins::bind_vehicle(b, &Settings::vehicle).doc("the car's description file: where its antennas sit");
+  b.bind("vehicle_mount", &Settings::vehicle_mount).doc("the antenna's mount in the vehicle file");
+  b.bind("antenna", &Settings::antenna)
+      .doc("antenna position in base_link, m (x, y, z); empty: the vehicle file's vehicle_mount");
   b.bind("sigma_m", &Settings::sigma_m).in_unit("m").at_least(0).doc("horizontal noise, 1 sigma (RTK fixed: 1-2 cm)");
   b.bind("sigma_z_m", &Settings::sigma_z_m).in_unit("m").at_least(0);
   b.bind("reported_sigma_m", &Settings::reported_sigma_m).in_unit("m").doc("sigma the receiver reports; < 0: sigma_m");
@@ -54,9 +60,20 @@ class Gnss : public Plugin {
   void configure(Context& ctx) override {
     const Settings s = bindings().read(ctx.params());
     id_ = s.receiver_id;
-    const auto& a = s.antenna;
-    if (a.size() != 3) throw BadInput("parameter 'antenna': needs 3 numbers (x, y, z), has " + std::to_string(a.size()));
-    antenna_ = {a[0], a[1], a[2]};
+    const vehicle::Vehicle car = plugins::read_vehicle(ctx, s.vehicle);
+    if (s.antenna.empty()) {
+      const vehicle::Mount* mount = nullptr;
+      try {
+        mount = &car.mount(s.vehicle_mount);
+      } catch (const vehicle::VehicleFileError& e) {
+        throw BadInput("parameter 'vehicle_mount': " + s.vehicle + ": " + e.what());
+      }
+      antenna_ = {mount->xyz[0], mount->xyz[1], mount->xyz[2]};
+    } else {
+      const auto& a = s.antenna;
+      if (a.size() != 3) throw BadInput("parameter 'antenna': needs 3 numbers (x, y, z), has " + std::to_string(a.size()));
+      antenna_ = {a[0], a[1], a[2]};
+    }
     sigma_ = s.sigma_m;
     sigma_z_ = s.sigma_z_m;
     reported_ = s.reported_sigma_m < 0 ? sigma_ : s.reported_sigma_m;

@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <map>
 
+#include "vehicle_param.hpp"
 #include "../common/rng.hpp"
 #include "../sensor_faults.hpp"
 #include "../world_msg.hpp"
@@ -21,7 +22,9 @@ using namespace brickyard::sim;
 const std::vector<std::string> kFaultTypes = {"bias", "drift"};
 
 struct Settings {
-  std::vector<double> antenna = {1.606, 0.05, 1.0};
+  std::string vehicle = plugins::default_vehicle_file;
+  std::string vehicle_mount = "gnss_left";
+  std::vector<double> antenna;  // empty: the vehicle file's mount
   FaultSchedule faults{"[]", 3, kFaultTypes};  // as declared: no window
   double tolerance_m = 1e-9;
   std::int64_t min_checked = 1;
@@ -29,7 +32,9 @@ struct Settings {
 
 ParamBinding<Settings> bindings() {
   ParamBinding<Settings> b;
-  b.bind("antenna", &Settings::antenna).doc("the receiver's antenna in base_link, m");
+  plugins::bind_vehicle(b, &Settings::vehicle).doc("the car's description file: where its antennas sit");
+  b.bind("vehicle_mount", &Settings::vehicle_mount).doc("the antenna's mount in the vehicle file");
+  b.bind("antenna", &Settings::antenna).doc("the receiver's antenna in base_link, m; empty: the vehicle file's vehicle_mount");
   // The windows are parsed as the parameters are read: a bad one is refused naming its JSON pointer.
   b.bind_with(ParamSpec::json("faults", "[]").doc("expected offsets: bias and drift windows as given to sim.gnss"),
               [](const Params& p, Settings& s) { s.faults = read_faults(p, 3, kFaultTypes); });
@@ -51,9 +56,20 @@ class GnssChecker : public Plugin {
 
   void configure(Context& ctx) override {
     const Settings s = bindings().read(ctx.params());
-    const auto& a = s.antenna;
-    if (a.size() != 3) throw BadInput("parameter 'antenna': needs 3 numbers");
-    antenna_ = {a[0], a[1], a[2]};
+    const vehicle::Vehicle car = plugins::read_vehicle(ctx, s.vehicle);
+    if (s.antenna.empty()) {
+      const vehicle::Mount* mount = nullptr;
+      try {
+        mount = &car.mount(s.vehicle_mount);
+      } catch (const vehicle::VehicleFileError& e) {
+        throw BadInput("parameter 'vehicle_mount': " + s.vehicle + ": " + e.what());
+      }
+      antenna_ = {mount->xyz[0], mount->xyz[1], mount->xyz[2]};
+    } else {
+      const auto& a = s.antenna;
+      if (a.size() != 3) throw BadInput("parameter 'antenna': needs 3 numbers");
+      antenna_ = {a[0], a[1], a[2]};
+    }
     expect_ = s.faults;
     tol_ = s.tolerance_m;
     min_checked_ = s.min_checked;

@@ -3,6 +3,7 @@
 #include <brickyard/msgs/PointCloud.h>
 #include <brickyard/plugin.hpp>
 
+#include "vehicle_param.hpp"
 #include "../common/digest.hpp"
 #include "../common/lidar.hpp"
 #include "../sensor_faults.hpp"
@@ -20,7 +21,9 @@ const std::vector<std::string> kFaultTypes = {"noise", "frame_loss", "freeze", "
 
 struct Settings {
   std::uint8_t sensor_id = 0;
-  std::vector<double> mount = {2.342, 0.0, 0.448}, mount_rpy_deg = {0.0, 0.0, 0.0};
+  std::string vehicle = plugins::default_vehicle_file;
+  std::string vehicle_mount = "lidar_front";
+  std::vector<double> mount, mount_rpy_deg;  // empty: the vehicle file's mount
   double h_fov_deg = 120;
   int rows = 32;
   double v_min_deg = -15, v_max_deg = 15;
@@ -36,8 +39,11 @@ ParamBinding<Settings> bindings() {
   ParamBinding<Settings> b;
   b.bind("sensor_id", &Settings::sensor_id).range(0, 255);
   b.declare(ParamSpec::number("rate_hz", 20).in_unit("Hz").at_least(0.1));  // the host's trigger only
-  b.bind("mount", &Settings::mount).doc("sensor position in base_link, m (AV-21 front Hydra)");
-  b.bind("mount_rpy_deg", &Settings::mount_rpy_deg).doc("sensor roll, pitch, yaw in base_link, deg");
+  plugins::bind_vehicle(b, &Settings::vehicle).doc("the car's description file: where its LiDARs sit");
+  b.bind("vehicle_mount", &Settings::vehicle_mount).doc("the sensor's mount in the vehicle file");
+  b.bind("mount", &Settings::mount).doc("sensor position in base_link, m (x, y, z); empty: vehicle_mount's");
+  b.bind("mount_rpy_deg", &Settings::mount_rpy_deg)
+      .doc("sensor roll, pitch, yaw in base_link, deg; empty: vehicle_mount's");
   b.bind("h_fov_deg", &Settings::h_fov_deg).in_unit("deg").range(1, 360);
   b.bind("columns", &Settings::spec, &L::columns).range(1, 100000);
   b.bind("rows", &Settings::rows).range(1, 1024);
@@ -73,8 +79,18 @@ class Lidar : public Plugin {
   void configure(Context& ctx) override {
     const Settings s = bindings().read(ctx.params());
     id_ = s.sensor_id;
-    const auto& m = s.mount;
-    const auto& r = s.mount_rpy_deg;
+    const vehicle::Vehicle car = plugins::read_vehicle(ctx, s.vehicle);
+    std::vector<double> m = s.mount, r = s.mount_rpy_deg;
+    if (m.empty() || r.empty()) {
+      const vehicle::Mount* mount = nullptr;
+      try {
+        mount = &car.mount(s.vehicle_mount);
+      } catch (const vehicle::VehicleFileError& e) {
+        throw BadInput("parameter 'vehicle_mount': " + s.vehicle + ": " + e.what());
+      }
+      if (m.empty()) m.assign(mount->xyz.begin(), mount->xyz.end());
+      if (r.empty()) r.assign(mount->rpy_deg.begin(), mount->rpy_deg.end());
+    }
     if (m.size() != 3) throw BadInput("parameter 'mount': needs 3 numbers (x, y, z)");
     if (r.size() != 3) throw BadInput("parameter 'mount_rpy_deg': needs 3 numbers (roll, pitch, yaw)");
     spec_ = s.spec;

@@ -5,7 +5,9 @@
 
 #include <cmath>
 #include <cstdio>
+#include <optional>
 
+#include "vehicle_param.hpp"
 #include "../common/referee.hpp"
 #include "../world_msg.hpp"
 
@@ -15,21 +17,26 @@ using namespace brickyard;
 using namespace brickyard::sim;
 
 struct Settings {
+  std::string vehicle = plugins::default_vehicle_file;
   bool crash_ends_run = true;
   double obstacle_clearance_required = -1;
   std::int64_t laps = 0;
-  Footprint car;
+  // The car's rectangle: the vehicle file's unless the graph overrides it (NaN: off).
+  std::optional<double> car_front, car_rear, car_half_width;
 };
 
 ParamBinding<Settings> bindings() {
   ParamBinding<Settings> b;
+  plugins::bind_vehicle(b, &Settings::vehicle).doc("the car's description file: its rectangle around base_link");
   b.bind("crash_ends_run", &Settings::crash_ends_run).doc("a wall contact fails the run (exit 1)");
   b.bind("obstacle_clearance_required", &Settings::obstacle_clearance_required).in_unit("m")
       .doc("passing an obstacle nearer than this fails the run (exit 1); negative: off (hits are counted only)");
   b.bind("laps", &Settings::laps).at_least(0).doc("finish the run after this many laps; 0: never");
-  b.bind("car_front", &Settings::car, &Footprint::front).in_unit("m").at_least(0).doc("from the rear axle");
-  b.bind("car_rear", &Settings::car, &Footprint::rear).in_unit("m").at_least(0);
-  b.bind("car_half_width", &Settings::car, &Footprint::half_width).in_unit("m").at_least(0);
+  b.bind("car_front", &Settings::car_front).in_unit("m").at_least(0)
+      .doc("car ahead of base_link (the rear axle); default: the vehicle file's");
+  b.bind("car_rear", &Settings::car_rear).in_unit("m").at_least(0).doc("car behind base_link; default: the vehicle file's");
+  b.bind("car_half_width", &Settings::car_half_width).in_unit("m").at_least(0)
+      .doc("half the car's width; default: the vehicle file's");
   return b;
 }
 
@@ -50,7 +57,10 @@ class RefereeNode : public Plugin {
     crash_ends_ = s.crash_ends_run;
     laps_ = s.laps;
     clearance_required_ = s.obstacle_clearance_required;
-    fp_ = s.car;
+    const vehicle::Vehicle car = plugins::read_vehicle(ctx, s.vehicle);
+    fp_.front = s.car_front.value_or(car.front);
+    fp_.rear = s.car_rear.value_or(car.rear);
+    fp_.half_width = s.car_half_width.value_or(car.half_width);
     world_ = ctx.input<msgs::TrackWorld>("world");
     truth_ = ctx.input<msgs::VehicleState>("truth");
     est_ = ctx.input<msgs::LocalizationEstimate>("estimate");
