@@ -1,6 +1,7 @@
 #include "perception_scenes.hpp"
 
 #include "common/perception_score.hpp"
+#include "vehicle/vehicle.hpp"
 
 #include <cmath>
 
@@ -12,11 +13,12 @@ namespace {
 
 constexpr double kDeg = M_PI / 180;
 
-// The AV-21's three Hydras: front, and two rear-facing at +/-120 deg (configs/sim_truth_lap.json).
-LidarSpec hydra(Eigen::Vector3d mount, double yaw_deg) {
+// One of the AV-21's three Hydras (front, and two rear-facing at +/-120 deg), placed as the
+// vehicle file says.
+LidarSpec hydra(const brickyard::vehicle::Mount& m) {
   LidarSpec s;
-  s.mount = mount;
-  s.yaw = yaw_deg * kDeg;
+  s.mount = Eigen::Vector3d(m.xyz[0], m.xyz[1], m.xyz[2]);
+  s.yaw = m.rpy_deg[2] * kDeg;
   s.elevations = row_elevations(32, -15, 15, "horizon", 2.0);
   return s;
 }
@@ -37,9 +39,9 @@ Ims::Ims(const std::string& data_dir, const ImsOptions& o) {
   w.walls.left_offset = 2.0;
   w.pylons = o.pylons;
   track_ = std::make_unique<Track>(w);
-  for (auto [m, yaw] : {std::pair{Eigen::Vector3d(2.342, 0, 0.448), 0.0}, {Eigen::Vector3d(1.549, 0.267, 0.543), 120.0},
-                        {Eigen::Vector3d(1.549, -0.267, 0.543), -120.0}})
-    lidars_.push_back(std::make_unique<LidarCaster>(*track_, hydra(m, yaw)));
+  const vehicle::Vehicle car = vehicle::load_vehicle(data_dir + "/vehicles/av21.json");
+  for (const char* m : {"lidar_front", "lidar_left", "lidar_right"})
+    lidars_.push_back(std::make_unique<LidarCaster>(*track_, hydra(car.mount(m))));
   // The first 300 m run of each kind, in 5 m steps.
   const double full = std::abs(o.bank_deg) * kDeg;
   auto run_of = [&](auto pred) {
