@@ -6,7 +6,9 @@
 
 #include "vehicle/vehicle.hpp"
 
+#include <array>
 #include <string>
+#include <vector>
 
 namespace brickyard::plugins {
 
@@ -27,6 +29,26 @@ inline vehicle::Vehicle read_vehicle(Context& ctx, const std::string& file) {
   } catch (const vehicle::VehicleFileError& e) {
     throw BadInput(std::string("parameter 'vehicle': ") + e.what());
   }
+}
+
+// Where a sensor sits on the car: `given` (the graph's numbers: exactly 3) or, when it is empty,
+// the vehicle file's mount named `mount` — its xyz (m), or with `rpy` its roll, pitch, yaw (deg).
+// Throws BadInput naming `param` (not 3 numbers) or `mount_param` (a mount the car lacks).
+inline std::array<double, 3> sensor_place(const vehicle::Vehicle& car, const std::string& car_file,
+                                          const std::string& mount, const std::string& mount_param,
+                                          const std::vector<double>& given, const std::string& param, bool rpy = false) {
+  if (given.empty()) {
+    try {
+      const vehicle::Mount& m = car.mount(mount);
+      return rpy ? m.rpy_deg : m.xyz;
+    } catch (const vehicle::VehicleFileError& e) {
+      throw BadInput("parameter '" + mount_param + "': " + car_file + ": " + e.what());
+    }
+  }
+  if (given.size() != 3)
+    throw BadInput("parameter '" + param + "': needs 3 numbers " + (rpy ? "(roll, pitch, yaw)" : "(x, y, z)") + ", has " +
+                   std::to_string(given.size()));
+  return {given[0], given[1], given[2]};
 }
 
 }  // namespace brickyard::plugins

@@ -107,17 +107,9 @@ template <Policy P> class Estimator : public Plugin {
     LocalizerParams lp = set.loc;
     const vehicle::Vehicle car = plugins::read_vehicle(ctx, set.vehicle);
     for (int r = 0; r < 2; ++r) {
-      std::vector<double> a = r == 0 ? set.antenna0 : set.antenna1;
       const std::string which = std::string("antenna") + char('0' + r);
-      if (a.empty()) {
-        try {
-          const auto& xyz = car.mount(r == 0 ? set.antenna0_mount : set.antenna1_mount).xyz;
-          a.assign(xyz.begin(), xyz.end());
-        } catch (const vehicle::VehicleFileError& e) {
-          throw BadInput("parameter '" + which + "_mount': " + e.what());
-        }
-      }
-      if (a.size() != 3) throw BadInput("parameter '" + which + "': needs 3 numbers (x, y, z)");
+      const auto a = plugins::sensor_place(car, set.vehicle, r == 0 ? set.antenna0_mount : set.antenna1_mount, which + "_mount",
+                                           r == 0 ? set.antenna0 : set.antenna1, which);
       lp.lever[r] = {a[0], a[1], a[2]};
     }
     epsilon_ = lp.selection.epsilon;

@@ -57,19 +57,8 @@ class GnssChecker : public Plugin {
   void configure(Context& ctx) override {
     const Settings s = bindings().read(ctx.params());
     const vehicle::Vehicle car = plugins::read_vehicle(ctx, s.vehicle);
-    if (s.antenna.empty()) {
-      const vehicle::Mount* mount = nullptr;
-      try {
-        mount = &car.mount(s.vehicle_mount);
-      } catch (const vehicle::VehicleFileError& e) {
-        throw BadInput("parameter 'vehicle_mount': " + s.vehicle + ": " + e.what());
-      }
-      antenna_ = {mount->xyz[0], mount->xyz[1], mount->xyz[2]};
-    } else {
-      const auto& a = s.antenna;
-      if (a.size() != 3) throw BadInput("parameter 'antenna': needs 3 numbers");
-      antenna_ = {a[0], a[1], a[2]};
-    }
+    const auto a = plugins::sensor_place(car, s.vehicle, s.vehicle_mount, "vehicle_mount", s.antenna, "antenna");
+    antenna_ = {a[0], a[1], a[2]};
     expect_ = s.faults;
     tol_ = s.tolerance_m;
     min_checked_ = s.min_checked;

@@ -80,19 +80,8 @@ class Lidar : public Plugin {
     const Settings s = bindings().read(ctx.params());
     id_ = s.sensor_id;
     const vehicle::Vehicle car = plugins::read_vehicle(ctx, s.vehicle);
-    std::vector<double> m = s.mount, r = s.mount_rpy_deg;
-    if (m.empty() || r.empty()) {
-      const vehicle::Mount* mount = nullptr;
-      try {
-        mount = &car.mount(s.vehicle_mount);
-      } catch (const vehicle::VehicleFileError& e) {
-        throw BadInput("parameter 'vehicle_mount': " + s.vehicle + ": " + e.what());
-      }
-      if (m.empty()) m.assign(mount->xyz.begin(), mount->xyz.end());
-      if (r.empty()) r.assign(mount->rpy_deg.begin(), mount->rpy_deg.end());
-    }
-    if (m.size() != 3) throw BadInput("parameter 'mount': needs 3 numbers (x, y, z)");
-    if (r.size() != 3) throw BadInput("parameter 'mount_rpy_deg': needs 3 numbers (roll, pitch, yaw)");
+    const auto m = plugins::sensor_place(car, s.vehicle, s.vehicle_mount, "vehicle_mount", s.mount, "mount");
+    const auto r = plugins::sensor_place(car, s.vehicle, s.vehicle_mount, "vehicle_mount", s.mount_rpy_deg, "mount_rpy_deg", true);
     spec_ = s.spec;
     spec_.mount = {m[0], m[1], m[2]};
     spec_.roll = r[0] * kDeg;
