@@ -30,6 +30,10 @@ Referee::Events Referee::update(const TruthSample& s) {
   last_s_ = f.s;
   last_t_ = s.t;
   max_speed_ = std::max(max_speed_, s.speed);
+  if (s.speed >= 0.5) {
+    moved_ = true;
+    last_moving_t_ = s.t;
+  }
 
   // Corners of the car against the wall lines.
   const double c = std::cos(s.yaw), sn = std::sin(s.yaw);

@@ -47,6 +47,10 @@ class Referee {
   std::size_t localization_samples() const { return loc_n_; }
   double last_wall_clearance() const { return last_wall_clearance_; }
   double s() const { return last_s_; }
+  double t() const { return last_t_; }
+  // Seconds the car has been standing (below 0.5 m/s) at the last sample; 0 while it moves, and
+  // before it first moved (a car waiting at the start is not stopped short).
+  double stopped_for() const { return moved_ ? last_t_ - last_moving_t_ : 0.0; }
 
  private:
   const Track& track_;
@@ -58,6 +62,8 @@ class Referee {
   double max_speed_ = 0;
   int wall_contacts_ = 0, track_violations_ = 0, obstacles_hit_ = 0;
   bool in_contact_ = false, in_violation_ = false;
+  bool moved_ = false;
+  double last_moving_t_ = 0;
   std::vector<bool> pylon_hit_;
   double min_wall_clearance_ = std::numeric_limits<double>::infinity();
   double last_wall_clearance_ = std::numeric_limits<double>::infinity();

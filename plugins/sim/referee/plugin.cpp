@@ -19,8 +19,10 @@ using namespace brickyard::sim;
 struct Settings {
   std::string vehicle = plugins::default_vehicle_file;
   bool crash_ends_run = true;
-  double obstacle_clearance_required = -1;
+  // A race requires a clearance to every pylon: a pass nearer than this, or a hit, fails the run.
+  double obstacle_clearance_required = 0.5;
   std::int64_t laps = 0;
+  double stopped_timeout_s = 10;
   // The car's rectangle: the vehicle file's unless the graph overrides it (NaN: off).
   std::optional<double> car_front, car_rear, car_half_width;
 };
@@ -30,8 +32,11 @@ ParamBinding<Settings> bindings() {
   plugins::bind_vehicle(b, &Settings::vehicle).doc("the car's description file: its rectangle around base_link");
   b.bind("crash_ends_run", &Settings::crash_ends_run).doc("a wall contact fails the run (exit 1)");
   b.bind("obstacle_clearance_required", &Settings::obstacle_clearance_required).in_unit("m")
-      .doc("passing an obstacle nearer than this fails the run (exit 1); negative: off (hits are counted only)");
-  b.bind("laps", &Settings::laps).at_least(0).doc("finish the run after this many laps; 0: never");
+      .doc("passing an obstacle nearer than this (its surface to the car's) fails the run (exit 1); negative: off (hits are counted only)");
+  b.bind("laps", &Settings::laps).at_least(0)
+      .doc("a race of this many laps: finished when they are done, failed (did not finish) when the run ends before; 0: no race");
+  b.bind("stopped_timeout_s", &Settings::stopped_timeout_s).in_unit("s").at_least(0)
+      .doc("in a race, a car standing this long short of its laps fails the run at once (did not finish); 0: only at the end");
   b.bind("car_front", &Settings::car_front).in_unit("m").at_least(0)
       .doc("car ahead of base_link (the rear axle); default: the vehicle file's");
   b.bind("car_rear", &Settings::car_rear).in_unit("m").at_least(0).doc("car behind base_link; default: the vehicle file's");
@@ -56,6 +61,7 @@ class RefereeNode : public Plugin {
     const Settings s = bindings().read(ctx.params());
     crash_ends_ = s.crash_ends_run;
     laps_ = s.laps;
+    stopped_timeout_ = s.stopped_timeout_s;
     clearance_required_ = s.obstacle_clearance_required;
     const vehicle::Vehicle car = plugins::read_vehicle(ctx, s.vehicle);
     fp_.front = s.car_front.value_or(car.front);
@@ -102,6 +108,12 @@ class RefereeNode : public Plugin {
         clearance_required_ = -1;  // once
         ctx.fail(buf);
       }
+      if (laps_ > 0 && stopped_timeout_ > 0 && !dnf_ && ref_->stopped_for() >= stopped_timeout_) {
+        dnf_ = true;
+        std::snprintf(buf, sizeof buf, "did not finish: %d of %lld laps; the car stopped at s = %.1f m and stood %.1f s",
+                      ref_->laps_completed(), static_cast<long long>(laps_), ref_->s(), ref_->stopped_for());
+        ctx.fail(buf);
+      }
       if (ev.wall_contact) {
         std::snprintf(buf, sizeof buf, "wall contact at s = %.1f m, t = %.3f s, %.1f m/s", ref_->s(), t.t, t.speed);
         if (crash_ends_) ctx.fail(std::string("crash: ") + buf);
@@ -112,8 +124,18 @@ class RefereeNode : public Plugin {
   }
 
   void deactivate(Context& ctx) override {
-    if (!ref_) return;
+    if (!ref_) {
+      if (laps_ > 0) ctx.fail("did not finish: 0 of " + std::to_string(laps_) + " laps; the referee never saw the world");
+      return;
+    }
     score_estimates();
+    // A race that ended before its laps did not do its job, however it ended (duration, a stop).
+    if (laps_ > 0 && ref_->laps_completed() < laps_ && !dnf_) {
+      char buf[200];
+      std::snprintf(buf, sizeof buf, "did not finish: %d of %lld laps; the run ended at t = %.1f s with the car at s = %.1f m",
+                    ref_->laps_completed(), static_cast<long long>(laps_), ref_->t(), ref_->s());
+      ctx.fail(buf);
+    }
     ctx.metric("laps_completed", static_cast<double>(ref_->laps_completed()));
     ctx.metric("lap_times_s", ref_->lap_times());
     ctx.metric("max_speed_mps", ref_->max_speed());
@@ -134,6 +156,8 @@ class RefereeNode : public Plugin {
 
   bool crash_ends_ = true;
   std::int64_t laps_ = 0;
+  double stopped_timeout_ = 10;
+  bool dnf_ = false;
   double clearance_required_ = -1;
   std::uint64_t samples_ = 0;
   Footprint fp_;
