@@ -1,12 +1,16 @@
 // control.path_tracker: follows a Path (pure pursuit with a speed-scheduled look-ahead, speed
-// braking ahead of slower stretches; common/path_tracker.hpp) from the localization estimate.
+// braking ahead of slower stretches; libs/control/path_tracker.hpp) from the localization estimate.
 #include <brickyard/msgs/LocalizationEstimate.h>
 #include <brickyard/msgs/Path.h>
 #include <brickyard/plugin.hpp>
 
 #include "../command_msg.hpp"
+#include "control/path_tracker.hpp"
+#include "control/vehicle_tracking.hpp"
+#include "tracker_params.hpp"
 #include "vehicle_param.hpp"
-#include "common/path_tracker.hpp"
+
+#include <optional>
 
 namespace {
 
@@ -15,23 +19,19 @@ using namespace brickyard::control;
 
 struct Settings {
   std::string vehicle = plugins::default_vehicle_file;
-  TrackerParams tracker;  // its wheelbase comes from the vehicle file
+  TrackerParams tracker;         // the car's facts come from the vehicle file
+  std::optional<double> max_steer;  // NaN: the vehicle file's
 };
 
 ParamBinding<Settings> bindings() {
   using T = TrackerParams;
   ParamBinding<Settings> b;
-  plugins::bind_vehicle(b, &Settings::vehicle).doc("the car's description file: the wheelbase pure pursuit steers with");
-  b.bind("lookahead_min", &Settings::tracker, &T::lookahead_min).in_unit("m").at_least(0.5);
-  b.bind("lookahead_time", &Settings::tracker, &T::lookahead_time).in_unit("s").at_least(0).doc("look-ahead = this x speed, clamped");
-  b.bind("lookahead_max", &Settings::tracker, &T::lookahead_max).in_unit("m").at_least(0.5);
-  b.bind("max_steer", &Settings::tracker, &T::max_steer).in_unit("rad").at_least(0.01);
-  b.bind("speed_gain", &Settings::tracker, &T::speed_gain).at_least(0).doc("pedal per m/s of speed error");
-  b.bind("preview_time", &Settings::tracker, &T::preview_time).in_unit("s").at_least(0).doc("path ahead the speed looks at");
-  b.bind("decel", &Settings::tracker, &T::decel).in_unit("m/s^2").at_least(0.1).doc("braking the speed plan assumes");
+  plugins::bind_vehicle(b, &Settings::vehicle)
+      .doc("the car's description file: wheelbase, steering, single-track model, powertrain and grip");
+  plugins::bind_tracker(b, &Settings::tracker);
+  b.bind("max_steer", &Settings::max_steer).in_unit("rad").at_least(0.01).doc("steering limit; default: the vehicle file's");
   b.bind("closed", &Settings::tracker, &T::closed)
       .doc("the path may be a loop: it is one when its end lies within two of its longest steps of its start (a racing line); false: always open");
-  b.not_above("lookahead_min", "lookahead_max");
   return b;
 }
 
@@ -39,7 +39,7 @@ class PathTrackerNode : public Plugin {
  public:
   static Manifest manifest() {
     return Manifest("control.path_tracker", "1.0.0")
-        .describe("pure pursuit on the path with a speed-scheduled look-ahead; speed from the path, braking ahead of slower stretches")
+        .describe("follows the path: pure pursuit or the single-track model's LQR; speed from the path, braking ahead of slower stretches")
         .input<msgs::Path>("path", "the path to follow (the newest replaces the last)", true, 2)
         .input<msgs::LocalizationEstimate>("estimate", "where the car is: x, y, yaw, speed of base_link", true, 8)
         .output<msgs::ControlCommand>("command", "steer and pedals, source \"path_tracker\"")
@@ -50,7 +50,8 @@ class PathTrackerNode : public Plugin {
   void configure(Context& ctx) override {
     const Settings s = bindings().read(ctx.params());
     TrackerParams tp = s.tracker;
-    tp.wheelbase = plugins::read_vehicle(ctx, s.vehicle).wheelbase;
+    control::apply_vehicle(tp, plugins::read_vehicle(ctx, s.vehicle));
+    if (s.max_steer) tp.max_steer = *s.max_steer;
     tracker_ = PathTracker(tp);
     path_ = ctx.input<msgs::Path>("path");
     estimate_ = ctx.input<msgs::LocalizationEstimate>("estimate");
@@ -69,7 +70,7 @@ class PathTrackerNode : public Plugin {
       ++paths_;
     }
     for (auto& e : estimate_.take()) {
-      const Command c = tracker_.control(e->x(), e->y(), e->yaw(), e->speed());
+      const Command c = tracker_.control(CarState{e->x(), e->y(), e->yaw(), e->speed(), e->yaw_rate(), 0.0});
       out_.publish(command_message(c, "path_tracker", e->header().stamp_ns(), seq_++));
       cte_max_ = std::max(cte_max_, std::abs(tracker_.cross_track()));
     }

@@ -5,7 +5,10 @@
 
 #include "vehicle_param.hpp"
 
-#include "../common/pure_pursuit.hpp"
+#include "control/path_tracker.hpp"
+#include "control/vehicle_tracking.hpp"
+#include "motion/racing_line.hpp"
+#include "tracker_params.hpp"
 #include "../world_msg.hpp"
 
 namespace {
@@ -13,17 +16,23 @@ namespace {
 using namespace brickyard;
 using namespace brickyard::sim;
 
+// The driver's own defaults: a look-ahead a little longer than the car stack's tracker.
+control::TrackerParams driver_defaults() {
+  control::TrackerParams t;
+  t.lookahead_min = 12;
+  return t;
+}
+
 struct Settings {
   std::string raceline = "racelines/IMS.csv";
   motion::VehicleLimits limits;  // v_max and the accelerations bound; independent_limits() sets the rest
   double edge_margin = 2.5;
-  PursuitParams pursuit;  // the look-ahead and the speed gain; the car's facts come from its file
+  control::TrackerParams tracker = driver_defaults();  // the car's facts come from its file
   std::string vehicle = plugins::default_vehicle_file;
 };
 
 ParamBinding<Settings> bindings() {
   using L = motion::VehicleLimits;
-  using P = PursuitParams;
   ParamBinding<Settings> b;
   b.bind("raceline", &Settings::raceline).doc("x_m,y_m file of the line to follow");
   b.declare(ParamSpec::number("rate_hz", 100).in_unit("Hz").at_least(1));  // the host's trigger only
@@ -33,9 +42,7 @@ ParamBinding<Settings> bindings() {
   b.bind("a_decel", &Settings::limits, &L::a_decel).in_unit("m/s^2").at_least(0.1);
   b.bind("edge_margin", &Settings::edge_margin).in_unit("m").at_least(0)
       .doc("closest the line's points may come to a track edge (needs the world input)");
-  b.bind("lookahead_min", &Settings::pursuit, &P::lookahead_min).in_unit("m").at_least(0.5);
-  b.bind("lookahead_time", &Settings::pursuit, &P::lookahead_time).in_unit("s").at_least(0);
-  b.bind("speed_gain", &Settings::pursuit, &P::speed_gain).at_least(0);
+  plugins::bind_tracker(b, &Settings::tracker);
   plugins::bind_vehicle(b, &Settings::vehicle);
   return b;
 }
@@ -44,7 +51,7 @@ class TruthFollower : public Plugin {
  public:
   static Manifest manifest() {
     return Manifest("sim.truth_follower", "1.0.0")
-        .describe("Pure pursuit on a racing line from ground truth (a stand-in driver for simulator graphs)")
+        .describe("Drives a racing line from ground truth with the car stack's path tracker (libs/control): a stand-in driver for simulator graphs")
         .input<msgs::VehicleState>("truth", "ground truth", true, 1)
         .input<msgs::TrackWorld>("world", "when wired, the line is kept edge_margin inside the track", false, 1)
         .output<msgs::ControlCommand>("command", "steer, throttle, brake")
@@ -66,16 +73,15 @@ class TruthFollower : public Plugin {
     const motion::VehicleLimits& l = s.limits;
     limits_ = motion::independent_limits(l.v_max, l.a_lat, l.a_accel, l.a_decel);
     const vehicle::Vehicle car = plugins::read_vehicle(ctx, s.vehicle);
-    pursuit_params_ = s.pursuit;
-    pursuit_params_.wheelbase = car.wheelbase;
-    pursuit_params_.max_steer = car.max_steer;
+    tracker_params_ = s.tracker;
+    control::apply_vehicle(tracker_params_, car);
     world_ = ctx.input<msgs::TrackWorld>("world");
     truth_ = ctx.input<msgs::VehicleState>("truth");
     out_ = ctx.output<msgs::ControlCommand>("command");
   }
 
   void step(Context& ctx) override {
-    if (!pursuit_) {
+    if (!tracker_) {
       // With a world wired, wait for it and keep the line inside the track; without, use the file.
       CenterLine line = line_;
       if (world_.connected()) {
@@ -84,12 +90,16 @@ class TruthFollower : public Plugin {
         Track t(from_message(*w));
         line = motion::keep_inside(line_, t, margin_);
       }
-      pursuit_ = std::make_unique<PurePursuit>(motion::make_racing_line(line, limits_), pursuit_params_);
+      const motion::RacingLine r = motion::make_racing_line(line, limits_);
+      std::vector<control::PathPoint> pts;
+      for (std::size_t i = 0; i < r.x.size(); ++i) pts.push_back({r.x[i], r.y[i], r.speed[i]});
+      tracker_ = std::make_unique<control::PathTracker>(tracker_params_);
+      tracker_->set_path(std::move(pts));
     }
     auto s = newest(truth_);
     if (!s) return;
-    double target = 0;
-    Command c = pursuit_->control(s->x(), s->y(), s->yaw(), s->vx(), &target);
+    const motion::Command c = tracker_->control(control::CarState{s->x(), s->y(), s->yaw(), s->vx(), s->yaw_rate(), s->vy()});
+    const double target = c.target_speed;
     msgs::ControlCommand m;
     m.header().stamp_ns(ctx.now_ns());
     m.header().seq(seq_++);
@@ -105,8 +115,8 @@ class TruthFollower : public Plugin {
   CenterLine line_;
   double margin_ = 2.5;
   motion::VehicleLimits limits_;
-  PursuitParams pursuit_params_;
-  std::unique_ptr<PurePursuit> pursuit_;
+  control::TrackerParams tracker_params_;
+  std::unique_ptr<control::PathTracker> tracker_;
   Input<msgs::TrackWorld> world_;
   std::uint32_t seq_ = 0;
   Input<msgs::VehicleState> truth_;
