@@ -10,6 +10,10 @@
 #include "track/banking.hpp"
 #include "track/centre_line.hpp"
 #include "track/track.hpp"
+#include "vehicle_param.hpp"
+
+#include <cmath>
+#include <cstdio>
 
 #include <filesystem>
 #include <memory>
@@ -23,7 +27,24 @@ struct Settings {
   std::string name;
   track::BankSpec bank;  // flat unless the graph says otherwise
   double rate_hz = 1.0;
+  std::string vehicle = plugins::default_vehicle_file;
 };
+
+// The first place where the track is narrower than the car, as "s = X m: W m wide"; empty when
+// the car fits everywhere. A map the car cannot drive is bad input, refused before anything runs.
+std::string narrower_than(const track::CenterLine& c, double car_width) {
+  double s = 0;
+  for (std::size_t i = 0; i < c.x.size(); ++i) {
+    if (i > 0) s += std::hypot(c.x[i] - c.x[i - 1], c.y[i] - c.y[i - 1]);
+    const double w = c.width_left[i] + c.width_right[i];
+    if (w < car_width) {
+      char buf[96];
+      std::snprintf(buf, sizeof buf, "at s = %.1f m (point %zu) it is %.2f m wide", s, i + 1, w);
+      return buf;
+    }
+  }
+  return {};
+}
 
 ParamBinding<Settings> bindings() {
   ParamBinding<Settings> b;
@@ -31,6 +52,7 @@ ParamBinding<Settings> bindings() {
   b.bind("name", &Settings::name).doc("track name; default: the file's stem");
   plugins::bind_bank(b, &Settings::bank);
   b.bind("rate_hz", &Settings::rate_hz).in_unit("Hz").at_least(0.01);
+  plugins::bind_vehicle(b, &Settings::vehicle).doc("the car the map is for: a track narrower than it is refused");
   return b;
 }
 
@@ -52,6 +74,12 @@ class TrackFileMap : public Plugin {
       g.line = track::load_centerline_csv(path);
     } catch (const track::TrackFileError& e) {
       throw BadInput(std::string("track file ") + e.what());
+    }
+    const vehicle::Vehicle car = plugins::read_vehicle(ctx, s.vehicle);
+    if (const std::string where = narrower_than(g.line, 2 * car.half_width); !where.empty()) {
+      char width[32];
+      std::snprintf(width, sizeof width, "%.2f", 2 * car.half_width);
+      throw BadInput("track file " + path + ": " + where + ", narrower than the car (" + width + " m, " + s.vehicle + ")");
     }
     g.name = s.name.empty() ? std::filesystem::path(path).stem().string() : s.name;
     g.bank = track::bank_profile(g.line, s.bank);
