@@ -8,6 +8,7 @@
 #include "vehicle/vehicle.hpp"
 
 #include "av21.hpp"
+#include "shapes.hpp"
 
 #include <gtest/gtest.h>
 
@@ -40,17 +41,7 @@ std::string error_of(const std::string& from, const std::string& to) {
   return "";
 }
 
-track::CenterLine circle(double r, int n, double width) {
-  track::CenterLine c;
-  for (int i = 0; i < n; ++i) {
-    const double a = 2 * M_PI * i / n;
-    c.x.push_back(r * std::cos(a));
-    c.y.push_back(r * std::sin(a));
-    c.width_left.push_back(width);
-    c.width_right.push_back(width);
-  }
-  return c;
-}
+track::CenterLine circle(double r, int n, double width) { return circle_line<track::CenterLine>(r, n, width); }
 
 }  // namespace
 

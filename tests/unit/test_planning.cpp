@@ -7,6 +7,7 @@
 #include "track/curvature.hpp"
 
 #include "av21.hpp"
+#include "shapes.hpp"
 
 #include <gtest/gtest.h>
 
@@ -18,18 +19,7 @@ using namespace brickyard::planning;
 namespace {
 
 // A ring of radius r (counter-clockwise), `half` m to each edge, a point every ~5 m.
-ClosedLine ring(double r, double half) {
-  ClosedLine c;
-  const int n = static_cast<int>(2 * M_PI * r / 5);
-  for (int i = 0; i < n; ++i) {
-    const double a = 2 * M_PI * i / n;
-    c.x.push_back(r * std::cos(a));
-    c.y.push_back(r * std::sin(a));
-    c.width_left.push_back(half);
-    c.width_right.push_back(half);
-  }
-  return c;
-}
+ClosedLine ring(double r, double half) { return circle_line<ClosedLine>(r, static_cast<int>(2 * M_PI * r / 5), half); }
 
 // An oval: two straights of L (500 m) and two half circles of radius r (150 m), `half` (7.5 m) to
 // each edge, a point every ~5 m.
