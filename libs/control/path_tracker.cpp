@@ -130,7 +130,8 @@ void PathTracker::pedals_feedforward(double s_car, double v_target, const CarSta
   if (p_.grip > 0) {  // within the friction circle, less what the turn takes
     const double lat = v * v * std::abs(curvature(s_car));
     const double room = std::sqrt(std::max(0.0, p_.grip * p_.grip - lat * lat));
-    a = std::clamp(a, -std::max(room, 0.2 * p_.grip), std::max(room, 0.0));
+    // Braking keeps a fifth of the grip however tight the turn: a car too fast for it must slow.
+    a = std::clamp(a, -std::max(room, 0.2 * p_.grip), room);
   }
   const double force = pt.mass * a + pt.drag * v * v + (v > 0.05 ? pt.rolling : 0.0);
   out.throttle = out.brake = 0;
