@@ -106,17 +106,16 @@ class RefereeNode : public Plugin {
         std::snprintf(buf, sizeof buf, "obstacle passed %.2f m off at s = %.1f m (at least %.2f m required)",
                       ref_->obstacle_min_clearance(), ref_->s(), clearance_required_);
         clearance_required_ = -1;  // once
-        ctx.fail(buf);
+        fail(ctx, buf);
       }
-      if (laps_ > 0 && stopped_timeout_ > 0 && !dnf_ && ref_->stopped_for() >= stopped_timeout_) {
-        dnf_ = true;
+      if (laps_ > 0 && stopped_timeout_ > 0 && !failed_ && ref_->stopped_for() >= stopped_timeout_) {
         std::snprintf(buf, sizeof buf, "did not finish: %d of %lld laps; the car stopped at s = %.1f m and stood %.1f s",
                       ref_->laps_completed(), static_cast<long long>(laps_), ref_->s(), ref_->stopped_for());
-        ctx.fail(buf);
+        fail(ctx, buf);
       }
       if (ev.wall_contact) {
         std::snprintf(buf, sizeof buf, "wall contact at s = %.1f m, t = %.3f s, %.1f m/s", ref_->s(), t.t, t.speed);
-        if (crash_ends_) ctx.fail(std::string("crash: ") + buf);
+        if (crash_ends_) fail(ctx, std::string("crash: ") + buf);
         else ctx.log(LogLevel::warn, buf);
       }
     }
@@ -130,11 +129,12 @@ class RefereeNode : public Plugin {
     }
     score_estimates();
     // A race that ended before its laps did not do its job, however it ended (duration, a stop).
-    if (laps_ > 0 && ref_->laps_completed() < laps_ && !dnf_) {
+    // (Once: a race this referee has already failed — a crash, a stop — says so once.)
+    if (laps_ > 0 && ref_->laps_completed() < laps_ && !failed_) {
       char buf[200];
       std::snprintf(buf, sizeof buf, "did not finish: %d of %lld laps; the run ended at t = %.1f s with the car at s = %.1f m",
                     ref_->laps_completed(), static_cast<long long>(laps_), ref_->t(), ref_->s());
-      ctx.fail(buf);
+      fail(ctx, buf);
     }
     ctx.metric("laps_completed", static_cast<double>(ref_->laps_completed()));
     ctx.metric("lap_times_s", ref_->lap_times());
@@ -150,6 +150,11 @@ class RefereeNode : public Plugin {
   }
 
  private:
+  void fail(Context& ctx, const std::string& why) {
+    failed_ = true;
+    ctx.fail(why);
+  }
+
   void score_estimates() {
     for (const auto& e : est_.take()) ref_->localization(static_cast<double>(e->header().stamp_ns()) * 1e-9, e->x(), e->y());
   }
@@ -157,7 +162,7 @@ class RefereeNode : public Plugin {
   bool crash_ends_ = true;
   std::int64_t laps_ = 0;
   double stopped_timeout_ = 10;
-  bool dnf_ = false;
+  bool failed_ = false;  // this referee has failed the run: one reason is enough
   double clearance_required_ = -1;
   std::uint64_t samples_ = 0;
   Footprint fp_;
