@@ -46,7 +46,7 @@ struct Powertrain {
 struct TrackerParams {
   double wheelbase = 0;     // m: the vehicle description's
   double lookahead_min = 10, lookahead_time = 0.6, lookahead_max = 60;  // m, s, m
-  double max_steer = 0.35;  // rad
+  double max_steer = 0.35;  // rad: the AV-21's for tests; apply_vehicle sets the car's
   double speed_gain = 0.5;  // pedal per m/s of error
   double preview_time = 3;  // s of path ahead the speed looks at
   double decel = 10;        // m/s^2 the car may brake at

@@ -33,7 +33,7 @@ struct WallFollowerParams {
   // would (look-ahead x v/v0, w_theta x v0/v, w_d x (v0/v)^2): gains right at 40 m/s make the car
   // weave at 60. 0: fixed gains, as the paper.
   double schedule_above = 40;  // m/s (v0)
-  double max_steer = 0.35;     // rad
+  double max_steer = 0.35;     // rad: the AV-21's for tests; the plugin takes the vehicle file's
   bool reduce_speed = true;    // false: hold
   // Slow down hard and early: a wall 8 m in is a tighter line than the racing line, and holding
   // 55 m/s on it in a banked turn spins the car (docs/results-resilience.md); 12 m/s² is the

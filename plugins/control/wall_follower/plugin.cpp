@@ -7,29 +7,40 @@
 
 #include "../command_msg.hpp"
 #include "common/wall_follower.hpp"
+#include "vehicle_param.hpp"
+
+#include <optional>
 
 namespace {
 
 using namespace brickyard;
 using namespace brickyard::control;
 
-ParamBinding<WallFollowerParams> bindings() {
+// What the graph says: the law's parameters, and the car whose steering limit it keeps.
+struct Settings {
+  WallFollowerParams law;
+  std::string vehicle = plugins::default_vehicle_file;
+  std::optional<double> max_steer;  // NaN: the vehicle file's
+};
+
+ParamBinding<Settings> bindings() {
   using P = WallFollowerParams;
-  ParamBinding<P> b;
-  b.bind_choice("side", {{"right", -1}, {"left", 1}}, &P::side).doc("the wall followed");
-  b.bind("w_theta", &P::w_theta).doc("rad of steer per unit of the wall's slope at the look-ahead");
-  b.bind("w_d", &P::w_d).in_unit("rad/m").doc("rad of steer per m of gap error");
-  b.bind("gap", &P::gap).in_unit("m").at_least(0).doc("distance kept to the wall");
-  b.bind("lookahead", &P::lookahead).in_unit("m").at_least(0);
-  b.bind("max_steer", &P::max_steer).in_unit("rad").at_least(0.01);
-  b.bind("schedule_above", &P::schedule_above).in_unit("m/s").at_least(0)
+  ParamBinding<Settings> b;
+  plugins::bind_vehicle(b, &Settings::vehicle).doc("the car's description file: its steering limit");
+  b.bind_choice("side", {{"right", -1}, {"left", 1}}, &Settings::law, &P::side).doc("the wall followed");
+  b.bind("w_theta", &Settings::law, &P::w_theta).doc("rad of steer per unit of the wall's slope at the look-ahead");
+  b.bind("w_d", &Settings::law, &P::w_d).in_unit("rad/m").doc("rad of steer per m of gap error");
+  b.bind("gap", &Settings::law, &P::gap).in_unit("m").at_least(0).doc("distance kept to the wall");
+  b.bind("lookahead", &Settings::law, &P::lookahead).in_unit("m").at_least(0);
+  b.bind("max_steer", &Settings::max_steer).in_unit("rad").at_least(0.01).doc("steering limit; default: the vehicle file's");
+  b.bind("schedule_above", &Settings::law, &P::schedule_above).in_unit("m/s").at_least(0)
       .doc("above this speed the look-ahead grows and the gains shrink with speed as a pure pursuit's; 0: fixed");
-  b.bind_choice("speed_policy", {{"reduce", true}, {"hold", false}}, &P::reduce_speed)
+  b.bind_choice("speed_policy", {{"reduce", true}, {"hold", false}}, &Settings::law, &P::reduce_speed)
       .doc("while following: slow to fallback_speed, or hold");
-  b.bind("fallback_speed", &P::fallback_speed).in_unit("m/s").at_least(0);
-  b.bind("decel", &P::decel).in_unit("m/s^2").at_least(0.1);
-  b.bind("a_lat", &P::a_lat).in_unit("m/s^2").at_least(0).doc("the wall's bend caps the speed at sqrt(a_lat / curvature); 0: off");
-  b.bind("speed_gain", &P::speed_gain).at_least(0);
+  b.bind("fallback_speed", &Settings::law, &P::fallback_speed).in_unit("m/s").at_least(0);
+  b.bind("decel", &Settings::law, &P::decel).in_unit("m/s^2").at_least(0.1);
+  b.bind("a_lat", &Settings::law, &P::a_lat).in_unit("m/s^2").at_least(0).doc("the wall's bend caps the speed at sqrt(a_lat / curvature); 0: off");
+  b.bind("speed_gain", &Settings::law, &P::speed_gain).at_least(0);
   return b;
 }
 
@@ -47,7 +58,10 @@ class WallFollowerNode : public Plugin {
   }
 
   void configure(Context& ctx) override {
-    follower_ = WallFollower(bindings().read(ctx.params()));
+    const Settings s = bindings().read(ctx.params());
+    WallFollowerParams law = s.law;
+    law.max_steer = s.max_steer.value_or(plugins::read_vehicle(ctx, s.vehicle).max_steer);
+    follower_ = WallFollower(law);
     wall_ = ctx.input<msgs::WallEstimate>("wall");
     wheels_ = ctx.input<msgs::WheelSpeeds>("wheels");
     mode_ = ctx.input<msgs::ModeStatus>("mode");
