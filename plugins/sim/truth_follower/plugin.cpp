@@ -8,6 +8,9 @@
 #include "control/path_tracker.hpp"
 #include "control/vehicle_tracking.hpp"
 #include "motion/racing_line.hpp"
+#include "motion/vehicle_limits.hpp"
+
+#include <cmath>
 #include "tracker_params.hpp"
 #include "../world_msg.hpp"
 
@@ -26,6 +29,9 @@ control::TrackerParams driver_defaults() {
 struct Settings {
   std::string raceline = "racelines/IMS.csv";
   motion::VehicleLimits limits;  // v_max and the accelerations bound; independent_limits() sets the rest
+  bool vehicle_limits = false;   // true: the vehicle file's envelope instead (ellipse, drag, power)
+  double grip_use = 0.93;        // with it: the share of its lateral grip the profile plans with
+  double curvature_smooth_m = 30;
   double edge_margin = 2.5;
   control::TrackerParams tracker = driver_defaults();  // the car's facts come from its file
   std::string vehicle = plugins::default_vehicle_file;
@@ -40,6 +46,12 @@ ParamBinding<Settings> bindings() {
   b.bind("a_lat", &Settings::limits, &L::a_lat).in_unit("m/s^2").at_least(0.5);
   b.bind("a_accel", &Settings::limits, &L::a_accel).in_unit("m/s^2").at_least(0.1);
   b.bind("a_decel", &Settings::limits, &L::a_decel).in_unit("m/s^2").at_least(0.1);
+  b.bind_choice("profile_limits", {{"graph", false}, {"vehicle", true}}, &Settings::vehicle_limits)
+      .doc("the speed profile's limits: graph (v_max, a_lat, a_accel, a_decel, each on its own) or vehicle (the vehicle file's: the ellipse, drag and power)");
+  b.bind("grip_use", &Settings::grip_use).range(0.1, 1)
+      .doc("profile_limits vehicle: the share of the file's lateral acceleration planned with (a margin for transients)");
+  b.bind("curvature_smooth_m", &Settings::curvature_smooth_m).in_unit("m").range(0, 200)
+      .doc("the profile reads the line's curvature averaged over this (30: as the planners; less for chicanes)");
   b.bind("edge_margin", &Settings::edge_margin).in_unit("m").at_least(0)
       .doc("closest the line's points may come to a track edge (needs the world input)");
   plugins::bind_tracker(b, &Settings::tracker);
@@ -70,9 +82,14 @@ class TruthFollower : public Plugin {
     }
     line_ = xy;
     margin_ = s.edge_margin;
+    const vehicle::Vehicle car = plugins::read_vehicle(ctx, s.vehicle);
     const motion::VehicleLimits& l = s.limits;
     limits_ = motion::independent_limits(l.v_max, l.a_lat, l.a_accel, l.a_decel);
-    const vehicle::Vehicle car = plugins::read_vehicle(ctx, s.vehicle);
+    if (s.vehicle_limits) {
+      limits_ = motion::vehicle_limits(car);
+      limits_.a_lat *= s.grip_use;
+    }
+    smooth_m_ = s.curvature_smooth_m;
     tracker_params_ = s.tracker;
     control::apply_vehicle(tracker_params_, car);
     world_ = ctx.input<msgs::TrackWorld>("world");
@@ -90,11 +107,19 @@ class TruthFollower : public Plugin {
         Track t(from_message(*w));
         line = motion::keep_inside(line_, t, margin_);
       }
-      const motion::RacingLine r = motion::make_racing_line(line, limits_);
+      const motion::RacingLine r = motion::make_racing_line(line, limits_, smooth_m_);
       std::vector<control::PathPoint> pts;
       for (std::size_t i = 0; i < r.x.size(); ++i) pts.push_back({r.x[i], r.y[i], r.speed[i]});
       tracker_ = std::make_unique<control::PathTracker>(tracker_params_);
       tracker_->set_path(std::move(pts));
+      // The lap the profile plans: what a driven lap is measured against (docs/control.md).
+      std::vector<double> ds(r.x.size());
+      for (std::size_t i = 0; i < r.x.size(); ++i) {
+        const std::size_t j = (i + 1) % r.x.size();
+        ds[i] = std::hypot(r.x[j] - r.x[i], r.y[j] - r.y[i]);
+      }
+      ctx.metric("planned_lap_s", motion::profile_time(ds, r.speed, true));
+      ctx.metric("line_length_m", r.length);
     }
     auto s = newest(truth_);
     if (!s) return;
@@ -113,7 +138,7 @@ class TruthFollower : public Plugin {
 
  private:
   CenterLine line_;
-  double margin_ = 2.5;
+  double margin_ = 2.5, smooth_m_ = 30;
   motion::VehicleLimits limits_;
   control::TrackerParams tracker_params_;
   std::unique_ptr<control::PathTracker> tracker_;
