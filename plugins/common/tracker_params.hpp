@@ -20,6 +20,8 @@ template <class S, class... M> void bind_tracker(ParamBinding<S>& b, M... path) 
   b.bind("q_lateral", path..., &T::lqr, &Q::q_lateral).in_unit("1/m^2").at_least(0).doc("lqr: cost of the lateral error");
   b.bind("q_heading", path..., &T::lqr, &Q::q_heading).in_unit("1/rad^2").at_least(0).doc("lqr: cost of the heading error");
   b.bind("r_steer", path..., &T::lqr, &Q::r_steer).in_unit("1/rad^2").at_least(1e-6).doc("lqr: cost of the steering");
+  b.bind("max_lateral_error", path..., &T::lqr, &Q::max_lateral_error).in_unit("m").range(0.1, 20)
+      .doc("lqr: the lateral error the feedback sees is clamped to this, so a car far off the path closes in at a bounded angle");
   b.bind("curvature_window", path..., &T::curvature_window).in_unit("m").range(2, 200)
       .doc("lqr: the path's curvature, for the feedforward, over this length");
   b.bind_choice("pedal_law", {{"proportional", control::PedalLaw::proportional}, {"feedforward", control::PedalLaw::feedforward}},
