@@ -207,3 +207,87 @@ TEST(Localizer, HeadingFromTravelThenRollFromTheImu) {
   for (int i = 0; i < 2000; ++i) loc.imu(0.3 + 0.008 * i, w, 20 * w + 9.81 * std::sin(roll));  // 16 time constants
   EXPECT_NEAR(loc.filter().roll(), roll, 1e-6);
 }
+
+// The rule of coming back: receivers that agree with each other and move as the prediction does
+// for the window; not one receiver alone, not receivers apart, not fixes that jump about.
+TEST(Reacquisition, AgreeingReceiversThatMoveWithThePrediction) {
+  ReacquireParams p;  // agree 0.3 m, motion 0.3 m, window 1 s, two receivers
+  const Eigen::Vector2d drift(12, -3);  // the prediction is this far from the truth
+  auto epoch = [&](double t, double apart, double jitter) {
+    const Eigen::Vector2d truth(20 * t, 0), filter = truth - drift;
+    return std::make_pair(std::vector<Eigen::Vector2d>{truth + Eigen::Vector2d(jitter, apart / 2), truth - Eigen::Vector2d(0, apart / 2)}, filter);
+  };
+  Reacquisition r(p);
+  std::optional<Eigen::Vector2d> at;
+  double when = -1;
+  for (int k = 0; k <= 40 && !at; ++k) {
+    const auto [z, x] = epoch(0.05 * k, 0.1, 0.0);
+    at = r.observe(0.05 * k, z, x);
+    if (at) when = 0.05 * k;
+  }
+  ASSERT_TRUE(at);
+  EXPECT_NEAR(when, 1.0, 1e-9);                               // after the window, not before
+  EXPECT_NEAR((*at - Eigen::Vector2d(20 * when, 0)).norm(), 0, 1e-9);  // the receivers' mean
+  // Receivers 0.5 m apart never agree.
+  Reacquisition apart(p);
+  for (int k = 0; k <= 100; ++k) {
+    const auto [z, x] = epoch(0.05 * k, 0.5, 0.0);
+    EXPECT_FALSE(apart.observe(0.05 * k, z, x));
+  }
+  // Fixes jumping by a metre every other epoch (a receiver's noise x30) never move as predicted.
+  Reacquisition jumpy(p);
+  for (int k = 0; k <= 100; ++k) {
+    const auto [z, x] = epoch(0.05 * k, 0.0, k % 2 ? 1.0 : 0.0);
+    EXPECT_FALSE(jumpy.observe(0.05 * k, {z[0], z[0]}, x));
+  }
+  // One receiver has nothing to agree with.
+  Reacquisition one(p);
+  for (int k = 0; k <= 100; ++k) {
+    const auto [z, x] = epoch(0.05 * k, 0.0, 0.0);
+    EXPECT_FALSE(one.observe(0.05 * k, {z[0]}, x));
+  }
+}
+
+// A 10 s outage with a wheel speed 10 % high: dead reckoning ends 20 m out, every healthy fix is
+// rejected and the localization stays in EMERGENCY for good — unless the rule brings it back.
+TEST(Localizer, ComesBackAfterAnOutageThatDriftedPastDelta) {
+  for (bool enabled : {false, true}) {
+    LocalizerParams p;
+    p.manager.receivers = 2;
+    p.lever[0] = p.lever[1] = Eigen::Vector3d::Zero();
+    p.reacquire.enabled = enabled;
+    p.roll_filter_s = 0;
+    Localizer loc(p);
+    double t = 0, last = 0;  // the time of the last IMU sample: where the filter is
+    Status status = Status::warning;
+    auto drive = [&](double until, bool fixes, double speed_factor) {
+      for (; t < until - 1e-9; t += 0.01) {
+        loc.speed(20 * speed_factor);
+        loc.imu(t, 0.0, 0.0);
+        if (fixes && std::fmod(t + 1e-9, 0.05) < 0.01) {
+          const Eigen::Vector2d at(20 * t, 0);
+          loc.fixes(t, {Fix{0, at, p.lever[0], 0.015}, Fix{1, at + Eigen::Vector2d(0, 0.02), p.lever[1], 0.015}});
+        }
+        status = loc.status(t);  // the manager is stepped as the plugin steps it
+        last = t;
+      }
+    };
+    drive(10, true, 1.0);
+    ASSERT_TRUE(loc.filter().initialized());
+    EXPECT_EQ(status, Status::normal);
+    drive(20, false, 1.1);  // the outage: no fixes, the wheels read 10 % high
+    EXPECT_EQ(status, Status::emergency);
+    EXPECT_GT(std::abs(loc.filter().position().x() - 20 * last), 15.0);
+    drive(30, true, 1.0);   // healthy fixes again
+    const double error = (loc.filter().position() - Eigen::Vector2d(20 * last, 0)).norm();
+    if (enabled) {
+      EXPECT_EQ(loc.reacquisitions(), 1u);
+      EXPECT_LT(error, 0.1);
+      EXPECT_EQ(status, Status::normal);
+    } else {
+      EXPECT_EQ(loc.reacquisitions(), 0u);
+      EXPECT_GT(error, 15.0);
+      EXPECT_EQ(status, Status::emergency);
+    }
+  }
+}

@@ -6,7 +6,8 @@
 namespace brickyard::estimation {
 
 Localizer::Localizer(LocalizerParams p)
-    : p_(p), filter_(p.noise), manager_(p.manager), last_delta_(std::max(p.manager.receivers, 1), -1.0) {}
+    : p_(p), filter_(p.noise), manager_(p.manager), last_delta_(std::max(p.manager.receivers, 1), -1.0),
+      reacquisition_(p.reacquire) {}
 
 void Localizer::advance(double t) {
   if (t_ < 0) t_ = t;
@@ -37,6 +38,7 @@ void Localizer::fixes(double t, const std::vector<Fix>& epoch) {
     return;
   }
   EpochResult r = apply_fixes(filter_, epoch, p_.policy, p_.selection);
+  if (p_.policy == Policy::resilient) reacquire(t, epoch, r);
   ++epochs_;
   ++cases_[static_cast<int>(r.which)];
   last_case_ = r.which;
@@ -47,6 +49,24 @@ void Localizer::fixes(double t, const std::vector<Fix>& epoch) {
     manager_.on_fix(epoch[i].receiver, t, r.accepted[i]);
     rejected_ += !r.accepted[i];
   }
+}
+
+// Every fix rejected: the rule of reacquisition.hpp may say the receivers are right and the
+// prediction wrong; then the filter takes their position and the fixes count as accepted.
+void Localizer::reacquire(double t, const std::vector<Fix>& epoch, EpochResult& r) {
+  if (r.which != UpdateCase::rejected) {
+    reacquisition_.reset();
+    return;
+  }
+  std::vector<Eigen::Vector2d> z;
+  for (const auto& f : epoch) z.push_back(filter_.base_from_antenna(f.antenna, f.lever));
+  const auto at = reacquisition_.observe(t, z, filter_.position());
+  if (!at) return;
+  double sigma = 0;
+  for (const auto& f : epoch) sigma = std::max(sigma, f.sigma);
+  filter_.reset_position(*at, std::max(sigma, p_.reacquire.agree_m));
+  ++reacquisitions_;
+  r.accepted.assign(epoch.size(), true);
 }
 
 // Position from the fixes; heading from the direction of travel once the car has moved.

@@ -3,6 +3,7 @@
 // fed in time order with IMU samples, rear-axle speeds and epochs of fixes. The plugin
 // (fusion/plugin.cpp) only turns messages into these calls and the state into messages.
 #include "localization_manager.hpp"
+#include "reacquisition.hpp"
 #include "update_selection.hpp"
 
 #include <optional>
@@ -19,6 +20,7 @@ struct LocalizerParams {
   Eigen::Vector3d lever[2] = {Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
   double init_distance = 5;                        // m of travel before the heading is taken
   double roll_filter_s = 1;                        // s; 0: roll not used
+  ReacquireParams reacquire;                       // resilient: coming back after a long outage
 };
 
 class Localizer {
@@ -44,10 +46,12 @@ class Localizer {
   std::uint64_t epochs() const { return epochs_; }
   std::uint64_t rejected() const { return rejected_; }
   std::uint64_t epochs_of(UpdateCase c) const { return cases_[static_cast<int>(c)]; }
+  std::uint64_t reacquisitions() const { return reacquisitions_; }
 
  private:
   void advance(double t);
   void initialize(const std::vector<Fix>& epoch);
+  void reacquire(double t, const std::vector<Fix>& epoch, EpochResult& r);
 
   LocalizerParams p_;
   PoseFilter filter_;
@@ -57,7 +61,8 @@ class Localizer {
   bool have_imu_ = false;
   UpdateCase last_case_ = UpdateCase::predict_only;
   std::vector<double> last_delta_;
-  std::uint64_t epochs_ = 0, rejected_ = 0, cases_[5] = {0, 0, 0, 0, 0};
+  std::uint64_t epochs_ = 0, rejected_ = 0, cases_[5] = {0, 0, 0, 0, 0}, reacquisitions_ = 0;
+  Reacquisition reacquisition_;
 };
 
 }  // namespace brickyard::estimation

@@ -79,4 +79,14 @@ void PoseFilter::update_position(const Eigen::Vector2d& z, const Eigen::Matrix2d
   P_ = IKH * P_ * IKH.transpose() + K * R * K.transpose();
 }
 
+void PoseFilter::reset_position(const Eigen::Vector2d& z, double sigma) {
+  x_(X) = z.x();
+  x_(Y) = z.y();
+  P_.row(X).setZero();
+  P_.row(Y).setZero();
+  P_.col(X).setZero();
+  P_.col(Y).setZero();
+  P_(X, X) = P_(Y, Y) = sigma * sigma;
+}
+
 }  // namespace brickyard::estimation

@@ -45,6 +45,9 @@ class PoseFilter {
   Eigen::Matrix2d innovation_cov(const Eigen::Matrix2d& R) const { return P_.topLeftCorner<2, 2>() + R; }
   // Kalman update with a base_link position z and its covariance R.
   void update_position(const Eigen::Vector2d& z, const Eigen::Matrix2d& R);
+  // Re-acquisition: the position is z (sigma m, uncorrelated with the rest); heading, speed, yaw
+  // rate and sideslip gain keep their estimates.
+  void reset_position(const Eigen::Vector2d& z, double sigma);
 
   Eigen::Vector2d position() const { return x_.head<2>(); }
   double lateral_velocity() const { return -x_(SLIP) * x_(SPEED) * x_(SPEED) * x_(YAW_RATE); }

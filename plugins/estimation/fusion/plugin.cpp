@@ -76,6 +76,15 @@ template <Policy P> ParamBinding<Settings> bindings() {
     b.bind("delta_m", &Settings::loc, &L::selection, &S::delta).in_unit("m").at_least(0).doc("fixes beyond this are rejected");
     b.bind_choice("weighting", {{"likelihood", Weighting::likelihood}, {"paper", Weighting::paper}}, &Settings::loc, &L::selection, &S::weighting)
         .doc("weights: likelihood (exp(-max(0, d^2 - 9)/2), d Mahalanobis) or paper (1 - delta/sum); docs/algorithms.md");
+    using R = ReacquireParams;
+    b.bind("reacquire", &Settings::loc, &L::reacquire, &R::enabled)
+        .doc("after an outage that left every fix beyond delta: take the fixes' position again once the receivers agree with each other and with the motion model (docs/algorithms.md)");
+    b.bind("reacquire_agree_m", &Settings::loc, &L::reacquire, &R::agree_m).in_unit("m").at_least(0.01)
+        .doc("the receivers' base_link positions within this of each other");
+    b.bind("reacquire_motion_m", &Settings::loc, &L::reacquire, &R::motion_m).in_unit("m").at_least(0.01)
+        .doc("the fixes' offset from the dead-reckoned position may wander this much over the window");
+    b.bind("reacquire_window_s", &Settings::loc, &L::reacquire, &R::window_s).in_unit("s").at_least(0.05)
+        .doc("both held this long before the position is taken");
     b.not_above("epsilon_m", "delta_m");
   } else if constexpr (P == Policy::gated) {
     b.bind("gate_chi2", &Settings::loc, &L::selection, &S::gate_chi2).at_least(0).doc("squared Mahalanobis threshold (2 dof; 13.8 = 99.9 %)");
@@ -168,6 +177,7 @@ template <Policy P> class Estimator : public Plugin {
     ctx.metric("epochs_rejected", static_cast<double>(loc_->epochs_of(UpdateCase::rejected)));
     ctx.metric("time_warning_s", time_in_[1]);
     ctx.metric("time_emergency_s", time_in_[2]);
+    if constexpr (P == Policy::resilient) ctx.metric("reacquisitions", static_cast<double>(loc_->reacquisitions()));
     if constexpr (P == Policy::resilient) {  // the thresholds, for the report's Δk figure
       ctx.metric("epsilon_m", epsilon_);
       ctx.metric("delta_m", delta_);
