@@ -1,7 +1,10 @@
 #include "vehicle.hpp"
 
+#include <cstdio>
+
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <set>
@@ -137,6 +140,20 @@ Vehicle parse_vehicle(const std::string& text, const std::string& file) {
     v.v_max = l.number("v_max_mps", 1, 200);
     v.a_lat = l.number("a_lat_mps2", 0.5, 100);
     v.a_decel = l.number("a_decel_mps2", 0.1, 100);
+    // The envelope is what the car can do without downforce: never more grip than its tyres have,
+    // never more braking than its tyres or its brakes give. A car file that promises more would
+    // have every planner drive it off the road.
+    char why[160];
+    const double grip = v.mu * gravity, brakes = v.max_brake_force / v.mass;
+    if (v.a_lat > grip) {
+      std::snprintf(why, sizeof why, "%g m/s^2 is more than the tyres' grip (mu %g x g = %.2f m/s^2)", v.a_lat, v.mu, grip);
+      l.fail("/limits/a_lat_mps2", why);
+    }
+    if (v.a_decel > std::min(grip, brakes)) {
+      std::snprintf(why, sizeof why, "%g m/s^2 is more than the car can brake (tyres %.2f, brakes %.2f m/s^2)", v.a_decel,
+                    grip, brakes);
+      l.fail("/limits/a_decel_mps2", why);
+    }
   }
   {
     const json& mounts = top.at("mounts");

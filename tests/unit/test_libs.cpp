@@ -65,6 +65,11 @@ TEST(Vehicle, BadFilesNameTheFileAndThePointer) {
   EXPECT_EQ(error_of("\"lr_m\": 1.29", "\"lr_m\": 1.5"), "car.json: /geometry: lf_m + lr_m must equal wheelbase_m");
   EXPECT_EQ(error_of("\"xyz\": [2.342, 0, 0.448]", "\"xyz\": [2.342, 0]"), "car.json: /mounts/lidar_front/xyz: expected [x, y, z]");
   EXPECT_EQ(error_of("\"aero\"", "\"aerodynamics\""), "car.json: /: missing key \"aero\"");
+  // An envelope the car cannot drive: more lateral grip than its tyres, more braking than its brakes.
+  EXPECT_EQ(error_of("\"a_lat_mps2\": 15", "\"a_lat_mps2\": 18"),
+            "car.json: /limits/a_lat_mps2: 18 m/s^2 is more than the tyres' grip (mu 1.6 x g = 15.70 m/s^2)");
+  EXPECT_EQ(error_of("\"max_brake_force_n\": 20000", "\"max_brake_force_n\": 8000"),
+            "car.json: /limits/a_decel_mps2: 15 m/s^2 is more than the car can brake (tyres 15.70, brakes 9.82 m/s^2)");
   EXPECT_NE(error_of("{", "["), "");  // not an object at all
   EXPECT_THROW(vehicle::load_vehicle("/no/such/car.json"), vehicle::VehicleFileError);
 }
