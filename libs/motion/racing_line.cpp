@@ -1,5 +1,7 @@
 #include "racing_line.hpp"
 
+#include <cstdio>
+
 #include "track/curvature.hpp"
 
 #include <algorithm>
@@ -23,6 +25,23 @@ track::CenterLine keep_inside(const track::CenterLine& line, const track::Track&
     out.y[i] = p.y();
   }
   return out;
+}
+
+std::string leaves_track(const track::CenterLine& line, const track::Track& track) {
+  int hint = -1;
+  for (std::size_t i = 0; i < line.x.size(); ++i) {
+    const track::Frenet f = track.project(line.x[i], line.y[i], hint);
+    hint = f.seg;
+    const double left = track.width_left(f.seg, f.u), right = track.width_right(f.seg, f.u);
+    const double out = f.d > left ? f.d - left : -f.d > right ? -f.d - right : 0.0;
+    if (out > 0) {
+      char buf[160];
+      std::snprintf(buf, sizeof buf, "point %zu (%.2f, %.2f) is %.2f m beyond the track's %s edge at s = %.1f m", i + 1,
+                    line.x[i], line.y[i], out, f.d > 0 ? "left" : "right", f.s);
+      return buf;
+    }
+  }
+  return {};
 }
 
 RacingLine make_racing_line(const track::CenterLine& xy, const VehicleLimits& lim, double smooth_m) {

@@ -7,6 +7,7 @@
 #include "track/centre_line.hpp"
 #include "track/track.hpp"
 
+#include <string>
 #include <vector>
 
 namespace brickyard::motion {
@@ -19,6 +20,10 @@ struct RacingLine {
 // Pull the line's points toward the centre line where they come closer than `margin` to a track
 // edge (the racing line's files put the car's centre up to 0.6 m from the edge on IMS).
 track::CenterLine keep_inside(const track::CenterLine& line, const track::Track& track, double margin);
+
+// The first point of `line` outside the track's edges, described ("point 12 (x, y) is 3.20 m
+// beyond the track's left edge at s = 410.0 m"); empty when every point is on the track.
+std::string leaves_track(const track::CenterLine& line, const track::Track& track);
 
 // The closed line with its arc length, its curvature averaged over curvature_smooth_m
 // (track::signed_curvature) and speed_profile(lim) over it.

@@ -13,6 +13,7 @@
 #include "common/min_curvature.hpp"
 #include "common/min_time.hpp"
 #include "common/road_graph.hpp"
+#include "motion/racing_line.hpp"
 #include "motion/speed_profile.hpp"
 #include "motion/vehicle_limits.hpp"
 #include "track/centre_line.hpp"
@@ -184,6 +185,8 @@ int graph_cmd(std::map<std::string, std::string> o) {
   w.line = track::load_centerline_csv(track);
   const track::Track t(w);
   const track::CenterLine raw = track::load_xy_csv(raceline);
+  if (const std::string where = motion::leaves_track(raw, t); !where.empty())
+    throw std::runtime_error(raceline + ": the line leaves the track (" + track + "): " + where);
   const VehicleLimits d;  // the line's speeds play no part in the graph: the planners' defaults
   const Reference ref = make_reference(raw, &t, edge_margin, motion::independent_limits(d.v_max, d.a_lat, d.a_accel, d.a_decel));
   const auto t0 = std::chrono::steady_clock::now();
