@@ -134,3 +134,11 @@ TEST(RacingLine, KeepInsidePullsPointsOffTheEdges) {
   const track::CenterLine kept = motion::keep_inside(line, t, 1.0);
   for (std::size_t i = 0; i < kept.x.size(); ++i) EXPECT_NEAR(std::hypot(kept.x[i], kept.y[i]), 104.0, 0.02);
 }
+
+// A line on the track passes; one a metre past an edge is named, point and distance.
+TEST(RacingLine, LeavesTrackNamesThePoint) {
+  const track::Track t({"ring", circle(100, 400, 5), {}});
+  EXPECT_EQ(motion::leaves_track(circle(104.8, 200, 0), t), "");
+  const std::string e = motion::leaves_track(circle(106, 200, 0), t);
+  EXPECT_NE(e.find("point 1 (106.00, 0.00) is 1.00 m beyond the track's right edge"), std::string::npos) << e;
+}
