@@ -38,6 +38,8 @@ usage:
 options:
   --duration S         stop after S seconds (sim or real clock); overrides clock.duration_s
   --set NODE.PARAM=V   override a parameter (V is JSON, or else a string); repeatable
+  --arg NAME=V         give one of the graph's named arguments ("args", used as ${NAME}) a value;
+                       repeatable
   --seed N             seed of every random source (default 0)
   --process NAME       run only the nodes of process NAME; other processes meet over DDS
   --domain N           DDS domain id; overrides transport.domain
@@ -58,7 +60,7 @@ exit codes: 0 success, 1 the run failed, 2 invalid input
 struct Args {
   std::string command, target, dir, out, process, record;
   std::vector<std::string> record_only;
-  std::vector<std::string> sets, plugin_paths;
+  std::vector<std::string> sets, args, plugin_paths;
   std::optional<double> duration;
   std::optional<int> domain;
   double progress = -1;
@@ -96,6 +98,7 @@ Args parse_args(int argc, char** argv) {
       if (!(d > 0)) usage_error("--duration", "expected a positive number of seconds");
       a.duration = d;
     } else if (f == "--set") a.sets.push_back(value());
+    else if (f == "--arg") a.args.push_back(value());
     else if (f == "--seed") {
       std::string s = value();
       if (s.empty() || s.find_first_not_of("0123456789") != std::string::npos) usage_error("--seed " + s, "expected a non-negative integer");
@@ -209,7 +212,7 @@ std::string summary_table(const nlohmann::json& j) {
 
 int cmd_run(const Args& a, bool validate_only) {
   if (a.target.empty()) usage_error(a.command, "needs a graph file");
-  GraphDecl g = load_graph_file(a.target, a.sets);
+  GraphDecl g = load_graph_file(a.target, a.sets, a.args);
   Registry reg = load_registry(a, &g);
   ResolvedGraph rg = resolve_graph(g, reg, a.process);
   if (validate_only) {
@@ -317,7 +320,7 @@ int cmd_plugins(const Args& a) {
 int cmd_graph(const Args& a) {
   if (a.target.empty()) usage_error("graph", "needs a graph file");
   if (!a.dot) usage_error("graph", "choose an output format: --dot");
-  GraphDecl g = load_graph_file(a.target, a.sets);
+  GraphDecl g = load_graph_file(a.target, a.sets, a.args);
   Registry reg = load_registry(a, &g);
   resolve_graph(g, reg);
   std::cout << graph_dot(g, &reg);

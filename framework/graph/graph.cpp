@@ -1,6 +1,7 @@
 #include "graph/graph.hpp"
 
 #include "graph/diagnostics.hpp"
+#include "graph/graph_args.hpp"
 #include "graph/json_scan.hpp"
 
 #include <cmath>
@@ -146,7 +147,8 @@ std::string pointer_escape(const std::string& token) {
 
 std::string at(const std::string& file, const std::string& pointer) { return file + "#" + pointer; }
 
-GraphDecl parse_graph_text(const std::string& text, const std::string& file, const std::vector<std::string>& sets) {
+GraphDecl parse_graph_text(const std::string& text, const std::string& file, const std::vector<std::string>& sets,
+                           const std::vector<std::string>& args) {
   Diagnostics d;
   auto located = [&](std::size_t off, const std::string& msg) {
     auto p = position_of(text, off);
@@ -171,6 +173,7 @@ GraphDecl parse_graph_text(const std::string& text, const std::string& file, con
   Ctx c{file, d};
   if (!c.expect(root, json::value_t::object, "object", "")) d.raise_if_any();
 
+  apply_args(root, args, file, d);
   std::map<std::string, std::map<std::string, std::string>> origin;
   apply_sets(root, sets, d, origin);
 
@@ -244,7 +247,7 @@ GraphDecl parse_graph_text(const std::string& text, const std::string& file, con
   return g;
 }
 
-GraphDecl load_graph_file(const std::string& path, const std::vector<std::string>& sets) {
+GraphDecl load_graph_file(const std::string& path, const std::vector<std::string>& sets, const std::vector<std::string>& args) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec))
     throw InvalidInput(path, std::filesystem::exists(path, ec) ? "not a regular file" : "no such file");
@@ -252,7 +255,7 @@ GraphDecl load_graph_file(const std::string& path, const std::vector<std::string
   if (!in) throw InvalidInput(path, "cannot be read");
   std::ostringstream ss;
   ss << in.rdbuf();
-  return parse_graph_text(ss.str(), path, sets);
+  return parse_graph_text(ss.str(), path, sets, args);
 }
 
 }  // namespace brickyard::fw

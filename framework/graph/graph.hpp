@@ -59,7 +59,10 @@ std::string at(const std::string& file, const std::string& pointer);
 std::string pointer_escape(const std::string& token);
 
 // Parse and check a graph file; `sets` are --set node.param=value overrides. Throws InvalidInput.
-GraphDecl load_graph_file(const std::string& path, const std::vector<std::string>& sets = {});
-GraphDecl parse_graph_text(const std::string& text, const std::string& file, const std::vector<std::string>& sets = {});
+// `args` are --arg name=value: the graph's named arguments (graph_args.hpp), filled in before the sets.
+GraphDecl load_graph_file(const std::string& path, const std::vector<std::string>& sets = {},
+                          const std::vector<std::string>& args = {});
+GraphDecl parse_graph_text(const std::string& text, const std::string& file, const std::vector<std::string>& sets = {},
+                           const std::vector<std::string>& args = {});
 
 }  // namespace brickyard::fw

@@ -71,14 +71,28 @@ void PathTracker::project(double x, double y, double& s_car, double& cte) {
   }
 }
 
+void PathTracker::inside(double& lo, double& hi) const {
+  // On an open path a span past an end slides back onto the path: clamped ends would meet in one
+  // point, and its heading (atan2 of nothing) would read as a sharp turn.
+  if (closed_) return;
+  if (lo < 0) hi = std::min(hi - lo, length_), lo = 0;
+  if (hi > length_) lo = std::max(lo - (hi - length_), 0.0), hi = length_;
+}
+
 double PathTracker::heading(double s) const {
-  const PathPoint a = at(s - 1.0), b = at(s + 1.0);
+  double lo = s - 1.0, hi = s + 1.0;
+  inside(lo, hi);
+  const PathPoint a = at(lo), b = at(hi);
   return std::atan2(b.y - a.y, b.x - a.x);
 }
 
 double PathTracker::curvature(double s) const {
-  const double w = std::max(p_.curvature_window, 2.0);
-  return std::remainder(heading(s + 0.5 * w) - heading(s - 0.5 * w), 2 * M_PI) / w;
+  double w = std::max(p_.curvature_window, 2.0);
+  double lo = s - 0.5 * w, hi = s + 0.5 * w;
+  inside(lo, hi);
+  w = hi - lo;
+  if (w < 2.0) return 0.0;  // a path this short has no curvature to speak of
+  return std::remainder(heading(hi) - heading(lo), 2 * M_PI) / w;
 }
 
 double PathTracker::speed_target(double s_car, double speed) const {

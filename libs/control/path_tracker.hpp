@@ -93,6 +93,8 @@ class PathTracker {
   PathPoint at(double s) const;
   // The path's heading at s (a 2 m chord) and its curvature over curvature_window.
   double heading(double s) const;
+  // [lo, hi] moved onto an open path, its length kept where the path is long enough.
+  void inside(double& lo, double& hi) const;
   double curvature(double s) const;
   // The nearest projection of (x, y) on a segment, near the last one once found: arc length and
   // the signed distance (left positive).

@@ -218,7 +218,7 @@ TEST(Reacquisition, AgreeingReceiversThatMoveWithThePrediction) {
     return std::make_pair(std::vector<Eigen::Vector2d>{truth + Eigen::Vector2d(jitter, apart / 2), truth - Eigen::Vector2d(0, apart / 2)}, filter);
   };
   Reacquisition r(p);
-  std::optional<Eigen::Vector2d> at;
+  std::optional<Reacquired> at;
   double when = -1;
   for (int k = 0; k <= 40 && !at; ++k) {
     const auto [z, x] = epoch(0.05 * k, 0.1, 0.0);
@@ -227,7 +227,8 @@ TEST(Reacquisition, AgreeingReceiversThatMoveWithThePrediction) {
   }
   ASSERT_TRUE(at);
   EXPECT_NEAR(when, 1.0, 1e-9);                               // after the window, not before
-  EXPECT_NEAR((*at - Eigen::Vector2d(20 * when, 0)).norm(), 0, 1e-9);  // the receivers' mean
+  EXPECT_NEAR((at->position - Eigen::Vector2d(20 * when, 0)).norm(), 0, 1e-9);  // the receivers' mean
+  EXPECT_NEAR(at->turn, 0, 1e-9);
   // Receivers 0.5 m apart never agree.
   Reacquisition apart(p);
   for (int k = 0; k <= 100; ++k) {
@@ -245,6 +246,41 @@ TEST(Reacquisition, AgreeingReceiversThatMoveWithThePrediction) {
   for (int k = 0; k <= 100; ++k) {
     const auto [z, x] = epoch(0.05 * k, 0.0, 0.0);
     EXPECT_FALSE(one.observe(0.05 * k, {z[0]}, x));
+  }
+}
+
+// Dead reckoning that drifted in heading too (a yaw-rate bias during the outage): the fixes trace
+// the predicted path turned by 0.05 rad and moved. The offset between them changes as the car
+// drives, so only a fit that turns the path finds them in agreement; it returns the turn.
+TEST(Reacquisition, FindsTheHeadingErrorOfDeadReckoning) {
+  ReacquireParams p;
+  for (double err : {0.05, -0.2, 0.5}) {
+    Reacquisition r(p);
+    const double c = std::cos(err), sn = std::sin(err);
+    std::optional<Reacquired> at;
+    for (int k = 0; k <= 40 && !at; ++k) {
+      const double t = 0.1 * k;
+      const Eigen::Vector2d truth(60 * t, 0.5 * t * t);  // 60 m/s, bending gently
+      // The filter's path: the truth turned by -err about (30, -40) and shifted by (8, 5).
+      const Eigen::Vector2d q = truth - Eigen::Vector2d(30, -40);
+      const Eigen::Vector2d filter = Eigen::Vector2d(30, -40) + Eigen::Vector2d(c * q.x() + sn * q.y(), -sn * q.x() + c * q.y()) + Eigen::Vector2d(8, 5);
+      at = r.observe(t, {truth + Eigen::Vector2d(0, 0.05), truth - Eigen::Vector2d(0, 0.05)}, filter);
+    }
+    if (std::abs(err) > p.max_turn) {
+      EXPECT_FALSE(at) << err;  // past the largest turn the fit may make
+      continue;
+    }
+    ASSERT_TRUE(at) << err;
+    EXPECT_NEAR(at->turn, err, 1e-6);
+  }
+  // The same drift with the turn taken as zero (the old rule): never.
+  ReacquireParams still = p;
+  still.min_span_m = 1e6;
+  Reacquisition r(still);
+  for (int k = 0; k <= 40; ++k) {
+    const double t = 0.1 * k;
+    const Eigen::Vector2d truth(60 * t, 0), filter(60 * t * std::cos(0.05) + 8, -60 * t * std::sin(0.05) + 5);
+    EXPECT_FALSE(r.observe(t, {truth, truth}, filter));
   }
 }
 

@@ -64,7 +64,7 @@ void Localizer::reacquire(double t, const std::vector<Fix>& epoch, EpochResult& 
   if (!at) return;
   double sigma = 0;
   for (const auto& f : epoch) sigma = std::max(sigma, f.sigma);
-  filter_.reset_position(*at, std::max(sigma, p_.reacquire.agree_m));
+  filter_.reset_pose(at->position, at->turn, std::max(sigma, p_.reacquire.agree_m));
   ++reacquisitions_;
   r.accepted.assign(epoch.size(), true);
 }

@@ -89,4 +89,9 @@ void PoseFilter::reset_position(const Eigen::Vector2d& z, double sigma) {
   P_(X, X) = P_(Y, Y) = sigma * sigma;
 }
 
+void PoseFilter::reset_pose(const Eigen::Vector2d& z, double turn, double sigma) {
+  x_(YAW) = std::remainder(x_(YAW) + turn, 2 * M_PI);
+  reset_position(z, sigma);
+}
+
 }  // namespace brickyard::estimation

@@ -48,6 +48,9 @@ class PoseFilter {
   // Re-acquisition: the position is z (sigma m, uncorrelated with the rest); heading, speed, yaw
   // rate and sideslip gain keep their estimates.
   void reset_position(const Eigen::Vector2d& z, double sigma);
+  // Re-acquisition with the heading corrected too: the position is z and the heading turns by
+  // `turn` rad (its uncertainty kept); speed, yaw rate and sideslip gain keep their estimates.
+  void reset_pose(const Eigen::Vector2d& z, double turn, double sigma);
 
   Eigen::Vector2d position() const { return x_.head<2>(); }
   double lateral_velocity() const { return -x_(SLIP) * x_(SPEED) * x_(SPEED) * x_(YAW_RATE); }

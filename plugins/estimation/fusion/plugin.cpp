@@ -78,11 +78,15 @@ template <Policy P> ParamBinding<Settings> bindings() {
         .doc("weights: likelihood (exp(-max(0, d^2 - 9)/2), d Mahalanobis) or paper (1 - delta/sum); docs/algorithms.md");
     using R = ReacquireParams;
     b.bind("reacquire", &Settings::loc, &L::reacquire, &R::enabled)
-        .doc("after an outage that left every fix beyond delta: take the fixes' position again once the receivers agree with each other and with the motion model (docs/algorithms.md)");
+        .doc("after an outage that left every fix beyond delta: take the fixes' position (and the heading the fit finds) again once the receivers agree with each other and with the motion model (docs/algorithms.md)");
     b.bind("reacquire_agree_m", &Settings::loc, &L::reacquire, &R::agree_m).in_unit("m").at_least(0.01)
         .doc("the receivers' base_link positions within this of each other");
     b.bind("reacquire_motion_m", &Settings::loc, &L::reacquire, &R::motion_m).in_unit("m").at_least(0.01)
-        .doc("the fixes' offset from the dead-reckoned position may wander this much over the window");
+        .doc("the dead-reckoned path, moved and turned onto the fixes' path, within this of it at every epoch of the window");
+    b.bind("reacquire_max_turn", &Settings::loc, &L::reacquire, &R::max_turn).in_unit("rad").range(0, 3.14)
+        .doc("the largest heading error the fit may correct");
+    b.bind("reacquire_min_span_m", &Settings::loc, &L::reacquire, &R::min_span_m).in_unit("m").at_least(0.1)
+        .doc("below this much travel in the window the turn cannot be told: taken as zero");
     b.bind("reacquire_window_s", &Settings::loc, &L::reacquire, &R::window_s).in_unit("s").at_least(0.05)
         .doc("both held this long before the position is taken");
     b.not_above("epsilon_m", "delta_m");

@@ -1,17 +1,43 @@
 #include "line_setup.hpp"
 
+#include "line_plan.hpp"
 #include "math/fnv1a.hpp"
+
+#include <cmath>
+#include <stdexcept>
 
 namespace brickyard::planning {
 
-Reference make_reference(const track::CenterLine& file_line, const track::Track* track, double edge_margin,
-                         const VehicleLimits& limits) {
-  const track::CenterLine line = track ? motion::keep_inside(file_line, *track, edge_margin) : file_line;
+track::CenterLine line_points(const LineSource& src, const track::Track* track) {
+  if (src.plan) {
+    if (!track) throw std::invalid_argument("a planned racing line needs the track (wire the map)");
+    return plan_line(track->geometry().line, src.plan_limits, src.edge_margin);
+  }
+  return track ? motion::keep_inside(src.file_line, *track, src.edge_margin) : src.file_line;
+}
+
+Reference make_reference(const LineSource& src, const track::Track* track) {
   Reference r;
-  r.racing = motion::make_racing_line(line, limits);
+  r.racing = motion::make_racing_line(line_points(src, track), src.limits, src.curvature_smooth_m);
   r.line = RefLine(r.racing.x, r.racing.y, r.racing.kappa);
   r.speed = r.racing.speed;
   return r;
+}
+
+Reference make_reference(const track::CenterLine& file_line, const track::Track* track, double edge_margin,
+                         const VehicleLimits& limits) {
+  LineSource src;
+  src.file_line = file_line;
+  src.edge_margin = edge_margin;
+  src.limits = limits;
+  return make_reference(src, track);
+}
+
+double planned_lap(const motion::RacingLine& r) {
+  const std::size_t n = r.x.size();
+  std::vector<double> ds(n);
+  for (std::size_t i = 0; i < n; ++i) ds[i] = std::hypot(r.x[(i + 1) % n] - r.x[i], r.y[(i + 1) % n] - r.y[i]);
+  return motion::profile_time(ds, r.speed, true);
 }
 
 TrackRoom track_room(const track::Track& track, const RefLine& line) {

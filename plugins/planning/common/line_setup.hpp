@@ -20,9 +20,30 @@ struct Reference {
   std::vector<double> speed;   // per point
 };
 
-// `track` may be null (no map): the line is used as the file has it.
+// Where the racing line comes from and how it is driven.
+struct LineSource {
+  bool plan = false;             // planned for the map's track (line_plan.hpp); else `file_line`
+  track::CenterLine file_line;   // a racing line file's points
+  double edge_margin = 2.5;      // m: the planned line's margin from the edges, or how far inside
+                                 // them a file's points are kept (motion::keep_inside)
+  VehicleLimits plan_limits;     // plan: the car's envelope the line is refined under
+  VehicleLimits limits;          // the speed profile's
+  double curvature_smooth_m = 30;  // the profile reads the curvature averaged over this
+};
+
+// The line's points: planned for the track, or the file's kept inside its edges. `track` may be
+// null (no map): the file's points as they are; a planned line needs the track
+// (std::invalid_argument).
+track::CenterLine line_points(const LineSource& src, const track::Track* track);
+
+Reference make_reference(const LineSource& src, const track::Track* track);
+// A file's line with a 30 m curvature average (brickyard-plan graph, the bench).
 Reference make_reference(const track::CenterLine& line, const track::Track* track, double edge_margin,
                          const VehicleLimits& limits);
+
+// The lap the line's speed profile plans, s (motion::profile_time over the closed line): what a
+// driven lap is measured against.
+double planned_lap(const motion::RacingLine& r);
 
 // The track's edges across the line, for RoadGraph::build.
 TrackRoom track_room(const track::Track& track, const RefLine& line);

@@ -44,4 +44,10 @@ PathGeometry path_geometry(const std::vector<PathSample>& pts) {
   return g;
 }
 
+bool on_track(const track::Track& track, double x, double y, double edge_band, int hint) {
+  if (!(std::isfinite(x) && std::isfinite(y))) return false;
+  const track::Frenet f = track.project(x, y, hint);
+  return f.d <= track.width_left(f.seg, f.u) - edge_band && -f.d <= track.width_right(f.seg, f.u) - edge_band;
+}
+
 }  // namespace brickyard::planning

@@ -4,6 +4,8 @@
 // poses (heading from the neighbours), curvature and arc length a Path message carries.
 #include "road_graph_planner.hpp"
 
+#include "track/track.hpp"
+
 #include <cstdint>
 #include <optional>
 #include <vector>
@@ -19,6 +21,12 @@ struct StampedPose {
 // when the result is not finite. A non-finite size is taken as the largest (5 m radius): the
 // obstacle still blocks. The radius is half the larger side, within 0.1 to 5 m.
 std::optional<MapObstacle> obstacle_in_map(const StampedPose& at, double ox, double oy, double sx, double sy);
+
+// Whether a detection at (x, y) (map frame) can stand in the car's way: its centre lies on the
+// track at least `edge_band` inside both edges. A cluster at an edge or beyond is the wall, or a
+// thing beside the track; the graph's nodes keep the car's side a margin from the edges, so
+// nothing there needs avoiding — and a wall reported as obstacles must not close the road.
+bool on_track(const track::Track& track, double x, double y, double edge_band, int hint = -1);
 
 // The index of the pose whose stamp is nearest `stamp_ns`: the last pose unless another is
 // strictly nearer (then the first of those); compared in double so that odd stamps cannot

@@ -13,22 +13,26 @@
 #include "motion/racing_line.hpp"
 #include "newest.hpp"
 #include "track/track.hpp"
+#include "vehicle_param.hpp"
 
 #include <cmath>
+#include <memory>
 
 namespace {
 
 using namespace brickyard;
-using brickyard::planning::LineParams;
 using brickyard::planning::LineSettings;
+using brickyard::planning::LineSource;
 
 struct Settings {
+  std::string vehicle = plugins::default_vehicle_file;
   LineSettings line;
   double rate_hz = 1;
 };
 
 ParamBinding<Settings> bindings() {
   ParamBinding<Settings> b;
+  plugins::bind_vehicle(b, &Settings::vehicle).doc("the car's description file: the envelope the line is planned and driven with");
   planning::bind_line(b, &Settings::line);
   b.bind("rate_hz", &Settings::rate_hz).in_unit("Hz").at_least(0.01).doc("how often the path is sent again");
   return b;
@@ -38,8 +42,8 @@ class RacingLineNode : public Plugin {
  public:
   static Manifest manifest() {
     return Manifest("planning.racing_line", "1.0.0")
-        .describe("the racing line as a Path with a speed profile (lateral and longitudinal limits)")
-        .input<msgs::TrackMap>("map", "when wired, the line is kept edge_margin inside the track", false, 1)
+        .describe("the racing line (planned for the map, or a file's) as a Path with a speed profile")
+        .input<msgs::TrackMap>("map", "the track: the line is planned for it, or a file's line kept edge_margin inside it (needed with raceline plan)", false, 1)
         // Read by planning.road_graph; accepted here so the two planners swap by the plugin's name.
         .input<msgs::LocalizationEstimate>("estimate", "not used: this planner ignores where the car is", false, 1)
         .input<msgs::ObstacleList>("obstacles", "not used: this planner does not avoid obstacles", false, 1)
@@ -49,11 +53,10 @@ class RacingLineNode : public Plugin {
   }
 
   void configure(Context& ctx) override {
-    const LineParams lp = planning::load_line(ctx, bindings().read(ctx.params()).line);
-    line_ = lp.line;
-    limits_ = lp.limits;
-    margin_ = lp.edge_margin;
+    const Settings s = bindings().read(ctx.params());
+    src_ = planning::load_line(ctx, s.line, plugins::read_vehicle(ctx, s.vehicle));
     map_ = ctx.input<msgs::TrackMap>("map");
+    if (src_.plan && !map_.connected()) throw BadInput("raceline plan: input 'map' must be wired (the line is planned for its track)");
     estimate_ = ctx.input<msgs::LocalizationEstimate>("estimate");
     obstacles_ = ctx.input<msgs::ObstacleList>("obstacles");
     out_ = ctx.output<msgs::Path>("path");
@@ -63,17 +66,18 @@ class RacingLineNode : public Plugin {
     estimate_.take();  // drained, unused
     obstacles_.take();
     if (!path_) {
-      track::CenterLine line = line_;
+      track::CenterLine line = src_.file_line;
       if (map_.connected()) {
         auto w = plugins::newest(map_);
         if (!w) return;
         try {
-          line = motion::keep_inside(line_, track::Track(plugins::from_message(*w)), margin_);
-        } catch (const std::exception& e) {  // a malformed map: the line as the file has it
+          line = planning::line_points(src_, std::make_unique<track::Track>(plugins::from_message(*w)).get());
+        } catch (const std::exception& e) {  // a malformed map: the file's line as it is; nothing to plan on
+          if (src_.plan) throw BadInput(std::string("raceline plan: the map's track cannot be planned on: ") + e.what());
           ctx.log(LogLevel::warn, std::string("map unusable (") + e.what() + "): the racing line is not kept inside the edges");
         }
       }
-      const motion::RacingLine r = motion::make_racing_line(line, limits_);
+      const motion::RacingLine r = motion::make_racing_line(line, src_.limits, src_.curvature_smooth_m);
       auto m = std::make_shared<msgs::Path>();
       m->header().frame_id("map");
       const std::size_t n = r.x.size();
@@ -91,9 +95,7 @@ class RacingLineNode : public Plugin {
       path_ = m;
       ctx.metric("points", static_cast<double>(n));
       ctx.metric("length_m", r.length);
-      double lap = 0;
-      for (std::size_t i = 0; i < n; ++i) lap += std::hypot(r.x[(i + 1) % n] - r.x[i], r.y[(i + 1) % n] - r.y[i]) / r.speed[i];
-      ctx.metric("planned_lap_s", lap);
+      ctx.metric("planned_lap_s", planning::planned_lap(r));
     }
     auto m = std::make_shared<msgs::Path>(*path_);
     m->header().stamp_ns(ctx.now_ns());
@@ -102,9 +104,7 @@ class RacingLineNode : public Plugin {
   }
 
  private:
-  track::CenterLine line_;
-  motion::VehicleLimits limits_;
-  double margin_ = 2.5;
+  LineSource src_;
   std::shared_ptr<const msgs::Path> path_;
   std::uint32_t seq_ = 0;
   Input<msgs::TrackMap> map_;

@@ -36,6 +36,7 @@ struct Settings {
   std::optional<double> half_width, car_front, car_rear;
   LineSettings line;
   double rate_hz = 20;
+  double obstacle_edge_band = 1.0;
   std::string graph_file;
   RoadGraphParams graph;
   PlannerParams planner;
@@ -73,6 +74,8 @@ ParamBinding<Settings> bindings() {
   b.bind("commit_time", planner, &P::commit_time).in_unit("s").at_least(0);
   b.bind("commit_min", planner, &P::commit_min).in_unit("m").at_least(1);
   b.bind("obstacle_memory", planner, &P::obstacle_memory).in_unit("s").range(0, 3600);
+  b.bind("obstacle_edge_band", &Settings::obstacle_edge_band).in_unit("m").range(0, 10)
+      .doc("a detection whose centre is less than this inside a track edge (or beyond it) is the wall or beside the track: not planned around");
   b.bind("obstacle_confirmations", planner, &P::confirmations).range(1, 100)
       .doc("frames an obstacle must be detected in before it is planned around");
   return b;
@@ -93,20 +96,20 @@ class RoadGraphNode : public Plugin {
 
   void configure(Context& ctx) override {
     const Settings set = bindings().read(ctx.params());
-    const LineParams lp = load_line(ctx, set.line);
-    line_file_ = lp.file;
-    line_ = lp.line;
-    limits_ = lp.limits;
-    margin_ = lp.edge_margin;
+    const vehicle::Vehicle car = plugins::read_vehicle(ctx, set.vehicle);
+    src_ = load_line(ctx, set.line, car);
+    line_file_ = src_.plan ? std::string("the racing line planned for the map") : src_.file_line.source;
     gp_ = set.graph;
     pp_ = set.planner;
-    const vehicle::Vehicle car = plugins::read_vehicle(ctx, set.vehicle);
+    edge_band_ = set.obstacle_edge_band;
     gp_.half_width = set.half_width.value_or(car.half_width);
     pp_.search.car_front = set.car_front.value_or(car.front);
     pp_.search.car_rear = set.car_rear.value_or(car.rear);
-    pp_.limits = limits_;  // as the racing line's profile (no ellipse): the two planners agree on a clear track
+    pp_.limits = src_.limits;  // as the racing line's profile: the two planners agree on a clear track
     const std::string& gf = set.graph_file;
     if (!gf.empty()) {
+      if (src_.plan)
+        throw BadInput("graph_file needs a raceline file: with raceline plan the line (and so the graph) is made from the map at start");
       graph_file_ = ctx.find_file(gf);
       try {
         loaded_ = std::make_unique<RoadGraph>(RoadGraph::load(graph_file_));
@@ -115,7 +118,7 @@ class RoadGraphNode : public Plugin {
       }
       if (!(loaded_->params() == gp_))
         throw BadInput("graph_file " + graph_file_ + " was built with other graph parameters than this node's (rebuild it with brickyard-plan graph and the same options)");
-      if (loaded_->source_digest() != reference_digest(line_, margin_, gp_))
+      if (loaded_->source_digest() != reference_digest(src_.file_line, src_.edge_margin, gp_))
         throw BadInput("graph_file " + graph_file_ + " was built for another racing line, edge_margin or graph parameters (rebuild it with brickyard-plan graph)");
     }
     map_ = ctx.input<msgs::TrackMap>("map");
@@ -142,7 +145,10 @@ class RoadGraphNode : public Plugin {
         for (const auto& e : poses_) poses.push_back({e->header().stamp_ns(), e->x(), e->y(), e->yaw()});
       const StampedPose& at = poses[nearest_pose(poses, list->header().stamp_ns())];
       for (const auto& o : list->obstacles())
-        if (auto m = obstacle_in_map(at, o.x(), o.y(), o.size_x(), o.size_y())) seen.push_back(*m);
+        if (auto m = obstacle_in_map(at, o.x(), o.y(), o.size_x(), o.size_y())) {
+          if (track_ && !on_track(*track_, m->x, m->y, edge_band_)) ++off_track_;
+          else seen.push_back(*m);
+        }
     }
     planner_->observe(seen, ctx.now_ns());
     // The layers around the obstacles met, for the report's drawing of the lattice.
@@ -201,6 +207,11 @@ class RoadGraphNode : public Plugin {
     ctx.metric("plans_without_route", static_cast<double>(blocked_));
     ctx.metric("restarts", static_cast<double>(restarts_));
     ctx.metric("obstacles_remembered_max", static_cast<double>(obstacles_max_));
+    ctx.metric("detections_off_track", static_cast<double>(off_track_));
+    if (planner_) {
+      ctx.metric("planned_lap_s", planned_lap_s_);
+      ctx.metric("line_length_m", line_ready_.racing.length);
+    }
     ctx.metric("max_offset_from_line_m", max_offset_);
     if (graph_) {
       ctx.metric("graph_nodes", static_cast<double>(graph_->node_count()));
@@ -231,16 +242,17 @@ class RoadGraphNode : public Plugin {
       if (!w) return false;
     }
     try {
-      std::unique_ptr<track::Track> track;
+      std::unique_ptr<track::Track>& track = track_;
       if (w) track = std::make_unique<track::Track>(plugins::from_message(*w));
-      line_ready_ = make_reference(line_, track.get(), margin_, limits_);
+      line_ready_ = make_reference(src_, track.get());
       if (loaded_) {
         graph_ = std::move(loaded_);
       } else {
         if (!track) throw BadInput("no map to build the road graph from");
-        graph_ = std::make_unique<RoadGraph>(RoadGraph::build(line_ready_.line, track_room(*track, line_ready_.line), gp_, reference_digest(line_, margin_, gp_)));
+        graph_ = std::make_unique<RoadGraph>(RoadGraph::build(line_ready_.line, track_room(*track, line_ready_.line), gp_, reference_digest(src_.file_line, src_.edge_margin, gp_)));
       }
       planner_ = std::make_unique<RoadGraphPlanner>(*graph_, line_ready_.line, line_ready_.speed, pp_);
+      planned_lap_s_ = planned_lap(line_ready_.racing);
     } catch (const BadInput&) {
       throw;
     } catch (const std::exception& e) {
@@ -252,10 +264,8 @@ class RoadGraphNode : public Plugin {
     return true;
   }
 
-  track::CenterLine line_;
+  LineSource src_;
   std::string line_file_, graph_file_;
-  VehicleLimits limits_;
-  double margin_ = 2.5;
   RoadGraphParams gp_;
   PlannerParams pp_;
   Reference line_ready_;
@@ -263,7 +273,9 @@ class RoadGraphNode : public Plugin {
   std::unique_ptr<RoadGraphPlanner> planner_;
   std::deque<std::shared_ptr<const msgs::LocalizationEstimate>> poses_;
   std::uint32_t seq_ = 0;
-  std::size_t blocked_ = 0, restarts_ = 0, obstacles_max_ = 0;
+  std::size_t blocked_ = 0, restarts_ = 0, obstacles_max_ = 0, off_track_ = 0;
+  double edge_band_ = 1.0, planned_lap_s_ = 0;
+  std::unique_ptr<track::Track> track_;  // the map's, once it came
   bool stopping_ = false;
   double max_offset_ = 0;
   std::set<int> shown_layers_;
