@@ -78,11 +78,13 @@ std::array<double, 4> LateralLqr::gains(double v) const {
   return k;
 }
 
-double LateralLqr::feedforward(double kappa, double v) const {
-  const double l = m_.lf + m_.lr;
-  const double kv = m_.mass * (m_.lr / m_.cornering_front - m_.lf / m_.cornering_rear) / l;
+double steady_steer(const LateralModel& m, double kappa, double v) {
+  const double l = m.lf + m.lr;
+  const double kv = m.mass * (m.lr / m.cornering_front - m.lf / m.cornering_rear) / l;
   return l * kappa + kv * v * v * kappa;
 }
+
+double LateralLqr::feedforward(double kappa, double v) const { return steady_steer(m_, kappa, v); }
 
 double LateralLqr::steady_heading_error(double kappa, double v) const {
   const double l = m_.lf + m_.lr;

@@ -35,6 +35,9 @@ struct LateralLqrParams {
   double v_min = 3, v_max = 100, v_step = 1;  // m/s: the gain table
 };
 
+// The steering that holds a steady turn of curvature kappa at speed v: L kappa + K_v v^2 kappa.
+double steady_steer(const LateralModel& m, double kappa, double v);
+
 struct PathErrors {
   double e_y = 0, e_y_rate = 0, e_psi = 0, e_psi_rate = 0;  // m, m/s, rad, rad/s; left positive
 };

@@ -297,3 +297,17 @@ TEST(WallFollower, AMalformedWallBrakes) {
   EXPECT_DOUBLE_EQ(c.brake, 1);
   EXPECT_DOUBLE_EQ(c.steer, 0);
 }
+
+// wall_pedals cautious: the wall follower steers, the pedals that slow the car more win (not
+// those of the lower target: each law's pedals are for its own line); a stale path command never.
+TEST(SystemManager, CautiousPedalsSlowTheCarMore) {
+  const Pedals wall{0.4, 0.0, 25.0}, path_slow{0.0, 0.8, 12.0}, path_fast{1.0, 0.0, 60.0};
+  EXPECT_EQ(cautious(wall, path_slow, true).brake, 0.8);
+  EXPECT_EQ(cautious(wall, path_slow, true).target_speed, 12.0);
+  EXPECT_EQ(cautious(wall, path_fast, true).throttle, 0.4);
+  EXPECT_EQ(cautious(wall, path_slow, false).throttle, 0.4);  // stale: the wall follower's
+  // The path aims lower but brakes less than the wall follower: the wall follower's pedals, the lower target.
+  const Pedals wall_braking{0.0, 0.5, 27.0}, path_lower{0.0, 0.1, 26.0};
+  EXPECT_EQ(cautious(wall_braking, path_lower, true).brake, 0.5);
+  EXPECT_EQ(cautious(wall_braking, path_lower, true).target_speed, 26.0);
+}

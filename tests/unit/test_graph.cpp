@@ -8,9 +8,10 @@ using namespace brickyard::fw;
 
 namespace {
 
-std::string first_error(const std::string& text, const std::vector<std::string>& sets = {}) {
+std::string first_error(const std::string& text, const std::vector<std::string>& sets = {},
+                        const std::vector<std::string>& args = {}) {
   try {
-    parse_graph_text(text, "g.json", sets);
+    parse_graph_text(text, "g.json", sets, args);
   } catch (const InvalidInput& e) {
     return e.diagnostics().front().where + ": " + e.diagnostics().front().message;
   }
@@ -100,6 +101,47 @@ TEST(GraphParse, SetOverridesParams) {
 TEST(GraphParse, SetErrors) {
   EXPECT_EQ(first_error(kMinimal, {"a.rate_hz"}), "--set a.rate_hz: expected node.param=value");
   EXPECT_EQ(first_error(kMinimal, {"b.x=1"}), "--set b.x=1: the graph has no node \"b\"");
+}
+
+// A graph's named arguments: defaults, --arg, a whole-string use keeps the value's type, a use
+// inside text splices it in, and --set still has the last word.
+TEST(GraphArgs, DefaultsArgsAndTypes) {
+  const char* text = R"({"args": {"track": "tracks/IMS.csv", "laps": 2, "pylons": [], "side": "right"},
+    "nodes": {"a": {"plugin": "testing.scripted_source",
+      "params": {"track": "${track}", "laps": "${laps}", "pylons": "${pylons}", "note": "${laps} laps of ${track}", "n": 1}}},
+    "wires": [{"from": "a.out", "to": "b.wall_${side}"}]})";
+  auto g = parse_graph_text(text, "g.json");
+  const auto& p = g.nodes.at("a").params;
+  EXPECT_EQ(p["track"], "tracks/IMS.csv");
+  EXPECT_EQ(p["laps"], 2);
+  EXPECT_TRUE(p["pylons"].is_array());
+  EXPECT_EQ(p["note"], "2 laps of tracks/IMS.csv");
+  EXPECT_EQ(g.wires.at(0).to.port, "wall_right");
+  auto h = parse_graph_text(text, "g.json", {"a.laps=5"}, {"track=tracks/Monza.csv", "laps=3", "pylons=[{\"s\": 40, \"d\": 1}]", "side=left"});
+  const auto& q = h.nodes.at("a").params;
+  EXPECT_EQ(q["track"], "tracks/Monza.csv");
+  EXPECT_EQ(q["laps"], 5);  // --set after --arg
+  EXPECT_EQ(q["pylons"].at(0)["s"], 40);
+  EXPECT_EQ(q["note"], "3 laps of tracks/Monza.csv");
+  EXPECT_EQ(h.wires.at(0).to.port, "wall_left");
+}
+
+TEST(GraphArgs, Errors) {
+  const char* text = R"({"args": {"track": "x.csv", "list": [1]}, "nodes": {"a": {"plugin": "p.q", "params": {"t": "${track}", "u": "${nope}", "v": "at ${list}"}}}})";
+  try {
+    parse_graph_text(text, "g.json", {}, {"trak=y.csv", "oops"});
+    FAIL() << "accepted";
+  } catch (const InvalidInput& e) {
+    std::vector<std::string> all;
+    for (const auto& d : e.diagnostics()) all.push_back(d.where + ": " + d.message);
+    ASSERT_EQ(all.size(), 4u);
+    EXPECT_EQ(all[0], "--arg trak=y.csv: the graph declares no argument \"trak\" (declared: list, track)");
+    EXPECT_EQ(all[1], "--arg oops: expected name=value");
+    EXPECT_EQ(all[2], "g.json#/nodes/a/params/u: argument \"nope\" is used but the graph's \"args\" does not declare it");
+    EXPECT_EQ(all[3], "g.json#/nodes/a/params/v: argument \"list\" is array: only a string, a number or a boolean can stand inside text");
+  }
+  EXPECT_EQ(first_error(R"({"args": [1], "nodes": {"a": {"plugin": "p.q"}}})"), "g.json#/args: expected an object of argument names and default values, found array");
+  EXPECT_EQ(first_error(kMinimal, {}, {"x=1"}), "--arg x=1: the graph declares no argument \"x\" (declared: none)");
 }
 
 TEST(GraphParse, PluginPathRelativeToGraphFile) {

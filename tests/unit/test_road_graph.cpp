@@ -203,6 +203,46 @@ TEST(GraphSearch, StaysOnTheLineWithoutObstaclesAndGoesRoundOne) {
   EXPECT_FALSE(search.plan(start, wall, p).found);
 }
 
+// The curvature a lane change may have follows the car's speed (curvature_limit car): a pylon
+// 35 m ahead on a straight is passed with a sharp swerve at 20 m/s; at 80 m/s, braking at
+// 10 m/s^2, the car can be no slower than 75 m/s there and no swerve in 35 m asks less than
+// 20 m/s^2 of it: no route (the planner stops for it), where the constant limit alone would
+// have taken a swerve the car cannot drive.
+TEST(GraphSearch, TheCarsSpeedLimitsTheCurvatureOfALaneChange) {
+  const RefLine line = stadium();
+  RoadGraphParams gp;
+  gp.max_curvature = 0.1;  // the car's steering: the graph holds sharp edges
+  const RoadGraph g = RoadGraph::build(line, kRoom, gp);
+  GraphSearch search(g);
+  const std::uint32_t start = g.nearest_node(g.layer_at_or_after(50), 0);
+  const FrenetObstacle pylon{g.node_s(start) + 35, 0.0, 0.3};
+  auto sharpest = [&](const Plan& plan, const SearchParams& p) {  // max over lane changes of kappa v^2
+    double worst = 0;
+    for (std::size_t i = 1; i < plan.nodes.size(); ++i) {
+      const std::uint32_t a = plan.nodes[i - 1], b = plan.nodes[i];
+      if (g.node_d(a) == g.node_d(b)) continue;
+      for (const auto* e = g.edges_begin(a); e != g.edges_end(a); ++e)
+        if (e->to == b) worst = std::max(worst, e->max_kappa * reachable_speed2(p, g.node_s(a) - g.node_s(start)));
+    }
+    return worst;
+  };
+  SearchParams slow;
+  slow.lateral_accel = 20;
+  slow.speed = 20;
+  const Plan at20 = search.plan(start, {pylon}, slow);
+  ASSERT_TRUE(at20.found);
+  EXPECT_LE(sharpest(at20, slow), 20.0);
+  SearchParams fast = slow;
+  fast.speed = 80;
+  const Plan at80 = search.plan(start, {pylon}, fast);
+  EXPECT_FALSE(at80.found);
+  SearchParams unlimited = fast;
+  unlimited.lateral_accel = 0;  // the constant limit alone: a swerve the car could not drive at 80 m/s
+  const Plan free = search.plan(start, {pylon}, unlimited);
+  ASSERT_TRUE(free.found);
+  EXPECT_GT(sharpest(free, fast), 20.0);
+}
+
 TEST(RoadGraphPlanner, CommitsToItsLastPlanAndRestartsWhenOffIt) {
   const RefLine line = stadium();
   const RoadGraph g = RoadGraph::build(line, kRoom, RoadGraphParams{});

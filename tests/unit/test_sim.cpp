@@ -400,6 +400,21 @@ TEST(Lidar, LanesReturnWhatRaysOneByOneReturn) {
   EXPECT_GT(n, 100000u);
 }
 
+// The columns marched on two threads (the noise drawn afterwards in one order): the same frames,
+// bit for bit, as on one.
+TEST(Lidar, TwoThreadsReturnWhatOneReturns) {
+  Track t(walled_with_pylons());
+  std::size_t n = 0;
+  for (double roll : {-30.0, 20.0}) {
+    LidarSpec two = rolled_hydra(roll, 0.0, 243);
+    LidarSpec one = two;
+    one.threads = 1;
+    n += same_frames(t, two, one, 20, 311, {-6.0, 0.0, 6.0}, 3);
+    if (HasFailure()) return;
+  }
+  EXPECT_GT(n, 10000u);
+}
+
 // The Ziggurat normal generator: moments, the tails (beyond R = 3.44 it samples the tail
 // separately), a binned chi-square against the normal CDF, and the same numbers for the same seed.
 TEST(Rng, ZigguratNormalsAreStandardNormal) {  // normal_fast, the LiDAR range noise

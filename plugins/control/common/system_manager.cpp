@@ -1,5 +1,7 @@
 #include "system_manager.hpp"
 
+#include <algorithm>
+
 namespace brickyard::control {
 
 const char* mode_name(Mode m) {
@@ -50,6 +52,15 @@ Transition SystemManager::update(double t) {
       break;
   }
   return {};
+}
+
+Pedals cautious(const Pedals& wall, const Pedals& path, bool path_fresh) {
+  if (!path_fresh) return wall;
+  // The pedals that slow the car more (or speed it up less), not those of the lower target: each
+  // law's pedals are worked out for its own line, and the lower target may brake the less.
+  Pedals p = path.throttle - path.brake < wall.throttle - wall.brake ? path : wall;
+  p.target_speed = std::min(wall.target_speed, path.target_speed);
+  return p;
 }
 
 }  // namespace brickyard::control

@@ -19,6 +19,11 @@ const char* mode_name(Mode m);
 
 struct ManagerParams {
   double recover_after_s = 2.0;   // NORMAL this long before the path tracker drives again
+  // While the wall follower steers: false, its pedals (the paper); true, whichever of its and the
+  // path tracker's (on dead reckoning) pedals slow the car more — the paper's wall follower sees
+  // 20 m of wall, the path tracker's speed plan the hairpin 200 m ahead.
+  bool cautious_pedals = false;
+  double command_timeout_s = 0.1; // a path command older than this is not taken for its pedals
   double wall_timeout_s = 0.3;    // no valid wall this long: safe stop
   double status_timeout_s = 0.5;  // no localization status this long: EMERGENCY
 };
@@ -28,6 +33,15 @@ struct Transition {
   Mode from = Mode::path, to = Mode::path;
   std::string reason;
 };
+
+// Pedals of a command: what cautious_pedals chooses between.
+struct Pedals {
+  double throttle = 0, brake = 0, target_speed = 0;
+};
+
+// The pedals that slow the car more (throttle - brake the lower) of the wall follower's and the
+// path tracker's (when its command is fresh), with the lower of their targets.
+Pedals cautious(const Pedals& wall, const Pedals& path, bool path_fresh);
 
 class SystemManager {
  public:

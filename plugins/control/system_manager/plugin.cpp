@@ -29,6 +29,10 @@ ParamBinding<Settings> bindings() {
   b.bind("wall_timeout_s", &Settings::manager, &M::wall_timeout_s).in_unit("s").at_least(0).doc("no valid wall this long: safe stop");
   b.bind("status_timeout_s", &Settings::manager, &M::status_timeout_s).in_unit("s").at_least(0)
       .doc("no localization status this long counts as EMERGENCY");
+  b.bind_choice("wall_pedals", {{"wall_follower", false}, {"cautious", true}}, &Settings::manager, &M::cautious_pedals)
+      .doc("while the wall follower steers: its pedals (the paper), or cautious: the pedals of whichever of it and the path tracker (on dead reckoning) aims lower");
+  b.bind("command_timeout_s", &Settings::manager, &M::command_timeout_s).in_unit("s").at_least(0)
+      .doc("wall_pedals cautious: a path command older than this is not used");
   return b;
 }
 
@@ -82,8 +86,19 @@ class SystemManagerNode : public Plugin {
         else c.brake(1.0);  // nothing to forward yet
         break;
       case Mode::wall:
-        if (last_wall_) c = *last_wall_;
-        else c.brake(1.0);
+        if (last_wall_) {
+          c = *last_wall_;
+          if (manager_.params().cautious_pedals && last_path_) {
+            const bool fresh = t - stamp(last_path_->header().stamp_ns()) <= manager_.params().command_timeout_s;
+            const Pedals p = cautious({c.throttle(), c.brake(), c.target_speed()},
+                                      {last_path_->throttle(), last_path_->brake(), last_path_->target_speed()}, fresh);
+            c.throttle(p.throttle);
+            c.brake(p.brake);
+            c.target_speed(p.target_speed);
+          }
+        } else {
+          c.brake(1.0);
+        }
         break;
       case Mode::safe_stop:
         // Full brake; keep following the wall's line while it is seen (a command of the last

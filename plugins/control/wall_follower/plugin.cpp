@@ -1,13 +1,26 @@
 // control.wall_follower: the paper's wall command u_w = w_θ y′(L) + w_d (d_w − d_gap) from the
-// wall detector's estimate, with a speed policy (common/wall_follower.hpp).
+// wall detector's estimate, with a speed policy (common/wall_follower.hpp); or, law offset_line,
+// the line a gap inside the nearer of two walls followed by the path tracker's LQR
+// (common/wall_line.hpp).
+#include <brickyard/msgs/Imu.h>
+#include <brickyard/msgs/LocalizationEstimate.h>
+#include <brickyard/msgs/TrackMap.h>
 #include <brickyard/msgs/ModeStatus.h>
+#include <brickyard/msgs/Path.h>
 #include <brickyard/msgs/WallEstimate.h>
 #include <brickyard/msgs/WheelSpeeds.h>
 #include <brickyard/plugin.hpp>
 
 #include "../command_msg.hpp"
 #include "common/wall_follower.hpp"
+#include "common/mapped_wall.hpp"
+#include "common/wall_line.hpp"
+#include "map_msg.hpp"
+#include "control/vehicle_tracking.hpp"
 #include "vehicle_param.hpp"
+
+#include <cmath>
+#include <memory>
 
 #include <optional>
 
@@ -19,6 +32,10 @@ using namespace brickyard::control;
 // What the graph says: the law's parameters, and the car whose steering limit it keeps.
 struct Settings {
   WallFollowerParams law;
+  bool offset_line = false;         // the law: the paper's, or the offset line
+  WallLineParams line;
+  double r_steer = 200;             // offset_line: the LQR's steering cost (the car stack's, docs/control.md)
+  double steer_margin = 0.8;        // offset_line: the line asks at most this share of the steering limit
   std::string vehicle = plugins::default_vehicle_file;
   std::optional<double> max_steer;  // NaN: the vehicle file's
 };
@@ -41,6 +58,18 @@ ParamBinding<Settings> bindings() {
   b.bind("decel", &Settings::law, &P::decel).in_unit("m/s^2").at_least(0.1);
   b.bind("a_lat", &Settings::law, &P::a_lat).in_unit("m/s^2").at_least(0).doc("the wall's bend caps the speed at sqrt(a_lat / curvature); 0: off");
   b.bind("speed_gain", &Settings::law, &P::speed_gain).at_least(0);
+  b.bind_choice("law", {{"paper", false}, {"offset_line", true}}, &Settings::offset_line)
+      .doc("paper: u_w on the one wall wired to 'wall'; offset_line: the path tracker's LQR on the line a gap inside the nearer "
+           "valid wall of 'wall_left' and 'wall_right' (docs/algorithms.md)");
+  using W = WallLineParams;
+  b.bind("min_gap", &Settings::line, &W::min_gap).in_unit("m").at_least(0).doc("offset_line: never closer to the wall");
+  b.bind("max_gap", &Settings::line, &W::max_gap).in_unit("m").at_least(0)
+      .doc("offset_line: the most kept; the gap is the car's distance to the wall when it takes it, within [min_gap, max_gap]");
+  b.bind("hold_s", &Settings::line, &W::hold_s).in_unit("s").at_least(0)
+      .doc("offset_line: a lost wall's last line, carried by wheel speed and yaw rate, is followed this long while either wall may come back");
+  b.bind("r_steer", &Settings::r_steer).in_unit("1/rad^2").at_least(1e-6).doc("offset_line: the LQR's cost of the steering");
+  b.bind("steer_margin", &Settings::steer_margin).range(0.1, 1).doc("offset_line: the line is never tighter than this share of the steering limit turns");
+  b.not_above("min_gap", "max_gap");
   return b;
 }
 
@@ -49,20 +78,59 @@ class WallFollowerNode : public Plugin {
   static Manifest manifest() {
     return Manifest("control.wall_follower", "1.0.0")
         .describe("the paper's wall-following command u_w = w_theta y'(L) + w_d (d_w - d_gap), holding or reducing speed")
-        .input<msgs::WallEstimate>("wall", "the wall detector's estimate", true, 4)
+        .input<msgs::WallEstimate>("wall", "the wall detector's estimate of the wall on 'side' (law paper: required)", false, 4)
+        .input<msgs::WallEstimate>("wall_left", "offset_line: the left wall's estimate", false, 4)
+        .input<msgs::WallEstimate>("wall_right", "offset_line: the right wall's estimate", false, 4)
         .input<msgs::WheelSpeeds>("wheels", "speed, independent of GNSS", true, 16)
+        .input<msgs::Imu>("imu", "offset_line: the yaw rate that carries the car along the line between wall frames (optional)", false, 32)
         .input<msgs::ModeStatus>("mode", "the system manager's mode: taking over starts the speed policy (optional)", false, 8)
+        .input<msgs::TrackMap>("map", "offset_line: the track, whose edge on the wall's side gives the wall's shape ahead (optional)", false, 1)
+        .input<msgs::LocalizationEstimate>("estimate", "offset_line with a map: the pose that places the map's edge round the car (optional)", false, 8)
+        .input<msgs::Path>("path", "offset_line with a map: the planner's path; where the wall and the map agree, the car follows it, "
+                           "placed by the wall (optional)", false, 2)
         .output<msgs::ControlCommand>("command", "steer and pedals, source \"wall_follower\"")
+        .output<msgs::WallEstimate>("followed", "offset_line: the wall followed, every wall frame (valid while there is a line to follow, a held one included)")
         .parameters(bindings())
-        .on_input("wall");
+        .on_input("wall")
+        .on_input("wall_left")
+        .on_input("wall_right")
+        .on_input("imu");
   }
 
   void configure(Context& ctx) override {
     const Settings s = bindings().read(ctx.params());
+    const vehicle::Vehicle car = plugins::read_vehicle(ctx, s.vehicle);
     WallFollowerParams law = s.law;
-    law.max_steer = s.max_steer.value_or(plugins::read_vehicle(ctx, s.vehicle).max_steer);
+    law.max_steer = s.max_steer.value_or(car.max_steer);
     follower_ = WallFollower(law);
+    line_mode_ = s.offset_line;
     wall_ = ctx.input<msgs::WallEstimate>("wall");
+    sides_[0] = ctx.input<msgs::WallEstimate>("wall_left");
+    sides_[1] = ctx.input<msgs::WallEstimate>("wall_right");
+    imu_ = ctx.input<msgs::Imu>("imu");
+    map_ = ctx.input<msgs::TrackMap>("map");
+    estimate_ = ctx.input<msgs::LocalizationEstimate>("estimate");
+    path_ = ctx.input<msgs::Path>("path");
+    followed_ = ctx.output<msgs::WallEstimate>("followed");
+    if (!line_mode_ && !wall_.connected())
+      throw BadInput("law paper follows the wall wired to input 'wall', which is not wired");
+    if (line_mode_ && !wall_.connected() && !sides_[0].connected() && !sides_[1].connected())
+      throw BadInput("law offset_line needs a wall: wire 'wall_left', 'wall_right' or 'wall'");
+    if (line_mode_) {
+      TrackerParams tp;
+      control::apply_vehicle(tp, car);
+      tp.max_steer = law.max_steer;
+      tp.steer_law = SteerLaw::lqr;
+      tp.lqr.r_steer = s.r_steer;
+      tp.speed_gain = law.speed_gain;
+      tp.decel = law.decel;
+      tp.pedal_law = PedalLaw::feedforward;  // within the friction circle: it brakes in turns
+      WallLineParams line = s.line;
+      line.a_lat = law.a_lat;
+      line.max_curvature = std::tan(s.steer_margin * law.max_steer) / car.wheelbase;
+      line_ = WallLineFollower(line, law, tp);
+      line_params_ = line;
+    }
     wheels_ = ctx.input<msgs::WheelSpeeds>("wheels");
     mode_ = ctx.input<msgs::ModeStatus>("mode");
     out_ = ctx.output<msgs::ControlCommand>("command");
@@ -75,10 +143,12 @@ class WallFollowerNode : public Plugin {
       const bool active = m->active_controller() == "wall_follower";
       if (active && !active_) {
         follower_.engage(t, speed_);
+        line_.engage(t, speed_);
         ++engaged_;
       }
       active_ = active;
     }
+    if (line_mode_) return step_line(ctx, t);
     for (auto& w : wall_.take()) {
       if (!mode_.connected() && !engaged_) {  // no manager to say when: from the first estimate
         follower_.engage(t, speed_);
@@ -98,10 +168,112 @@ class WallFollowerNode : public Plugin {
     ctx.metric("commands", static_cast<double>(seq_));
     ctx.metric("engaged", static_cast<double>(engaged_));
     ctx.metric("invalid_walls", static_cast<double>(invalid_));
+    if (line_mode_) {
+      ctx.metric("wall_switches", static_cast<double>(line_.switches()));
+      ctx.metric("frames_left", static_cast<double>(frames_[0]));
+      ctx.metric("frames_right", static_cast<double>(frames_[1]));
+      ctx.metric("frames_held", static_cast<double>(held_));
+      ctx.metric("lines_planned", static_cast<double>(line_.planned_lines()));
+      ctx.metric("lines_mapped", static_cast<double>(line_.mapped_lines()));
+      ctx.metric("lines_polynomial", static_cast<double>(line_.polynomial_lines()));
+    }
   }
 
  private:
+  static SeenWall seen(const msgs::WallEstimate& w) { return {w.coefficients(), w.x_min(), w.x_max(), w.valid()}; }
+
+  // law offset_line: the newest estimate of each side; the IMU carries the car between frames.
+  void step_line(Context& ctx, double t) {
+    for (auto& m : map_.take()) {
+      try {
+        track_ = std::make_unique<track::Track>(plugins::from_message(*m));
+        hint_ = -1;
+      } catch (const std::exception& e) {
+        ctx.log(LogLevel::warn, std::string("map ignored: ") + e.what());
+      }
+    }
+    for (auto& e : estimate_.take()) pose_ = e;
+    for (auto& p : path_.take()) planned_path_ = p;
+    for (auto& m : imu_.take()) {
+      const double ts = static_cast<double>(m->header().stamp_ns()) * 1e-9;
+      if (imu_t_ >= 0 && ts > imu_t_) line_.moved(ts - imu_t_, speed_, m->gyro_z());
+      imu_t_ = ts;
+      yaw_rate_ = m->gyro_z();
+    }
+    bool fresh = false;
+    std::int64_t stamp = 0;
+    const int single = follower_.params().side > 0 ? 0 : 1;  // where 'wall' stands in
+    for (int i = 0; i < 2; ++i) {
+      auto& in = sides_[i].connected() ? sides_[i] : (i == single ? wall_ : sides_[i]);
+      for (auto& w : in.take()) {
+        last_[i] = seen(*w);
+        last_[i].valid = last_[i].valid && std::isfinite(w->distance());
+        stamp = std::max(stamp, w->header().stamp_ns());
+        fresh = true;
+      }
+    }
+    if (fresh) {
+      std::vector<EdgePoint> edges[2];
+      const bool mapped = track_ && pose_;
+      if (mapped) {
+        const WallLineParams& lp = line_params_;
+        for (int i = 0; i < 2; ++i)
+          edges[i] = mapped_edge(*track_, i == 0 ? 1 : -1, pose_->x(), pose_->y(), pose_->yaw(), lp.map_behind, lp.map_ahead, hint_);
+      }
+      std::vector<PathPoint> planned;  // the planner's path in the vehicle frame of the estimate
+      if (mapped && planned_path_) {
+        const double c = std::cos(pose_->yaw()), sn = std::sin(pose_->yaw());
+        const auto& poses = planned_path_->poses();
+        const auto& speeds = planned_path_->speed();
+        for (std::size_t i = 0; i < poses.size(); ++i) {
+          const double dx = poses[i].x() - pose_->x(), dy = poses[i].y() - pose_->y();
+          planned.push_back({c * dx + sn * dy, -sn * dx + c * dy, i < speeds.size() ? speeds[i] : 0.0});
+        }
+      }
+      line_.walls(t, last_[0], last_[1], mapped ? &edges[0] : nullptr, mapped ? &edges[1] : nullptr,
+                  planned.size() >= 2 ? &planned : nullptr);
+      const bool line = line_.has_line(t);
+      if (line && line_.side() != 0) ++frames_[line_.side() > 0 ? 0 : 1];
+      held_ += line && !last_[line_.side() > 0 ? 0 : 1].valid;
+      invalid_ += !line;
+      msgs::WallEstimate f;
+      f.header().stamp_ns(stamp);
+      f.header().seq(seq_);
+      f.header().frame_id("vehicle");
+      if (line_.side() != 0) f.coefficients(last_[line_.side() > 0 ? 0 : 1].coefficients);
+      f.distance(line_.side() == 0 ? NAN : line_.side() * line_.gap());
+      f.valid(line);
+      followed_.publish(std::move(f));
+    }
+    // Drive at the IMU's rate while taking part, at the walls' otherwise.
+    if (fresh || (imu_t_ >= 0 && (active_ || !mode_.connected()))) {
+      if (!mode_.connected() && !engaged_) {
+        line_.engage(t, speed_);
+        ++engaged_;
+      }
+      if (mode_.connected() && !active_) line_.engage(t, speed_);
+      const Command c = line_.control(t, speed_, yaw_rate_);
+      out_.publish(command_message(c, "wall_follower", ctx.now_ns(), seq_++));
+    }
+  }
+
   WallFollower follower_;
+  WallLineFollower line_;
+  bool line_mode_ = false;
+  Input<msgs::WallEstimate> sides_[2];  // left, right
+  Input<msgs::Imu> imu_;
+  Input<msgs::TrackMap> map_;
+  Input<msgs::LocalizationEstimate> estimate_;
+  std::unique_ptr<track::Track> track_;
+  std::shared_ptr<const msgs::LocalizationEstimate> pose_;
+  Input<msgs::Path> path_;
+  std::shared_ptr<const msgs::Path> planned_path_;
+  WallLineParams line_params_;
+  int hint_ = -1;
+  Output<msgs::WallEstimate> followed_;
+  SeenWall last_[2];
+  double imu_t_ = -1, yaw_rate_ = 0;
+  std::uint64_t frames_[2] = {0, 0}, held_ = 0;
   Input<msgs::WallEstimate> wall_;
   Input<msgs::WheelSpeeds> wheels_;
   Input<msgs::ModeStatus> mode_;

@@ -258,7 +258,7 @@ WallFit fit_wall(const Points& points, const std::vector<std::vector<int>>& clus
   sel.clear();
   for (int c : w.members)
     for (int i : clusters[c])
-      if (std::abs(points[i].x()) <= p.fit_range) sel.push_back(i);
+      if (points[i].x() <= p.fit_range && points[i].x() >= -p.fit_behind) sel.push_back(i);
   w.points = sel.size();
   const int terms = p.degree + 1 + (p.lean ? 1 : 0);
   if (static_cast<int>(sel.size()) < std::max(p.min_points, terms)) return w;

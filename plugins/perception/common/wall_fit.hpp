@@ -34,7 +34,9 @@ struct WallParams {
   double join_gap = 30.0;    // m beyond an end of the wall where a cluster may continue it
   double join_margin = 0.3;  // m from the wall's extrapolated local fit, at the wall's end...
   double join_slope = 0.05;  // ...plus this much per metre past it
-  double fit_range = 20.0;   // m: the polynomial is fitted to the wall's points with |x| <= this
+  double fit_range = 20.0;   // m: the polynomial is fitted to the wall's points with |x| <= this...
+  double fit_behind = 20.0;  // m: ...and x >= -fit_behind: a wall bending round a turn is fitted
+                             // where the car goes, not where it has been
 };
 
 struct WallFit {

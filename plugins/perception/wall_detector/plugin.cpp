@@ -26,7 +26,9 @@ ParamBinding<WallParams> bindings() {
       .doc("a cluster starting this far past the wall's end may continue it (far stripes of a grazed wall)");
   b.bind("join_margin", &W::join_margin).in_unit("m").at_least(0).doc("from the wall's extrapolated local fit...");
   b.bind("join_slope", &W::join_slope).at_least(0).doc("...plus this per metre past the end");
-  b.bind("fit_range", &W::fit_range).in_unit("m").at_least(1).doc("the polynomial fits the wall's points with |x| <= this");
+  b.bind("fit_range", &W::fit_range).in_unit("m").at_least(1).doc("the polynomial fits the wall's points with x <= this...");
+  b.bind("fit_behind", &W::fit_behind).in_unit("m").at_least(0)
+      .doc("...and x >= -fit_behind (a wall bending round a turn is fitted where the car goes)");
   return b;
 }
 

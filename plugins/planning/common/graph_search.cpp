@@ -5,6 +5,10 @@
 #include <limits>
 
 namespace brickyard::planning {
+
+double reachable_speed2(const SearchParams& p, double x) {
+  return std::max(0.0, p.speed * p.speed - 2 * p.brake * std::max(x, 0.0));
+}
 namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr std::uint32_t kNone = ~std::uint32_t{0};
@@ -86,6 +90,9 @@ Plan GraphSearch::plan(const std::vector<std::pair<std::uint32_t, double>>& star
           for (const auto& o : near)
             if (o.s - p.car_front - o.radius <= rb && o.s + p.car_rear + o.radius >= ra) beside_.push_back(o);
         }
+        if (p.lateral_accel > 0 && std::abs(g_.node_d(e->to) - da) > 1e-9 &&
+            e->max_kappa * reachable_speed2(p, p.ahead + ra) > p.lateral_accel)
+          continue;  // a lane change sharper than the car can be slow enough for
         const EdgeShape shape{ra, da, rb, g_.node_d(e->to)};
         double c = p.k_length * e->length + p.k_curvature * e->curvature + p.k_deviation * e->deviation;
         bool blocked = false;

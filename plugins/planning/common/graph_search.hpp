@@ -34,7 +34,18 @@ struct SearchParams {
   double k_curvature = 2e4;     // per 1/m of ∫κ² dl
   double k_deviation = 0.05;    // per m² of ∫|d| ds
   double k_proximity = 10;      // per m² short of soft_clearance
+  // The car's speed limits the curvature (issue 16): with lateral_accel > 0, an edge that leaves
+  // the line's offset (a lane change) is taken only when the car, braking at `brake` from `speed`
+  // over the `ahead` metres to the start node and on to the edge, can be slow enough for its
+  // sharpest point: max κ · v² <= lateral_accel. 0: off (the graph's max_curvature alone).
+  double lateral_accel = 0;     // m/s^2
+  double brake = 10;            // m/s^2
+  double speed = 0;             // m/s, the car's
+  double ahead = 0;             // m from the car to the start node
 };
+
+// The lowest speed squared the car can have `x` metres on, braking at p.brake from p.speed.
+double reachable_speed2(const SearchParams& p, double x);
 
 struct Plan {
   bool found = false;

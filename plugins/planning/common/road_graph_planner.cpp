@@ -61,9 +61,11 @@ bool RoadGraphPlanner::committed_blocked(const std::vector<Piece>& pieces, const
 }
 
 std::vector<std::pair<std::uint32_t, double>> RoadGraphPlanner::lead_ins(double s_c, double d_c, double commit,
-                                                                         const std::vector<FrenetObstacle>& obs) const {
+                                                                         const std::vector<FrenetObstacle>& obs,
+                                                                         double speed) const {
   const double L = line_.length();
-  const SearchParams& sp = p_.search;
+  SearchParams sp = p_.search;
+  sp.speed = speed;
   const int layer = g_.layer_at_or_after(s_c + commit);
   const auto& Ly = g_.layers()[layer];
   double h = Ly.s - s_c;
@@ -91,7 +93,9 @@ std::vector<std::pair<std::uint32_t, double>> RoadGraphPlanner::lead_ins(double 
       cost += sp.k_length * dl + sp.k_curvature * kappa * kappa * dl + sp.k_deviation * std::abs(d) * ds;
       kmax = std::max(kmax, std::abs(kappa));
     }
-    if (kmax <= g_.params().max_curvature || std::abs(g_.node_d(n) - d_c) < g_.params().lateral_step) out.emplace_back(n, cost);
+    const bool steerable = kmax <= g_.params().max_curvature &&
+                           (sp.lateral_accel <= 0 || kmax * reachable_speed2(sp, 0) <= sp.lateral_accel);
+    if (steerable || std::abs(g_.node_d(n) - d_c) < g_.params().lateral_step) out.emplace_back(n, cost);
   }
   return out;
 }
@@ -141,8 +145,11 @@ const PlannedPath& RoadGraphPlanner::plan(double x, double y, double speed) {
   const bool usable = on_it && !kept.empty() && !committed_blocked(kept, obs);
   const bool reaches = usable && relative_s(kept.back().shape.s_b, s_c, L) >= commit && kept.back().end != kNoNode;
   Plan plan;
+  SearchParams sp = p_.search;  // the car's speed, for the curvature its speed allows
+  sp.speed = speed;
   if (reaches && !stopping_) {
-    plan = search_.plan(kept.back().end, obs, p_.search);
+    sp.ahead = relative_s(kept.back().shape.s_b, s_c, L);
+    plan = search_.plan(kept.back().end, obs, sp);
     out_.edges_relaxed += plan.edges_relaxed;
   }
   std::vector<Piece> pieces = kept;
@@ -153,7 +160,8 @@ const PlannedPath& RoadGraphPlanner::plan(double x, double y, double speed) {
     // are tried (a sharper lead-in; the speeds follow its bends), down to commit_min.
     Plan fresh;
     for (double reach = commit;; reach = std::max(p_.commit_min, reach - 10)) {
-      fresh = search_.plan(lead_ins(s_c, d_c, reach, obs), obs, p_.search);
+      sp.ahead = reach;
+      fresh = search_.plan(lead_ins(s_c, d_c, reach, obs, speed), obs, sp);
       out_.edges_relaxed += fresh.edges_relaxed;
       if (fresh.found || reach <= p_.commit_min) break;
     }

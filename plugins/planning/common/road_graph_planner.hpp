@@ -78,9 +78,10 @@ class RoadGraphPlanner {
   };
   bool committed_blocked(const std::vector<Piece>& pieces, const std::vector<FrenetObstacle>& obs) const;
   // Lead-ins from the car (s_c, d_c) to the reachable nodes of the layer at the commitment
-  // distance, each with its cost (as an edge's, in the search's terms).
+  // distance, each with its cost (as an edge's, in the search's terms); at the car's speed, a
+  // lead-in sharper than search.lateral_accel allows is not one.
   std::vector<std::pair<std::uint32_t, double>> lead_ins(double s_c, double d_c, double commit,
-                                                         const std::vector<FrenetObstacle>& obs) const;
+                                                         const std::vector<FrenetObstacle>& obs, double speed) const;
   // Where a car on these pieces must stop (s on the line, unwrapped like the pieces): before the
   // first obstacle that blocks them, or at their end.
   double stop_at(const std::vector<Piece>& pieces, const std::vector<FrenetObstacle>& obs) const;

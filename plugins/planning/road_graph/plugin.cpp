@@ -18,6 +18,7 @@
 #include "newest.hpp"
 #include "vehicle_param.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <deque>
@@ -37,6 +38,8 @@ struct Settings {
   LineSettings line;
   double rate_hz = 20;
   double obstacle_edge_band = 1.0;
+  bool car_curvature = false;   // curvature_limit car: the graph's edges and the search from the car's steering and speed
+  double steer_margin = 0.8;
   std::string graph_file;
   RoadGraphParams graph;
   PlannerParams planner;
@@ -60,7 +63,11 @@ ParamBinding<Settings> bindings() {
   b.bind("half_width", &Settings::half_width).in_unit("m").range(0.1, 5).doc("half the car's width; default: the vehicle file's");
   b.bind("graph_edge_margin", graph, &G::edge_margin).in_unit("m").at_least(0)
       .doc("nodes keep this much beyond half the width from the track edges");
-  b.bind("max_curvature", graph, &G::max_curvature).in_unit("1/m").range(0.001, 1).doc("sharper edges are dropped");
+  b.bind("max_curvature", graph, &G::max_curvature).in_unit("1/m").range(0.001, 1).doc("sharper edges are dropped (curvature_limit constant)");
+  b.bind_choice("curvature_limit", {{"constant", false}, {"car", true}}, &Settings::car_curvature)
+      .doc("constant: max_curvature; car: edges no sharper than steer_margin of the vehicle file's steering turns, and a lane change "
+           "only where the car, braking from its speed, can be slow enough for it at the file's lateral acceleration");
+  b.bind("steer_margin", &Settings::steer_margin).range(0.1, 1).doc("curvature_limit car: the share of the steering limit an edge may ask");
   b.bind("max_edge_length", graph, &G::max_edge_length).in_unit("m").range(5, 500);
   b.bind("horizon", planner, search, &S::horizon).in_unit("m").range(20, 2000);
   b.bind("clearance", planner, search, &S::clearance).in_unit("m").at_least(0).doc("least gap between the car's side and an obstacle");
@@ -106,6 +113,11 @@ class RoadGraphNode : public Plugin {
     pp_.search.car_front = set.car_front.value_or(car.front);
     pp_.search.car_rear = set.car_rear.value_or(car.rear);
     pp_.limits = src_.limits;  // as the racing line's profile: the two planners agree on a clear track
+    if (set.car_curvature) {  // the car's tightest turn, and the lateral grip its speed leaves (graph_search.hpp)
+      gp_.max_curvature = std::clamp(std::tan(set.steer_margin * car.max_steer) / car.wheelbase, 0.001, 1.0);
+      pp_.search.lateral_accel = car.a_lat;
+      pp_.search.brake = car.a_decel;
+    }
     const std::string& gf = set.graph_file;
     if (!gf.empty()) {
       if (src_.plan)

@@ -1,6 +1,7 @@
 // brickyard-plan: the offline half of planning.
 //   brickyard-plan line  --track FILE [--margin M] --out FILE [--profile FILE] [--vehicle FILE] [limits] [--min-time on|off] [--curvature-slack S]
 //   brickyard-plan graph --track FILE --raceline FILE [--edge-margin M] [--vehicle FILE] [graph options] --out FILE
+//   brickyard-plan track --track FILE --out-dir DIR [--vehicle FILE] [--margin M] [--edge-margin M]
 // `line` optimises the minimum-curvature racing line, refines it for minimum time under the
 // vehicle limits given (the vehicle file's, AV-21 by default, each overridable; --min-time off:
 // not), and writes it as x_m,y_m (TUM's format, which
@@ -8,7 +9,9 @@
 // s_m,x_m,y_m,kappa_radpm,vx_mps with the ggv + drag speed profile (curvature averaged over 30 m,
 // as the driving stack sees the line: lap_profile) and prints the lap time.
 // `graph` builds the road graph planning.road_graph would build at start and saves it
-// (graph_file=...). Bad input: a message naming the file or option, exit 2.
+// (graph_file=...). `track` is both in one step for any track file and the car: DIR/<track>_line.csv,
+// DIR/<track>_profile.csv and DIR/<track>.byrg. Bad input: a message naming the file or option,
+// exit 2.
 #include "common/line_setup.hpp"
 #include "common/min_curvature.hpp"
 #include "common/min_time.hpp"
@@ -45,7 +48,8 @@ const char* kUsage =
     "                            [--min-time on|off] [--curvature-slack S]\n"
     "       brickyard-plan graph --track FILE --raceline FILE --out FILE [--edge-margin M] [--vehicle FILE]\n"
     "                            [--layer-spacing M --layer-spacing-turn M --lateral-step M --half-width M\n"
-    "                             --graph-edge-margin M --max-curvature K --max-edge-length M]\n";
+    "                             --graph-edge-margin M --max-curvature K --max-edge-length M]\n"
+    "       brickyard-plan track --track FILE --out-dir DIR [--vehicle FILE] [--margin M] [--edge-margin M]\n";
 
 std::map<std::string, std::string> parse(int argc, char** argv) {
   std::map<std::string, std::string> o;
@@ -198,6 +202,23 @@ int graph_cmd(std::map<std::string, std::string> o) {
   return 0;
 }
 
+// Line, profile and road graph of one track in one folder, for the car of --vehicle.
+int track_cmd(std::map<std::string, std::string> o) {
+  const std::string track = text(o, "track"), dir = text(o, "out-dir");
+  const std::string base = (std::filesystem::path(dir) / std::filesystem::path(track).stem()).string();
+  std::map<std::string, std::string> line{{"track", track}, {"out", base + "_line.csv"}, {"profile", base + "_profile.csv"}};
+  std::map<std::string, std::string> graph{{"track", track}, {"raceline", base + "_line.csv"}, {"out", base + ".byrg"}};
+  if (o.count("vehicle")) line["vehicle"] = graph["vehicle"] = text(o, "vehicle");
+  if (o.count("margin")) line["margin"] = text(o, "margin");
+  if (o.count("edge-margin")) graph["edge-margin"] = text(o, "edge-margin");
+  no_leftovers(o);
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) throw std::runtime_error(dir + ": cannot create the folder: " + ec.message());
+  const int rc = line_cmd(line);
+  return rc != 0 ? rc : graph_cmd(graph);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -205,8 +226,9 @@ int main(int argc, char** argv) {
   try {
     if (cmd == "line") return line_cmd(parse(argc, argv));
     if (cmd == "graph") return graph_cmd(parse(argc, argv));
+    if (cmd == "track") return track_cmd(parse(argc, argv));
     if (cmd == "--help" || cmd == "-h") { std::fputs(kUsage, stdout); return 0; }
-    throw Usage(cmd.empty() ? "no command" : cmd + ": unknown command (line, graph)");
+    throw Usage(cmd.empty() ? "no command" : cmd + ": unknown command (line, graph, track)");
   } catch (const Usage& e) {
     std::fprintf(stderr, "brickyard-plan: %s\n%s", e.what(), kUsage);
   } catch (const std::exception& e) {

@@ -33,6 +33,7 @@ struct LidarSpec {
   bool coherent_columns = true;                     // off: every ray marches from the sensor
   bool skip_escaped_rows = true;                    // off: rows above an escaped row are cast (tests)
   bool simd = true;                                 // off: ray by ray, not 4 columns in AVX2 lanes (tests; same bits)
+  int threads = 2;                                  // SIMD path: the columns marched on this many threads (1 or 2; same bits)
   double reflectivity_road = 0.15, reflectivity_wall = 0.6, reflectivity_pylon = 0.9;
 };
 
@@ -111,6 +112,17 @@ class LidarCaster {
   // (march_lanes: each lane does march's operations in march's order, so the same bits).
   template <int W> struct Lanes;
   template <int W> void march_lanes(const Eigen::Vector3d& o, int seg, Lanes<W>& L) const;
+  // What marching columns [c0, c1) of a frame leaves for its points: per ray, in groups of W
+  // columns (row by row, the W lanes side by side), the range, surface and cosine; per column,
+  // the rows cast. Pure: the columns of a frame may be marched on two threads.
+  struct ColumnHits {
+    int rows = 0;
+    std::vector<double> range, cos;
+    std::vector<long> surf;
+    std::vector<int> cast;
+  };
+  template <int W> void march_columns(const Frame& f, int c0, int c1, ColumnHits& h) const;
+  void march_columns_avx2(const Frame& f, int c0, int c1, ColumnHits& h) const;
   template <int W>
   std::size_t scan_lanes(const Eigen::Isometry3d& world_from_body, int seg_hint, Rng& rng, double noise_factor,
                          PointBuffers& out) const;

@@ -3,6 +3,7 @@
 #include "lidar_march.hpp"
 
 #include <cstring>
+#include <thread>
 
 namespace brickyard::sim {
 
@@ -291,17 +292,17 @@ template <int W>
 }
 
 template <int W>
-[[gnu::always_inline]] inline std::size_t LidarCaster::scan_lanes(const Eigen::Isometry3d& world_from_body,
-                                                                   int seg_hint, Rng& rng, double noise_factor,
-                                                                   PointBuffers& out) const {
-  const auto [o, R, seg, sigma, rays, near_pylons] = begin_frame(world_from_body, seg_hint, noise_factor, out);
+[[gnu::always_inline]] inline void LidarCaster::march_columns(const Frame& f, int c_begin, int c_end, ColumnHits& h) const {
+  const Eigen::Vector3d& o = f.o;
+  const Eigen::Matrix3d& R = f.R;
+  const int seg = f.seg;
+  const std::vector<int>& near_pylons = f.near_pylons;
   // Rows go from the lowest up, resuming and ending columns as scan_one_by_one does (lidar.cpp).
   const int rows = static_cast<int>(row_c_.size());
   std::vector<Eigen::Vector3d> dw(rows);  // one column's rays, for rows_above_escape
   // A row of the W columns as vectors: the rays, shift and rest; the hits.
   // (plain doubles, copied in and out: std::vector does not align to the vectors' 32 bytes)
-  std::vector<double> sx(W * rows), sy(W * rows), sz(W * rows), ssh(W * rows), srest(W * rows), hrange(W * rows),
-      hcos(W * rows);
+  std::vector<double> sx(W * rows), sy(W * rows), sz(W * rows), ssh(W * rows), srest(W * rows);
   auto load = [](const double* p) __attribute__((always_inline)) {
     typename V<W>::D v;
     std::memcpy(&v, p, sizeof v);
@@ -310,13 +311,14 @@ template <int W>
   auto store = [](double* p, const typename V<W>::D& v) __attribute__((always_inline)) { std::memcpy(p, &v, sizeof v); };
   using D = typename V<W>::D;
   const D zero{};
-  std::vector<long> hsurf(W * rows);
-  Staging st(W * rows);
   // A ray's direction is row_c (col_c, col_s, 0) + row_s (0, 0, 1) in the sensor frame: in the
   // world, row_c U + row_s Z with U per column and Z per frame (6 flops a ray, not a 3x3 product).
   const Eigen::Vector3d Z = R.col(2);
-  for (int c0 = 0; c0 < spec_.columns; c0 += W) {
+  for (int c0 = c_begin; c0 < c_end; c0 += W) {
     const int nl = std::min(W, spec_.columns - c0);
+    double* hrange = &h.range[static_cast<std::size_t>(c0) * rows];
+    double* hcos = &h.cos[static_cast<std::size_t>(c0) * rows];
+    long* hsurf = &h.surf[static_cast<std::size_t>(c0) * rows];
     using M = typename V<W>::M;
     Lanes<W> L;
     // The column's rays and the row pairs' shift and rest (as in march's caller, lane by lane).
@@ -382,24 +384,61 @@ template <int W>
         }
       }
     }
-    // The points, column by column and rows lowest first (the order of the noise draws), the
-    // group's appended at once (one capacity check per buffer).
+    for (int l = 0; l < nl; ++l) h.cast[c0 + l] = static_cast<int>(ncast[l]);
+  }
+}
+
+template <int W>
+[[gnu::always_inline]] inline std::size_t LidarCaster::scan_lanes(const Eigen::Isometry3d& world_from_body,
+                                                                   int seg_hint, Rng& rng, double noise_factor,
+                                                                   PointBuffers& out) const {
+  static_assert(W == 4, "the second thread marches with march_columns_avx2");
+  const Frame f = begin_frame(world_from_body, seg_hint, noise_factor, out);
+  const int rows = static_cast<int>(row_c_.size());
+  const int groups = (spec_.columns + W - 1) / W;
+  ColumnHits h;
+  h.rows = rows;
+  h.range.resize(static_cast<std::size_t>(groups) * W * rows);
+  h.cos.resize(h.range.size());
+  h.surf.resize(h.range.size());
+  h.cast.assign(static_cast<std::size_t>(groups) * W, 0);
+  // The march is pure and column by column; the noise is drawn in one order afterwards, so two
+  // threads give the same bits as one.
+  const int mid = groups / 2 * W;
+  if (spec_.threads >= 2 && groups >= 8) {
+    std::thread second([&] { march_columns_avx2(f, mid, spec_.columns, h); });
+    march_columns<W>(f, 0, mid, h);
+    second.join();
+  } else {
+    march_columns<W>(f, 0, spec_.columns, h);
+  }
+  // The points, column by column and rows lowest first (the order of the noise draws), a group's
+  // appended at once (one capacity check per buffer).
+  Staging st(W * rows);
+  for (int c0 = 0; c0 < spec_.columns; c0 += W) {
+    const int nl = std::min(W, spec_.columns - c0);
+    const std::size_t base = static_cast<std::size_t>(c0) * rows;
     for (int l = 0; l < nl; ++l) {
       const int c = c0 + l;
-      for (int r = 0; r < ncast[l]; ++r) {
-        const RayHit h{hrange[r * W + l], static_cast<Surface>(hsurf[r * W + l]), hcos[r * W + l]};
-        if (h.surface == Surface::none) continue;
-        add_point(h, r, c, sigma, rng, st);
+      for (int r = 0; r < h.cast[c]; ++r) {
+        const std::size_t k = base + static_cast<std::size_t>(r) * W + l;
+        const RayHit hit{h.range[k], static_cast<Surface>(h.surf[k]), h.cos[k]};
+        if (hit.surface == Surface::none) continue;
+        add_point(hit, r, c, f.sigma, rng, st);
       }
     }
     st.flush(out);
   }
-  return rays;
+  return f.rays;
 }
 
 #if defined(__x86_64__)
 // Four columns at a time in AVX2 (no FMA: no contraction, so every lane rounds as march does). In
 // SSE2, two lanes were 15 % slower than ray by ray; the one-by-one scan serves there.
+__attribute__((target("avx2"))) void LidarCaster::march_columns_avx2(const Frame& f, int c0, int c1, ColumnHits& h) const {
+  march_columns<4>(f, c0, c1, h);
+}
+
 __attribute__((target("avx2"))) std::size_t LidarCaster::scan_avx2(const Eigen::Isometry3d& world_from_body,
                                                                     int seg_hint, Rng& rng, double noise_factor,
                                                                     PointBuffers& out) const {

@@ -57,6 +57,8 @@ ParamBinding<Settings> bindings() {
   b.bind("max_range", &Settings::spec, &L::max_range).in_unit("m").at_least(1);
   b.bind("range_noise", &Settings::spec, &L::range_noise).in_unit("m").at_least(0).doc("1 sigma");
   b.bind("dropout", &Settings::spec, &L::dropout).range(0, 1).doc("probability that a return is lost");
+  b.bind("threads", &Settings::spec, &L::threads).range(1, 2)
+      .doc("threads the columns are marched on (the AVX2 path); the frame is the same bit for bit");
   // The windows are parsed as the parameters are read: a bad one is refused naming its JSON pointer.
   b.bind_with(ParamSpec::json("faults", "[]").doc("windows: noise (range sigma x factor), frame_loss, freeze, dropout"),
               [](const Params& p, Settings& s) { s.faults = read_faults(p, 1, kFaultTypes); });

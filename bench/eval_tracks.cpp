@@ -1,0 +1,185 @@
+// The sweep of issue 16 ("race anywhere"): configs/race.json — the full stack, its racing line
+// planned for the track at start — on every track in a folder (data/tracks by default), for two
+// wall layouts (the outer wall only; a wall at each edge), first without a fault, then with the
+// paper's double GNSS fault (both receivers, 7 s) at `--positions` evenly spaced times during lap
+// 2 (each fault run goes on for a third lap, so the car's return to the path is seen whatever
+// the placement). Prints per track and layout: laps, wall contacts, track violations, least wall clearance
+// (over every run), the flying lap against the lap the speed profile plans (the clean run), the
+// fault runs that finished clean and came back to the path, the longest time in wall following,
+// and the clean run's real-time factor. docs/results-tracks.md.
+// usage: eval_tracks [--tracks DIR] [--positions N] [--seed N] [--layout outer|both] [--jobs N] [--domain N] [--set NODE.PARAM=V]...
+// --jobs N runs the fault runs N at a time (the clean run, whose real-time factor is reported,
+// always runs alone).
+// Exit 1 when any run failed (the table says which).
+#include "track/centre_line.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <atomic>
+#include <thread>
+#include <fstream>
+#include <string>
+#include <vector>
+
+namespace {
+
+using nlohmann::json;
+namespace fs = std::filesystem;
+
+struct Run {
+  bool ok = false;
+  std::string reason;
+  json referee, manager, planner;
+  double sim_s = 0, wall_s = 0;
+};
+
+double num(const json& m, const char* k) { return m.contains(k) && m[k].is_number() ? m[k].get<double>() : NAN; }
+
+// Shell-quoted, for std::system.
+std::string q(const std::string& s) {
+  std::string out = "'";
+  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+std::vector<std::string> g_sets;  // --set, passed to every run
+
+// Each run in flight has a DDS domain of its own (`domain`), so parallel runs never hear each other.
+Run run(const std::string& by, const std::string& graph, const std::vector<std::string>& args, int seed, const std::string& dir,
+        int domain) {
+  std::string cmd = by + " run " + q(graph) + " --quiet --progress 0 --no-report --seed " + std::to_string(seed) + " --domain " +
+                    std::to_string(domain) + " --out " + q(dir);
+  for (const auto& a : args) cmd += " --arg " + q(a);
+  for (const auto& a : g_sets) cmd += " --set " + q(a);
+  cmd += " > " + q(dir + ".log") + " 2>&1";
+  std::system(cmd.c_str());
+  Run r;
+  std::ifstream sf(dir + "/summary.json");
+  if (!sf) {
+    r.reason = "no summary: see " + dir + ".log";
+    return r;
+  }
+  const json s = json::parse(sf);
+  r.ok = s.value("result", "") == "success";
+  r.reason = s.value("reason", "");
+  r.sim_s = s.value("sim_time_s", 0.0);
+  r.wall_s = s.value("wall_time_s", 0.0);
+  r.referee = s["nodes"]["referee"]["metrics"];
+  if (s["nodes"].contains("manager")) r.manager = s["nodes"]["manager"]["metrics"];
+  if (s["nodes"].contains("planner")) r.planner = s["nodes"]["planner"]["metrics"];
+  return r;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const std::string src = BRICKYARD_SOURCE_DIR, by = BRICKYARD_HOST;
+  std::string tracks = src + "/data/tracks", only_layout;
+  int positions = 10, seed = 0, jobs = 1, domain0 = 180;  // domains domain0 .. domain0 + jobs
+  for (int i = 1; i + 1 < argc; i += 2) {
+    if (!std::strcmp(argv[i], "--tracks")) tracks = argv[i + 1];
+    else if (!std::strcmp(argv[i], "--positions")) positions = std::atoi(argv[i + 1]);
+    else if (!std::strcmp(argv[i], "--seed")) seed = std::atoi(argv[i + 1]);
+    else if (!std::strcmp(argv[i], "--layout")) only_layout = argv[i + 1];
+    else if (!std::strcmp(argv[i], "--jobs")) jobs = std::clamp(std::atoi(argv[i + 1]), 1, 16);
+    else if (!std::strcmp(argv[i], "--domain")) domain0 = std::clamp(std::atoi(argv[i + 1]), 0, 200);
+    else if (!std::strcmp(argv[i], "--set")) g_sets.push_back(argv[i + 1]);
+    else {
+      std::fprintf(stderr, "eval_tracks: %s: unknown option\n", argv[i]);
+      return 2;
+    }
+  }
+  std::vector<fs::path> files;
+  for (const auto& e : fs::directory_iterator(tracks))
+    if (e.path().extension() == ".csv") files.push_back(fs::absolute(e.path()));
+  std::sort(files.begin(), files.end());
+  const std::string dir = std::getenv("EVAL_TRACKS_DIR") ? std::getenv("EVAL_TRACKS_DIR") : "/tmp/eval_tracks";
+  fs::create_directories(dir);
+  const std::string graph = src + "/configs/race.json";
+  std::printf("| track | walls | laps | contacts | violations | least clearance | flying lap (× planned) | planned | fault runs clean | back on the path | longest wall following | real time |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  bool all_ok = true;
+  for (const auto& f : files) {
+    const std::string name = f.stem().string();
+    brickyard::track::CenterLine c;
+    try {
+      c = brickyard::track::load_centerline_csv(f.string());
+    } catch (const std::exception& e) {
+      std::printf("| %s | %s |\n", name.c_str(), e.what());
+      all_ok = false;
+      continue;
+    }
+    // IMS is banked as the simulator has it by default; every other track is taken flat.
+    const bool ims = name == "IMS";
+    for (const char* layout : {"outer", "both"}) {
+      if (!only_layout.empty() && only_layout != layout) continue;
+      std::vector<std::string> base = {"track=" + f.string(), std::string("wall_side=") + (brickyard::track::counter_clockwise(c) ? "right" : "left"),
+                                       std::string("inner_wall=") + (std::strcmp(layout, "both") == 0 ? "true" : "false")};
+      if (ims) base.insert(base.end(), {"bank_mode=curvature", "bank_deg=9.2"});
+      const std::string tag = dir + "/" + name + "_" + layout;
+      const Run clean = run(by, graph, base, seed, tag + "_clean", domain0);
+      const json& laps = clean.referee.contains("lap_times_s") ? clean.referee["lap_times_s"] : json::array();
+      double contacts = num(clean.referee, "wall_contacts"), violations = num(clean.referee, "track_violations");
+      double least = num(clean.referee, "min_wall_clearance_m"), longest_wall = 0;
+      int clean_faults = 0, back = 0, left = 0;
+      std::string failures;
+      if (!clean.ok) failures += " clean: " + clean.reason + ";";
+      if (laps.size() >= 2) {
+        const double lap1 = laps[0].get<double>(), lap2 = laps[1].get<double>();
+        std::vector<Run> faults(positions);
+        std::vector<double> starts(positions);
+        std::atomic<int> next{0};
+        auto worker = [&](int domain) {
+          for (int k; (k = next++) < positions;) {
+            const double start = lap1 + (k + 0.5) / positions * lap2;
+            std::vector<std::string> a = base;
+            char b[64];
+            std::snprintf(b, sizeof b, "fault_start=%.3f", start);
+            a.push_back(b);
+            std::snprintf(b, sizeof b, "fault_end=%.3f", start + 7);
+            a.push_back(b);
+            // A third lap, so that a fault late in lap 2 is followed to the path's return.
+            a.push_back("laps=3");
+            starts[k] = start;
+            faults[k] = run(by, graph, a, seed, tag + "_fault" + std::to_string(k), domain);
+          }
+        };
+        std::vector<std::thread> pool;
+        for (int j = 0; j < jobs; ++j) pool.emplace_back(worker, domain0 + 1 + j);
+        for (auto& th : pool) th.join();
+        for (int k = 0; k < positions; ++k) {
+          const Run& r = faults[k];
+          const double start = starts[k];
+          contacts += num(r.referee, "wall_contacts");
+          violations += num(r.referee, "track_violations");
+          least = std::min(least, num(r.referee, "min_wall_clearance_m"));
+          if (r.ok && num(r.referee, "wall_contacts") == 0 && num(r.referee, "track_violations") == 0) ++clean_faults;
+          else failures += " fault at " + std::to_string(static_cast<int>(start)) + " s: " + r.reason + ";";
+          if (num(r.manager, "entered_WALL_FOLLOW") > 0 || num(r.manager, "entered_SAFE_STOP") > 0) {
+            ++left;
+            if (num(r.manager, "entered_PATH") > 0 && r.manager.value("final_mode", "") == "PATH") ++back;
+          }
+          longest_wall = std::max(longest_wall, num(r.manager, "time_s_WALL_FOLLOW"));
+        }
+      }
+      const double planned = num(clean.planner, "planned_lap_s");
+      char flying[64] = "–";
+      if (laps.size() >= 2) std::snprintf(flying, sizeof flying, "%.2f s (%.3f×)", laps[1].get<double>(), laps[1].get<double>() / planned);
+      std::printf("| %s | %s | %zu | %.0f | %.0f | %.2f m | %s | %.2f s | %d of %d | %d of %d | %.1f s | %.1f× |\n", name.c_str(),
+                  layout, laps.size(), contacts, violations, least, flying, planned, clean_faults, positions, back, left, longest_wall,
+                  clean.wall_s > 0 ? clean.sim_s / clean.wall_s : 0.0);
+      if (!failures.empty()) {
+        std::printf("|  | failed:%s |\n", failures.c_str());
+        all_ok = false;
+      }
+      std::fflush(stdout);
+    }
+  }
+  return all_ok ? 0 : 1;
+}

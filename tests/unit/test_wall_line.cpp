@@ -1,0 +1,302 @@
+// Wall following on road courses (plugins/control/common/wall_line.hpp): which wall, the gap, the
+// offset line, and the follower closed-loop on circular walls with a kinematic car.
+#include "common/mapped_wall.hpp"
+#include "common/wall_line.hpp"
+#include "control/vehicle_tracking.hpp"
+
+#include "av21.hpp"
+#include "shapes.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+using namespace brickyard::control;
+
+namespace {
+
+SeenWall straight(double y0) { return {{y0, 0.0, 0.0}, -5, 20, true}; }
+
+// Least-squares quadratic y(x) through points (the wall detector's fit, without the lean).
+std::vector<double> fit_quadratic(const std::vector<std::array<double, 2>>& pts) {
+  double a[3][4] = {};
+  for (const auto& p : pts) {
+    const double v[3] = {1, p[0], p[0] * p[0]};
+    for (int i = 0; i < 3; ++i) {
+      for (int j = 0; j < 3; ++j) a[i][j] += v[i] * v[j];
+      a[i][3] += v[i] * p[1];
+    }
+  }
+  for (int i = 0; i < 3; ++i)
+    for (int k = i + 1; k < 3; ++k) {
+      const double f = a[k][i] / a[i][i];
+      for (int j = i; j < 4; ++j) a[k][j] -= f * a[i][j];
+    }
+  std::vector<double> c(3);
+  for (int i = 2; i >= 0; --i) {
+    double s = a[i][3];
+    for (int j = i + 1; j < 3; ++j) s -= a[i][j] * c[j];
+    c[i] = s / a[i][i];
+  }
+  return c;
+}
+
+// A circular wall of radius rw about (cx, cy), seen from the car's pose: its points with vehicle
+// x in [-5, 20] and on `side`, fitted as the detector would.
+SeenWall circle_wall(double cx, double cy, double rw, int side, double px, double py, double yaw) {
+  std::vector<std::array<double, 2>> pts;
+  for (int i = 0; i < 3600; ++i) {
+    const double a = 2 * M_PI * i / 3600, wx = cx + rw * std::cos(a) - px, wy = cy + rw * std::sin(a) - py;
+    const double x = std::cos(yaw) * wx + std::sin(yaw) * wy, y = -std::sin(yaw) * wx + std::cos(yaw) * wy;
+    if (x >= -5 && x <= 20 && y * side > 0 && std::abs(y) < 25) pts.push_back({x, y});  // the near side only
+  }
+  SeenWall w;
+  if (pts.size() < 10) return w;
+  w.coefficients = fit_quadratic(pts);
+  w.x_min = 1e9;
+  w.x_max = -1e9;
+  for (const auto& p : pts) w.x_min = std::min(w.x_min, p[0]), w.x_max = std::max(w.x_max, p[0]);
+  w.valid = true;
+  return w;
+}
+
+WallLineParams av21_line() {
+  WallLineParams p;
+  const auto car = av21_vehicle();
+  p.max_curvature = std::tan(0.8 * car.max_steer) / car.wheelbase;
+  return p;
+}
+
+TrackerParams av21_lqr() {
+  TrackerParams tp;
+  apply_vehicle(tp, av21_vehicle());
+  tp.steer_law = SteerLaw::lqr;
+  tp.lqr.r_steer = 200;
+  return tp;
+}
+
+struct LoopResult {
+  double min_distance = 1e9, max_distance = 0, max_speed_target = 0;
+};
+
+// A left turn about (0, rc): the car starts at the origin heading +x at speed v, a wall on `side`
+// at radius rw; the follower drives a kinematic car for `seconds`, wall frames at 20 Hz. Distances
+// to the wall are taken after `settle` seconds.
+LoopResult drive_circle(double rc, double rw, int side, double v, double seconds, double settle, double lose_from = -1,
+                        double lose_to = -1) {
+  const auto car = av21_vehicle();
+  WallFollowerParams policy;
+  policy.reduce_speed = false;  // hold: the speed is the test's
+  WallLineFollower f(av21_line(), policy, av21_lqr());
+  double x = 0, y = 0, yaw = 0, steer = 0;
+  const double dt = 0.01;
+  f.engage(0, v);
+  LoopResult r;
+  for (int k = 0; k * dt < seconds; ++k) {
+    const double t = k * dt;
+    if (k % 5 == 0) {
+      const bool lost = t >= lose_from && t < lose_to;
+      const SeenWall w = lost ? SeenWall{} : circle_wall(0, rc, rw, side, x, y, yaw);
+      f.walls(t, side > 0 ? w : SeenWall{}, side < 0 ? w : SeenWall{});
+    }
+    const double yaw_rate = v * std::tan(steer) / car.wheelbase;
+    const Command c = f.control(t, v, yaw_rate);
+    r.max_speed_target = std::max(r.max_speed_target, c.target_speed);
+    steer = c.steer;
+    const double w = v * std::tan(steer) / car.wheelbase;
+    x += v * dt * std::cos(yaw + 0.5 * w * dt);
+    y += v * dt * std::sin(yaw + 0.5 * w * dt);
+    yaw += w * dt;
+    f.moved(dt, v, w);
+    if (t >= settle) {
+      const double d = std::abs(std::hypot(x, y - rc) - rw);
+      r.min_distance = std::min(r.min_distance, d);
+      r.max_distance = std::max(r.max_distance, d);
+    }
+  }
+  return r;
+}
+
+}  // namespace
+
+TEST(WallLine, ChoosesTheNearerWallAndKeepsIt) {
+  const SeenWall left = straight(4), right = straight(-7), none;
+  EXPECT_EQ(choose_wall(0, left, right), 1);           // take-over: the nearer
+  EXPECT_EQ(choose_wall(0, straight(9), right), -1);
+  EXPECT_EQ(choose_wall(-1, left, right), -1);         // followed and valid: kept
+  EXPECT_EQ(choose_wall(-1, left, none), 1);           // lost: the other
+  EXPECT_EQ(choose_wall(1, none, none), 0);
+  EXPECT_EQ(choose_wall(0, straight(-3), right), -1);  // the left detector's fit of the right wall: not a left wall
+  EXPECT_EQ(choose_wall(0, straight(25), none), 0);    // across a hairpin: too far to follow
+  SeenWall broken = left;
+  broken.coefficients[1] = NAN;
+  EXPECT_EQ(choose_wall(0, broken, none), 0);          // a malformed fit is no wall
+}
+
+TEST(WallLine, GapIsTheCarsDistanceCutWhereTheWallBendsAway) {
+  WallLineParams p;
+  p.max_curvature = 0.1;  // the car turns no tighter than 10 m
+  EXPECT_DOUBLE_EQ(line_gap(straight(-5), -1, 5, p), 5);
+  EXPECT_DOUBLE_EQ(line_gap(straight(-1), -1, 1, p), p.min_gap);
+  EXPECT_DOUBLE_EQ(line_gap(straight(-12), -1, 12, p), p.max_gap);
+  // A right wall bending left (the outside of a left turn) at radius 15: y = -8 + x^2 / 30.
+  const SeenWall outer{{-8, 0, 1.0 / 30}, -5, 20, true};
+  EXPECT_NEAR(line_gap(outer, -1, 8, p), 15 - 10, 1e-9);
+  // The same wall on the left, bending away from it (the inside of the turn): no cut.
+  const SeenWall inner{{8, 0, 1.0 / 30}, -5, 20, true};
+  EXPECT_DOUBLE_EQ(line_gap(inner, 1, 8, p), 8);
+}
+
+TEST(WallLine, OffsetLineKeepsTheGapAndSlowsForItsCurvature) {
+  WallLineParams p;
+  const auto line = offset_line(straight(-6), -1, 4, 30, p);
+  ASSERT_GT(line.size(), 40u);
+  EXPECT_DOUBLE_EQ(line.front().x, -p.behind);
+  for (const auto& q : line) {
+    EXPECT_NEAR(q.y, -2, 1e-12);
+    // Past the wall's seen end (x = 20) the line may be the tightest turn the car can take.
+    EXPECT_DOUBLE_EQ(q.speed, q.x <= 20 ? 30 : std::sqrt(p.a_lat / p.max_curvature));
+  }
+  EXPECT_NEAR(line.back().x, 20 + p.extend, 1e-9);
+  // The outside of a left turn, radius 30 at x = 0: the line 5 m in has radius 25 there.
+  const SeenWall outer{{-5, 0, 1.0 / 60}, -5, 20, true};
+  const auto bend = offset_line(outer, -1, 5, 100, p);
+  const auto& at0 = bend[static_cast<std::size_t>(p.behind)];
+  EXPECT_NEAR(at0.x, 0, 1e-12);
+  EXPECT_NEAR(at0.y, 0, 1e-12);
+  EXPECT_NEAR(at0.speed, std::sqrt(p.a_lat * 25), 1e-9);
+  for (const auto& q : bend) EXPECT_LE(q.speed, 100);
+}
+
+TEST(WallLine, FollowsTheOutsideWallOfATurn) {
+  // Radius 60 about the car's turn, wall 6 m to the right: the line is the car's own circle.
+  const LoopResult r = drive_circle(60, 66, -1, 20, 20, 2);
+  EXPECT_GT(r.min_distance, 5.6);
+  EXPECT_LT(r.max_distance, 6.4);
+}
+
+TEST(WallLine, FollowsTheInsideWallOfATurn) {
+  const LoopResult r = drive_circle(60, 54, 1, 20, 20, 2);
+  EXPECT_GT(r.min_distance, 5.6);
+  EXPECT_LT(r.max_distance, 6.4);
+}
+
+TEST(WallLine, AHairpinsOutsideWallMovesTheLineOutToWhatTheCarCanTurn) {
+  // The car on a 10 m circle, the outer wall at 18 m: 8 m in, the line would need a 10 m turn
+  // (max_curvature with the margin is about 1/10.6 m), so the gap is cut and the car moves out.
+  const WallLineParams p = av21_line();
+  const LoopResult r = drive_circle(10, 18, -1, 8, 20, 8);
+  EXPECT_GE(r.min_distance, p.min_gap);
+  EXPECT_LT(r.max_distance, 18 - 1 / p.max_curvature + 0.5);
+  EXPECT_LE(r.max_speed_target, 8 + 1e-9);
+}
+
+TEST(WallLine, ALostWallIsHeldThenTheFollowerBrakes) {
+  // The wall is gone for 0.6 s (under hold_s): the car keeps to the carried line.
+  const LoopResult r = drive_circle(60, 66, -1, 20, 12, 2, 5, 5.6);
+  EXPECT_GT(r.min_distance, 5.6);
+  EXPECT_LT(r.max_distance, 6.4);
+  WallLineFollower f(av21_line(), WallFollowerParams{}, av21_lqr());
+  f.engage(0, 20);
+  f.walls(0, SeenWall{}, straight(-6));
+  EXPECT_TRUE(f.has_line(0.9));
+  EXPECT_EQ(f.control(0.9, 20, 0).brake, 0);
+  EXPECT_FALSE(f.has_line(1.1));
+  EXPECT_EQ(f.control(1.1, 20, 0).brake, 1);
+  f.walls(1.2, straight(5), SeenWall{});  // a wall again: taken afresh, the other side
+  EXPECT_EQ(f.side(), 1);
+  EXPECT_DOUBLE_EQ(f.gap(), 5);
+}
+
+// ---- the map's edge laid onto the LiDAR's wall (common/mapped_wall.hpp) ----
+
+namespace {
+
+// A ring of radius 100 m, 6 m to each edge, points every 5 m, driven anticlockwise; the car at
+// (100, 0) heading +y: the left edge is the inner circle, the right the outer.
+brickyard::track::Track ring() {
+  brickyard::track::TrackGeometry g;
+  g.line = circle_line<brickyard::track::CenterLine>(100, 126, 6);
+  return brickyard::track::Track(g);
+}
+
+// A wall fitted to a polyline's points within x in [-5, 20], as the detector would.
+SeenWall seen_polyline(const std::vector<EdgePoint>& edge) {
+  std::vector<std::array<double, 2>> pts;
+  for (std::size_t i = 0; i + 1 < edge.size(); ++i)
+    for (int k = 0; k < 10; ++k) {
+      const double u = k / 10.0, x = edge[i].x + u * (edge[i + 1].x - edge[i].x), y = edge[i].y + u * (edge[i + 1].y - edge[i].y);
+      if (x >= -5 && x <= 20) pts.push_back({x, y});
+    }
+  return {fit_quadratic(pts), -5, 20, true};
+}
+
+}  // namespace
+
+TEST(MappedWall, TheEdgeRoundTheCarInItsFrame) {
+  const auto track = ring();
+  int hint = -1;
+  const auto left = mapped_edge(track, 1, 100, 0, M_PI / 2, 10, 100, hint);
+  const auto right = mapped_edge(track, -1, 100, 0, M_PI / 2, 10, 100, hint);
+  ASSERT_GE(left.size(), 20u);
+  EXPECT_LE(left.front().x, -10 + 1e-9 + 0.5);  // from at least 10 m behind...
+  EXPECT_GE(right.back().x, 50);                 // ...to well ahead, round the bend
+  for (const auto& e : left) {
+    EXPECT_NEAR(std::hypot(e.x + 0, e.y - 100), 94, 0.1);  // the centre is at (0, 100) in the car's frame
+  }
+  for (const auto& e : right) EXPECT_NEAR(std::hypot(e.x, e.y - 100), 106, 0.1);
+}
+
+TEST(MappedWall, RegistrationFindsTheEstimatesDriftAndRefusesAnotherShape) {
+  const auto track = ring();
+  int hint = -1;
+  const auto edge = mapped_edge(track, -1, 100, 0, M_PI / 2, 10, 100, hint);
+  // The truth: the car is 0.8 m farther from the right wall and turned 0.04 rad from what the
+  // estimate says, so the LiDAR sees the edge turned and shifted.
+  const EdgeRegistration truth{-0.8, 0.04, 0, 0, true};
+  const SeenWall wall = seen_polyline(registered(edge, truth));
+  const EdgeRegistration r = register_edge(edge, wall, RegistrationParams{});
+  ASSERT_TRUE(r.ok);
+  EXPECT_NEAR(r.shift, -0.8, 0.05);
+  EXPECT_NEAR(r.turn, 0.04, 0.005);
+  EXPECT_LT(r.rms, 0.05);
+  // A wall bending the other way (not this edge: the estimate is somewhere else) is refused.
+  SeenWall other = wall;
+  other.coefficients[2] = -0.02;
+  EXPECT_FALSE(register_edge(edge, other, RegistrationParams{}).ok);
+  // Too large a correction is no drift either.
+  EXPECT_FALSE(register_edge(edge, seen_polyline(registered(edge, {4.0, 0, 0, 0, true})), RegistrationParams{}).ok);
+}
+
+TEST(MappedWall, LineInsideAPolylineWallSlowsForItsBendAndKeepsToWhatTheCarTurns) {
+  WallLineParams p;
+  p.max_curvature = 0.1;
+  p.smooth_half = 0;  // resampled only: the geometry exact
+  // A right wall on the outside of a left turn of radius 30 about (0, 30 - 6): car 6 m in.
+  std::vector<EdgePoint> wall;
+  for (int i = -12; i <= 120; ++i) {
+    const double a = i * 0.5 / 30;
+    wall.push_back({30 * std::sin(a), 24 - 30 * std::cos(a)});
+  }
+  const auto line = offset_polyline(wall, -1, 5, 100, p);
+  ASSERT_GE(line.size(), 60u);  // every metre of the wall's 66
+  for (std::size_t i = 1; i + 1 < line.size(); ++i) EXPECT_NEAR(std::hypot(line[i].x, line[i].y - 24), 25, 0.01);
+  for (const auto& q : line) EXPECT_NEAR(q.speed, std::sqrt(p.a_lat * 25), 0.05);
+  // Radius 12: 5 m inside it the line would turn at 7 m, tighter than 10 m: the gap shrinks to
+  // what keeps the line at 10 m (2 m), and never below min_gap.
+  std::vector<EdgePoint> tight;
+  for (int i = -12; i <= 60; ++i) {
+    const double a = i * 0.5 / 12;
+    tight.push_back({12 * std::sin(a), 6 - 12 * std::cos(a)});
+  }
+  const auto cut = offset_polyline(tight, -1, 5, 100, p);
+  for (std::size_t i = 3; i + 3 < cut.size(); ++i) EXPECT_NEAR(std::hypot(cut[i].x, cut[i].y - 6), 12 - p.min_gap, 0.01);  // ends: tapered
+  // Averaged over +-5 m, a wiggle of the map's widths (0.2 m every other point) leaves under 5 cm.
+  p.smooth_half = 5;
+  std::vector<EdgePoint> wiggly;
+  for (int i = 0; i < 40; ++i) wiggly.push_back({5.0 * i, -6 + (i % 2 ? 0.2 : 0.0)});
+  const auto even = offset_polyline(wiggly, -1, 5, 30, p);
+  for (std::size_t i = 10; i + 10 < even.size(); ++i) EXPECT_NEAR(even[i].y, -0.9, 0.05);
+}
