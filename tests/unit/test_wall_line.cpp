@@ -300,3 +300,33 @@ TEST(MappedWall, LineInsideAPolylineWallSlowsForItsBendAndKeepsToWhatTheCarTurns
   const auto even = offset_polyline(wiggly, -1, 5, 30, p);
   for (std::size_t i = 10; i + 10 < even.size(); ++i) EXPECT_NEAR(even[i].y, -0.9, 0.05);
 }
+
+// Where the wall stands from the map's edge is learnt while localization is good; only the
+// registration's departure from it moves the planner's path while the follower drives.
+TEST(WallLine, TheWallsOffsetFromTheEdgeIsLearntNotTakenForDrift) {
+  WallFollowerParams hold;
+  hold.reduce_speed = false;
+  WallLineFollower f(av21_line(), hold, av21_lqr());
+  auto edge_at = [](double y) {
+    std::vector<EdgePoint> e;
+    for (double x = -10; x <= 100; x += 5) e.push_back({x, y});
+    return e;
+  };
+  std::vector<PathPoint> path;
+  for (double x = -5; x <= 100; x += 2) path.push_back({x, 0.0, 30.0});
+  const SeenWall wall = straight(-8);  // a wall 2 m beyond the right edge at -6
+  const auto edge = edge_at(-6), none = std::vector<EdgePoint>{};
+  f.engage(0, 30);
+  f.walls(0, SeenWall{}, wall, &none, &edge, &path, 100, true);  // localization good: learnt
+  EXPECT_NEAR(f.learnt(-1, 100).shift, -2, 1e-6);
+  EXPECT_NEAR(f.learnt(-1, 135).shift, -2, 1e-6);  // a place not learnt: the nearest bin
+  // Driving: the estimate is right, so the path stays where it is...
+  f.engage(1, 30);
+  f.walls(1, SeenWall{}, wall, &none, &edge, &path, 105, false);
+  for (const auto& q : f.line()) EXPECT_NEAR(q.y, 0.0, 1e-6);
+  // ...and 0.5 m off (the edge placed 0.5 m too far left): the path moves 0.5 m right, towards
+  // where the car truly is from the wall.
+  const auto drifted = edge_at(-5.5);
+  for (double t = 1.05; t < 3; t += 0.05) f.walls(t, SeenWall{}, wall, &none, &drifted, &path, 110, false);
+  for (const auto& q : f.line()) EXPECT_NEAR(q.y, -0.5, 1e-3);
+}

@@ -12,16 +12,14 @@ namespace brickyard::control {
 
 using math::poly_value;
 
-namespace {
-
-// A wall on `side` that passes the car on that side (a detector of the left wall may take the
-// right one, round a turn or with no left wall at all), within max_distance.
 bool usable(const SeenWall& w, int side, double max_distance) {
   if (!w.valid || w.coefficients.empty() || !(w.x_min <= w.x_max)) return false;
   for (double c : w.coefficients)
     if (!std::isfinite(c)) return false;
   return w.coefficients[0] * side > 0 && std::abs(w.coefficients[0]) <= max_distance;
 }
+
+namespace {
 
 // Signed curvature of the wall y(x) as a curve along +x (left turns positive).
 double wall_curvature(const SeenWall& w, double x) {
@@ -107,8 +105,39 @@ double WallLineFollower::policy_speed(double t) const {
   return std::max(std::min(v0_, policy_.fallback_speed), v0_ - policy_.decel * std::max(t - t0_, 0.0));
 }
 
+EdgeRegistration WallLineFollower::learnt(int side, double s) const {
+  const auto& bins = base_[side > 0 ? 1 : 0];
+  const long k = static_cast<long>(std::floor(s / std::max(line_.calibration_bin, 0.1)));
+  auto it = bins.find(k);
+  if (it != bins.end()) return it->second;
+  // The nearest learnt bin within 5 bins; else the side's last.
+  for (long d = 1; d <= 5; ++d) {
+    if ((it = bins.find(k - d)) != bins.end()) return it->second;
+    if ((it = bins.find(k + d)) != bins.end()) return it->second;
+  }
+  return last_base_[side > 0 ? 1 : 0];
+}
+
 void WallLineFollower::walls(double t, const SeenWall& left, const SeenWall& right, const std::vector<EdgePoint>* edge_left,
-                             const std::vector<EdgePoint>* edge_right, const std::vector<PathPoint>* planned) {
+                             const std::vector<EdgePoint>* edge_right, const std::vector<PathPoint>* planned, double s_car,
+                             bool calibrating) {
+  if (calibrating) {
+    const long k = static_cast<long>(std::floor(s_car / std::max(line_.calibration_bin, 0.1)));
+    for (int i = 0; i < 2; ++i) {
+      const std::vector<EdgePoint>* e = i ? edge_left : edge_right;
+      const SeenWall& w = i ? left : right;
+      if (!e || !usable(w, i ? 1 : -1, line_.max_distance)) continue;
+      const EdgeRegistration r = register_edge(*e, w, reg_params_);
+      if (!r.ok) continue;
+      auto [it, added] = base_[i].emplace(k, r);
+      if (!added) {  // a running mean of the frames in the bin, this lap and the last
+        const double a = line_.registration_smoothing;
+        it->second.shift += a * (r.shift - it->second.shift);
+        it->second.turn += a * (r.turn - it->second.turn);
+      }
+      last_base_[i] = it->second;
+    }
+  }
   const bool fresh = rechoose_ || !has_line(t);
   const int s = choose_wall(fresh ? 0 : side_, left, right, line_.max_distance);
   if (s == 0) return;  // nothing seen: the last line is held (has_line) until hold_s
@@ -134,10 +163,13 @@ void WallLineFollower::walls(double t, const SeenWall& left, const SeenWall& rig
     if (planned && planned->size() >= 2) {
       // The planner's path, placed by the same estimate: what the registration corrects in the
       // edge's place it corrects in the path's. The car goes on along the line it was on.
+      // Only the departure from the wall-to-edge registration learnt here is the estimate's.
+      const EdgeRegistration base = learnt(s, s_car);
+      const double shift = reg_.shift - base.shift, turn = reg_.turn - base.turn;
       line_points_.clear();
-      const double c = std::cos(reg_.turn), sn = std::sin(reg_.turn), cap = policy_speed(t);
+      const double c = std::cos(turn), sn = std::sin(turn), cap = policy_speed(t);
       for (const PathPoint& q : *planned)
-        line_points_.push_back({c * q.x - sn * q.y, sn * q.x + c * q.y + reg_.shift, std::min(q.speed, cap)});
+        line_points_.push_back({c * q.x - sn * q.y, sn * q.x + c * q.y + shift, std::min(q.speed, cap)});
       ++planned_;
     } else {
       line_points_ = offset_polyline(registered(*edge, reg_), s, gap_, policy_speed(t), line_);

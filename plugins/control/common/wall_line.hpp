@@ -21,6 +21,7 @@
 #include "wall_follower.hpp"
 
 #include <cstdint>
+#include <map>
 #include <vector>
 
 namespace brickyard::control {
@@ -45,6 +46,7 @@ struct WallLineParams {
                                // (across a hairpin, the wall of the way back)
   double map_behind = 10, map_ahead = 250;  // m of the map's edge taken round the car
   double registration_smoothing = 0.3;      // share of a frame's registration taken (the rest: the last)
+  double calibration_bin = 10;              // m of s per learnt wall-to-edge registration
   double smooth_half = 5;                   // m: the mapped line is averaged over +-this, at `step`
   // Steering at most this times what holds the car's grip (the tracker's) in a steady turn.
   double grip_steer_margin = 1.5;
@@ -71,6 +73,11 @@ struct RegistrationParams {
   double max_rms = 0.4;       // m: the shapes must agree
   int min_points = 3;         // edge points within the stretch
 };
+
+// A fit that is a wall on `side` (-1 right, +1 left): valid, finite, passing the car on that side
+// (a detector of the left wall may take the right one, round a turn or with no left wall at
+// all), within max_distance.
+bool usable(const SeenWall& w, int side, double max_distance);
 
 // -1 right, +1 left, 0 none: the wall to follow given the one followed now (0 at take-over) and
 // the car's distances |y(0)| to the valid ones.
@@ -112,8 +119,16 @@ class WallLineFollower {
   // With the planner's path placed by the same estimate (`planned`, vehicle frame, with speeds),
   // the line is that path corrected by the registration, so the car goes on along the line it
   // was on, its place taken from the wall.
+  //
+  // Where the wall stands from the map's edge (an inner wall 2 m beyond it, a barrier set back
+  // at a pit entry) is not the estimate's error: while localization is good (`calibrating`, the
+  // manager's PATH) the registration of each side is learnt along the track in bins of
+  // `calibration_bin` metres of `s` (the car's place on the map); while the follower drives, only
+  // the registration's departure from what was learnt there (or, at a place not learnt yet, last
+  // on that side) moves the planner's path.
   void walls(double t, const SeenWall& left, const SeenWall& right, const std::vector<EdgePoint>* edge_left = nullptr,
-             const std::vector<EdgePoint>* edge_right = nullptr, const std::vector<PathPoint>* planned = nullptr);
+             const std::vector<EdgePoint>* edge_right = nullptr, const std::vector<PathPoint>* planned = nullptr,
+             double s = 0, bool calibrating = false);
   // The car moved for dt at this speed and yaw rate since the last call.
   void moved(double dt, double speed, double yaw_rate) { odo_.advance(dt, speed, yaw_rate); }
   // The command at time t: the line followed, or full brake when there is none (lost past hold_s).
@@ -128,6 +143,10 @@ class WallLineFollower {
   std::uint64_t polynomial_lines() const { return poly_; }  // lines from the wall's polynomial alone
   const EdgeRegistration& registration() const { return reg_; }
   const std::vector<PathPoint>& line() const { return line_points_; }  // the last line, its wall frame's
+  // The wall-to-edge registration learnt for a side (-1, +1) at s (nearest learnt bin; the side's
+  // last when none): what the path's correction is taken from.
+  EdgeRegistration learnt(int side, double s) const;
+  std::size_t learnt_bins() const { return base_[0].size() + base_[1].size(); }
 
  private:
   double policy_speed(double t) const;
@@ -136,6 +155,8 @@ class WallLineFollower {
   PathTracker tracker_;
   std::vector<PathPoint> line_points_;
   RegistrationParams reg_params_;
+  std::map<long, EdgeRegistration> base_[2];  // per side (0 right, 1 left): bin of s -> learnt registration
+  EdgeRegistration last_base_[2];
   EdgeRegistration reg_, smooth_;
   LineOdometry odo_;
   int side_ = 0;

@@ -59,8 +59,9 @@ ParamBinding<Settings> bindings() {
   b.bind("a_lat", &Settings::law, &P::a_lat).in_unit("m/s^2").at_least(0).doc("the wall's bend caps the speed at sqrt(a_lat / curvature); 0: off");
   b.bind("speed_gain", &Settings::law, &P::speed_gain).at_least(0);
   b.bind_choice("law", {{"paper", false}, {"offset_line", true}}, &Settings::offset_line)
-      .doc("paper: u_w on the one wall wired to 'wall'; offset_line: the path tracker's LQR on the line a gap inside the nearer "
-           "valid wall of 'wall_left' and 'wall_right' (docs/algorithms.md)");
+      .doc("paper: u_w on the one wall wired to 'wall'; offset_line: the path tracker's LQR on a line placed by the nearer valid "
+           "wall of 'wall_left' and 'wall_right' — the planner's path or the map's edge laid onto the wall, else a gap inside it "
+           "(docs/algorithms.md)");
   using W = WallLineParams;
   b.bind("min_gap", &Settings::line, &W::min_gap).in_unit("m").at_least(0).doc("offset_line: never closer to the wall");
   b.bind("max_gap", &Settings::line, &W::max_gap).in_unit("m").at_least(0)
@@ -140,6 +141,7 @@ class WallFollowerNode : public Plugin {
     for (auto& w : wheels_.take()) speed_ = 0.5 * (w->rear_left() + w->rear_right());
     const double t = ctx.now_s();
     for (auto& m : mode_.take()) {
+      path_mode_ = m->active_controller() == "path_tracker";
       const bool active = m->active_controller() == "wall_follower";
       if (active && !active_) {
         follower_.engage(t, speed_);
@@ -174,6 +176,7 @@ class WallFollowerNode : public Plugin {
       ctx.metric("frames_right", static_cast<double>(frames_[1]));
       ctx.metric("frames_held", static_cast<double>(held_));
       ctx.metric("lines_planned", static_cast<double>(line_.planned_lines()));
+      ctx.metric("wall_bins_learnt", static_cast<double>(line_.learnt_bins()));
       ctx.metric("lines_mapped", static_cast<double>(line_.mapped_lines()));
       ctx.metric("lines_polynomial", static_cast<double>(line_.polynomial_lines()));
     }
@@ -230,8 +233,12 @@ class WallFollowerNode : public Plugin {
           planned.push_back({c * dx + sn * dy, -sn * dx + c * dy, i < speeds.size() ? speeds[i] : 0.0});
         }
       }
+      // The car's place along the map, and whether localization is good (the manager drives the
+      // path): the follower learns there where the walls stand from the edges.
+      const double s_car = mapped ? track_->project(pose_->x(), pose_->y(), hint_).s : 0.0;
+      const bool calibrating = mapped && mode_.connected() && !active_ && path_mode_;
       line_.walls(t, last_[0], last_[1], mapped ? &edges[0] : nullptr, mapped ? &edges[1] : nullptr,
-                  planned.size() >= 2 ? &planned : nullptr);
+                  planned.size() >= 2 ? &planned : nullptr, s_car, calibrating);
       const bool line = line_.has_line(t);
       if (line && line_.side() != 0) ++frames_[line_.side() > 0 ? 0 : 1];
       held_ += line && !last_[line_.side() > 0 ? 0 : 1].valid;
@@ -280,6 +287,7 @@ class WallFollowerNode : public Plugin {
   Output<msgs::ControlCommand> out_;
   double speed_ = 0;
   bool active_ = false;
+  bool path_mode_ = false;  // the manager drives the path: localization is good
   std::uint32_t seq_ = 0;
   std::uint64_t engaged_ = 0, invalid_ = 0;
 };

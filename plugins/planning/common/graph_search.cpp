@@ -5,10 +5,6 @@
 #include <limits>
 
 namespace brickyard::planning {
-
-double reachable_speed2(const SearchParams& p, double x) {
-  return std::max(0.0, p.speed * p.speed - 2 * p.brake * std::max(x, 0.0));
-}
 namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr std::uint32_t kNone = ~std::uint32_t{0};

@@ -45,7 +45,10 @@ struct SearchParams {
 };
 
 // The lowest speed squared the car can have `x` metres on, braking at p.brake from p.speed.
-double reachable_speed2(const SearchParams& p, double x);
+inline double reachable_speed2(const SearchParams& p, double x) {
+  const double v2 = p.speed * p.speed - 2 * p.brake * (x > 0 ? x : 0.0);
+  return v2 > 0 ? v2 : 0.0;
+}
 
 struct Plan {
   bool found = false;

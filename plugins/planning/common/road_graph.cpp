@@ -1,6 +1,8 @@
 #include "road_graph.hpp"
 
 #include <algorithm>
+#include <atomic>
+#include <thread>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -102,12 +104,18 @@ RoadGraph RoadGraph::build(const RefLine& line, const TrackRoom& room, const Roa
     g.layers_.push_back(L);
     g.node_layer_.insert(g.node_layer_.end(), L.count, static_cast<std::uint32_t>(i));
   }
-  // Edges.
-  g.first_edge_.reserve(g.node_layer_.size() + 1);
-  for (int a = 0; a < nl; ++a) {
+  // Edges: each layer's on its own (a pure function of the layers), on two threads, then joined
+  // in layer order, so the graph is the same whatever the threads did first.
+  struct LayerEdges {
+    std::vector<std::uint32_t> first;  // per node of the layer: its first edge, within `edges`
+    std::vector<Edge> edges;
+  };
+  std::vector<LayerEdges> per_layer(nl);
+  auto edges_of = [&](int a) {
     const Layer& A = g.layers_[a];
+    LayerEdges& out = per_layer[a];
     for (std::uint32_t i = 0; i < A.count; ++i) {
-      g.first_edge_.push_back(static_cast<std::uint32_t>(g.edges_.size()));
+      out.first.push_back(static_cast<std::uint32_t>(out.edges.size()));
       const double da = (A.k0 + static_cast<std::int32_t>(i)) * p.lateral_step;
       for (int span : kSpans) {
         if (span >= nl) break;
@@ -150,10 +158,27 @@ RoadGraph RoadGraph::build(const RefLine& line, const TrackRoom& room, const Roa
           E.curvature = static_cast<float>(curv);
           E.deviation = static_cast<float>(dev);
           E.max_kappa = static_cast<float>(kmax);
-          g.edges_.push_back(E);
+          out.edges.push_back(E);
         }
       }
     }
+  };
+  std::atomic<int> next{0};
+  auto worker = [&] {
+    for (int a; (a = next++) < nl;) edges_of(a);
+  };
+  std::thread second(worker);
+  worker();
+  second.join();
+  std::size_t total = 0;
+  for (const auto& le : per_layer) total += le.edges.size();
+  g.first_edge_.reserve(g.node_layer_.size() + 1);
+  g.edges_.reserve(total);
+  for (auto& le : per_layer) {
+    const auto base = static_cast<std::uint32_t>(g.edges_.size());
+    for (std::uint32_t f : le.first) g.first_edge_.push_back(base + f);
+    g.edges_.insert(g.edges_.end(), le.edges.begin(), le.edges.end());
+    le = LayerEdges{};  // freed as it goes: the graph may be a million edges
   }
   g.first_edge_.push_back(static_cast<std::uint32_t>(g.edges_.size()));
   return g;

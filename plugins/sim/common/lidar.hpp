@@ -121,6 +121,9 @@ class LidarCaster {
     std::vector<long> surf;
     std::vector<int> cast;
   };
+  // scratch of scan_lanes, kept between frames (no allocation per frame): one caster scans on one
+  // thread at a time (it splits its own columns over two)
+  mutable ColumnHits hits_;
   template <int W> void march_columns(const Frame& f, int c0, int c1, ColumnHits& h) const;
   void march_columns_avx2(const Frame& f, int c0, int c1, ColumnHits& h) const;
   template <int W>

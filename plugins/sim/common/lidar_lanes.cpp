@@ -396,12 +396,14 @@ template <int W>
   const Frame f = begin_frame(world_from_body, seg_hint, noise_factor, out);
   const int rows = static_cast<int>(row_c_.size());
   const int groups = (spec_.columns + W - 1) / W;
-  ColumnHits h;
+  // The caster's scratch: sized once, every entry read is written first this frame (a column's
+  // rows up to its `cast`).
+  ColumnHits& h = hits_;
   h.rows = rows;
   h.range.resize(static_cast<std::size_t>(groups) * W * rows);
   h.cos.resize(h.range.size());
   h.surf.resize(h.range.size());
-  h.cast.assign(static_cast<std::size_t>(groups) * W, 0);
+  h.cast.resize(static_cast<std::size_t>(groups) * W);
   // The march is pure and column by column; the noise is drawn in one order afterwards, so two
   // threads give the same bits as one.
   const int mid = groups / 2 * W;
