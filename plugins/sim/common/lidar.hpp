@@ -124,8 +124,10 @@ class LidarCaster {
   // scratch of scan_lanes, kept between frames (no allocation per frame): one caster scans on one
   // thread at a time (it splits its own columns over two)
   mutable ColumnHits hits_;
-  template <int W> void march_columns(const Frame& f, int c0, int c1, ColumnHits& h) const;
-  void march_columns_avx2(const Frame& f, int c0, int c1, ColumnHits& h) const;
+  // The groups of W columns first, first + stride, ... (two threads take every other group: the
+  // columns that meet a near wall and those that look far are spread over both).
+  template <int W> void march_columns(const Frame& f, int first, int stride, ColumnHits& h) const;
+  void march_columns_avx2(const Frame& f, int first, int stride, ColumnHits& h) const;
   template <int W>
   std::size_t scan_lanes(const Eigen::Isometry3d& world_from_body, int seg_hint, Rng& rng, double noise_factor,
                          PointBuffers& out) const;

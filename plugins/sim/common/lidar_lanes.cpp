@@ -292,7 +292,7 @@ template <int W>
 }
 
 template <int W>
-[[gnu::always_inline]] inline void LidarCaster::march_columns(const Frame& f, int c_begin, int c_end, ColumnHits& h) const {
+[[gnu::always_inline]] inline void LidarCaster::march_columns(const Frame& f, int first, int stride, ColumnHits& h) const {
   const Eigen::Vector3d& o = f.o;
   const Eigen::Matrix3d& R = f.R;
   const int seg = f.seg;
@@ -314,7 +314,7 @@ template <int W>
   // A ray's direction is row_c (col_c, col_s, 0) + row_s (0, 0, 1) in the sensor frame: in the
   // world, row_c U + row_s Z with U per column and Z per frame (6 flops a ray, not a 3x3 product).
   const Eigen::Vector3d Z = R.col(2);
-  for (int c0 = c_begin; c0 < c_end; c0 += W) {
+  for (int c0 = first * W; c0 < spec_.columns; c0 += stride * W) {
     const int nl = std::min(W, spec_.columns - c0);
     double* hrange = &h.range[static_cast<std::size_t>(c0) * rows];
     double* hcos = &h.cos[static_cast<std::size_t>(c0) * rows];
@@ -406,13 +406,12 @@ template <int W>
   h.cast.resize(static_cast<std::size_t>(groups) * W);
   // The march is pure and column by column; the noise is drawn in one order afterwards, so two
   // threads give the same bits as one.
-  const int mid = groups / 2 * W;
   if (spec_.threads >= 2 && groups >= 8) {
-    std::thread second([&] { march_columns_avx2(f, mid, spec_.columns, h); });
-    march_columns<W>(f, 0, mid, h);
+    std::thread second([&] { march_columns_avx2(f, 1, 2, h); });
+    march_columns<W>(f, 0, 2, h);
     second.join();
   } else {
-    march_columns<W>(f, 0, spec_.columns, h);
+    march_columns<W>(f, 0, 1, h);
   }
   // The points, column by column and rows lowest first (the order of the noise draws), a group's
   // appended at once (one capacity check per buffer).
@@ -437,8 +436,8 @@ template <int W>
 #if defined(__x86_64__)
 // Four columns at a time in AVX2 (no FMA: no contraction, so every lane rounds as march does). In
 // SSE2, two lanes were 15 % slower than ray by ray; the one-by-one scan serves there.
-__attribute__((target("avx2"))) void LidarCaster::march_columns_avx2(const Frame& f, int c0, int c1, ColumnHits& h) const {
-  march_columns<4>(f, c0, c1, h);
+__attribute__((target("avx2"))) void LidarCaster::march_columns_avx2(const Frame& f, int first, int stride, ColumnHits& h) const {
+  march_columns<4>(f, first, stride, h);
 }
 
 __attribute__((target("avx2"))) std::size_t LidarCaster::scan_avx2(const Eigen::Isometry3d& world_from_body,
