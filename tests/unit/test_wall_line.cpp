@@ -17,7 +17,7 @@ using namespace brickyard::control;
 
 namespace {
 
-SeenWall straight(double y0) { return {{y0, 0.0, 0.0}, -5, 20, true}; }
+WallView straight(double y0) { return {{y0, 0.0, 0.0}, true, -5, 20}; }
 
 // Least-squares quadratic y(x) through points (the wall detector's fit, without the lean).
 std::vector<double> fit_quadratic(const std::vector<std::array<double, 2>>& pts) {
@@ -45,14 +45,14 @@ std::vector<double> fit_quadratic(const std::vector<std::array<double, 2>>& pts)
 
 // A circular wall of radius rw about (cx, cy), seen from the car's pose: its points with vehicle
 // x in [-5, 20] and on `side`, fitted as the detector would.
-SeenWall circle_wall(double cx, double cy, double rw, int side, double px, double py, double yaw) {
+WallView circle_wall(double cx, double cy, double rw, int side, double px, double py, double yaw) {
   std::vector<std::array<double, 2>> pts;
   for (int i = 0; i < 3600; ++i) {
     const double a = 2 * M_PI * i / 3600, wx = cx + rw * std::cos(a) - px, wy = cy + rw * std::sin(a) - py;
     const double x = std::cos(yaw) * wx + std::sin(yaw) * wy, y = -std::sin(yaw) * wx + std::cos(yaw) * wy;
     if (x >= -5 && x <= 20 && y * side > 0 && std::abs(y) < 25) pts.push_back({x, y});  // the near side only
   }
-  SeenWall w;
+  WallView w;
   if (pts.size() < 10) return w;
   w.coefficients = fit_quadratic(pts);
   w.x_min = 1e9;
@@ -98,8 +98,8 @@ LoopResult drive_circle(double rc, double rw, int side, double v, double seconds
     const double t = k * dt;
     if (k % 5 == 0) {
       const bool lost = t >= lose_from && t < lose_to;
-      const SeenWall w = lost ? SeenWall{} : circle_wall(0, rc, rw, side, x, y, yaw);
-      f.walls(t, side > 0 ? w : SeenWall{}, side < 0 ? w : SeenWall{});
+      const WallView w = lost ? WallView{} : circle_wall(0, rc, rw, side, x, y, yaw);
+      f.walls(t, side > 0 ? w : WallView{}, side < 0 ? w : WallView{});
     }
     const double yaw_rate = v * std::tan(steer) / car.wheelbase;
     const Command c = f.control(t, v, yaw_rate);
@@ -122,7 +122,7 @@ LoopResult drive_circle(double rc, double rw, int side, double v, double seconds
 }  // namespace
 
 TEST(WallLine, ChoosesTheNearerWallAndKeepsIt) {
-  const SeenWall left = straight(4), right = straight(-7), none;
+  const WallView left = straight(4), right = straight(-7), none;
   EXPECT_EQ(choose_wall(0, left, right), 1);           // take-over: the nearer
   EXPECT_EQ(choose_wall(0, straight(9), right), -1);
   EXPECT_EQ(choose_wall(-1, left, right), -1);         // followed and valid: kept
@@ -130,7 +130,7 @@ TEST(WallLine, ChoosesTheNearerWallAndKeepsIt) {
   EXPECT_EQ(choose_wall(1, none, none), 0);
   EXPECT_EQ(choose_wall(0, straight(-3), right), -1);  // the left detector's fit of the right wall: not a left wall
   EXPECT_EQ(choose_wall(0, straight(25), none), 0);    // across a hairpin: too far to follow
-  SeenWall broken = left;
+  WallView broken = left;
   broken.coefficients[1] = NAN;
   EXPECT_EQ(choose_wall(0, broken, none), 0);          // a malformed fit is no wall
 }
@@ -142,10 +142,10 @@ TEST(WallLine, GapIsTheCarsDistanceCutWhereTheWallBendsAway) {
   EXPECT_DOUBLE_EQ(line_gap(straight(-1), -1, 1, p), p.min_gap);
   EXPECT_DOUBLE_EQ(line_gap(straight(-12), -1, 12, p), p.max_gap);
   // A right wall bending left (the outside of a left turn) at radius 15: y = -8 + x^2 / 30.
-  const SeenWall outer{{-8, 0, 1.0 / 30}, -5, 20, true};
+  const WallView outer{{-8, 0, 1.0 / 30}, true, -5, 20};
   EXPECT_NEAR(line_gap(outer, -1, 8, p), 15 - 10, 1e-9);
   // The same wall on the left, bending away from it (the inside of the turn): no cut.
-  const SeenWall inner{{8, 0, 1.0 / 30}, -5, 20, true};
+  const WallView inner{{8, 0, 1.0 / 30}, true, -5, 20};
   EXPECT_DOUBLE_EQ(line_gap(inner, 1, 8, p), 8);
 }
 
@@ -161,7 +161,7 @@ TEST(WallLine, OffsetLineKeepsTheGapAndSlowsForItsCurvature) {
   }
   EXPECT_NEAR(line.back().x, 20 + p.extend, 1e-9);
   // The outside of a left turn, radius 30 at x = 0: the line 5 m in has radius 25 there.
-  const SeenWall outer{{-5, 0, 1.0 / 60}, -5, 20, true};
+  const WallView outer{{-5, 0, 1.0 / 60}, true, -5, 20};
   const auto bend = offset_line(outer, -1, 5, 100, p);
   const auto& at0 = bend[static_cast<std::size_t>(p.behind)];
   EXPECT_NEAR(at0.x, 0, 1e-12);
@@ -200,12 +200,12 @@ TEST(WallLine, ALostWallIsHeldThenTheFollowerBrakes) {
   EXPECT_LT(r.max_distance, 6.4);
   WallLineFollower f(av21_line(), WallFollowerParams{}, av21_lqr());
   f.engage(0, 20);
-  f.walls(0, SeenWall{}, straight(-6));
+  f.walls(0, WallView{}, straight(-6));
   EXPECT_TRUE(f.has_line(0.9));
   EXPECT_EQ(f.control(0.9, 20, 0).brake, 0);
   EXPECT_FALSE(f.has_line(1.1));
   EXPECT_EQ(f.control(1.1, 20, 0).brake, 1);
-  f.walls(1.2, straight(5), SeenWall{});  // a wall again: taken afresh, the other side
+  f.walls(1.2, straight(5), WallView{});  // a wall again: taken afresh, the other side
   EXPECT_EQ(f.side(), 1);
   EXPECT_DOUBLE_EQ(f.gap(), 5);
 }
@@ -223,14 +223,14 @@ brickyard::track::Track ring() {
 }
 
 // A wall fitted to a polyline's points within x in [-5, 20], as the detector would.
-SeenWall seen_polyline(const std::vector<EdgePoint>& edge) {
+WallView seen_polyline(const std::vector<EdgePoint>& edge) {
   std::vector<std::array<double, 2>> pts;
   for (std::size_t i = 0; i + 1 < edge.size(); ++i)
     for (int k = 0; k < 10; ++k) {
       const double u = k / 10.0, x = edge[i].x + u * (edge[i + 1].x - edge[i].x), y = edge[i].y + u * (edge[i + 1].y - edge[i].y);
       if (x >= -5 && x <= 20) pts.push_back({x, y});
     }
-  return {fit_quadratic(pts), -5, 20, true};
+  return {fit_quadratic(pts), true, -5, 20};
 }
 
 }  // namespace
@@ -256,14 +256,14 @@ TEST(MappedWall, RegistrationFindsTheEstimatesDriftAndRefusesAnotherShape) {
   // The truth: the car is 0.8 m farther from the right wall and turned 0.04 rad from what the
   // estimate says, so the LiDAR sees the edge turned and shifted.
   const EdgeRegistration truth{-0.8, 0.04, 0, 0, true};
-  const SeenWall wall = seen_polyline(registered(edge, truth));
+  const WallView wall = seen_polyline(registered(edge, truth));
   const EdgeRegistration r = register_edge(edge, wall, RegistrationParams{});
   ASSERT_TRUE(r.ok);
   EXPECT_NEAR(r.shift, -0.8, 0.05);
   EXPECT_NEAR(r.turn, 0.04, 0.005);
   EXPECT_LT(r.rms, 0.05);
   // A wall bending the other way (not this edge: the estimate is somewhere else) is refused.
-  SeenWall other = wall;
+  WallView other = wall;
   other.coefficients[2] = -0.02;
   EXPECT_FALSE(register_edge(edge, other, RegistrationParams{}).ok);
   // Too large a correction is no drift either.
@@ -314,19 +314,19 @@ TEST(WallLine, TheWallsOffsetFromTheEdgeIsLearntNotTakenForDrift) {
   };
   std::vector<PathPoint> path;
   for (double x = -5; x <= 100; x += 2) path.push_back({x, 0.0, 30.0});
-  const SeenWall wall = straight(-8);  // a wall 2 m beyond the right edge at -6
+  const WallView wall = straight(-8);  // a wall 2 m beyond the right edge at -6
   const auto edge = edge_at(-6), none = std::vector<EdgePoint>{};
   f.engage(0, 30);
-  f.walls(0, SeenWall{}, wall, &none, &edge, &path, 100, true);  // localization good: learnt
+  f.walls(0, WallView{}, wall, &none, &edge, &path, 100, true);  // localization good: learnt
   EXPECT_NEAR(f.learnt(-1, 100).shift, -2, 1e-6);
   EXPECT_NEAR(f.learnt(-1, 135).shift, -2, 1e-6);  // a place not learnt: the nearest bin
   // Driving: the estimate is right, so the path stays where it is...
   f.engage(1, 30);
-  f.walls(1, SeenWall{}, wall, &none, &edge, &path, 105, false);
+  f.walls(1, WallView{}, wall, &none, &edge, &path, 105, false);
   for (const auto& q : f.line()) EXPECT_NEAR(q.y, 0.0, 1e-6);
   // ...and 0.5 m off (the edge placed 0.5 m too far left): the path moves 0.5 m right, towards
   // where the car truly is from the wall.
   const auto drifted = edge_at(-5.5);
-  for (double t = 1.05; t < 3; t += 0.05) f.walls(t, SeenWall{}, wall, &none, &drifted, &path, 110, false);
+  for (double t = 1.05; t < 3; t += 0.05) f.walls(t, WallView{}, wall, &none, &drifted, &path, 110, false);
   for (const auto& q : f.line()) EXPECT_NEAR(q.y, -0.5, 1e-3);
 }

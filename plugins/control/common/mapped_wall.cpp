@@ -25,19 +25,17 @@ std::vector<EdgePoint> mapped_edge(const track::Track& track, int side, double p
     i = track.wrap(i - 1);
     at -= seg[i].length;
   }
-  const double c = std::cos(yaw), s = std::sin(yaw);
   for (int k = 0; k < n && at <= ahead; ++k, at += seg[i].length, i = track.wrap(i + 1)) {
     // The normal at a point: the mean of its two segments'.
     Eigen::Vector2d nrm = seg[track.wrap(i - 1)].n + seg[i].n;
     nrm = nrm.norm() > 1e-9 ? nrm.normalized() : seg[i].n;
     const double w = side > 0 ? line.width_left[i] : -line.width_right[i];
-    const double ex = line.x[i] + w * nrm.x() - px, ey = line.y[i] + w * nrm.y() - py;
-    out.push_back({c * ex + s * ey, -s * ex + c * ey});
+    out.push_back({line.x[i] + w * nrm.x(), line.y[i] + w * nrm.y()});
   }
-  return out;
+  return in_vehicle_frame(std::move(out), px, py, yaw);
 }
 
-EdgeRegistration register_edge(const std::vector<EdgePoint>& edge, const SeenWall& wall, const RegistrationParams& p) {
+EdgeRegistration register_edge(const std::vector<EdgePoint>& edge, const WallView& wall, const RegistrationParams& p) {
   EdgeRegistration r;
   if (!wall.valid || wall.coefficients.empty()) return r;
   const double lo = std::max(p.from, wall.x_min), hi = std::min(p.to, wall.x_max);
@@ -76,14 +74,6 @@ EdgeRegistration register_edge(const std::vector<EdgePoint>& edge, const SeenWal
   r.rms = std::sqrt(std::max(sse, 0.0) / m);
   r.ok = std::abs(r.shift) <= p.max_shift && std::abs(r.turn) <= p.max_turn && r.rms <= p.max_rms;
   return r;
-}
-
-std::vector<EdgePoint> registered(const std::vector<EdgePoint>& edge, const EdgeRegistration& r) {
-  std::vector<EdgePoint> out;
-  out.reserve(edge.size());
-  const double c = std::cos(r.turn), s = std::sin(r.turn);
-  for (const auto& e : edge) out.push_back({c * e.x - s * e.y, s * e.x + c * e.y + r.shift});
-  return out;
 }
 
 std::vector<EdgePoint> smoothed(const std::vector<EdgePoint>& line, double step, double half) {

@@ -14,6 +14,7 @@
 #include "track/track.hpp"
 #include "wall_line.hpp"
 
+#include <cmath>
 #include <vector>
 
 namespace brickyard::control {
@@ -25,10 +26,30 @@ std::vector<EdgePoint> mapped_edge(const track::Track& track, int side, double p
                                    double ahead, int& hint);
 
 // The turn and shift that lay the mapped edge onto the LiDAR's wall over the stretch.
-EdgeRegistration register_edge(const std::vector<EdgePoint>& edge, const SeenWall& wall, const RegistrationParams& p);
+EdgeRegistration register_edge(const std::vector<EdgePoint>& edge, const WallView& wall, const RegistrationParams& p);
 
-// The edge turned and shifted.
-std::vector<EdgePoint> registered(const std::vector<EdgePoint>& edge, const EdgeRegistration& r);
+// Points (an edge, a path: anything with x and y) turned about the car by r.turn and moved
+// r.shift across: where the registration says they are.
+template <class P> std::vector<P> registered(std::vector<P> pts, const EdgeRegistration& r) {
+  const double c = std::cos(r.turn), s = std::sin(r.turn);
+  for (P& q : pts) {
+    const double x = q.x, y = q.y;
+    q.x = c * x - s * y;
+    q.y = s * x + c * y + r.shift;
+  }
+  return pts;
+}
+
+// Map-frame points in the vehicle frame of the pose (px, py, yaw), map frame.
+template <class P> std::vector<P> in_vehicle_frame(std::vector<P> pts, double px, double py, double yaw) {
+  const double c = std::cos(yaw), s = std::sin(yaw);
+  for (P& q : pts) {
+    const double dx = q.x - px, dy = q.y - py;
+    q.x = c * dx + s * dy;
+    q.y = -s * dx + c * dy;
+  }
+  return pts;
+}
 
 // A polyline resampled every `step` metres, each point the mean of those within `half` metres
 // along it (fewer at the ends).

@@ -44,9 +44,12 @@ struct WallFollowerParams {
   double speed_gain = 0.5;
 };
 
+// A fitted wall as the followers see it: y(x) in the vehicle frame and where its points were
+// (the offset line's extent; the paper's law reads only the polynomial).
 struct WallView {
   std::vector<double> coefficients;  // y(x) = c0 + c1 x + ...
   bool valid = false;
+  double x_min = 0, x_max = 0;       // extent of the fitted points, m
 };
 
 class WallFollower {

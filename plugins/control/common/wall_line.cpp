@@ -12,7 +12,7 @@ namespace brickyard::control {
 
 using math::poly_value;
 
-bool usable(const SeenWall& w, int side, double max_distance) {
+bool usable(const WallView& w, int side, double max_distance) {
   if (!w.valid || w.coefficients.empty() || !(w.x_min <= w.x_max)) return false;
   for (double c : w.coefficients)
     if (!std::isfinite(c)) return false;
@@ -22,14 +22,14 @@ bool usable(const SeenWall& w, int side, double max_distance) {
 namespace {
 
 // Signed curvature of the wall y(x) as a curve along +x (left turns positive).
-double wall_curvature(const SeenWall& w, double x) {
+double wall_curvature(const WallView& w, double x) {
   const double d1 = poly_value(w.coefficients, x, 1), d2 = poly_value(w.coefficients, x, 2);
   return d2 / std::pow(1 + d1 * d1, 1.5);
 }
 
 }  // namespace
 
-int choose_wall(int following, const SeenWall& left, const SeenWall& right, double max_distance) {
+int choose_wall(int following, const WallView& left, const WallView& right, double max_distance) {
   const bool l = usable(left, 1, max_distance), r = usable(right, -1, max_distance);
   if (following > 0 && l) return 1;
   if (following < 0 && r) return -1;
@@ -37,7 +37,7 @@ int choose_wall(int following, const SeenWall& left, const SeenWall& right, doub
   return l ? 1 : r ? -1 : 0;
 }
 
-double line_gap(const SeenWall& wall, int side, double distance, const WallLineParams& p) {
+double line_gap(const WallView& wall, int side, double distance, const WallLineParams& p) {
   double gap = std::clamp(distance, p.min_gap, std::max(p.max_gap, p.min_gap));
   // Inward is -side; a wall bending away from the car (side * kappa < 0: the outside of the
   // turn) gives the line inside it the curvature a / (1 - a gap), a = |kappa|.
@@ -49,7 +49,7 @@ double line_gap(const SeenWall& wall, int side, double distance, const WallLineP
   return std::max(gap, p.min_gap);
 }
 
-std::vector<PathPoint> offset_line(const SeenWall& wall, int side, double gap, double v_cap, const WallLineParams& p) {
+std::vector<PathPoint> offset_line(const WallView& wall, int side, double gap, double v_cap, const WallLineParams& p) {
   std::vector<PathPoint> line;
   const double left = -side * gap;  // the displacement to the left of the wall's direction
   const double step = std::max(p.step, 0.1);
@@ -118,14 +118,14 @@ EdgeRegistration WallLineFollower::learnt(int side, double s) const {
   return last_base_[side > 0 ? 1 : 0];
 }
 
-void WallLineFollower::walls(double t, const SeenWall& left, const SeenWall& right, const std::vector<EdgePoint>* edge_left,
+void WallLineFollower::walls(double t, const WallView& left, const WallView& right, const std::vector<EdgePoint>* edge_left,
                              const std::vector<EdgePoint>* edge_right, const std::vector<PathPoint>* planned, double s_car,
                              bool calibrating) {
   if (calibrating) {
     const long k = static_cast<long>(std::floor(s_car / std::max(line_.calibration_bin, 0.1)));
     for (int i = 0; i < 2; ++i) {
       const std::vector<EdgePoint>* e = i ? edge_left : edge_right;
-      const SeenWall& w = i ? left : right;
+      const WallView& w = i ? left : right;
       if (!e || !usable(w, i ? 1 : -1, line_.max_distance)) continue;
       const EdgeRegistration r = register_edge(*e, w, reg_params_);
       if (!r.ok) continue;
@@ -141,7 +141,7 @@ void WallLineFollower::walls(double t, const SeenWall& left, const SeenWall& rig
   const bool fresh = rechoose_ || !has_line(t);
   const int s = choose_wall(fresh ? 0 : side_, left, right, line_.max_distance);
   if (s == 0) return;  // nothing seen: the last line is held (has_line) until hold_s
-  const SeenWall& w = s > 0 ? left : right;
+  const WallView& w = s > 0 ? left : right;
   const bool continued = s == side_ && reg_.ok && has_line(t);  // the last frame's registration holds for this wall
   if (fresh || s != side_) {
     if (!fresh) ++switches_;
@@ -165,11 +165,12 @@ void WallLineFollower::walls(double t, const SeenWall& left, const SeenWall& rig
       // edge's place it corrects in the path's. The car goes on along the line it was on.
       // Only the departure from the wall-to-edge registration learnt here is the estimate's.
       const EdgeRegistration base = learnt(s, s_car);
-      const double shift = reg_.shift - base.shift, turn = reg_.turn - base.turn;
-      line_points_.clear();
-      const double c = std::cos(turn), sn = std::sin(turn), cap = policy_speed(t);
-      for (const PathPoint& q : *planned)
-        line_points_.push_back({c * q.x - sn * q.y, sn * q.x + c * q.y + shift, std::min(q.speed, cap)});
+      EdgeRegistration drift;
+      drift.shift = reg_.shift - base.shift;
+      drift.turn = reg_.turn - base.turn;
+      line_points_ = registered(*planned, drift);
+      const double cap = policy_speed(t);
+      for (PathPoint& q : line_points_) q.speed = std::min(q.speed, cap);
       ++planned_;
     } else {
       line_points_ = offset_polyline(registered(*edge, reg_), s, gap_, policy_speed(t), line_);

@@ -26,13 +26,6 @@
 
 namespace brickyard::control {
 
-// A fitted wall as the follower sees it: y(x) in the vehicle frame and where its points were.
-struct SeenWall {
-  std::vector<double> coefficients;  // y(x) = c0 + c1 x + ...
-  double x_min = 0, x_max = 0;       // extent of the fitted points, m
-  bool valid = false;
-};
-
 struct WallLineParams {
   double min_gap = 2.5;        // m: never closer to the wall than this (half the car and a margin)
   double max_gap = 8.0;        // m: the paper's gap, the most kept
@@ -77,19 +70,19 @@ struct RegistrationParams {
 // A fit that is a wall on `side` (-1 right, +1 left): valid, finite, passing the car on that side
 // (a detector of the left wall may take the right one, round a turn or with no left wall at
 // all), within max_distance.
-bool usable(const SeenWall& w, int side, double max_distance);
+bool usable(const WallView& w, int side, double max_distance);
 
 // -1 right, +1 left, 0 none: the wall to follow given the one followed now (0 at take-over) and
 // the car's distances |y(0)| to the valid ones.
-int choose_wall(int following, const SeenWall& left, const SeenWall& right, double max_distance = 20);
+int choose_wall(int following, const WallView& left, const WallView& right, double max_distance = 20);
 
 // The gap kept to a wall on `side` whose fit the car takes at distance |y(0)|: that distance within
 // [min_gap, max_gap], cut so the line stays within max_curvature where the wall bends away from it.
-double line_gap(const SeenWall& wall, int side, double distance, const WallLineParams& p);
+double line_gap(const WallView& wall, int side, double distance, const WallLineParams& p);
 
 // The line `gap` inward of the wall on `side`, from `behind` the car to `extend` past the wall's
 // seen end, each point with the speed its curvature allows (capped at v_cap).
-std::vector<PathPoint> offset_line(const SeenWall& wall, int side, double gap, double v_cap, const WallLineParams& p);
+std::vector<PathPoint> offset_line(const WallView& wall, int side, double gap, double v_cap, const WallLineParams& p);
 
 // The car's pose in the frame of the last line (the vehicle frame at that wall frame), carried by
 // wheel speed and yaw rate; reset when a new line arrives.
@@ -126,7 +119,7 @@ class WallLineFollower {
   // `calibration_bin` metres of `s` (the car's place on the map); while the follower drives, only
   // the registration's departure from what was learnt there (or, at a place not learnt yet, last
   // on that side) moves the planner's path.
-  void walls(double t, const SeenWall& left, const SeenWall& right, const std::vector<EdgePoint>* edge_left = nullptr,
+  void walls(double t, const WallView& left, const WallView& right, const std::vector<EdgePoint>* edge_left = nullptr,
              const std::vector<EdgePoint>* edge_right = nullptr, const std::vector<PathPoint>* planned = nullptr,
              double s = 0, bool calibrating = false);
   // The car moved for dt at this speed and yaw rate since the last call.

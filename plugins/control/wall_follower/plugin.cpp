@@ -159,8 +159,7 @@ class WallFollowerNode : public Plugin {
       // Not driving yet: the speed policy starts from now, so the command the manager forwards at
       // the handover holds the car's speed instead of braking for a stale target.
       if (mode_.connected() && !active_) follower_.engage(t, speed_);
-      WallView v{w->coefficients(), w->valid()};
-      const Command c = follower_.control(t, v, speed_);
+      const Command c = follower_.control(t, seen(*w), speed_);
       out_.publish(command_message(c, "wall_follower", w->header().stamp_ns(), seq_++));
       invalid_ += !w->valid();
     }
@@ -183,11 +182,17 @@ class WallFollowerNode : public Plugin {
   }
 
  private:
-  static SeenWall seen(const msgs::WallEstimate& w) { return {w.coefficients(), w.x_min(), w.x_max(), w.valid()}; }
+  static WallView seen(const msgs::WallEstimate& w) { return {w.coefficients(), w.valid(), w.x_min(), w.x_max()}; }
 
   // law offset_line: the newest estimate of each side; the IMU carries the car between frames.
   void step_line(Context& ctx, double t) {
     for (auto& m : map_.take()) {
+      // The map source republishes the same map every second: a track is built again only for
+      // another one.
+      if (track_) {
+        const auto& g = track_->geometry().line;
+        if (m->x() == g.x && m->y() == g.y && m->width_left() == g.width_left && m->width_right() == g.width_right) continue;
+      }
       try {
         track_ = std::make_unique<track::Track>(plugins::from_message(*m));
         hint_ = -1;
@@ -225,13 +230,11 @@ class WallFollowerNode : public Plugin {
       }
       std::vector<PathPoint> planned;  // the planner's path in the vehicle frame of the estimate
       if (mapped && planned_path_) {
-        const double c = std::cos(pose_->yaw()), sn = std::sin(pose_->yaw());
         const auto& poses = planned_path_->poses();
         const auto& speeds = planned_path_->speed();
-        for (std::size_t i = 0; i < poses.size(); ++i) {
-          const double dx = poses[i].x() - pose_->x(), dy = poses[i].y() - pose_->y();
-          planned.push_back({c * dx + sn * dy, -sn * dx + c * dy, i < speeds.size() ? speeds[i] : 0.0});
-        }
+        for (std::size_t i = 0; i < poses.size(); ++i)
+          planned.push_back({poses[i].x(), poses[i].y(), i < speeds.size() ? speeds[i] : 0.0});
+        planned = in_vehicle_frame(std::move(planned), pose_->x(), pose_->y(), pose_->yaw());
       }
       // The car's place along the map, and whether localization is good (the manager drives the
       // path): the follower learns there where the walls stand from the edges.
@@ -278,7 +281,7 @@ class WallFollowerNode : public Plugin {
   WallLineParams line_params_;
   int hint_ = -1;
   Output<msgs::WallEstimate> followed_;
-  SeenWall last_[2];
+  WallView last_[2];
   double imu_t_ = -1, yaw_rate_ = 0;
   std::uint64_t frames_[2] = {0, 0}, held_ = 0;
   Input<msgs::WallEstimate> wall_;
