@@ -6,6 +6,7 @@
 // the placement). Prints per track and layout: laps, wall contacts, track violations, least wall clearance
 // (over every run), the flying lap against the lap the speed profile plans (the clean run), the
 // fault runs that finished clean and came back to the path, the longest time in wall following,
+// the runs in which the planner saw an obstacle (there is none on the track: a wall taken for one),
 // and the clean run's real-time factor. docs/results-tracks.md.
 // usage: eval_tracks [--tracks DIR] [--positions N] [--seed N] [--layout outer|both] [--jobs N] [--domain N] [--set NODE.PARAM=V]...
 // --jobs N runs the fault runs N at a time (the clean run, whose real-time factor is reported,
@@ -102,8 +103,8 @@ int main(int argc, char** argv) {
   const std::string dir = std::getenv("EVAL_TRACKS_DIR") ? std::getenv("EVAL_TRACKS_DIR") : "/tmp/eval_tracks";
   fs::create_directories(dir);
   const std::string graph = src + "/configs/race.json";
-  std::printf("| track | walls | laps | contacts | violations | least clearance | flying lap (× planned) | planned | fault runs clean | back on the path | longest wall following | real time |\n");
-  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  std::printf("| track | walls | laps | contacts | violations | least clearance | flying lap (× planned) | planned | fault runs clean | back on the path | longest wall following | phantoms | real time |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   bool all_ok = true;
   for (const auto& f : files) {
     const std::string name = f.stem().string();
@@ -127,9 +128,16 @@ int main(int argc, char** argv) {
       const json& laps = clean.referee.contains("lap_times_s") ? clean.referee["lap_times_s"] : json::array();
       double contacts = num(clean.referee, "wall_contacts"), violations = num(clean.referee, "track_violations");
       double least = num(clean.referee, "min_wall_clearance_m"), longest_wall = 0;
-      int clean_faults = 0, back = 0, left = 0;
+      int clean_faults = 0, back = 0, left = 0, phantoms = 0;
       std::string failures;
       if (!clean.ok) failures += " clean: " + clean.reason + ";";
+      // No obstacle stands on these tracks: whatever the planner remembered was a wall.
+      auto phantom = [&](const Run& r, const std::string& which) {
+        if (!(num(r.planner, "obstacles_remembered_max") > 0)) return;
+        ++phantoms;
+        failures += " " + which + ": the planner took a wall for an obstacle;";
+      };
+      phantom(clean, "clean");
       if (laps.size() >= 2) {
         const double lap1 = laps[0].get<double>(), lap2 = laps[1].get<double>();
         std::vector<Run> faults(positions);
@@ -166,13 +174,14 @@ int main(int argc, char** argv) {
             if (num(r.manager, "entered_PATH") > 0 && r.manager.value("final_mode", "") == "PATH") ++back;
           }
           longest_wall = std::max(longest_wall, num(r.manager, "time_s_WALL_FOLLOW"));
+          phantom(r, "fault at " + std::to_string(static_cast<int>(start)) + " s");
         }
       }
       const double planned = num(clean.planner, "planned_lap_s");
       char flying[64] = "–";
       if (laps.size() >= 2) std::snprintf(flying, sizeof flying, "%.2f s (%.3f×)", laps[1].get<double>(), laps[1].get<double>() / planned);
-      std::printf("| %s | %s | %zu | %.0f | %.0f | %.2f m | %s | %.2f s | %d of %d | %d of %d | %.1f s | %.1f× |\n", name.c_str(),
-                  layout, laps.size(), contacts, violations, least, flying, planned, clean_faults, positions, back, left, longest_wall,
+      std::printf("| %s | %s | %zu | %.0f | %.0f | %.2f m | %s | %.2f s | %d of %d | %d of %d | %.1f s | %d | %.1f× |\n", name.c_str(),
+                  layout, laps.size(), contacts, violations, least, flying, planned, clean_faults, positions, back, left, longest_wall, phantoms,
                   clean.wall_s > 0 ? clean.sim_s / clean.wall_s : 0.0);
       if (!failures.empty()) {
         std::printf("|  | failed:%s |\n", failures.c_str());

@@ -137,9 +137,11 @@ double PathTracker::steer_lqr(const CarState& c) {
 void PathTracker::pedals_feedforward(double s_car, double v_target, const CarState& c, Command& out) const {
   const Powertrain& pt = p_.powertrain;
   const double v = std::max(c.speed, 0.0);
-  // The target's slope half a second ahead: the acceleration the profile asks for.
+  // The target's slope half a second ahead: the acceleration the profile asks for. Its preview
+  // is the car's, as the target's is: previewing at the target's speed sees a slow corner the
+  // target cannot yet see, reads that as a steep slope, and brakes a slow car to a standstill.
   const double ahead = std::max(2.0, 0.5 * v);
-  const double v_next = speed_target(s_car + ahead, std::max(v_target, 1.0));
+  const double v_next = speed_target(s_car + ahead, std::max(v, 1.0));
   double a = (v_next * v_next - v_target * v_target) / (2 * ahead) + p_.accel_gain * (v_target - v);
   if (p_.grip > 0) {  // within the friction circle, less what the turn takes
     const double lat = v * v * std::abs(curvature(s_car));

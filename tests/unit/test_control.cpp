@@ -184,6 +184,29 @@ TEST(PathTracker, LqrAndFeedforwardPedalsOnACircle) {
   EXPECT_GT(t.control(CarState{bx, by, yaw, 35, 0.35, 0}).brake, 0);
 }
 
+// A slow car (after a stop, or handed back by the wall follower) on a fast straight with a
+// corner 60 m ahead: beyond what its speed previews, so the feedforward pedals drive it on.
+// (They once previewed the slope at the target's speed, saw the corner, and braked it to a stop.)
+TEST(PathTracker, FeedforwardPedalsDriveASlowCarOnTowardAFarCorner) {
+  std::vector<PathPoint> p;
+  for (int i = 0; i <= 800; ++i) p.push_back({static_cast<double>(i), 0, i < 60 ? 50.0 : 15.0});
+  TrackerParams tp;
+  apply_vehicle(tp, av21_vehicle());
+  tp.closed = false;
+  tp.steer_law = SteerLaw::lqr;
+  tp.pedal_law = PedalLaw::feedforward;
+  PathTracker t(tp);
+  t.set_path(p);
+  for (double v : {0.5, 2.0, 5.0, 10.0}) {
+    const Command c = t.control(CarState{0, 0, 0, v, 0, 0});
+    EXPECT_GT(c.throttle, 0.5) << "at " << v << " m/s";
+    EXPECT_DOUBLE_EQ(c.brake, 0) << "at " << v << " m/s";
+  }
+  // Fast enough to see the corner: it brakes for it.
+  const Command fast = t.control(CarState{0, 0, 0, 50, 0, 0});
+  EXPECT_GT(fast.brake, 0);
+}
+
 // u_w = w_θ y′(L) + w_d (d_w − side·gap), by hand.
 TEST(WallFollower, ThePapersLawSignsAndSpeedPolicy) {
   WallFollowerParams p;  // right wall, gap 8, lookahead 10

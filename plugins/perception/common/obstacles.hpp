@@ -26,8 +26,10 @@ struct ObstacleParams {
   double max_lateral = 15.0;     // m either side of the car, when no wall is fitted
   double corridor_width = 20.0;  // m inward from a fitted wall (the track and a margin)
   double max_range = 200.0;      // m ahead
-  double max_behind = 50.0;      // m behind: what the planner needs; far behind, the rear LiDARs
-                                 // graze the wall and its stripes are the hardest to tell apart
+  double max_behind = 15.0;      // m behind: what the planner needs (a thing beside the car, and
+                                 // its length and clearance past it). Further behind, the rear
+                                 // LiDARs graze the wall, the fit (made ahead) does not reach it,
+                                 // and round a hairpin its stripes stood 1 m inside the edge
   double wall_margin = 0.5;      // m: this close to a fitted wall is wall
   double max_length = 8.0;       // m of extent in x or y
   double min_height = 0.1;       // m of extent in z: a single scan row's streak has none
