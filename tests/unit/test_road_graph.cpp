@@ -470,6 +470,33 @@ TEST(PlanFrames, ObstaclesIntoTheMapFrame) {
   EXPECT_FALSE(obstacle_in_map({0, 1e308, 0, 0}, 1e308, 0, 1, 1).has_value());  // overflows
 }
 
+// The edge band widens with the spread of a detection's place: the pose's, and its heading's
+// times the range.
+TEST(PlanFrames, PlacementBandGrowsWithRangeAndTheEstimatesSpread) {
+  const StampedPose sure{0, 0, 0, 0, 0, 0};
+  EXPECT_DOUBLE_EQ(placement_band(sure, 200, 0, 1.0, 2), 1.0);
+  const StampedPose pose{0, 0, 0, 0, 0.01, 0.003};
+  EXPECT_NEAR(placement_band(pose, 200, 0, 1.0, 2), 1.0 + 2 * (0.01 + 0.6), 1e-12);
+  EXPECT_NEAR(placement_band(pose, 30, 40, 1.0, 2), 1.0 + 2 * (0.01 + 0.15), 1e-12);  // range 50 m
+  EXPECT_DOUBLE_EQ(placement_band(pose, 200, 0, 1.0, 0), 1.0);
+  EXPECT_DOUBLE_EQ(placement_band({0, 0, 0, 0, NAN, 0.003}, 200, 0, 1.0, 2), 1.0);  // judged as placed
+  // A wall stripe seen 200 m off, 1.04 m inside the left edge of a ring 8 m wide each side
+  // (radius 1 km, anticlockwise: the left edge is the inner one): taken as on the track by the
+  // bare band, not once the heading's spread is counted.
+  brickyard::track::CenterLine ring;
+  for (int i = 0; i < 2000; ++i) {
+    ring.x.push_back(1000 * std::cos(2 * M_PI * i / 2000));
+    ring.y.push_back(1000 * std::sin(2 * M_PI * i / 2000));
+    ring.width_left.push_back(8);
+    ring.width_right.push_back(8);
+  }
+  const brickyard::track::Track track({"ring", ring, {}});
+  const double band = placement_band(pose, 200, 0, 1.0, 2);
+  EXPECT_TRUE(on_track(track, 1000 - 8 + 1.04, 0, 1.0));
+  EXPECT_FALSE(on_track(track, 1000 - 8 + 1.04, 0, band));
+  EXPECT_TRUE(on_track(track, 1000, 0, band));  // a pylon on the centre line still is
+}
+
 TEST(PlanFrames, NearestPoseByStamp) {
   const std::vector<StampedPose> poses{{100, 0, 0, 0}, {200, 1, 0, 0}, {300, 2, 0, 0}};
   EXPECT_EQ(nearest_pose(poses, 190), 1);
@@ -490,4 +517,96 @@ TEST(PlanFrames, PathGeometryHeadingAndArcLength) {
   EXPECT_EQ(g.curvature, (std::vector<double>{0.01, 0.02, 0}));
   EXPECT_DOUBLE_EQ(g.max_offset, 1.5);
   EXPECT_TRUE(path_geometry({}).x.empty());
+}
+
+namespace {
+
+// The least gap between the car's side and an obstacle at (x_o, d_o) on the stadium's first
+// straight (where the line is y = 0), over the path points where the car is beside it (its
+// reference point from car_front + radius before to car_rear + radius past it).
+double side_gap(const PlannedPath& p, double x_o, double d_o, double radius, double half_width) {
+  const SearchParams sp;
+  double gap = 1e9;
+  for (const auto& q : p.points)
+    if (q.x >= x_o - sp.car_front - radius && q.x <= x_o + sp.car_rear + radius)
+      gap = std::min(gap, std::abs(q.y - d_o) - half_width - radius);
+  return gap;
+}
+
+// The car driven along its plans on the first straight, 1.5 m a cycle, from x0 to x1.
+void drive_on(RoadGraphPlanner& planner, double x0, double x1, double v, double& y) {
+  for (double x = x0; x <= x1; x += 1.5) {
+    const PlannedPath& p = planner.plan(x, y, v);
+    for (std::size_t k = 1; k < p.points.size(); ++k)
+      if (p.points[k].x >= x + 1.5) {
+        y = p.points[k - 1].y + (p.points[k].y - p.points[k - 1].y) * (x + 1.5 - p.points[k - 1].x) /
+                                    (p.points[k].x - p.points[k - 1].x);
+        break;
+      }
+  }
+}
+
+}  // namespace
+
+// A pylon's place moves by centimetres from detection to detection. A swerve planned at the full
+// clearance is kept while the obstacle stays beyond keep_clearance, and dropped nearer than that.
+TEST(RoadGraphPlanner, AnObstacleThatMovesByCentimetresKeepsThePlan) {
+  const RefLine line = stadium();
+  const RoadGraph g = RoadGraph::build(line, kRoom, RoadGraphParams{});
+  PlannerParams pp;
+  const double hw = g.params().half_width, r = 0.3;
+  for (double moved : {0.3, 0.7}) {  // gap 1.5+ less this: kept above 1.0, dropped below
+    RoadGraphPlanner planner(g, line, std::vector<double>(line.size(), 40.0), pp);
+    for (int k = 0; k < pp.confirmations; ++k) planner.observe({{150, 0.5, r, 0}}, 0);
+    double y = 0;
+    drive_on(planner, 20, 128, 30, y);
+    const PlannedPath& before = planner.plan(129.5, y, 30);
+    const double gap = side_gap(before, 150, 0.5, r, hw);
+    ASSERT_GE(gap, pp.search.clearance - 1e-6);
+    double d_near = 0;  // the path's side of the pylon
+    for (const auto& q : before.points)
+      if (std::abs(q.x - 150) < 1) d_near = q.y;
+    // Toward the path, to `moved` inside the clearance.
+    const double shifted = 0.5 + (d_near > 0.5 ? 1 : -1) * (moved + gap - pp.search.clearance);
+    // Detection by detection, a few centimetres at a time (each within merge_distance: the same pylon).
+    const int steps = 1 + static_cast<int>(std::abs(shifted - 0.5) / 0.1);
+    for (int k = 1; k <= steps; ++k) planner.observe({{150, 0.5 + (shifted - 0.5) * k / steps, r, 0}}, 50000000);
+    ASSERT_EQ(planner.obstacles().size(), 1u);
+    const PlannedPath& after = planner.plan(131, y, 30);
+    const bool kept = pp.search.clearance - moved >= pp.keep_clearance;
+    EXPECT_EQ(after.restarted, !kept) << "moved " << moved;
+    if (kept) EXPECT_NEAR(side_gap(after, 150, shifted, r, hw), pp.search.clearance - moved, 0.05);
+  }
+}
+
+// With no route, the path the car brakes along keeps inside the track, even where the racing
+// line runs near the edge the car is on (a parallel to the line would leave the track there).
+TEST(RoadGraphPlanner, WithNoRouteThePathStaysOnTheTrack) {
+  const RefLine line = stadium();
+  // 7 m each side, then from s = 250 only 3 m on the left.
+  const TrackRoom room = [](double s) { return std::make_pair(-7.0, s < 250 ? 7.0 : 3.0); };
+  const RoadGraph g = RoadGraph::build(line, room, RoadGraphParams{});
+  RoadGraphPlanner planner(g, line, std::vector<double>(line.size(), 40.0), PlannerParams{});
+  std::vector<MapObstacle> wall;
+  for (double d = -7; d <= 7; d += 0.5) wall.push_back({400, d, 0.3, 0});
+  for (int k = 0; k < PlannerParams{}.confirmations; ++k) planner.observe(wall, 0);
+  const double left = 7 - g.params().half_width - g.params().edge_margin;  // the band's left edge before 250
+  const PlannedPath& p = planner.plan(100, left, 30);
+  ASSERT_FALSE(p.route_found);
+  const double band = 3 - g.params().half_width - g.params().edge_margin;
+  int checked = 0;
+  for (const auto& q : p.points)
+    if (q.s >= 265 && q.s <= 600) {
+      EXPECT_LE(q.d, band + 1e-9) << "at s " << q.s;
+      ++checked;
+    }
+  EXPECT_GT(checked, 50);
+  // A car placed 20 m off the line, beyond the edge, is not there (its estimate drifted): the
+  // path keeps its offset, the line's shape, rather than steering it across what it takes for the
+  // track.
+  RoadGraphPlanner lost(g, line, std::vector<double>(line.size(), 40.0), PlannerParams{});
+  for (int k = 0; k < PlannerParams{}.confirmations; ++k) lost.observe(wall, 0);
+  const PlannedPath& q = lost.plan(100, 20, 30);
+  ASSERT_FALSE(q.route_found);
+  for (const auto& pt : q.points) EXPECT_NEAR(pt.d, 20, 1e-9) << "at s " << pt.s;
 }

@@ -94,7 +94,7 @@ Plan GraphSearch::plan(const std::vector<std::pair<std::uint32_t, double>>& star
         bool blocked = false;
         for (const auto& o : beside_) {
           double gap;
-          if (edge_blocked(shape, o, hw, p, &gap)) { blocked = true; break; }
+          if (edge_blocked(shape, o, swept_half_width(hw, e->max_kappa, p), p, &gap)) { blocked = true; break; }
           if (gap < p.soft_clearance) c += p.k_proximity * (p.soft_clearance - gap) * (p.soft_clearance - gap);
         }
         if (blocked) continue;

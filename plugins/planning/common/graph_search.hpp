@@ -50,6 +50,15 @@ inline double reachable_speed2(const SearchParams& p, double x) {
   return v2 > 0 ? v2 : 0.0;
 }
 
+// The half width the car's body sweeps on a path of curvature kappa: its front corners,
+// car_front ahead of base_link (which runs on the path), stand about car_front² |κ| / 2 outside
+// the arc. In a hairpin (κ 0.08 1/m) a 4 m nose sweeps 0.64 m: a plan that passed a pylon 1 m
+// off in the line's frame brought the car's corner within 0.47 m of it.
+inline double swept_half_width(double half_width, double kappa, const SearchParams& p) {
+  const double k = kappa < 0 ? -kappa : kappa;
+  return half_width + 0.5 * p.car_front * p.car_front * (k < 1.0 ? k : 1.0);  // NaN: the straight car
+}
+
 struct Plan {
   bool found = false;
   std::vector<std::uint32_t> nodes;  // start first

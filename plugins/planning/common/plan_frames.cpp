@@ -50,4 +50,9 @@ bool on_track(const track::Track& track, double x, double y, double edge_band, i
   return f.d <= track.width_left(f.seg, f.u) - edge_band && -f.d <= track.width_right(f.seg, f.u) - edge_band;
 }
 
+double placement_band(const StampedPose& at, double ox, double oy, double edge_band, double sigmas) {
+  const double spread = sigmas * (at.position_sigma + at.yaw_sigma * std::hypot(ox, oy));
+  return std::isfinite(spread) && spread > 0 ? edge_band + spread : edge_band;
+}
+
 }  // namespace brickyard::planning

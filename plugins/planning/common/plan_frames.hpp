@@ -14,7 +14,8 @@ namespace brickyard::planning {
 
 struct StampedPose {
   std::int64_t stamp_ns = 0;
-  double x = 0, y = 0, yaw = 0;  // base_link in the map frame
+  double x = 0, y = 0, yaw = 0;                // base_link in the map frame
+  double position_sigma = 0, yaw_sigma = 0;    // the estimate's standard deviations, m and rad
 };
 
 // An obstacle at (ox, oy) in the vehicle frame of `at`, of size sx by sy, in the map frame; none
@@ -27,6 +28,13 @@ std::optional<MapObstacle> obstacle_in_map(const StampedPose& at, double ox, dou
 // thing beside the track; the graph's nodes keep the car's side a margin from the edges, so
 // nothing there needs avoiding — and a wall reported as obstacles must not close the road.
 bool on_track(const track::Track& track, double x, double y, double edge_band, int hint = -1);
+
+// How far inside the edges a detection at (ox, oy) in the vehicle frame of `at` must lie to be
+// on the track: edge_band, and `sigmas` times the spread of its place in the map — the pose's
+// position and its heading's, which grows with the range (a heading 0.003 rad off puts a wall
+// 200 m ahead 0.6 m inside the edge: Hockenheim's far wall stripes were planned around). A
+// spread that is not a finite number adds nothing: the detection is judged as placed.
+double placement_band(const StampedPose& at, double ox, double oy, double edge_band, double sigmas);
 
 // The index of the pose whose stamp is nearest `stamp_ns`: the last pose unless another is
 // strictly nearer (then the first of those); compared in double so that odd stamps cannot

@@ -48,24 +48,86 @@ void RoadGraphPlanner::observe(const std::vector<MapObstacle>& seen, std::int64_
 
 bool RoadGraphPlanner::committed_blocked(const std::vector<Piece>& pieces, const std::vector<FrenetObstacle>& obs) const {
   const double L = line_.length();
+  SearchParams keep = p_.search;
+  keep.clearance = std::min(p_.keep_clearance, p_.search.clearance);
   for (const Piece& pc : pieces) {
     // In s relative to the piece's start, as the obstacles below.
     const EdgeShape e{0, pc.shape.d_a, pc.shape.s_b - pc.shape.s_a, pc.shape.d_b};
+    const double hw = swept_half_width(g_.params().half_width, max_kappa(pc.shape), keep);
     for (const auto& o : obs) {
       FrenetObstacle r = o;
       r.s = relative_s(o.s, pc.shape.s_a, L);
-      if (edge_blocked(e, r, g_.params().half_width, p_.search)) return true;
+      if (edge_blocked(e, r, hw, keep)) return true;
     }
   }
   return false;
 }
 
+double RoadGraphPlanner::max_kappa(const EdgeShape& e) const {
+  constexpr int kSamples = 10;
+  const double ds = (e.s_b - e.s_a) / kSamples;
+  double kmax = 0;
+  for (int k = 0; k < kSamples; ++k) {
+    const double s = e.s_a + (k + 0.5) * ds;
+    kmax = std::max(kmax, std::abs(offset_curvature(line_.kappa(s), e.d(s), e.d1(s), e.d2(s))));
+  }
+  return kmax;
+}
+
+namespace {
+constexpr double kInBandSlope = 0.05;  // m across per m along: 3°
+}  // namespace
+
+void RoadGraphPlanner::append_in_band(std::vector<Piece>& pieces, double s_a, double d_a, double length) const {
+  const double L = line_.length(), step = g_.params().lateral_step;
+  const int nl = static_cast<int>(g_.layers().size());
+  // The layers ahead: where each stands (s unwrapped like the pieces) and its band of nodes.
+  struct Band {
+    double s, lo, hi;
+  };
+  std::vector<Band> ahead;
+  double s = s_a;
+  int layer = g_.layer_at_or_after(s_a + 1e-6);
+  for (int n = 0; n < nl && s < s_a + length; ++n) {
+    const auto& Ly = g_.layers()[layer];
+    double h = Ly.s - s;
+    h -= std::floor(h / L) * L;  // the next layer, however far round the loop
+    if (h < 1e-6) h += L;
+    s += h;
+    const double lo = Ly.k0 * step;
+    ahead.push_back({s, lo, std::max(lo, (Ly.k0 + static_cast<double>(Ly.count) - 1) * step)});
+    layer = (layer + 1) % nl;
+  }
+  if (ahead.empty()) return;
+  // A car placed beyond the track's edge is not there: its estimate is off, and the line's shape
+  // (the parallel) is the best guess of the road ahead of it. Steered into the band at even 3°,
+  // a car 31 m off on a drifted estimate went 3° into the wall (graph.ims_race_60_localization_comes_back).
+  const Band& first = ahead.front();
+  const double outside = d_a > first.hi ? d_a - first.hi : d_a < first.lo ? first.lo - d_a : 0.0;
+  const bool on_track = outside <= g_.params().edge_margin + g_.params().half_width;
+  // Backward: the band as it must already be met, at the slope, before it narrows.
+  for (std::size_t i = ahead.size() - 1; i-- > 0;) {
+    const double h = ahead[i + 1].s - ahead[i].s;
+    ahead[i].hi = std::min(ahead[i].hi, ahead[i + 1].hi + kInBandSlope * h);
+    ahead[i].lo = std::max(ahead[i].lo, ahead[i + 1].lo - kInBandSlope * h);
+  }
+  double from = s_a, d = d_a;
+  for (const Band& b : ahead) {
+    double d_b = d_a;
+    if (on_track) {
+      const double turn = kInBandSlope * (b.s - from);
+      d_b = std::clamp(std::clamp(d_a, b.lo, std::max(b.lo, b.hi)), d - turn, d + turn);
+    }
+    pieces.push_back({EdgeShape{from, d, b.s, d_b}, kNoNode});
+    from = b.s;
+    d = d_b;
+  }
+}
+
 std::vector<std::pair<std::uint32_t, double>> RoadGraphPlanner::lead_ins(double s_c, double d_c, double commit,
                                                                          const std::vector<FrenetObstacle>& obs,
-                                                                         double speed) const {
+                                                                         const SearchParams& sp) const {
   const double L = line_.length();
-  SearchParams sp = p_.search;
-  sp.speed = speed;
   const int layer = g_.layer_at_or_after(s_c + commit);
   const auto& Ly = g_.layers()[layer];
   double h = Ly.s - s_c;
@@ -73,19 +135,13 @@ std::vector<std::pair<std::uint32_t, double>> RoadGraphPlanner::lead_ins(double 
   std::vector<std::pair<std::uint32_t, double>> out;
   for (std::uint32_t n = Ly.first_node; n < Ly.first_node + Ly.count; ++n) {
     const EdgeShape e{-p_.behind, d_c, h, g_.node_d(n)};  // s relative to the car
-    double cost = 0;
-    bool ok = true;
-    for (const auto& o : obs) {
-      FrenetObstacle r = o;
-      r.s = relative_s(o.s, s_c, L);
-      double gap;
-      if (edge_blocked(e, r, g_.params().half_width, sp, &gap)) { ok = false; break; }
-      if (gap < sp.soft_clearance) cost += sp.k_proximity * (sp.soft_clearance - gap) * (sp.soft_clearance - gap);
-    }
-    if (!ok) continue;
+    // Its bends first (the body's sweep widens the car by them). The steering check takes the
+    // car's speed now: a lead-in is where the car is put back on a plan, often after its estimate
+    // jumped, and one judged by the speed it could brake to was taken at 60 m/s on a drifted
+    // estimate and put the car off the track (graph.ims_race_60_localization_comes_back).
     constexpr int kSamples = 10;
     const double ds = (e.s_b - e.s_a) / kSamples;
-    double kmax = 0;
+    double cost = 0, kmax = 0;
     for (int k = 0; k < kSamples; ++k) {
       const double s = e.s_a + (k + 0.5) * ds, d = e.d(s), d1 = e.d1(s), kr = line_.kappa(s_c + s);
       const double q = 1 - kr * d, dl = std::sqrt(q * q + d1 * d1) * ds;
@@ -93,6 +149,16 @@ std::vector<std::pair<std::uint32_t, double>> RoadGraphPlanner::lead_ins(double 
       cost += sp.k_length * dl + sp.k_curvature * kappa * kappa * dl + sp.k_deviation * std::abs(d) * ds;
       kmax = std::max(kmax, std::abs(kappa));
     }
+    const double hw = swept_half_width(g_.params().half_width, kmax, sp);
+    bool ok = true;
+    for (const auto& o : obs) {
+      FrenetObstacle r = o;
+      r.s = relative_s(o.s, s_c, L);
+      double gap;
+      if (edge_blocked(e, r, hw, sp, &gap)) { ok = false; break; }
+      if (gap < sp.soft_clearance) cost += sp.k_proximity * (sp.soft_clearance - gap) * (sp.soft_clearance - gap);
+    }
+    if (!ok) continue;
     const bool steerable = kmax <= g_.params().max_curvature &&
                            (sp.lateral_accel <= 0 || kmax * reachable_speed2(sp, 0) <= sp.lateral_accel);
     if (steerable || std::abs(g_.node_d(n) - d_c) < g_.params().lateral_step) out.emplace_back(n, cost);
@@ -105,10 +171,11 @@ double RoadGraphPlanner::stop_at(const std::vector<Piece>& pieces, const std::ve
   double stop = pieces.back().shape.s_b;
   for (const Piece& pc : pieces) {
     const EdgeShape e{0, pc.shape.d_a, pc.shape.s_b - pc.shape.s_a, pc.shape.d_b};
+    const double hw = swept_half_width(g_.params().half_width, max_kappa(pc.shape), p_.search);
     for (const auto& o : obs) {
       FrenetObstacle r = o;
       r.s = relative_s(o.s, pc.shape.s_a, L);
-      if (edge_blocked(e, r, g_.params().half_width, p_.search))
+      if (edge_blocked(e, r, hw, p_.search))
         stop = std::min(stop, pc.shape.s_a + r.s - p_.search.car_front - r.radius - p_.search.clearance);
     }
   }
@@ -158,13 +225,20 @@ const PlannedPath& RoadGraphPlanner::plan(double x, double y, double speed) {
     // lead-in reaches without meeting an obstacle, the lead-in's cost counted.
     // When an obstacle seen late leaves no way round at the commitment distance, nearer layers
     // are tried (a sharper lead-in; the speeds follow its bends), down to commit_min.
+    // With none at the clearance, once more at keep_clearance before the car stops.
     Plan fresh;
-    for (double reach = commit;; reach = std::max(p_.commit_min, reach - 10)) {
-      sp.ahead = reach;
-      fresh = search_.plan(lead_ins(s_c, d_c, reach, obs, speed), obs, sp);
-      out_.edges_relaxed += fresh.edges_relaxed;
-      if (fresh.found || reach <= p_.commit_min) break;
+    const double clearances[2] = {p_.search.clearance, std::min(p_.keep_clearance, p_.search.clearance)};
+    for (int c = 0; c < 2 && !fresh.found; ++c) {
+      if (c == 1 && !(clearances[1] < clearances[0])) break;
+      sp.clearance = clearances[c];
+      for (double reach = commit;; reach = std::max(p_.commit_min, reach - 10)) {
+        sp.ahead = reach;
+        fresh = search_.plan(lead_ins(s_c, d_c, reach, obs, sp), obs, sp);
+        out_.edges_relaxed += fresh.edges_relaxed;
+        if (fresh.found || reach <= p_.commit_min) break;
+      }
     }
+    sp.clearance = p_.search.clearance;
     if (fresh.found) {
       plan = std::move(fresh);
       const std::uint32_t first = plan.nodes.front();
@@ -191,12 +265,16 @@ const PlannedPath& RoadGraphPlanner::plan(double x, double y, double speed) {
   // No route: stop. On what the car is committed to while it is usable (it then stays put),
   // else on a straight line at the car's offset.
   if (!(stopping_ && usable)) {
-    pieces_ = usable ? kept : std::vector<Piece>{{EdgeShape{s_c - p_.behind, d_c, s_c + commit, d_c}, kNoNode}};
-    if (!usable) out_.restarted = true;
-    // On along the line at the same offset over the horizon: the car stops before the blockage,
-    // not at the end of its commitment.
-    const EdgeShape& end = pieces_.back().shape;
-    pieces_.push_back({EdgeShape{end.s_b, end.d_b, end.s_b + p_.search.horizon, end.d_b}, kNoNode});
+    if (usable) {
+      pieces_ = kept;
+    } else {
+      pieces_ = {{EdgeShape{s_c - p_.behind, d_c, s_c + commit, d_c}, kNoNode}};
+      out_.restarted = true;
+    }
+    // On along the line at the same offset (within the track) over the horizon: the car stops
+    // before the blockage, not at the end of its commitment.
+    const EdgeShape end = pieces_.back().shape;
+    append_in_band(pieces_, end.s_b, end.d_b, p_.search.horizon);
   } else {
     pieces_ = kept;
   }

@@ -42,6 +42,12 @@ struct PlannerParams {
   double merge_distance = 1.5;    // m: a detection this near a remembered obstacle is that one
   int confirmations = 3;          // frames an obstacle must be seen in before it is planned around:
                                   // one frame's false detection must not close the road
+  // m between the car's side and an obstacle below which a plan already made is dropped, and at
+  // which a search that finds no way at search.clearance tries again before the car stops. A
+  // plan made at the full clearance is kept while the obstacle's place, detection by detection,
+  // moves by centimetres: without this margin a swerve made at exactly the clearance flickered
+  // between planned and blocked, and the car, too near by then for any other way, braked.
+  double keep_clearance = 1.0;
 };
 
 struct MapObstacle {
@@ -78,13 +84,21 @@ class RoadGraphPlanner {
   };
   bool committed_blocked(const std::vector<Piece>& pieces, const std::vector<FrenetObstacle>& obs) const;
   // Lead-ins from the car (s_c, d_c) to the reachable nodes of the layer at the commitment
-  // distance, each with its cost (as an edge's, in the search's terms); at the car's speed, a
-  // lead-in sharper than search.lateral_accel allows is not one.
+  // distance, each with its cost (as an edge's, in the search's terms); at the car's speed
+  // (sp.speed), a lead-in sharper than sp.lateral_accel allows is not one.
   std::vector<std::pair<std::uint32_t, double>> lead_ins(double s_c, double d_c, double commit,
-                                                         const std::vector<FrenetObstacle>& obs, double speed) const;
+                                                         const std::vector<FrenetObstacle>& obs, const SearchParams& sp) const;
   // Where a car on these pieces must stop (s on the line, unwrapped like the pieces): before the
   // first obstacle that blocks them, or at their end.
   double stop_at(const std::vector<Piece>& pieces, const std::vector<FrenetObstacle>& obs) const;
+  // With no route: from (s_a, d_a) on over `length` metres, layer by layer at the offset d_a
+  // brought within each layer's nodes (inside the track), at a slope of at most 3° and early
+  // enough for where the band narrows: a parallel to the line would leave the track where the
+  // line runs along the other edge. A start beyond the track's edge (a drifted estimate) keeps
+  // the parallel.
+  void append_in_band(std::vector<Piece>& pieces, double s_a, double d_a, double length) const;
+  // The largest |κ| along a piece (s on the line), from ten samples as the graph's edges.
+  double max_kappa(const EdgeShape& e) const;
   void make_path(double speed, bool stop, double stop_s);
   const RoadGraph& g_;
   const RefLine& line_;

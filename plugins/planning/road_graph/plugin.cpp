@@ -38,6 +38,7 @@ struct Settings {
   LineSettings line;
   double rate_hz = 20;
   double obstacle_edge_band = 1.0;
+  double obstacle_place_sigmas = 2.0;
   bool car_curvature = false;   // curvature_limit car: the graph's edges and the search from the car's steering and speed
   double steer_margin = 0.8;
   std::string graph_file;
@@ -71,6 +72,9 @@ ParamBinding<Settings> bindings() {
   b.bind("max_edge_length", graph, &G::max_edge_length).in_unit("m").range(5, 500);
   b.bind("horizon", planner, search, &S::horizon).in_unit("m").range(20, 2000);
   b.bind("clearance", planner, search, &S::clearance).in_unit("m").at_least(0).doc("least gap between the car's side and an obstacle");
+  b.bind("keep_clearance", planner, &P::keep_clearance).in_unit("m").at_least(0)
+      .doc("a plan already made is dropped only when an obstacle comes nearer than this (detections move by centimetres); "
+           "with no way at clearance, the search tries this before the car stops (at most clearance)");
   b.bind("soft_clearance", planner, search, &S::soft_clearance).in_unit("m").at_least(0);
   b.bind("car_front", &Settings::car_front).in_unit("m").at_least(0).doc("car ahead of base_link; default: the vehicle file's");
   b.bind("car_rear", &Settings::car_rear).in_unit("m").at_least(0).doc("car behind base_link; default: the vehicle file's");
@@ -83,6 +87,9 @@ ParamBinding<Settings> bindings() {
   b.bind("obstacle_memory", planner, &P::obstacle_memory).in_unit("s").range(0, 3600);
   b.bind("obstacle_edge_band", &Settings::obstacle_edge_band).in_unit("m").range(0, 10)
       .doc("a detection whose centre is less than this inside a track edge (or beyond it) is the wall or beside the track: not planned around");
+  b.bind("obstacle_place_sigmas", &Settings::obstacle_place_sigmas).range(0, 10)
+      .doc("the edge band grows by this many standard deviations of the detection's place in the map (the estimate's position, "
+           "and its heading times the range)");
   b.bind("obstacle_confirmations", planner, &P::confirmations).range(1, 100)
       .doc("frames an obstacle must be detected in before it is planned around");
   return b;
@@ -109,6 +116,7 @@ class RoadGraphNode : public Plugin {
     gp_ = set.graph;
     pp_ = set.planner;
     edge_band_ = set.obstacle_edge_band;
+    place_sigmas_ = set.obstacle_place_sigmas;
     gp_.half_width = set.half_width.value_or(car.half_width);
     pp_.search.car_front = set.car_front.value_or(car.front);
     pp_.search.car_rear = set.car_rear.value_or(car.rear);
@@ -154,11 +162,15 @@ class RoadGraphNode : public Plugin {
     std::vector<StampedPose> poses;
     for (auto& list : obstacles_.take()) {
       if (poses.empty())
-        for (const auto& e : poses_) poses.push_back({e->header().stamp_ns(), e->x(), e->y(), e->yaw()});
+        for (const auto& e : poses_) {
+          const auto& cov = e->covariance();  // row-major over (x, y, yaw)
+          poses.push_back({e->header().stamp_ns(), e->x(), e->y(), e->yaw(), std::sqrt(std::max({cov[0], cov[4], 0.0})),
+                           std::sqrt(std::max(cov[8], 0.0))});
+        }
       const StampedPose& at = poses[nearest_pose(poses, list->header().stamp_ns())];
       for (const auto& o : list->obstacles())
         if (auto m = obstacle_in_map(at, o.x(), o.y(), o.size_x(), o.size_y())) {
-          if (track_ && !on_track(*track_, m->x, m->y, edge_band_)) ++off_track_;
+          if (track_ && !on_track(*track_, m->x, m->y, placement_band(at, o.x(), o.y(), edge_band_, place_sigmas_))) ++off_track_;
           else seen.push_back(*m);
         }
     }
@@ -195,6 +207,9 @@ class RoadGraphNode : public Plugin {
     }
     if (plan.restarted) ++restarts_;
     obstacles_max_ = std::max(obstacles_max_, planner_->obstacles().size());
+    std::size_t confirmed = 0;  // seen often enough to be planned around
+    for (const auto& o : planner_->obstacles()) confirmed += o.seen >= pp_.confirmations;
+    planned_around_max_ = std::max(planned_around_max_, confirmed);
     auto m = std::make_shared<msgs::Path>();
     m->header().frame_id("map");
     m->header().stamp_ns(ctx.now_ns());
@@ -219,6 +234,7 @@ class RoadGraphNode : public Plugin {
     ctx.metric("plans_without_route", static_cast<double>(blocked_));
     ctx.metric("restarts", static_cast<double>(restarts_));
     ctx.metric("obstacles_remembered_max", static_cast<double>(obstacles_max_));
+    ctx.metric("obstacles_planned_around_max", static_cast<double>(planned_around_max_));
     ctx.metric("detections_off_track", static_cast<double>(off_track_));
     if (planner_) {
       ctx.metric("planned_lap_s", planned_lap_s_);
@@ -285,8 +301,8 @@ class RoadGraphNode : public Plugin {
   std::unique_ptr<RoadGraphPlanner> planner_;
   std::deque<std::shared_ptr<const msgs::LocalizationEstimate>> poses_;
   std::uint32_t seq_ = 0;
-  std::size_t blocked_ = 0, restarts_ = 0, obstacles_max_ = 0, off_track_ = 0;
-  double edge_band_ = 1.0, planned_lap_s_ = 0;
+  std::size_t blocked_ = 0, restarts_ = 0, obstacles_max_ = 0, planned_around_max_ = 0, off_track_ = 0;
+  double edge_band_ = 1.0, place_sigmas_ = 2.0, planned_lap_s_ = 0;
   std::unique_ptr<track::Track> track_;  // the map's, once it came
   bool stopping_ = false;
   double max_offset_ = 0;
