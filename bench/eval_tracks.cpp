@@ -13,6 +13,7 @@
 // --jobs N runs the fault runs N at a time (the clean run, whose real-time factor is reported,
 // always runs alone).
 // Exit 1 when any run failed (the table says which).
+#include "race_runs.hpp"
 #include "track/centre_line.hpp"
 
 #include <nlohmann/json.hpp>
@@ -33,49 +34,16 @@ namespace {
 
 using nlohmann::json;
 namespace fs = std::filesystem;
+using brickyard::bench::RaceRun;
+using Run = RaceRun;
 
-struct Run {
-  bool ok = false;
-  std::string reason;
-  json referee, manager, planner;
-  double sim_s = 0, wall_s = 0;
-};
-
-double num(const json& m, const char* k) { return m.contains(k) && m[k].is_number() ? m[k].get<double>() : NAN; }
-
-// Shell-quoted, for std::system.
-std::string q(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
+double num(const json& m, const char* k) { return brickyard::bench::metric(m, k); }
 
 std::vector<std::string> g_sets;  // --set, passed to every run
 
-// Each run in flight has a DDS domain of its own (`domain`), so parallel runs never hear each other.
 Run run(const std::string& by, const std::string& graph, const std::vector<std::string>& args, int seed, const std::string& dir,
         int domain) {
-  std::string cmd = by + " run " + q(graph) + " --quiet --progress 0 --no-report --seed " + std::to_string(seed) + " --domain " +
-                    std::to_string(domain) + " --out " + q(dir);
-  for (const auto& a : args) cmd += " --arg " + q(a);
-  for (const auto& a : g_sets) cmd += " --set " + q(a);
-  cmd += " > " + q(dir + ".log") + " 2>&1";
-  std::system(cmd.c_str());
-  Run r;
-  std::ifstream sf(dir + "/summary.json");
-  if (!sf) {
-    r.reason = "no summary: see " + dir + ".log";
-    return r;
-  }
-  const json s = json::parse(sf);
-  r.ok = s.value("result", "") == "success";
-  r.reason = s.value("reason", "");
-  r.sim_s = s.value("sim_time_s", 0.0);
-  r.wall_s = s.value("wall_time_s", 0.0);
-  r.referee = s["nodes"]["referee"]["metrics"];
-  if (s["nodes"].contains("manager")) r.manager = s["nodes"]["manager"]["metrics"];
-  if (s["nodes"].contains("planner")) r.planner = s["nodes"]["planner"]["metrics"];
-  return r;
+  return brickyard::bench::run_race(by, graph, args, g_sets, seed, dir, domain);
 }
 
 }  // namespace
@@ -117,13 +85,9 @@ int main(int argc, char** argv) {
       all_ok = false;
       continue;
     }
-    // IMS is banked as the simulator has it by default; every other track is taken flat.
-    const bool ims = name == "IMS";
     for (const char* layout : {"outer", "both"}) {
       if (!only_layout.empty() && only_layout != layout) continue;
-      std::vector<std::string> base = {"track=" + f.string(), std::string("wall_side=") + (brickyard::track::counter_clockwise(c) ? "right" : "left"),
-                                       std::string("inner_wall=") + (std::strcmp(layout, "both") == 0 ? "true" : "false")};
-      if (ims) base.insert(base.end(), {"bank_mode=curvature", "bank_deg=9.2"});
+      const std::vector<std::string> base = brickyard::bench::track_args(f.string(), name, c, std::strcmp(layout, "both") == 0);
       const std::string tag = dir + "/" + name + "_" + layout;
       const Run clean = run(by, graph, base, seed, tag + "_clean", domain0);
       const json& laps = clean.referee.contains("lap_times_s") ? clean.referee["lap_times_s"] : json::array();

@@ -207,6 +207,36 @@ TEST(Obstacles, InsideTheCorridorAndNotWall) {
   EXPECT_EQ(find_obstacles(p, clusters, {{right, -1}}, ObstacleParams{}).size(), 4u);
 }
 
+// Far past where a wall is known, its line is a guess: only what lies within wall_depth beyond
+// it is wall. A pylon seen 186 m ahead where a straight bends lay 3 m "beyond" the guessed line;
+// the LiDAR does not see through walls, so it is not wall.
+TEST(Obstacles, FarPastAFittedWallOnlyItsLineIsWall) {
+  Points p;
+  std::vector<std::vector<int>> clusters;
+  auto add = [&](std::initializer_list<Point> q) {
+    clusters.emplace_back();
+    for (const Point& x : q) {
+      clusters.back().push_back(static_cast<int>(p.size()));
+      p.push_back(x);
+    }
+  };
+  add({{186, 9, 0.1f}, {186.2f, 9.1f, 0.4f}, {186.1f, 8.9f, 0.6f}});   // 3 m beyond the left wall's line: obstacle
+  add({{180, 6.5f, 0.2f}, {181, 6.6f, 0.5f}, {182, 6.5f, 0.3f}});      // 0.5 m beyond it: wall
+  add({{40, 7.5f, 0.2f}, {40.2f, 7.5f, 0.5f}, {40.1f, 7.5f, 0.3f}});   // 1.5 m beyond where it is known: wall
+  WallFit left;
+  left.coefficients = {6, 0, 0};
+  left.x_min = -5;
+  left.x_max = 20;
+  left.valid = true;
+  const auto obstacles = find_obstacles(p, clusters, {{left, +1}}, ObstacleParams{});
+  ASSERT_EQ(obstacles.size(), 1u);
+  EXPECT_NEAR(obstacles[0].centroid.x(), 186.1f, 1e-3);
+  // Trusting the guess all the way (the old rule) took the pylon for wall.
+  ObstacleParams trusting;
+  trusting.wall_reach = 1e6;
+  EXPECT_TRUE(find_obstacles(p, clusters, {{left, +1}}, trusting).empty());
+}
+
 TEST(FrameSet, CompleteSetsAndALostFrame) {
   FrameSet<int> sets(3, 25'000'000);
   EXPECT_TRUE(sets.offer(0, 100'000'000, 10).empty());

@@ -38,6 +38,12 @@ class WallProfile {
     for (std::size_t b = 0; b < acc.size(); ++b)
       if (acc[b].second) bins_.emplace_back((first + static_cast<int>(b) + 0.5) * kBin, acc[b].first / acc[b].second);
   }
+  // Whether x is within `reach` of where the wall is known: its bins, else the fit's extent.
+  bool covers(double x, double reach) const {
+    const double lo = bins_.size() >= 2 ? bins_.front().first - 0.5 * kBin : w_.x_min;
+    const double hi = bins_.size() >= 2 ? bins_.back().first + 0.5 * kBin : w_.x_max;
+    return x >= lo - reach && x <= hi + reach;
+  }
   double y(double x) const {
     if (!std::isfinite(x)) return x;
     if (bins_.size() < 2) {
@@ -120,7 +126,8 @@ std::vector<Obstacle> find_obstacles(const Points& points, const std::vector<std
         // Signed distance inward from the wall at the point's height (the fitted lean included).
         const auto& [profile, side] = profiles[v];
         const double wall_y = profile.y(q.x()) + walls_lean(walls, side) * q.z();
-        if ((wall_y - q.y()) * side < p.wall_margin) wall = true;
+        const double inward = (wall_y - q.y()) * side;  // negative: beyond the wall
+        if (inward < p.wall_margin && (profile.covers(q.x(), p.wall_reach) || inward > -p.wall_depth)) wall = true;
       }
     }
     if (!wall) parts.push_back(std::move(part));

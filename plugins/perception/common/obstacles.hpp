@@ -2,7 +2,10 @@
 // Obstacle extraction, framework-free: the clusters inside the drivable corridor that are not
 // wall.
 //  - Wall: a cluster the wall fit took as part of the wall (WallFit::members), or with any point
-//    within wall_margin of a fitted wall or beyond it (outside the track).
+//    within wall_margin of a fitted wall or beyond it (outside the track) — where the wall is
+//    known (up to wall_reach past the ends of its points); further on, where its line is
+//    extrapolated, only up to wall_depth beyond it (something far beyond a guessed wall line
+//    says the guess is wrong there: the LiDAR does not see through walls).
 //  - One object: clusters whose xy footprints overlap (within stack_gap). Far off, the rows a
 //    pylon is cut by land further apart than the clustering tolerance: one-row streaks stacked
 //    at one place.
@@ -31,6 +34,15 @@ struct ObstacleParams {
                                  // LiDARs graze the wall, the fit (made ahead) does not reach it,
                                  // and round a hairpin its stripes stood 1 m inside the edge
   double wall_margin = 0.5;      // m: this close to a fitted wall is wall
+  double wall_reach = 30.0;      // m past the ends of what a fitted wall is known from (its points,
+                                 // or the polynomial's extent) that all that lies beyond it is wall.
+                                 // Further on its line is a guess, and only points within
+                                 // wall_depth beyond it are wall: a wall extrapolated straight 180 m
+                                 // along a bending straight put a pylon on the track "beyond" it
+                                 // (Spielberg at 77 m/s: first reported at 103 m, not 186 m, and
+                                 // too late to go round)
+  double wall_depth = 1.0;       // m beyond a guessed wall line that is still wall (2 m hid the
+                                 // Spielberg pylon: the guess ran 1 to 2 m inside the true wall)
   double max_length = 8.0;       // m of extent in x or y
   double min_height = 0.1;       // m of extent in z: a single scan row's streak has none
   double flat_thickness = 0.05;  // m: thinner than this (RMS across the best plane)...

@@ -29,6 +29,10 @@ ParamBinding<ObstacleParams> bindings() {
   b.bind("max_range", &O::max_range).in_unit("m").at_least(0).doc("how far ahead");
   b.bind("max_behind", &O::max_behind).in_unit("m").at_least(0).doc("how far behind");
   b.bind("wall_margin", &O::wall_margin).in_unit("m").at_least(0).doc("a cluster this close to a fitted wall is wall");
+  b.bind("wall_reach", &O::wall_reach).in_unit("m").at_least(0)
+      .doc("how far past the ends of a fitted wall's points it marks all that lies beyond it as wall");
+  b.bind("wall_depth", &O::wall_depth).in_unit("m").at_least(0)
+      .doc("further on (the wall's line extrapolated), only this deep beyond the line is wall");
   b.bind("max_length", &O::max_length).in_unit("m").at_least(0).doc("longer clusters are structure, not obstacles");
   b.bind("min_height", &O::min_height).in_unit("m").at_least(0).doc("less z extent: a scan row's streak, not an obstacle");
   b.bind("flat_thickness", &O::flat_thickness).in_unit("m").at_least(0)

@@ -1,0 +1,58 @@
+#include "race_runs.hpp"
+
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+
+namespace brickyard::bench {
+
+namespace {
+// Shell-quoted, for std::system.
+std::string quoted(const std::string& s) {
+  std::string out = "'";
+  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+}  // namespace
+
+double metric(const nlohmann::json& m, const char* k) { return m.contains(k) && m[k].is_number() ? m[k].get<double>() : NAN; }
+
+RaceRun run_race(const std::string& host, const std::string& graph, const std::vector<std::string>& args,
+                 const std::vector<std::string>& sets, int seed, const std::string& dir, int domain) {
+  std::string cmd = host + " run " + quoted(graph) + " --quiet --progress 0 --no-report --seed " + std::to_string(seed) +
+                    " --domain " + std::to_string(domain) + " --out " + quoted(dir);
+  for (const auto& a : args) cmd += " --arg " + quoted(a);
+  for (const auto& a : sets) cmd += " --set " + quoted(a);
+  cmd += " > " + quoted(dir + ".log") + " 2>&1";
+  std::system(cmd.c_str());
+  RaceRun r;
+  std::ifstream sf(dir + "/summary.json");
+  if (!sf) {
+    r.reason = "no summary: see " + dir + ".log";
+    return r;
+  }
+  const nlohmann::json s = nlohmann::json::parse(sf, nullptr, false);
+  if (s.is_discarded() || !s.contains("nodes")) {
+    r.reason = "unreadable summary: see " + dir + ".log";
+    return r;
+  }
+  r.ok = s.value("result", "") == "success";
+  r.reason = s.value("reason", "");
+  r.sim_s = s.value("sim_time_s", 0.0);
+  r.wall_s = s.value("wall_time_s", 0.0);
+  const auto& nodes = s["nodes"];
+  if (nodes.contains("referee")) r.referee = nodes["referee"]["metrics"];
+  if (nodes.contains("manager")) r.manager = nodes["manager"]["metrics"];
+  if (nodes.contains("planner")) r.planner = nodes["planner"]["metrics"];
+  return r;
+}
+
+std::vector<std::string> track_args(const std::string& file, const std::string& name, const track::CenterLine& c,
+                                    bool both_walls) {
+  std::vector<std::string> a = {"track=" + file, std::string("wall_side=") + (track::counter_clockwise(c) ? "right" : "left"),
+                                std::string("inner_wall=") + (both_walls ? "true" : "false")};
+  if (name == "IMS") a.insert(a.end(), {"bank_mode=curvature", "bank_deg=9.2"});
+  return a;
+}
+
+}  // namespace brickyard::bench
