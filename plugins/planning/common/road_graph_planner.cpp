@@ -50,6 +50,7 @@ bool RoadGraphPlanner::committed_blocked(const std::vector<Piece>& pieces, const
   const double L = line_.length();
   SearchParams keep = p_.search;
   keep.clearance = std::min(p_.keep_clearance, p_.search.clearance);
+  if (obs.empty()) return false;
   for (const Piece& pc : pieces) {
     // In s relative to the piece's start, as the obstacles below.
     const EdgeShape e{0, pc.shape.d_a, pc.shape.s_b - pc.shape.s_a, pc.shape.d_b};
@@ -169,6 +170,7 @@ std::vector<std::pair<std::uint32_t, double>> RoadGraphPlanner::lead_ins(double 
 double RoadGraphPlanner::stop_at(const std::vector<Piece>& pieces, const std::vector<FrenetObstacle>& obs) const {
   const double L = line_.length();
   double stop = pieces.back().shape.s_b;
+  if (obs.empty()) return stop;
   for (const Piece& pc : pieces) {
     const EdgeShape e{0, pc.shape.d_a, pc.shape.s_b - pc.shape.s_a, pc.shape.d_b};
     const double hw = swept_half_width(g_.params().half_width, max_kappa(pc.shape), p_.search);
