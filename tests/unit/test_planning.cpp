@@ -309,3 +309,28 @@ TEST(MinTime, BadInputIsRefused) {
   bad.width_right.pop_back();
   EXPECT_THROW(min_time_refine(bad, {}, l), std::invalid_argument);
 }
+
+// A racing line file with a point beyond an edge is refused, naming the point; one inside but
+// nearer an edge than the margin is pulled in (TUM's lines pass within 0.6 m of IMS's edges).
+TEST(LineSetup, AFileLineThatLeavesTheTrackIsRefused) {
+  using brickyard::track::CenterLine;
+  const int n = static_cast<int>(2 * M_PI * 200 / 5);
+  brickyard::track::TrackGeometry geo;
+  geo.line = circle_line<CenterLine>(200, n, 6);
+  const brickyard::track::Track track(geo);
+  LineSource src;
+  src.edge_margin = 2;
+  src.file_line = circle_line<CenterLine>(205, n, 0);  // 5 m outside the centre: 1 m within the outer edge
+  const auto kept = line_points(src, &track);
+  ASSERT_EQ(kept.x.size(), src.file_line.x.size());
+  EXPECT_LT(std::hypot(kept.x[0], kept.y[0]), 205 - 0.9);  // pulled in to the margin
+  src.file_line.x[10] *= 1.05;  // that point 10 m further out: 9 m beyond the edge
+  src.file_line.y[10] *= 1.05;
+  try {
+    line_points(src, &track);
+    FAIL() << "accepted";
+  } catch (const LineLeavesTrack& e) {
+    EXPECT_NE(std::string(e.what()).find("point 11 "), std::string::npos) << e.what();  // counted from 1
+  }
+  EXPECT_EQ(line_points(src, nullptr).x.size(), src.file_line.x.size());  // no map: as it is
+}

@@ -13,7 +13,10 @@ track::CenterLine line_points(const LineSource& src, const track::Track* track) 
     if (!track) throw std::invalid_argument("a planned racing line needs the track (wire the map)");
     return plan_line(track->geometry().line, src.plan_limits, src.edge_margin);
   }
-  return track ? motion::keep_inside(src.file_line, *track, src.edge_margin) : src.file_line;
+  if (!track) return src.file_line;
+  if (const std::string where = motion::leaves_track(src.file_line, *track); !where.empty())
+    throw LineLeavesTrack("the line leaves the track: " + where);
+  return motion::keep_inside(src.file_line, *track, src.edge_margin);
 }
 
 Reference make_reference(const LineSource& src, const track::Track* track) {

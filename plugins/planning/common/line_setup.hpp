@@ -9,6 +9,7 @@
 #include "track/track.hpp"
 
 #include <cstdint>
+#include <stdexcept>
 
 namespace brickyard::planning {
 
@@ -31,9 +32,17 @@ struct LineSource {
   double curvature_smooth_m = 30;  // the profile reads the curvature averaged over this
 };
 
+// A racing line file whose points leave the track: what() names the first point and how far
+// beyond which edge it lies.
+struct LineLeavesTrack : std::invalid_argument {
+  using std::invalid_argument::invalid_argument;
+};
+
 // The line's points: planned for the track, or the file's kept inside its edges. `track` may be
 // null (no map): the file's points as they are; a planned line needs the track
-// (std::invalid_argument).
+// (std::invalid_argument). A file's line with a point beyond an edge throws LineLeavesTrack:
+// pulling such a point in (keep_inside) would kink the line where it is wrong, and the car
+// followed it into the wall.
 track::CenterLine line_points(const LineSource& src, const track::Track* track);
 
 Reference make_reference(const LineSource& src, const track::Track* track);

@@ -47,10 +47,10 @@ void RoadGraphPlanner::observe(const std::vector<MapObstacle>& seen, std::int64_
 }
 
 bool RoadGraphPlanner::committed_blocked(const std::vector<Piece>& pieces, const std::vector<FrenetObstacle>& obs) const {
+  if (obs.empty()) return false;
   const double L = line_.length();
   SearchParams keep = p_.search;
   keep.clearance = std::min(p_.keep_clearance, p_.search.clearance);
-  if (obs.empty()) return false;
   for (const Piece& pc : pieces) {
     // In s relative to the piece's start, as the obstacles below.
     const EdgeShape e{0, pc.shape.d_a, pc.shape.s_b - pc.shape.s_a, pc.shape.d_b};
@@ -136,10 +136,9 @@ std::vector<std::pair<std::uint32_t, double>> RoadGraphPlanner::lead_ins(double 
   std::vector<std::pair<std::uint32_t, double>> out;
   for (std::uint32_t n = Ly.first_node; n < Ly.first_node + Ly.count; ++n) {
     const EdgeShape e{-p_.behind, d_c, h, g_.node_d(n)};  // s relative to the car
-    // Its bends first (the body's sweep widens the car by them). The steering check takes the
-    // car's speed now: a lead-in is where the car is put back on a plan, often after its estimate
-    // jumped, and one judged by the speed it could brake to was taken at 60 m/s on a drifted
-    // estimate and put the car off the track (graph.ims_race_60_localization_comes_back).
+    // Its bends first: the body's sweep widens the car by them. (The steering check below takes
+    // the car's speed now for the whole lead-in, stricter than the search's edges, which are
+    // judged by the speed the car can brake to by then.)
     constexpr int kSamples = 10;
     const double ds = (e.s_b - e.s_a) / kSamples;
     double cost = 0, kmax = 0;

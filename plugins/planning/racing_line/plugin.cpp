@@ -72,6 +72,8 @@ class RacingLineNode : public Plugin {
         if (!w) return;
         try {
           line = planning::line_points(src_, std::make_unique<track::Track>(plugins::from_message(*w)).get());
+        } catch (const planning::LineLeavesTrack& e) {
+          throw BadInput(src_.file_line.source + ": " + e.what());
         } catch (const std::exception& e) {  // a malformed map: the file's line as it is; nothing to plan on
           if (src_.plan) throw BadInput(std::string("raceline plan: the map's track cannot be planned on: ") + e.what());
           ctx.log(LogLevel::warn, std::string("map unusable (") + e.what() + "): the racing line is not kept inside the edges");
