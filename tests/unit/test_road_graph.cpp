@@ -610,3 +610,36 @@ TEST(RoadGraphPlanner, WithNoRouteThePathStaysOnTheTrack) {
   ASSERT_FALSE(q.route_found);
   for (const auto& pt : q.points) EXPECT_NEAR(pt.d, 20, 1e-9) << "at s " << pt.s;
 }
+
+// A pylon in the middle of an 8.2 m road: the graph's nodes keep the car's side edge_margin
+// (1.5 m) from the edges, so none lies beside it at any clearance. The car swerves past it,
+// braking, at keep_clearance and no nearer the edge than swerve_edge_margin (Monza, s = 3764 m).
+TEST(RoadGraphPlanner, WithNoNodeBesideAnObstacleTheCarSwervesPastIt) {
+  const RefLine line = stadium();
+  const TrackRoom narrow = [](double) { return std::make_pair(-4.1, 4.1); };
+  const RoadGraph g = RoadGraph::build(line, narrow, RoadGraphParams{});
+  PlannerParams pp;
+  RoadGraphPlanner planner(g, line, std::vector<double>(line.size(), 80.0), pp);
+  const double r = 0.1, hw = g.params().half_width;
+  for (int k = 0; k < pp.confirmations; ++k) planner.observe({{300, 0, r, 0}}, 0);
+  const PlannedPath& p = planner.plan(130, 0, 80);
+  EXPECT_FALSE(p.route_found);
+  ASSERT_TRUE(p.swerve);
+  const SearchParams sp;
+  for (const auto& q : p.points) {
+    EXPECT_LE(std::abs(q.d), 4.1 - hw - pp.swerve_edge_margin + 1e-6) << "at s " << q.s;
+    if (q.x >= 300 - sp.car_front - r && q.x <= 300 + sp.car_rear + r)
+      EXPECT_GE(std::abs(q.y) - hw - r, pp.keep_clearance) << "beside the pylon at s " << q.s;
+  }
+  double at_pylon = 0;  // braking: slower there than the car is now
+  for (std::size_t i = 0; i < p.points.size(); ++i)
+    if (std::abs(p.points[i].x - 300) < 1.5) at_pylon = p.speed[i];
+  EXPECT_GT(at_pylon, 0);
+  EXPECT_LT(at_pylon, 60);
+  // The road blocked from edge to edge: no swerve, the car stops (StopsBeforeARoadBlockedFromEdgeToEdge).
+  RoadGraphPlanner blocked(g, line, std::vector<double>(line.size(), 80.0), pp);
+  std::vector<MapObstacle> wall;
+  for (double d = -4; d <= 4; d += 0.5) wall.push_back({300, d, 0.3, 0});
+  for (int k = 0; k < pp.confirmations; ++k) blocked.observe(wall, 0);
+  EXPECT_FALSE(blocked.plan(130, 0, 80).swerve);
+}

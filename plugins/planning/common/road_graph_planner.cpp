@@ -79,6 +79,63 @@ namespace {
 constexpr double kInBandSlope = 0.05;  // m across per m along: 3°
 }  // namespace
 
+std::vector<RoadGraphPlanner::Piece> RoadGraphPlanner::emergency_swerve(double s_c, double d_c, double speed,
+                                                                        const std::vector<FrenetObstacle>& obs,
+                                                                        double* past) const {
+  const double L = line_.length(), hw = g_.params().half_width;
+  SearchParams keep = p_.search;
+  keep.clearance = std::min(p_.keep_clearance, p_.search.clearance);
+  // The nearest obstacle in the way of the car going on at its offset.
+  const FrenetObstacle* first = nullptr;
+  double ahead = 0;
+  for (const auto& o : obs) {
+    const double r = relative_s(o.s, s_c, L);
+    if (r <= 0 || r > p_.search.horizon) continue;
+    if (std::abs(o.d - d_c) >= o.radius + hw + keep.clearance) continue;
+    if (!first || r < ahead) { first = &o; ahead = r; }
+  }
+  if (!first) return {};
+  // Where the car's nose reaches the obstacle. (A car that could stop before it swerves too: one
+  // stopped there has no lead-in sharp enough to go round, and would stand.)
+  const double reach = ahead - p_.search.car_front - first->radius;
+  if (reach < 5.0) return {};
+  // The sides: the emergency band at the obstacle (the graph's band widened to swerve_edge_margin).
+  const auto& Ly = g_.layers()[g_.layer_at_or_after(first->s)];
+  const double step = g_.params().lateral_step, widen = std::max(0.0, g_.params().edge_margin - p_.swerve_edge_margin);
+  const double lo = Ly.k0 * step - widen, hi = (Ly.k0 + static_cast<double>(Ly.count) - 1) * step + widen;
+  std::vector<Piece> best;
+  double best_move = 1e300;
+  for (const int side : {-1, +1}) {
+    // The sweep of the lane change itself is not known before its shape: take the largest the
+    // graph allows (its curvature limit) and check the shape after.
+    const double need = first->radius + swept_half_width(hw, 0.0, keep) + keep.clearance + 0.05;
+    const double d_t = first->d + side * need;
+    if (d_t < lo || d_t > hi || std::abs(d_t - d_c) >= best_move) continue;
+    const double s0 = s_c, s1 = s_c + reach, s2 = first->s + (first->s < s_c ? L : 0.0) + p_.search.car_rear + first->radius + 5;
+    std::vector<Piece> ps = {{EdgeShape{s0 - p_.behind, d_c, s0, d_c}, kNoNode},
+                             {EdgeShape{s0, d_c, s1, d_t}, kNoNode},
+                             {EdgeShape{s1, d_t, s2, d_t}, kNoNode}};
+    const double kmax = max_kappa(ps[1].shape);
+    if (kmax > g_.params().max_curvature || (keep.lateral_accel > 0 && kmax * speed * speed > keep.lateral_accel)) continue;
+    bool clear = true;
+    for (const Piece& pc : ps) {
+      const EdgeShape e{0, pc.shape.d_a, pc.shape.s_b - pc.shape.s_a, pc.shape.d_b};
+      const double w = swept_half_width(hw, max_kappa(pc.shape), keep);
+      for (const auto& o : obs) {
+        FrenetObstacle r = o;
+        r.s = relative_s(o.s, pc.shape.s_a, L);
+        if (edge_blocked(e, r, w, keep)) clear = false;
+      }
+    }
+    if (!clear) continue;
+    append_in_band(ps, s2, d_t, p_.search.horizon);
+    best = std::move(ps);
+    best_move = std::abs(d_t - d_c);
+    *past = s2;
+  }
+  return best;
+}
+
 void RoadGraphPlanner::append_in_band(std::vector<Piece>& pieces, double s_a, double d_a, double length) const {
   const double L = line_.length(), step = g_.params().lateral_step;
   const int nl = static_cast<int>(g_.layers().size());
@@ -265,6 +322,17 @@ const PlannedPath& RoadGraphPlanner::plan(double x, double y, double speed) {
   }
   // No route: stop. On what the car is committed to while it is usable (it then stays put),
   // else on a straight line at the car's offset.
+  // An obstacle in the car's way with no route round it in the graph: swerve past it, braking,
+  // nearer the edge than the graph goes.
+  double past = 0;
+  if (std::vector<Piece> swerve = emergency_swerve(s_c, d_c, speed, obs, &past); !swerve.empty()) {
+    pieces_ = std::move(swerve);
+    out_.restarted = true;
+    out_.swerve = true;
+    stopping_ = false;  // next cycle: a route if one opens, else the swerve again from where the car is
+    make_path(speed, true, past);
+    return out_;
+  }
   if (!(stopping_ && usable)) {
     if (usable) {
       pieces_ = kept;

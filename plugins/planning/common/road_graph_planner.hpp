@@ -48,6 +48,11 @@ struct PlannerParams {
   // moves by centimetres: without this margin a swerve made at exactly the clearance flickered
   // between planned and blocked, and the car, too near by then for any other way, braked.
   double keep_clearance = 1.0;
+  // m between the car's side and the track's edge that an emergency swerve may use (the graph's
+  // nodes keep edge_margin): with no route at any clearance and an obstacle in the car's way,
+  // the car swerves past it braking, nearer the edge than the graph goes (Monza's 8.2 m straight
+  // has no node beside a pylon on its centre line).
+  double swerve_edge_margin = 0.5;
 };
 
 struct MapObstacle {
@@ -61,6 +66,7 @@ struct PlannedPath {
   std::vector<double> speed;       // m/s per point
   bool route_found = false;        // false: every route was blocked; the path brakes to a stop
   bool restarted = false;          // the committed part was dropped this cycle
+  bool swerve = false;             // no route: an emergency swerve past the obstacle, braking
   std::size_t edges_relaxed = 0;
 };
 
@@ -99,6 +105,12 @@ class RoadGraphPlanner {
   void append_in_band(std::vector<Piece>& pieces, double s_a, double d_a, double length) const;
   // The largest |κ| along a piece (s on the line), from ten samples as the graph's edges.
   double max_kappa(const EdgeShape& e) const;
+  // With no route: a lane change from the car (s_c, d_c) past the nearest obstacle in its way,
+  // to the side it reaches with less sideways travel, at keep_clearance and within
+  // swerve_edge_margin of the track's edge; steerable at the car's speed and clear of every
+  // obstacle; `past`: where the car is past the obstacle. Empty when there is none.
+  std::vector<Piece> emergency_swerve(double s_c, double d_c, double speed, const std::vector<FrenetObstacle>& obs,
+                                      double* past) const;
   void make_path(double speed, bool stop, double stop_s);
   const RoadGraph& g_;
   const RefLine& line_;

@@ -72,6 +72,8 @@ ParamBinding<Settings> bindings() {
   b.bind("max_edge_length", graph, &G::max_edge_length).in_unit("m").range(5, 500);
   b.bind("horizon", planner, search, &S::horizon).in_unit("m").range(20, 2000);
   b.bind("clearance", planner, search, &S::clearance).in_unit("m").at_least(0).doc("least gap between the car's side and an obstacle");
+  b.bind("swerve_edge_margin", planner, &P::swerve_edge_margin).in_unit("m").at_least(0)
+      .doc("with no route round an obstacle in the graph, an emergency swerve past it may keep the car's side this near the track's edge");
   b.bind("keep_clearance", planner, &P::keep_clearance).in_unit("m").at_least(0)
       .doc("a plan already made is dropped only when an obstacle comes nearer than this (detections move by centimetres); "
            "with no way at clearance, the search tries this before the car stops (at most clearance)");
@@ -197,7 +199,8 @@ class RoadGraphNode : public Plugin {
         }
         const Eigen::Vector2d c = line_ready_.line.to_frenet(car.x(), car.y());
         char b[96];
-        std::snprintf(b, sizeof b, "no route: braking to a stop (car at s %.1f, d %.1f); obstacles: ", c.x(), c.y());
+        std::snprintf(b, sizeof b, "no route: %s (car at s %.1f, d %.1f); obstacles: ",
+                      plan.swerve ? "an emergency swerve past, braking" : "braking to a stop", c.x(), c.y());
         ctx.log(LogLevel::warn, b + (what.empty() ? std::string("none") : what));
       }
       stopping_ = true;
@@ -206,6 +209,7 @@ class RoadGraphNode : public Plugin {
       stopping_ = false;
     }
     if (plan.restarted) ++restarts_;
+    if (plan.swerve) ++swerves_;
     obstacles_max_ = std::max(obstacles_max_, planner_->obstacles().size());
     std::size_t confirmed = 0;  // seen often enough to be planned around
     for (const auto& o : planner_->obstacles()) confirmed += o.seen >= pp_.confirmations;
@@ -235,6 +239,7 @@ class RoadGraphNode : public Plugin {
     ctx.metric("restarts", static_cast<double>(restarts_));
     ctx.metric("obstacles_remembered_max", static_cast<double>(obstacles_max_));
     ctx.metric("obstacles_planned_around_max", static_cast<double>(planned_around_max_));
+    ctx.metric("emergency_swerves", static_cast<double>(swerves_));
     ctx.metric("detections_off_track", static_cast<double>(off_track_));
     if (planner_) {
       ctx.metric("planned_lap_s", planned_lap_s_);
@@ -301,7 +306,7 @@ class RoadGraphNode : public Plugin {
   std::unique_ptr<RoadGraphPlanner> planner_;
   std::deque<std::shared_ptr<const msgs::LocalizationEstimate>> poses_;
   std::uint32_t seq_ = 0;
-  std::size_t blocked_ = 0, restarts_ = 0, obstacles_max_ = 0, planned_around_max_ = 0, off_track_ = 0;
+  std::size_t blocked_ = 0, restarts_ = 0, swerves_ = 0, obstacles_max_ = 0, planned_around_max_ = 0, off_track_ = 0;
   double edge_band_ = 1.0, place_sigmas_ = 2.0, planned_lap_s_ = 0;
   std::unique_ptr<track::Track> track_;  // the map's, once it came
   bool stopping_ = false;
