@@ -58,27 +58,21 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "eval_pylons: --layout %s: outer or both\n", layout.c_str());
     return 2;
   }
-  std::vector<fs::path> files;
-  for (const auto& e : fs::directory_iterator(tracks))
-    if (e.path().extension() == ".csv") files.push_back(fs::absolute(e.path()));
-  std::sort(files.begin(), files.end());
   const std::string dir = std::getenv("EVAL_PYLONS_DIR") ? std::getenv("EVAL_PYLONS_DIR") : "/tmp/eval_pylons";
   fs::create_directories(dir);
   const std::string graph = src + "/configs/race.json";
   std::printf("| track | walls | pylon runs clean | least pylon clearance | least wall clearance |\n|---|---|---|---|---|\n");
   bool all_ok = true;
-  for (const auto& f : files) {
-    const std::string name = f.stem().string();
-    brickyard::track::CenterLine c;
-    try {
-      c = brickyard::track::load_centerline_csv(f.string());
-    } catch (const std::exception& e) {
-      std::printf("| %s | %s |\n", name.c_str(), e.what());
+  for (const auto& tf : brickyard::bench::track_files(tracks)) {
+    const std::string& name = tf.name;
+    const brickyard::track::CenterLine& c = tf.line;
+    if (!tf.error.empty()) {
+      std::printf("| %s | %s |\n", name.c_str(), tf.error.c_str());
       all_ok = false;
       continue;
     }
     const double L = lap_length(c);
-    const std::vector<std::string> base = brickyard::bench::track_args(f.string(), name, c, layout == "both");
+    const std::vector<std::string> base = brickyard::bench::track_args(tf.path, name, c, layout == "both");
     std::vector<RaceRun> runs(places);
     std::vector<std::pair<double, double>> at(places);
     std::atomic<int> next{0};

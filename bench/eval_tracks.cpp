@@ -65,29 +65,23 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
-  std::vector<fs::path> files;
-  for (const auto& e : fs::directory_iterator(tracks))
-    if (e.path().extension() == ".csv") files.push_back(fs::absolute(e.path()));
-  std::sort(files.begin(), files.end());
   const std::string dir = std::getenv("EVAL_TRACKS_DIR") ? std::getenv("EVAL_TRACKS_DIR") : "/tmp/eval_tracks";
   fs::create_directories(dir);
   const std::string graph = src + "/configs/race.json";
   std::printf("| track | walls | laps | contacts | violations | least clearance | flying lap (× planned) | planned | fault runs clean | back on the path | longest wall following | phantoms | real time |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   bool all_ok = true;
-  for (const auto& f : files) {
-    const std::string name = f.stem().string();
-    brickyard::track::CenterLine c;
-    try {
-      c = brickyard::track::load_centerline_csv(f.string());
-    } catch (const std::exception& e) {
-      std::printf("| %s | %s |\n", name.c_str(), e.what());
+  for (const auto& tf : brickyard::bench::track_files(tracks)) {
+    const std::string& name = tf.name;
+    const brickyard::track::CenterLine& c = tf.line;
+    if (!tf.error.empty()) {
+      std::printf("| %s | %s |\n", name.c_str(), tf.error.c_str());
       all_ok = false;
       continue;
     }
     for (const char* layout : {"outer", "both"}) {
       if (!only_layout.empty() && only_layout != layout) continue;
-      const std::vector<std::string> base = brickyard::bench::track_args(f.string(), name, c, std::strcmp(layout, "both") == 0);
+      const std::vector<std::string> base = brickyard::bench::track_args(tf.path, name, c, std::strcmp(layout, "both") == 0);
       const std::string tag = dir + "/" + name + "_" + layout;
       const Run clean = run(by, graph, base, seed, tag + "_clean", domain0);
       const json& laps = clean.referee.contains("lap_times_s") ? clean.referee["lap_times_s"] : json::array();

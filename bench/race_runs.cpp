@@ -1,6 +1,8 @@
 #include "race_runs.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <cstdlib>
 #include <fstream>
 
@@ -45,6 +47,25 @@ RaceRun run_race(const std::string& host, const std::string& graph, const std::v
   if (nodes.contains("manager")) r.manager = nodes["manager"]["metrics"];
   if (nodes.contains("planner")) r.planner = nodes["planner"]["metrics"];
   return r;
+}
+
+std::vector<TrackFile> track_files(const std::string& dir) {
+  namespace fs = std::filesystem;
+  std::vector<fs::path> paths;
+  for (const auto& e : fs::directory_iterator(dir))
+    if (e.path().extension() == ".csv") paths.push_back(fs::absolute(e.path()));
+  std::sort(paths.begin(), paths.end());
+  std::vector<TrackFile> out;
+  for (const auto& f : paths) {
+    TrackFile t{f.string(), f.stem().string(), {}, {}};
+    try {
+      t.line = track::load_centerline_csv(t.path);
+    } catch (const std::exception& e) {
+      t.error = e.what();
+    }
+    out.push_back(std::move(t));
+  }
+  return out;
 }
 
 std::vector<std::string> track_args(const std::string& file, const std::string& name, const track::CenterLine& c,

@@ -25,6 +25,14 @@ double metric(const nlohmann::json& metrics, const char* name);
 RaceRun run_race(const std::string& host, const std::string& graph, const std::vector<std::string>& args,
                  const std::vector<std::string>& sets, int seed, const std::string& dir, int domain);
 
+// The track files (*.csv) of a folder, sorted by path, each loaded, or with why it could not be.
+struct TrackFile {
+  std::string path, name;  // absolute path; the file's stem
+  track::CenterLine line;
+  std::string error;       // not empty: the file could not be loaded
+};
+std::vector<TrackFile> track_files(const std::string& dir);
+
 // The race graph's arguments for a track file: the track, its outer wall's side (the outside of
 // the loop: right on an anticlockwise track), an inner wall too when `both_walls`. IMS is banked
 // as the simulator has it by default (9.2°); every other track is taken flat.

@@ -171,18 +171,23 @@ TEST(WallFit, TooFewOrTooShortIsNotValid) {
   EXPECT_EQ(fit_wall(p, {}, wp).cluster, -1);
 }
 
+namespace {
+// One cluster of these points, appended to the cloud.
+void add_cluster(Points& p, std::vector<std::vector<int>>& clusters, std::initializer_list<Point> q) {
+  clusters.emplace_back();
+  for (const Point& x : q) {
+    clusters.back().push_back(static_cast<int>(p.size()));
+    p.push_back(x);
+  }
+}
+}  // namespace
+
 // A pylon on the road is an obstacle; the wall, a cluster hugging it, and things beyond it or
 // outside the corridor are not.
 TEST(Obstacles, InsideTheCorridorAndNotWall) {
   Points p;
   std::vector<std::vector<int>> clusters;
-  auto add = [&](std::initializer_list<Point> q) {
-    clusters.emplace_back();
-    for (const Point& x : q) {
-      clusters.back().push_back(static_cast<int>(p.size()));
-      p.push_back(x);
-    }
-  };
+  auto add = [&](std::initializer_list<Point> q) { add_cluster(p, clusters, q); };
   add({{40, 1, 0.1f}, {40.2f, 1.2f, 0.4f}, {40.1f, 0.9f, 0.6f}});   // pylon: obstacle
   add({{20, -7.8f, 0.2f}, {21, -7.8f, 0.5f}, {22, -7.7f, 0.3f}});  // on the right wall's face
   add({{30, -12, 0.2f}, {30, -12, 0.5f}, {30.2f, -12, 0.3f}});     // beyond the right wall
@@ -213,13 +218,7 @@ TEST(Obstacles, InsideTheCorridorAndNotWall) {
 TEST(Obstacles, FarPastAFittedWallOnlyItsLineIsWall) {
   Points p;
   std::vector<std::vector<int>> clusters;
-  auto add = [&](std::initializer_list<Point> q) {
-    clusters.emplace_back();
-    for (const Point& x : q) {
-      clusters.back().push_back(static_cast<int>(p.size()));
-      p.push_back(x);
-    }
-  };
+  auto add = [&](std::initializer_list<Point> q) { add_cluster(p, clusters, q); };
   add({{186, 9, 0.1f}, {186.2f, 9.1f, 0.4f}, {186.1f, 8.9f, 0.6f}});   // 3 m beyond the left wall's line: obstacle
   add({{180, 6.5f, 0.2f}, {181, 6.6f, 0.5f}, {182, 6.5f, 0.3f}});      // 0.5 m beyond it: wall
   add({{40, 7.5f, 0.2f}, {40.2f, 7.5f, 0.5f}, {40.1f, 7.5f, 0.3f}});   // 1.5 m beyond where it is known: wall
