@@ -5,7 +5,11 @@
 //     Prints rays per second and the LiDAR-only real-time factor (one frame = 1/20 s).
 //  2. The full simulator graph configs/sim_truth_lap.json (car at 500 Hz, 2 GNSS, IMU, wheels,
 //     3 LiDARs, referee, driver) on the sim clock: sim_time_s / wall_time_s against real time (1x),
-//     without recording (the simulator) and recording as a plain --out run does (beside it).
+//     without recording (the simulator) and recording as a plain --out run does (beside it), and
+//     stepped on one thread (--threads 1: no node stepped side by side).
+//  3. The whole stack, configs/race.json on Spielberg (walls at both edges, no fault): the same
+//     factor, the executive's default threads against --threads 1 and against the simulator alone
+//     (issue 16's target: 15x).
 // usage: bench_sim [--quick]
 #include "common/lidar.hpp"
 #include "common/track.hpp"
@@ -70,7 +74,7 @@ int main(int argc, char** argv) {
   std::printf("LiDAR ray casting, IMS, 3 sensors x 32 x 850 rays, %zu poses around the track\n", poses.size());
   std::printf("%-34s %14s %12s %14s\n", "caster", "Mrays/s", "ms/frame", "LiDAR x RT");
   double ours_rate = 0, base_rate = 0, one_thread_rate = 0;
-  // Ours on two threads (the default), ours on one, the baseline (one thread, no blocks).
+  // Ours on two threads, ours on one (the plugin's default), the baseline (one thread, no blocks).
   for (int config : {0, 1, 2}) {
     const bool blocks = config < 2;
     std::vector<LidarCaster> casters;
@@ -114,29 +118,46 @@ int main(int argc, char** argv) {
   // cost, shown beside). Runs alternate so that both see the same load.
   const std::string by = BRICKYARD_HOST;
   const double duration = quick ? 20 : 60;
-  std::vector<double> factors, recorded, one_thread;
-  const std::string one = " --set lidar_front.threads=1 --set lidar_left.threads=1 --set lidar_right.threads=1";
+  std::vector<double> factors, recorded, one_thread, stack, stack_one;
+  // sim_time_s / wall_time_s of one run; `expect_fail`: a run cut short by --duration (the race
+  // graph's referee fails it: "did not finish") still measures.
+  auto factor = [&](const std::string& graph, const std::string& opts, bool expect_fail, double& out) {
+    const std::string dir = "/tmp/bench_sim_run";
+    const std::string cmd = by + " run " + src + "/configs/" + graph + " --duration " + std::to_string(duration) + " --out " + dir +
+                            " " + opts + " > /dev/null 2>&1";
+    const int rc = std::system(cmd.c_str());
+    std::ifstream f(dir + "/summary.json");
+    if ((rc != 0 && !expect_fail) || !f) {
+      std::printf("run failed (exit %d): %s\n", rc, cmd.c_str());
+      return false;
+    }
+    auto j = nlohmann::json::parse(f);
+    out = j["sim_time_s"].get<double>() / j["wall_time_s"].get<double>();
+    return true;
+  };
+  const std::string race = "--arg track=tracks/Spielberg.csv --arg wall_side=left --arg inner_wall=true --no-report";
   for (int i = 0; i < (quick ? 1 : 3); ++i)
-    for (int mode : {0, 1, 2}) {  // as it runs; recording; the LiDARs on one thread
-      const bool record = mode == 1;
-      const std::string out = "/tmp/bench_sim_run";
-      std::string cmd = by + " run " + src + "/configs/sim_truth_lap.json --duration " + std::to_string(duration) +
-                        " --set referee.laps=0 --out " + out + (record ? "" : " --no-report") + (mode == 2 ? one : "") +
-                        " > /dev/null 2>&1";
-      int rc = std::system(cmd.c_str());
-      std::ifstream f(out + "/summary.json");
-      if (rc != 0 || !f) {
-        std::printf("full simulator run failed (exit %d): %s\n", rc, cmd.c_str());
-        return 1;
-      }
-      auto j = nlohmann::json::parse(f);
-      (mode == 1 ? recorded : mode == 2 ? one_thread : factors).push_back(j["sim_time_s"].get<double>() / j["wall_time_s"].get<double>());
+    for (int mode : {0, 1, 2, 3, 4}) {  // the simulator: as it runs, recording, one thread; the stack: as it runs, one thread
+      double x = 0;
+      const bool ok = mode < 3 ? factor("sim_truth_lap.json", std::string("--set referee.laps=0") + (mode == 1 ? "" : " --no-report") +
+                                                                  (mode == 2 ? " --threads 1" : ""), false, x)
+                               : factor("race.json", race + (mode == 4 ? " --threads 1" : ""), true, x);
+      if (!ok) return 1;
+      (mode == 0 ? factors : mode == 1 ? recorded : mode == 2 ? one_thread : mode == 3 ? stack : stack_one).push_back(x);
     }
   std::printf("full simulator (configs/sim_truth_lap.json, %.0f s of sim time, %zu runs each)\n", duration, factors.size());
   std::printf("%-34s %14s\n", "", "x real time");
   std::printf("%-34s %14.1f\n", "ours: sim clock", median(factors));
   std::printf("%-34s %14.1f\n", "  the same, recording (--out)", median(recorded));
-  std::printf("%-34s %14.1f\n", "  the same, LiDARs on one thread", median(one_thread));
+  std::printf("%-34s %14.1f\n", "  the same, on one thread", median(one_thread));
   std::printf("%-34s %14.1f\n", "baseline: real time", 1.0);
+  std::printf("\nthe whole stack (configs/race.json, Spielberg, walls at both edges, %.0f s of sim time, %zu runs each)\n",
+              duration, stack.size());
+  std::printf("%-34s %14s\n", "", "x real time");
+  std::printf("%-34s %14.1f\n", "ours: sim clock", median(stack));
+  std::printf("%-34s %14.1f\n", "baseline: on one thread", median(stack_one));
+  std::printf("%-34s %14.1f\n", "the simulator alone (above)", median(factors));
+  std::printf("ratio ours / one thread: %.2f; ours / the simulator alone: %.2f\n", median(stack) / median(stack_one),
+              median(stack) / median(factors));
   return 0;
 }

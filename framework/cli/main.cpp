@@ -53,6 +53,10 @@ options:
   --no-report          with --out: the summary alone (also the case with --process)
   --record FILE        record every wire's samples into FILE (SQLite; docs/recording.md)
   --record-only P,...  record only the topics NODE.PORT matching these patterns ('*' any)
+  --threads N          sim clock: step nodes that cannot see each other on N threads (default:
+                       the machine's cores, at most 4); the run is the same on any number
+  --profile            time each node's steps on the wall clock: a table at the end, sorted by
+                       time, and "step_wall_s" per node in the summary (docs/performance.md)
 
 exit codes: 0 success, 1 the run failed, 2 invalid input
 )";
@@ -64,8 +68,9 @@ struct Args {
   std::optional<double> duration;
   std::optional<int> domain;
   double progress = -1;
+  int threads = 0;
   std::uint64_t seed = 0;
-  bool json = false, dot = false, quiet = false, no_report = false;
+  bool json = false, dot = false, quiet = false, no_report = false, profile = false;
 };
 
 [[noreturn]] void usage_error(const std::string& where, const std::string& msg) {
@@ -113,6 +118,13 @@ Args parse_args(int argc, char** argv) {
     else if (f == "--dir") a.dir = value();
     else if (f == "--record") a.record = value();
     else if (f == "--no-report") a.no_report = true;
+    else if (f == "--profile") a.profile = true;
+    else if (f == "--threads") {
+      const std::string s = value();
+      if (s.empty() || s.size() > 3 || s.find_first_not_of("0123456789") != std::string::npos || std::stoi(s) < 1 || std::stoi(s) > 64)
+        usage_error("--threads " + s, "expected an integer from 1 to 64");
+      a.threads = std::stoi(s);
+    }
     else if (f == "--progress") {
       a.progress = parse_number(f, value());
       if (!(a.progress >= 0)) usage_error("--progress", "expected seconds, 0 or more");
@@ -210,6 +222,34 @@ std::string summary_table(const nlohmann::json& j) {
   return out;
 }
 
+// --profile: where the run's wall time went, node by node, most first.
+std::string profile_table(const nlohmann::json& j) {
+  std::vector<std::pair<double, std::string>> rows;
+  std::size_t wn = 4;
+  double total = 0;
+  for (const auto& [name, n] : j["nodes"].items()) {
+    const double s = n.value("step_wall_s", 0.0);
+    rows.emplace_back(s, name);
+    wn = std::max(wn, name.size());
+    total += s;
+  }
+  std::sort(rows.begin(), rows.end(), [](const auto& a, const auto& b) { return a.first > b.first || (a.first == b.first && a.second < b.second); });
+  const double wall = j.value("wall_time_s", 0.0);
+  std::string out;
+  char row[256];
+  std::snprintf(row, sizeof row, "%-*s  %10s  %10s  %8s\n", static_cast<int>(wn), "node", "step ms", "us/step", "of wall");
+  out += row;
+  for (const auto& [s, name] : rows) {
+    const auto steps = j["nodes"][name].value("steps", 0ull);
+    std::snprintf(row, sizeof row, "%-*s  %10.1f  %10.1f  %7.1f%%\n", static_cast<int>(wn), name.c_str(), s * 1e3,
+                  steps ? s * 1e6 / static_cast<double>(steps) : 0.0, wall > 0 ? 100 * s / wall : 0.0);
+    out += row;
+  }
+  std::snprintf(row, sizeof row, "%-*s  %10.1f  %10s  %7.1f%%  (the rest: the host, the transport, start and end)\n", static_cast<int>(wn),
+                "all nodes", total * 1e3, "", wall > 0 ? 100 * total / wall : 0.0);
+  return out + row;
+}
+
 int cmd_run(const Args& a, bool validate_only) {
   if (a.target.empty()) usage_error(a.command, "needs a graph file");
   GraphDecl g = load_graph_file(a.target, a.sets, a.args);
@@ -237,6 +277,8 @@ int cmd_run(const Args& a, bool validate_only) {
   opt.record = a.record;
   opt.progress_s = a.progress;
   opt.record_only = a.record_only;
+  opt.profile = a.profile;
+  opt.threads = a.threads;
   if (!a.record_only.empty() && a.record.empty()) usage_error("--record-only", "needs --record FILE");
   // --out keeps the run: its summary, a recording of everything but the point clouds (those
   // are large; --record takes them) and the report drawn from it. The folder's own recording
@@ -274,6 +316,7 @@ int cmd_run(const Args& a, bool validate_only) {
     s = ex.run();
   }
   if (!a.quiet) std::fputs(summary_table(s.json).c_str(), stderr);
+  if (a.profile) std::fputs(profile_table(s.json).c_str(), stderr);
   std::fprintf(stderr, "[brickyard] %s: %s (sim %.3f s, wall %.3f s)\n", to_string(s.result), s.reason.c_str(),
                s.sim_time_s, s.wall_time_s);
   // The folder's own recording is named relative to the folder: the summary of two identical

@@ -1,6 +1,7 @@
 #pragma once
 // Port endpoints: a bounded queue per input, a fan-out per output. Same-process readers get
 // the publisher's object by pointer; the DDS writer serializes only for remote readers.
+#include "exec/deferral.hpp"
 #include "transport/dds.hpp"
 
 #include <brickyard/context.hpp>
@@ -67,6 +68,10 @@ class OutputPort final : public detail::OutputChannel {
 
   void publish(std::shared_ptr<const void> s) override {
     if (!s) return;
+    if (t_deferred) {  // stepped ahead of its turn: delivered at the turn
+      t_deferred->emplace_back([this, s = std::move(s)]() mutable { publish(std::move(s)); });
+      return;
+    }
     ++published_;
     if (tap) tap(s.get());  // the recorder, before anyone downstream runs
     for (InputQueue* q : local) q->push(s);

@@ -13,6 +13,7 @@
 namespace brickyard::fw {
 
 std::atomic<bool> g_interrupt{false};
+thread_local Deferred* t_deferred = nullptr;
 
 const char* to_string(RunResult r) {
   switch (r) {
@@ -49,12 +50,20 @@ void Executive::host_log(const std::string& msg) {
 }
 
 void Executive::set_status(const std::string& node, std::string_view field, std::string_view value) {
+  if (t_deferred) {
+    t_deferred->emplace_back([this, node, f = std::string(field), v = std::string(value)] { set_status(node, f, v); });
+    return;
+  }
   console_.set_status(node, field, value);
 }
 
 void Executive::progress(bool last) { console_.progress(last, sim(), sim_now_ns_); }
 
 void Executive::log(const NodeRuntime& n, LogLevel level, std::string_view msg) {
+  if (t_deferred) {
+    t_deferred->emplace_back([this, &n, level, m = std::string(msg)] { log(n, level, m); });
+    return;
+  }
   if (opt_.quiet && level < LogLevel::warn) return;
   static const char* names[] = {"debug", "info", "warn", "error"};
   double t = sim() ? sim_now_ns_ * 1e-9 : (wall_ns() - real_start_ns_) * 1e-9;
@@ -65,6 +74,10 @@ void Executive::log(const NodeRuntime& n, LogLevel level, std::string_view msg) 
 }
 
 void Executive::request_stop(RunResult r, std::string reason) {
+  if (t_deferred) {
+    t_deferred->emplace_back([this, r, reason = std::move(reason)]() mutable { request_stop(r, std::move(reason)); });
+    return;
+  }
   std::lock_guard<std::mutex> l(stop_m_);
   // A failure outranks an earlier request to finish; otherwise the first request wins.
   if (stop_result_ && !(r == RunResult::failed && *stop_result_ != RunResult::failed)) return;
@@ -95,8 +108,16 @@ bool Executive::call(NodeRuntime& n, const char* phase, const std::function<void
 std::string Executive::find_file(std::string_view path) const { return find_data_file(graph_.decl->file, path); }
 
 void Executive::step(NodeRuntime& n, Trigger t) {
+  if (step_body(n, std::move(t))) ++n.steps;
+}
+
+bool Executive::step_body(NodeRuntime& n, Trigger t) {
   n.trigger = std::move(t);
-  if (call(n, "step", [&] { n.instance->step(*n.ctx); })) ++n.steps;
+  // The wall clock only with --profile: the host's own measurement, never seen by a node.
+  const auto t0 = opt_.profile ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point{};
+  const bool ok = call(n, "step", [&] { n.instance->step(*n.ctx); });
+  if (opt_.profile) n.step_wall_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return ok;
 }
 
 RunSummary Executive::run() {

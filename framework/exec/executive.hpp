@@ -28,6 +28,8 @@ struct RunOptions {
   std::string record;                    // --record FILE: every wire's samples (docs/recording.md)
   std::vector<std::string> record_only;  // --record-only: "node.port" patterns ('*' any); empty: all
   std::vector<std::string> record_skip_types;  // message types not recorded (the --out default skips clouds)
+  int threads = 0;        // sim clock: threads that step nodes (0: the machine's cores, at most 4)
+  bool profile = false;  // --profile: each node's wall time in step, in the summary ("step_wall_s")
 };
 
 enum class RunResult { success, failed, interrupted, invalid_input };
@@ -66,6 +68,7 @@ class Executive {
   void run_sim();
   void run_real();
   void step(NodeRuntime& n, Trigger t);
+  bool step_body(NodeRuntime& n, Trigger t);  // step without counting it: whether it returned
   void host_log(const std::string& msg);
   void progress(bool last = false);  // prints the progress line when it is due (or last)
 

@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <atomic>
 #include <condition_variable>
 #include <memory>
 #include <mutex>
@@ -27,10 +28,17 @@ class NodeRuntime {
   Trigger trigger;
   nlohmann::json metrics = nlohmann::json::object();
   std::uint64_t steps = 0;
+  double step_wall_s = 0;  // with --profile: wall time spent in step
   std::uint64_t seed = 0;
   // sim: queued for an input-triggered step at this instant
   bool queued = false;
   std::string queued_port;
+  // sim: stepped ahead of its turn (sim_scheduler.cpp): 0 not, 1 handed out, 2 stepping,
+  // 3 stepped; its trigger, whether the step returned, and what it did, kept for its turn
+  std::atomic<int> ahead{0};
+  Trigger ahead_trigger;
+  bool ahead_ok = false;
+  Deferred deferred;
   // real: wake-up for input triggers
   std::mutex m;
   std::condition_variable cv;

@@ -1,17 +1,86 @@
-// Executive::run_sim: the sim clock. One thread, discrete events: at each instant the due
-// periodic nodes step in schedule order (upstream first), and a published sample steps its
-// input-triggered subscribers at the same instant, in publish order, before the next timer.
-// Nothing here reads the wall clock, so a graph and a seed make the same run, bit for bit.
+// Executive::run_sim: the sim clock. Discrete events: at each instant the due periodic nodes step
+// in schedule order (upstream first), and a published sample steps its input-triggered
+// subscribers at the same instant, in publish order, before the next timer. That order is the
+// run: nothing here reads the wall clock, so a graph and a seed make the same run, bit for bit.
+//
+// Steps that cannot see each other run side by side (docs/performance.md). Before each turn, the
+// steps queued later in the instant that nothing queued before them can change — no sample of an
+// earlier step, nor of the steps that sample triggers in turn, reaches them — are handed out to
+// helper threads. A step run ahead sees exactly the inputs it would have seen at its turn, and
+// what it does (publish, log, fail) is kept and done at its turn, in order. So the run is the
+// same bit for bit on any number of threads; the one thing threads cannot undo: when a step ends
+// the run, the steps already handed out at that instant have stepped (their effects dropped), on
+// one thread as on four, so that too is the same.
+#include "exec/ahead_pool.hpp"
 #include "exec/executive.hpp"
 #include "exec/node_runtime.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <deque>
 #include <functional>
+#include <map>
 #include <queue>
+#include <thread>
 
 namespace brickyard::fw {
+
+namespace {
+
+// Sets of nodes (by schedule position) as bits.
+struct NodeSet {
+  std::vector<std::uint64_t> w;
+  explicit NodeSet(std::size_t n = 0) : w((n + 63) / 64, 0) {}
+  bool has(std::size_t i) const { return (w[i >> 6] >> (i & 63)) & 1; }
+  void add(std::size_t i) { w[i >> 6] |= std::uint64_t{1} << (i & 63); }
+  void add(const NodeSet& o) {
+    for (std::size_t k = 0; k < w.size(); ++k) w[k] |= o.w[k];
+  }
+  void clear() { std::fill(w.begin(), w.end(), 0); }
+};
+
+// Per node: the nodes whose inputs a step of it can change within the same instant — those its
+// outputs reach, and, for each of those its sample triggers, theirs in turn.
+std::vector<NodeSet> reach_within_instant(const std::vector<std::unique_ptr<NodeRuntime>>& nodes) {
+  const std::size_t n = nodes.size();
+  std::map<const InputQueue*, std::size_t> owner;
+  for (std::size_t i = 0; i < n; ++i)
+    for (auto& in : nodes[i]->inputs) owner[in.get()] = i;
+  std::vector<NodeSet> direct(n, NodeSet(n)), triggers(n, NodeSet(n));
+  for (std::size_t i = 0; i < n; ++i)
+    for (auto& out : nodes[i]->outputs)
+      for (const InputQueue* q : out->local) {
+        const std::size_t j = owner.at(q);
+        direct[i].add(j);
+        if (nodes[j]->rn->trigger_inputs.count(q->name())) triggers[i].add(j);
+      }
+  std::vector<NodeSet> reach(n, NodeSet(n));
+  for (std::size_t i = 0; i < n; ++i) {
+    NodeSet seen(n);
+    std::vector<std::size_t> stack{i};
+    seen.add(i);
+    while (!stack.empty()) {
+      const std::size_t a = stack.back();
+      stack.pop_back();
+      reach[i].add(direct[a]);
+      for (std::size_t j = 0; j < n; ++j)
+        if (triggers[a].has(j) && !seen.has(j)) {
+          seen.add(j);
+          stack.push_back(j);
+        }
+    }
+  }
+  return reach;
+}
+
+int thread_count(int asked) {
+  if (asked > 0) return asked;
+  const unsigned hw = std::thread::hardware_concurrency();
+  return static_cast<int>(std::clamp(hw, 1u, 4u));
+}
+
+}  // namespace
 
 void Executive::run_sim() {
   const auto& clock = graph_.decl->clock;
@@ -20,7 +89,7 @@ void Executive::run_sim() {
 
   using Due = std::pair<std::int64_t, std::size_t>;  // (time, schedule order): earliest, then upstream first
   std::priority_queue<Due, std::vector<Due>, std::greater<Due>> timers;
-  std::deque<std::size_t> ready;
+  std::deque<std::size_t> ready;  // input-triggered steps queued at this instant, in publish order
   for (std::size_t i = 0; i < nodes_.size(); ++i) {
     NodeRuntime& n = *nodes_[i];
     if (n.rn->period_ns > 0) timers.push({0, i});
@@ -34,35 +103,101 @@ void Executive::run_sim() {
       };
     }
   }
-  std::uint64_t events = 0;
-  auto drain = [&] {
-    while (!ready.empty() && !stop_) {
-      NodeRuntime& n = *nodes_[ready.front()];
-      ready.pop_front();
-      n.queued = false;
-      step(n, Trigger{Trigger::Kind::input, n.queued_port});
-    }
+  const std::vector<NodeSet> reach = reach_within_instant(nodes_);
+  AheadPool pool(thread_count(opt_.threads) - 1, [this](NodeRuntime& n) {
+    t_deferred = &n.deferred;
+    n.ahead_ok = step_body(n, n.ahead_trigger);
+    t_deferred = nullptr;
+  });
+  std::vector<std::size_t> due;  // the periodic steps of this instant, in schedule order
+  std::size_t next_due = 0;      // the first not yet taken
+  NodeSet before(nodes_.size());
+  const Trigger periodic{Trigger::Kind::periodic, {}};
+  // The instant's queue is `ready`, then due[next_due..]: its head steps now; each later step
+  // that nothing before it can change is handed out.
+  auto hand_out = [&] {
+    if (ready.size() + (due.size() - next_due) < 2) return;
+    before.clear();
+    bool head = true;
+    auto consider = [&](std::size_t i, bool timer) {
+      NodeRuntime& n = *nodes_[i];
+      if (!head && !before.has(i) && n.ahead.load() == 0) {
+        n.ahead_trigger = timer ? periodic : Trigger{Trigger::Kind::input, n.queued_port};
+        pool.hand_out(n);
+      }
+      head = false;
+      before.add(i);
+      before.add(reach[i]);
+    };
+    for (std::size_t i : ready) consider(i, false);
+    for (std::size_t k = next_due; k < due.size(); ++k) consider(due[k], true);
   };
-  while (!stop_) {
-    if (g_interrupt) {
-      request_stop(RunResult::interrupted, "interrupted");
-      break;
+  // A step's turn: stepped now, or, when it was handed out, what it did then is done now.
+  auto turn = [&](std::size_t i, Trigger t) {
+    NodeRuntime& n = *nodes_[i];
+    if (n.ahead.load() == 0) {
+      step(n, std::move(t));
+      return;
     }
+    pool.wait(n);
+    n.ahead.store(0);
+    Deferred d;
+    d.swap(n.deferred);
+    if (stop_) return;  // the run ended before its turn: it never stepped, as far as the run knows
+    for (auto& f : d) f();
+    if (n.ahead_ok) ++n.steps;
+  };
+  // The run ends inside an instant: the steps handed out finish, and what they did is dropped.
+  auto settle = [&] {
+    auto drop = [&](std::size_t i) {
+      NodeRuntime& n = *nodes_[i];
+      if (n.ahead.load() == 0) return;
+      pool.wait(n);
+      n.ahead.store(0);
+      n.deferred.clear();
+    };
+    for (std::size_t i : ready) drop(i);
+    for (std::size_t k = next_due; k < due.size(); ++k) drop(due[k]);
+  };
+
+  std::uint64_t events = 0;
+  while (!stop_) {
     if (timers.empty()) {
       host_log("no periodic node left to step: the run ends");
       break;
     }
-    auto [t, i] = timers.top();
+    const std::int64_t t = timers.top().first;
     if (t > end_ns) {
       sim_now_ns_ = end_ns;
       break;
     }
-    timers.pop();
     sim_now_ns_ = t;
-    step(*nodes_[i], Trigger{Trigger::Kind::periodic, {}});
-    drain();
-    timers.push({t + nodes_[i]->rn->period_ns, i});
-    if ((++events & 255) == 0) progress();
+    due.clear();
+    next_due = 0;
+    while (!timers.empty() && timers.top().first == t) {
+      due.push_back(timers.top().second);
+      timers.pop();
+    }
+    while (!stop_) {
+      if (ready.empty() && next_due == due.size()) break;
+      hand_out();
+      if (!ready.empty()) {
+        const std::size_t i = ready.front();
+        ready.pop_front();
+        nodes_[i]->queued = false;
+        turn(i, Trigger{Trigger::Kind::input, nodes_[i]->queued_port});
+        continue;
+      }
+      if (g_interrupt) {
+        request_stop(RunResult::interrupted, "interrupted");
+        break;
+      }
+      const std::size_t i = due[next_due++];
+      turn(i, periodic);
+      timers.push({t + nodes_[i]->rn->period_ns, i});
+      if ((++events & 255) == 0) progress();
+    }
+    if (stop_) settle();
   }
 }
 

@@ -21,6 +21,7 @@ nlohmann::json summary_json(const RunSummary& s, const GraphDecl& g, const RunOp
     nlohmann::json nj;
     nj["plugin"] = n->plugin_name();
     nj["steps"] = n->steps;
+    if (opt.profile) nj["step_wall_s"] = n->step_wall_s;
     nj["metrics"] = n->metrics;
     for (auto& in : n->inputs) {
       nj["inputs"][in->name()] = {{"received", in->received()}, {"dropped", in->dropped()}};

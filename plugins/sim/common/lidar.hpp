@@ -33,7 +33,10 @@ struct LidarSpec {
   bool coherent_columns = true;                     // off: every ray marches from the sensor
   bool skip_escaped_rows = true;                    // off: rows above an escaped row are cast (tests)
   bool simd = true;                                 // off: ray by ray, not 4 columns in AVX2 lanes (tests; same bits)
-  int threads = 2;                                  // SIMD path: the columns marched on this many threads (1 or 2; same bits)
+  // SIMD path: the columns marched on this many threads (1 or 2; same bits). One by default: on
+  // the sim clock the executive already steps a car's LiDARs side by side, and a second thread
+  // per frame there only costs its start (docs/performance.md).
+  int threads = 1;
   double reflectivity_road = 0.15, reflectivity_wall = 0.6, reflectivity_pylon = 0.9;
 };
 

@@ -1,0 +1,15 @@
+#pragma once
+// A step run ahead of its turn on the sim clock (sim_scheduler.cpp) must not act on the run
+// before its turn comes: what it publishes, logs, shows or requests is kept, in order, and done
+// at its turn on the scheduler's thread, as if it had stepped then.
+#include <functional>
+#include <vector>
+
+namespace brickyard::fw {
+
+using Deferred = std::vector<std::function<void()>>;
+
+// Set on the thread running a step ahead of its turn; null everywhere else.
+extern thread_local Deferred* t_deferred;
+
+}  // namespace brickyard::fw
