@@ -554,6 +554,7 @@ TEST(RoadGraphPlanner, AnObstacleThatMovesByCentimetresKeepsThePlan) {
   const RefLine line = stadium();
   const RoadGraph g = RoadGraph::build(line, kRoom, RoadGraphParams{});
   PlannerParams pp;
+  pp.obstacle_drift = 100;  // each detection taken as it comes: the place moves with it (fusing: below)
   const double hw = g.params().half_width, r = 0.3;
   for (double moved : {0.3, 0.7}) {  // gap 1.5+ less this: kept above 1.0, dropped below
     RoadGraphPlanner planner(g, line, std::vector<double>(line.size(), 40.0), pp);
@@ -570,13 +571,47 @@ TEST(RoadGraphPlanner, AnObstacleThatMovesByCentimetresKeepsThePlan) {
     const double shifted = 0.5 + (d_near > 0.5 ? 1 : -1) * (moved + gap - pp.search.clearance);
     // Detection by detection, a few centimetres at a time (each within merge_distance: the same pylon).
     const int steps = 1 + static_cast<int>(std::abs(shifted - 0.5) / 0.1);
-    for (int k = 1; k <= steps; ++k) planner.observe({{150, 0.5 + (shifted - 0.5) * k / steps, r, 0}}, 50000000);
+    for (int k = 1; k <= steps; ++k) planner.observe({{150, 0.5 + (shifted - 0.5) * k / steps, r, 0}}, 50000000 * k);
     ASSERT_EQ(planner.obstacles().size(), 1u);
     const PlannedPath& after = planner.plan(131, y, 30);
     const bool kept = pp.search.clearance - moved >= pp.keep_clearance;
     EXPECT_EQ(after.restarted, !kept) << "moved " << moved;
     if (kept) EXPECT_NEAR(side_gap(after, 150, shifted, r, hw), pp.search.clearance - moved, 0.05);
   }
+}
+
+// A pylon seen from afar, its place jumping sideways with the estimate's heading (half a metre
+// at 100 m): the remembered place is the detections fused by their spread, so it stays within a
+// few centimetres of the pylon, and a near detection (small spread) outweighs the far ones. A
+// place that really moves is followed, at obstacle_drift.
+TEST(RoadGraphPlanner, FarDetectionsAreFusedByTheirSpread) {
+  const RefLine line = stadium();
+  const RoadGraph g = RoadGraph::build(line, kRoom, RoadGraphParams{});
+  RoadGraphPlanner planner(g, line, std::vector<double>(line.size(), 40.0), PlannerParams{});
+  const double far = 0.25, near = 0.01;  // variances, m²: 0.5 m and 0.1 m
+  std::int64_t t = 0;
+  auto seen = [&](double y, double var) {
+    MapObstacle o{150, y, 0.3, 0, 0};
+    o.variance = var;
+    planner.observe({o}, t += 50000000);
+    return planner.obstacles().at(0).y;
+  };
+  double worst = 0, last = 0;
+  for (int k = 0; k < 20; ++k) {
+    last = seen(k % 2 ? 0.5 : -0.5, far);  // truth: y = 0
+    if (k >= 3) worst = std::max(worst, std::abs(last));
+  }
+  EXPECT_LT(worst, 0.3);  // each detection alone: 0.5 off
+  EXPECT_EQ(planner.obstacles().size(), 1u);
+  const double after_near = seen(0.05, near);
+  EXPECT_NEAR(after_near, 0.05, 0.05) << "a near detection outweighs the far ones (before it: " << last << ")";
+  // It moves 1 m sideways and stays: followed within a second and a half.
+  double y = 0;
+  for (int k = 0; k < 30; ++k) y = seen(1.05, near);
+  EXPECT_NEAR(y, 1.05, 0.05);
+  // An unknown spread (not a number) is a metre: it neither breaks the place nor moves it far.
+  y = seen(std::nan(""), std::nan(""));
+  EXPECT_TRUE(std::isfinite(planner.obstacles().at(0).y));
 }
 
 // With no route, the path the car brakes along keeps inside the track, even where the racing

@@ -13,6 +13,12 @@ std::optional<MapObstacle> obstacle_in_map(const StampedPose& at, double ox, dou
   if (!std::isfinite(m.x) || !std::isfinite(m.y)) return std::nullopt;
   const double r = 0.5 * std::max(sx, sy);
   m.radius = std::isfinite(r) ? std::clamp(r, 0.1, 5.0) : 5.0;
+  // The spread of the place: the pose's position, its heading's error times the range, and a
+  // tenth of a metre for where on the obstacle the points fell. Not a finite number: unknown
+  // (the planner takes a metre).
+  const double range = std::hypot(ox, oy), ys = at.yaw_sigma * range;
+  m.variance = at.position_sigma * at.position_sigma + ys * ys + 0.01;
+  if (!std::isfinite(m.variance)) m.variance = -1;
   return m;
 }
 

@@ -20,7 +20,9 @@ struct StampedPose {
 
 // An obstacle at (ox, oy) in the vehicle frame of `at`, of size sx by sy, in the map frame; none
 // when the result is not finite. A non-finite size is taken as the largest (5 m radius): the
-// obstacle still blocks. The radius is half the larger side, within 0.1 to 5 m.
+// obstacle still blocks. The radius is half the larger side, within 0.1 to 5 m. Its variance: the
+// pose's position's, its heading's times the range squared, and 0.1 m squared (-1 when the
+// pose's spread is not a finite number).
 std::optional<MapObstacle> obstacle_in_map(const StampedPose& at, double ox, double oy, double sx, double sy);
 
 // Whether a detection at (x, y) (map frame) can stand in the car's way: its centre lies on the
