@@ -38,11 +38,18 @@ inline void append_in_vehicle_frame(const SensorPose& pose, const float* x, cons
   const Eigen::Isometry3f t = pose.vehicle_from_sensor();
   const Eigen::Matrix3f r = t.linear();
   const Eigen::Vector3f o = t.translation();
-  out.reserve(out.size() + n);
+  // Written in place and cut to what was kept (a push_back's capacity check per point cost as
+  // much as the transform).
+  const std::size_t at = out.size();
+  out.resize(at + n);
+  Point* dst = out.data() + at;
+  std::size_t m = 0;
   for (std::size_t i = 0; i < n; ++i) {
     const Eigen::Vector3f p = r * Eigen::Vector3f(x[i], y[i], z[i]) + o;
-    if (in_range(p)) out.push_back(p);
+    dst[m] = p;
+    m += in_range(p);
   }
+  out.resize(at + m);
 }
 
 template <class Cloud> class FrameSet {
