@@ -614,6 +614,40 @@ TEST(RoadGraphPlanner, FarDetectionsAreFusedByTheirSpread) {
   EXPECT_TRUE(std::isfinite(planner.obstacles().at(0).y));
 }
 
+// No route, no full swerve the car can steer at its speed, and no room to stop before the pylon:
+// the car swerves as far from it as it can steer, braking (the least harm), instead of braking
+// straight at it. A car that can stop before it stops.
+TEST(RoadGraphPlanner, WithNoRoomToStopTheCarSwervesAsFarAsItCan) {
+  const RefLine line = stadium();
+  const TrackRoom narrow = [](double) { return std::make_pair(-4.1, 4.1); };
+  const RoadGraph g = RoadGraph::build(line, narrow, RoadGraphParams{});
+  PlannerParams pp;
+  pp.search.lateral_accel = 1.0;  // m/s²: the full lane change (2.2 m in 165 m) is too sharp at 55 m/s and up
+  const double r = 0.1, hw = g.params().half_width;
+  auto plan_at = [&](double speed) {
+    auto planner = std::make_unique<RoadGraphPlanner>(g, line, std::vector<double>(line.size(), 80.0), pp);
+    for (int k = 0; k < pp.confirmations; ++k) planner->observe({{300, 0, r, 0}}, 0);
+    PlannedPath p = planner->plan(130, 0, speed);
+    return p;
+  };
+  const PlannedPath fast = plan_at(80);  // braking needs 80² / 24 = 267 m; the pylon is 165 m ahead
+  EXPECT_FALSE(fast.route_found);
+  ASSERT_TRUE(fast.swerve);
+  EXPECT_TRUE(fast.swerve_short);
+  double beside = 0, kv2 = 0;
+  for (std::size_t i = 0; i < fast.points.size(); ++i) {
+    const auto& q = fast.points[i];
+    if (std::abs(q.x - 300) < 1.5) beside = std::abs(q.y);
+    if (q.x > 130 && q.x < 290) kv2 = std::max(kv2, std::abs(q.kappa) * 80 * 80);
+    EXPECT_LE(std::abs(q.d), 4.1 - hw - pp.swerve_edge_margin + 1e-6) << "at s " << q.s;
+  }
+  EXPECT_GT(beside, 0.3) << "moved off the pylon's line";
+  EXPECT_LT(beside - hw - r, pp.keep_clearance) << "short of the full clearance (that one is not steerable)";
+  EXPECT_LE(kv2, pp.search.lateral_accel * 1.05) << "steerable at the car's speed";
+  const PlannedPath slow = plan_at(55);  // stops in 126 m: brakes straight
+  EXPECT_FALSE(slow.swerve);
+}
+
 // With no route, the path the car brakes along keeps inside the track, even where the racing
 // line runs near the edge the car is on (a parallel to the line would leave the track there).
 TEST(RoadGraphPlanner, WithNoRouteThePathStaysOnTheTrack) {

@@ -92,7 +92,8 @@ constexpr double kInBandSlope = 0.05;  // m across per m along: 3°
 
 std::vector<RoadGraphPlanner::Piece> RoadGraphPlanner::emergency_swerve(double s_c, double d_c, double speed,
                                                                         const std::vector<FrenetObstacle>& obs,
-                                                                        double* past) const {
+                                                                        double* past, bool* short_of) const {
+  *short_of = false;
   const double L = line_.length(), hw = g_.params().half_width;
   SearchParams keep = p_.search;
   keep.clearance = std::min(p_.keep_clearance, p_.search.clearance);
@@ -114,35 +115,77 @@ std::vector<RoadGraphPlanner::Piece> RoadGraphPlanner::emergency_swerve(double s
   const auto& Ly = g_.layers()[g_.layer_at_or_after(first->s)];
   const double step = g_.params().lateral_step, widen = std::max(0.0, g_.params().edge_margin - p_.swerve_edge_margin);
   const double lo = Ly.k0 * step - widen, hi = (Ly.k0 + static_cast<double>(Ly.count) - 1) * step + widen;
-  std::vector<Piece> best;
-  double best_move = 1e300;
-  for (const int side : {-1, +1}) {
-    // The sweep of the lane change itself is not known before its shape: take the largest the
-    // graph allows (its curvature limit) and check the shape after.
-    const double need = first->radius + swept_half_width(hw, 0.0, keep) + keep.clearance + 0.05;
-    const double d_t = first->d + side * need;
-    if (d_t < lo || d_t > hi || std::abs(d_t - d_c) >= best_move) continue;
-    const double s0 = s_c, s1 = s_c + reach, s2 = first->s + (first->s < s_c ? L : 0.0) + p_.search.car_rear + first->radius + 5;
-    std::vector<Piece> ps = {{EdgeShape{s0 - p_.behind, d_c, s0, d_c}, kNoNode},
-                             {EdgeShape{s0, d_c, s1, d_t}, kNoNode},
-                             {EdgeShape{s1, d_t, s2, d_t}, kNoNode}};
+  const double s0 = s_c, s1 = s_c + reach, s2 = first->s + (first->s < s_c ? L : 0.0) + p_.search.car_rear + first->radius + 5;
+  auto shape = [&](double d_t) {
+    return std::vector<Piece>{{EdgeShape{s0 - p_.behind, d_c, s0, d_c}, kNoNode},
+                              {EdgeShape{s0, d_c, s1, d_t}, kNoNode},
+                              {EdgeShape{s1, d_t, s2, d_t}, kNoNode}};
+  };
+  auto steerable = [&](const std::vector<Piece>& ps) {
     const double kmax = max_kappa(ps[1].shape);
-    if (kmax > g_.params().max_curvature || (keep.lateral_accel > 0 && kmax * speed * speed > keep.lateral_accel)) continue;
-    bool clear = true;
+    return kmax <= g_.params().max_curvature && !(keep.lateral_accel > 0 && kmax * speed * speed > keep.lateral_accel);
+  };
+  // The least gap between the car's swept side and the obstacles along the pieces: `first`
+  // alone, or every other one.
+  auto least_gap = [&](const std::vector<Piece>& ps, bool of_first) {
+    double least = 1e300;
     for (const Piece& pc : ps) {
       const EdgeShape e{0, pc.shape.d_a, pc.shape.s_b - pc.shape.s_a, pc.shape.d_b};
       const double w = swept_half_width(hw, max_kappa(pc.shape), keep);
       for (const auto& o : obs) {
+        if ((&o == first) != of_first) continue;
         FrenetObstacle r = o;
         r.s = relative_s(o.s, pc.shape.s_a, L);
-        if (edge_blocked(e, r, w, keep)) clear = false;
+        double gap = 1e300;
+        edge_blocked(e, r, w, keep, &gap);
+        least = std::min(least, gap);
       }
     }
-    if (!clear) continue;
+    return least;
+  };
+  std::vector<Piece> best;
+  double best_move = 1e300;
+  // The sweep of the lane change itself is not known before its shape: take the largest the
+  // graph allows (its curvature limit) and check the shape after.
+  const double need = first->radius + swept_half_width(hw, 0.0, keep) + keep.clearance + 0.05;
+  for (const int side : {-1, +1}) {
+    const double d_t = first->d + side * need;
+    if (d_t < lo || d_t > hi || std::abs(d_t - d_c) >= best_move) continue;
+    std::vector<Piece> ps = shape(d_t);
+    if (!steerable(ps) || std::min(least_gap(ps, true), least_gap(ps, false)) < keep.clearance) continue;
     append_in_band(ps, s2, d_t, p_.search.horizon);
     best = std::move(ps);
     best_move = std::abs(d_t - d_c);
     *past = s2;
+  }
+  if (!best.empty()) return best;
+  // None at keep_clearance. A car that can stop before the obstacle does (the caller's stop);
+  // one that cannot steers as far from it as it can while it brakes, when that passes it
+  // farther than braking straight on would, clear of every other obstacle.
+  const double brake = p_.limits.a_decel > 0 ? speed * speed / (2 * p_.limits.a_decel) : 1e300;
+  if (brake <= reach) return {};
+  double best_gap = least_gap(shape(d_c), true);
+  for (const int side : {-1, +1}) {
+    // The farthest offset toward this side, within the band, that the car steers at its speed.
+    const double full = std::clamp(first->d + side * need, lo, hi);
+    if ((full - d_c) * side <= 0) continue;
+    double ok = d_c, bad = full;
+    if (steerable(shape(full))) {
+      ok = full;
+    } else {
+      for (int k = 0; k < 20; ++k) {
+        const double mid = 0.5 * (ok + bad);
+        (steerable(shape(mid)) ? ok : bad) = mid;
+      }
+    }
+    std::vector<Piece> ps = shape(ok);
+    const double gap = least_gap(ps, true);
+    if (gap <= best_gap + 0.05 || least_gap(ps, false) < keep.clearance) continue;
+    append_in_band(ps, s2, ok, p_.search.horizon);
+    best = std::move(ps);
+    best_gap = gap;
+    *past = s2;
+    *short_of = true;
   }
   return best;
 }
@@ -336,10 +379,12 @@ const PlannedPath& RoadGraphPlanner::plan(double x, double y, double speed) {
   // An obstacle in the car's way with no route round it in the graph: swerve past it, braking,
   // nearer the edge than the graph goes.
   double past = 0;
-  if (std::vector<Piece> swerve = emergency_swerve(s_c, d_c, speed, obs, &past); !swerve.empty()) {
+  bool short_of = false;
+  if (std::vector<Piece> swerve = emergency_swerve(s_c, d_c, speed, obs, &past, &short_of); !swerve.empty()) {
     pieces_ = std::move(swerve);
     out_.restarted = true;
     out_.swerve = true;
+    out_.swerve_short = short_of;
     stopping_ = false;  // next cycle: a route if one opens, else the swerve again from where the car is
     make_path(speed, true, past);
     return out_;

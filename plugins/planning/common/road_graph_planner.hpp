@@ -74,6 +74,8 @@ struct PlannedPath {
   bool route_found = false;        // false: every route was blocked; the path brakes to a stop
   bool restarted = false;          // the committed part was dropped this cycle
   bool swerve = false;             // no route: an emergency swerve past the obstacle, braking
+  bool swerve_short = false;       // ... one short of keep_clearance: the car could neither stop
+                                   // before the obstacle nor steer that far at its speed
   std::size_t edges_relaxed = 0;
 };
 
@@ -116,8 +118,11 @@ class RoadGraphPlanner {
   // to the side it reaches with less sideways travel, at keep_clearance and within
   // swerve_edge_margin of the track's edge; steerable at the car's speed and clear of every
   // obstacle; `past`: where the car is past the obstacle. Empty when there is none.
+  // With none, and a car that cannot stop before the obstacle: the lane change that passes it
+  // farthest off within the car's lateral limit and the band (`*short_of` set), when that is
+  // farther than braking straight on would pass it — the least harm.
   std::vector<Piece> emergency_swerve(double s_c, double d_c, double speed, const std::vector<FrenetObstacle>& obs,
-                                      double* past) const;
+                                      double* past, bool* short_of) const;
   void make_path(double speed, bool stop, double stop_s);
   const RoadGraph& g_;
   const RefLine& line_;

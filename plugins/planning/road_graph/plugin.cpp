@@ -200,9 +200,11 @@ class RoadGraphNode : public Plugin {
           what += b;
         }
         const Eigen::Vector2d c = line_ready_.line.to_frenet(car.x(), car.y());
-        char b[96];
+        char b[160];
         std::snprintf(b, sizeof b, "no route: %s (car at s %.1f, d %.1f); obstacles: ",
-                      plan.swerve ? "an emergency swerve past, braking" : "braking to a stop", c.x(), c.y());
+                      plan.swerve_short ? "no room to stop: swerving as far as the car can, braking"
+                      : plan.swerve     ? "an emergency swerve past, braking"
+                                        : "braking to a stop", c.x(), c.y());
         ctx.log(LogLevel::warn, b + (what.empty() ? std::string("none") : what));
       }
       stopping_ = true;
