@@ -4,6 +4,8 @@
 // translation unit that pays for them.
 #include "common/points.hpp"
 
+#include <Eigen/Core>
+
 #include <string>
 #include <vector>
 
@@ -33,5 +35,15 @@ struct PipelineTimes {
   std::size_t voxels = 0, non_ground = 0, clusters = 0;
 };
 PipelineTimes pcl_pipeline(const Points& frame, float leaf, float plane_threshold, float tolerance, int min_size, int max_size);
+
+// pcl::GeneralizedIterativeClosestPoint (in pcl_gicp.cpp): the transform that brings `source`
+// onto `target`, from `guess`, with PCL's defaults (20 neighbours per covariance) but
+// `max_iterations` and a transformation epsilon of 1e-6; the wall time of align().
+struct GicpResult {
+  Eigen::Matrix4d transform = Eigen::Matrix4d::Identity();
+  bool converged = false;
+  double ms = 0;
+};
+GicpResult gicp(const Points& source, const Points& target, const Eigen::Matrix4d& guess, int max_iterations = 64);
 
 }  // namespace brickyard::baseline

@@ -1,0 +1,32 @@
+#include "voxel_map.hpp"
+
+#include <cmath>
+
+namespace brickyard::mapping {
+
+namespace {
+std::int32_t cell(double v, float inv) { return static_cast<std::int32_t>(std::floor(v * inv)); }
+}  // namespace
+
+void VoxelMap::add(const Points& pts, const Covariances& covs) {
+  for (std::size_t i = 0; i < pts.size() && i < covs.size(); ++i) {
+    if (!perception::in_range(pts[i]) || !covs[i].allFinite()) continue;
+    const Eigen::Vector3d q = pts[i].cast<double>();
+    bool inserted;
+    const std::uint32_t v = index_.find_or_insert(perception::cell_key(cell(q.x(), inv_), cell(q.y(), inv_), cell(q.z(), inv_)),
+                                                  static_cast<std::uint32_t>(voxels_.size()), inserted);
+    if (inserted) voxels_.emplace_back();
+    Voxel& x = voxels_[v];
+    x.sum += q;
+    x.cov_sum += covs[i].cast<double>();
+    ++x.count;
+  }
+}
+
+const Voxel* VoxelMap::at(const Eigen::Vector3d& q) const {
+  if (!q.allFinite() || q.cwiseAbs().maxCoeff() > perception::kMaxCoordinate) return nullptr;
+  const std::uint32_t* v = index_.find(perception::cell_key(cell(q.x(), inv_), cell(q.y(), inv_), cell(q.z(), inv_)));
+  return v ? &voxels_[*v] : nullptr;
+}
+
+}  // namespace brickyard::mapping
