@@ -587,7 +587,9 @@ TEST(RoadGraphPlanner, AnObstacleThatMovesByCentimetresKeepsThePlan) {
 TEST(RoadGraphPlanner, FarDetectionsAreFusedByTheirSpread) {
   const RefLine line = stadium();
   const RoadGraph g = RoadGraph::build(line, kRoom, RoadGraphParams{});
-  RoadGraphPlanner planner(g, line, std::vector<double>(line.size(), 40.0), PlannerParams{});
+  PlannerParams pp;
+  pp.obstacle_fusion = true;
+  RoadGraphPlanner planner(g, line, std::vector<double>(line.size(), 40.0), pp);
   const double far = 0.25, near = 0.01;  // variances, m²: 0.5 m and 0.1 m
   std::int64_t t = 0;
   auto seen = [&](double y, double var) {

@@ -21,7 +21,7 @@ struct Voxel {
 
 class VoxelMap {
  public:
-  explicit VoxelMap(float voxel = 1.0f) : voxel_(voxel), inv_(1.0f / voxel) {}
+  explicit VoxelMap(float voxel = 1.0f) : voxel_(voxel), inv_(1.0f / voxel) { index_.reset(0); }
   float voxel_size() const { return voxel_; }
   // Adds points (map frame) with their covariances (map frame); points out of range are skipped.
   void add(const Points& pts, const Covariances& covs);

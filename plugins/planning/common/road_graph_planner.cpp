@@ -32,7 +32,12 @@ void RoadGraphPlanner::observe(const std::vector<MapObstacle>& seen, std::int64_
       if (!matched[i] && d <= best) { best = d; same = i; }
     }
     if (!(o.variance > 0 && o.variance < 1e6)) o.variance = 1.0;  // an unknown spread: a metre
-    if (same < before) {
+    if (same < before && !p_.obstacle_fusion) {
+      o.seen = memory_[same].seen + 1;
+      o.seen_ns = now_ns;
+      memory_[same] = o;
+      matched[same] = 1;
+    } else if (same < before) {
       // The remembered place and the detection fused by their variances (a Kalman update of a
       // place that may drift): the remembered one's grows by drift² a second since it was seen.
       const MapObstacle& m = memory_[same];

@@ -87,6 +87,8 @@ ParamBinding<Settings> bindings() {
   b.bind("commit_time", planner, &P::commit_time).in_unit("s").at_least(0);
   b.bind("commit_min", planner, &P::commit_min).in_unit("m").at_least(1);
   b.bind("obstacle_memory", planner, &P::obstacle_memory).in_unit("s").range(0, 3600);
+  b.bind("obstacle_fusion", planner, &P::obstacle_fusion)
+      .doc("a remembered obstacle's place fuses its detections by their spread (off: each detection replaces it)");
   b.bind("obstacle_drift", planner, &P::obstacle_drift).in_unit("m/s").range(0, 100)
       .doc("how fast a remembered obstacle may move: its place fuses the detections by their spread, and its own spread grows by this a second");
   b.bind("obstacle_edge_band", &Settings::obstacle_edge_band).in_unit("m").range(0, 10)
