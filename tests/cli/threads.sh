@@ -20,15 +20,5 @@ if ! diff <(strip "$out/t1/summary.json") <(strip "$out/t4/summary.json"); then
 fi
 diff <(tail -n 1 "$out/t1.log" | sed 's/, wall [0-9.]* s//') <(tail -n 1 "$out/t4.log" | sed 's/, wall [0-9.]* s//') \
   || { echo "FAIL: different verdicts"; exit 1; }
-python3 - "$out/t1/recording.db3" "$out/t4/recording.db3" <<'PY' || { echo "FAIL: one thread and four, different recordings"; exit 1; }
-import hashlib, sqlite3, sys
-def digest(f):
-    h, n = hashlib.sha256(), 0
-    for row in sqlite3.connect(f).execute("SELECT topic_id, timestamp, data FROM messages ORDER BY id"):
-        h.update(repr(row[:2]).encode()); h.update(row[2]); n += 1
-    return n, h.hexdigest()
-a, b = digest(sys.argv[1]), digest(sys.argv[2])
-print(f"recordings: {a[0]} samples each, sha256 {a[1][:16]}" if a == b else f"recordings differ: {a} {b}")
-sys.exit(0 if a == b and a[0] > 0 else 1)
-PY
+python3 "$(dirname "$0")/same_recordings.py" "$out/t1/recording.db3" "$out/t4/recording.db3" || { echo "FAIL: one thread and four, different recordings"; exit 1; }
 echo "the same run on one thread and on four (exit ${rc[1]})"
