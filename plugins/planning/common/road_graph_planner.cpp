@@ -32,21 +32,18 @@ void RoadGraphPlanner::observe(const std::vector<MapObstacle>& seen, std::int64_
       if (!matched[i] && d <= best) { best = d; same = i; }
     }
     if (!(o.variance > 0 && o.variance < 1e6)) o.variance = 1.0;  // an unknown spread: a metre
-    if (same < before && !p_.obstacle_fusion) {
-      o.seen = memory_[same].seen + 1;
-      o.seen_ns = now_ns;
-      memory_[same] = o;
-      matched[same] = 1;
-    } else if (same < before) {
-      // The remembered place and the detection fused by their variances (a Kalman update of a
-      // place that may drift): the remembered one's grows by drift² a second since it was seen.
+    if (same < before) {
       const MapObstacle& m = memory_[same];
-      const double dt = std::clamp(static_cast<double>(now_ns - m.seen_ns) * 1e-9, 0.0, 3600.0);
-      const double p = m.variance + p_.obstacle_drift * p_.obstacle_drift * dt, k = p / (p + o.variance);
-      o.x = m.x + k * (o.x - m.x);
-      o.y = m.y + k * (o.y - m.y);
-      o.radius = m.radius + k * (o.radius - m.radius);
-      o.variance = (1 - k) * p;
+      if (p_.obstacle_fusion) {
+        // The remembered place and the detection fused by their variances (a Kalman update of a
+        // place that may drift): the remembered one's grows by drift² a second since it was seen.
+        const double dt = std::clamp(static_cast<double>(now_ns - m.seen_ns) * 1e-9, 0.0, 3600.0);
+        const double p = m.variance + p_.obstacle_drift * p_.obstacle_drift * dt, k = p / (p + o.variance);
+        o.x = m.x + k * (o.x - m.x);
+        o.y = m.y + k * (o.y - m.y);
+        o.radius = m.radius + k * (o.radius - m.radius);
+        o.variance = (1 - k) * p;
+      }
       o.seen = m.seen + 1;
       o.seen_ns = now_ns;
       memory_[same] = o;
