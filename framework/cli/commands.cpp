@@ -67,6 +67,7 @@ nlohmann::json manifest_to_json(const PluginEntry& p) {
   j["triggers"] = nlohmann::json::array();
   for (const auto& t : m.triggers) {
     if (t.kind == TriggerSpec::Kind::periodic) j["triggers"].push_back({{"kind", "periodic"}, {"rate_param", t.ref}});
+    else if (t.kind == TriggerSpec::Kind::latency) j["triggers"].push_back({{"kind", "latency"}, {"seconds_param", t.ref}});
     else j["triggers"].push_back({{"kind", "on_input"}, {"port", t.ref}});
   }
   return j;
@@ -97,7 +98,10 @@ std::string plugins_text(const Registry& reg) {
     for (const auto& c : m.constraints)
       o << "  constraint " << c.lower << (c.strict ? " < " : " <= ") << c.upper << "\n";
     for (const auto& t : m.triggers)
-      o << "  trigger " << (t.kind == TriggerSpec::Kind::periodic ? "periodic at param " : "on input ") << t.ref << "\n";
+      o << "  " << (t.kind == TriggerSpec::Kind::periodic ? "trigger periodic at param "
+                    : t.kind == TriggerSpec::Kind::latency ? "outputs delivered after param "
+                                                           : "trigger on input ")
+        << t.ref << "\n";
     o << "\n";
   }
   return o.str();

@@ -9,6 +9,7 @@
 #include <deque>
 #include <functional>
 #include <mutex>
+#include <vector>
 
 namespace brickyard::fw {
 
@@ -25,15 +26,26 @@ class InputQueue final : public detail::InputChannel {
   void push(std::shared_ptr<const void> s) {
     {
       std::lock_guard<std::mutex> l(m_);
-      last_ = s;
-      q_.push_back(std::move(s));
-      ++received_;
-      if (q_.size() > depth_) {
-        q_.pop_front();
-        ++dropped_;
+      if (held_) {
+        later_.push_back(std::move(s));
+        return;
       }
+      arrive(std::move(s));
     }
     if (on_arrival) on_arrival(name_);
+  }
+  // The sim clock, while a step of the owner runs beside later instants (a modelled latency):
+  // samples published meanwhile wait, so the step reads what it would have at its instant, and
+  // arrive in order when it is done. Only for inputs that wake no step (on_arrival unset).
+  void hold() {
+    std::lock_guard<std::mutex> l(m_);
+    held_ = true;
+  }
+  void release() {
+    std::lock_guard<std::mutex> l(m_);
+    held_ = false;
+    for (auto& s : later_) arrive(std::move(s));
+    later_.clear();
   }
   std::vector<std::shared_ptr<const void>> take() override {
     std::lock_guard<std::mutex> l(m_);
@@ -54,7 +66,19 @@ class InputQueue final : public detail::InputChannel {
   std::string name_, type_;
   std::uint32_t depth_;
   bool connected_;
+  void arrive(std::shared_ptr<const void> s) {  // m_ held
+    last_ = s;
+    q_.push_back(std::move(s));
+    ++received_;
+    if (q_.size() > depth_) {
+      q_.pop_front();
+      ++dropped_;
+    }
+  }
+
   mutable std::mutex m_;
+  bool held_ = false;
+  std::vector<std::shared_ptr<const void>> later_;
   std::deque<std::shared_ptr<const void>> q_;
   std::shared_ptr<const void> last_;
   std::uint64_t received_ = 0, dropped_ = 0;

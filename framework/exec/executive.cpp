@@ -14,6 +14,7 @@ namespace brickyard::fw {
 
 std::atomic<bool> g_interrupt{false};
 thread_local Deferred* t_deferred = nullptr;
+thread_local std::int64_t t_step_now_ns = -1;
 
 const char* to_string(RunResult r) {
   switch (r) {

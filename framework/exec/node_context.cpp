@@ -6,7 +6,7 @@
 
 namespace brickyard::fw {
 
-std::int64_t NodeContext::now_ns() const { return e_.now_ns(); }
+std::int64_t NodeContext::now_ns() const { return t_step_now_ns >= 0 ? t_step_now_ns : e_.now_ns(); }
 bool NodeContext::sim_clock() const { return e_.sim(); }
 const std::string& NodeContext::node_name() const { return n_.name; }
 const Params& NodeContext::params() const { return n_.rn->params; }

@@ -37,6 +37,8 @@ class NodeRuntime {
   // 3 stepped; its trigger, whether the step returned, and what it did, kept for its turn
   std::atomic<int> ahead{0};
   Trigger ahead_trigger;
+  std::int64_t ahead_now_ns = 0;  // the instant of the step handed out
+  bool undelivered = false;       // a latency step's outputs wait for their delivery (sim_scheduler.cpp)
   bool ahead_ok = false;
   Deferred deferred;
   // real: wake-up for input triggers

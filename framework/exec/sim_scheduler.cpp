@@ -11,6 +11,13 @@
 // same bit for bit on any number of threads; the one thing threads cannot undo: when a step ends
 // the run, the steps already handed out at that instant have stepped (their effects dropped), on
 // one thread as on four, so that too is the same.
+//
+// A node with a modelled latency (Manifest::delivered_after: a LiDAR whose frame is ready once
+// its sweep is over) steps at its instant, reading the inputs of that instant, but what it does
+// is done `latency` later, after that instant's own steps. Its step may run on a helper beside
+// everything until then: samples published to it meanwhile wait (InputQueue::hold) until it is
+// done, and it sees the time of its instant. So a LiDAR's next frame is cast while the chain
+// that its last frame feeds runs, and the run is still the same on any number of threads.
 #include "exec/ahead_pool.hpp"
 #include "exec/executive.hpp"
 #include "exec/node_runtime.hpp"
@@ -50,11 +57,12 @@ std::vector<NodeSet> reach_within_instant(const std::vector<std::unique_ptr<Node
   std::vector<NodeSet> direct(n, NodeSet(n)), triggers(n, NodeSet(n));
   for (std::size_t i = 0; i < n; ++i)
     for (auto& out : nodes[i]->outputs)
-      for (const InputQueue* q : out->local) {
-        const std::size_t j = owner.at(q);
-        direct[i].add(j);
-        if (nodes[j]->rn->trigger_inputs.count(q->name())) triggers[i].add(j);
-      }
+      if (nodes[i]->rn->latency_ns == 0)  // a latency step's samples arrive at a later instant
+        for (const InputQueue* q : out->local) {
+          const std::size_t j = owner.at(q);
+          direct[i].add(j);
+          if (nodes[j]->rn->trigger_inputs.count(q->name())) triggers[i].add(j);
+        }
   std::vector<NodeSet> reach(n, NodeSet(n));
   for (std::size_t i = 0; i < n; ++i) {
     NodeSet seen(n);
@@ -106,7 +114,9 @@ void Executive::run_sim() {
   const std::vector<NodeSet> reach = reach_within_instant(nodes_);
   AheadPool pool(thread_count(opt_.threads) - 1, [this](NodeRuntime& n) {
     t_deferred = &n.deferred;
+    t_step_now_ns = n.ahead_now_ns;
     n.ahead_ok = step_body(n, n.ahead_trigger);
+    t_step_now_ns = -1;
     t_deferred = nullptr;
   });
   std::vector<std::size_t> due;  // the periodic steps of this instant, in schedule order
@@ -121,8 +131,9 @@ void Executive::run_sim() {
     bool head = true;
     auto consider = [&](std::size_t i, bool timer) {
       NodeRuntime& n = *nodes_[i];
-      if (!head && !before.has(i) && n.ahead.load() == 0) {
+      if (!head && !before.has(i) && n.ahead.load() == 0 && !n.undelivered) {
         n.ahead_trigger = timer ? periodic : Trigger{Trigger::Kind::input, n.queued_port};
+        n.ahead_now_ns = sim_now_ns_;
         pool.hand_out(n);
       }
       head = false;
@@ -132,9 +143,73 @@ void Executive::run_sim() {
     for (std::size_t i : ready) consider(i, false);
     for (std::size_t k = next_due; k < due.size(); ++k) consider(due[k], true);
   };
+  // Latency steps whose outputs wait: (time, order taken) -> the node and, once it is done
+  // (collected), what it did.
+  struct Delivery {
+    std::size_t node;
+    bool collected = false, ok = false;
+    Deferred effects;
+  };
+  std::map<std::pair<std::int64_t, std::uint64_t>, Delivery> deliveries;
+  std::uint64_t taken = 0;
+  // A latency step is done: its held inputs arrive, what it did is kept for its delivery.
+  auto collect = [&](Delivery& d) {
+    NodeRuntime& n = *nodes_[d.node];
+    if (n.ahead.load() != 0) {
+      pool.wait(n);
+      n.ahead.store(0);
+    }
+    for (auto& in : n.inputs) in->release();
+    d.effects.swap(n.deferred);
+    d.ok = n.ahead_ok;
+    d.collected = true;
+    n.undelivered = false;
+  };
+  auto collect_node = [&](std::size_t i) {
+    for (auto& [at, d] : deliveries)
+      if (d.node == i && !d.collected) collect(d);
+  };
+  // A latency step's turn: handed out (with no helper, this thread steps it when it is
+  // collected: the same step, on the inputs held for it) and its delivery set.
+  auto latency_turn = [&](std::size_t i) {
+    NodeRuntime& n = *nodes_[i];
+    if (n.undelivered) collect_node(i);  // a latency of one whole period: the last step first
+    if (n.ahead.load() == 0) {
+      n.ahead_trigger = periodic;
+      n.ahead_now_ns = sim_now_ns_;
+      pool.hand_out(n);
+    }
+    n.undelivered = true;
+    for (auto& in : n.inputs) in->hold();
+    deliveries[{sim_now_ns_ + n.rn->latency_ns, taken++}].node = i;
+  };
+  // After an instant's steps: the latency steps due now deliver, in the order they stepped.
+  auto deliver = [&] {
+    bool any = false;
+    while (!stop_ && !deliveries.empty() && deliveries.begin()->first.first == sim_now_ns_) {
+      Delivery d = std::move(deliveries.begin()->second);
+      deliveries.erase(deliveries.begin());
+      if (!d.collected) collect(d);
+      for (auto& f : d.effects) f();
+      if (d.ok) ++nodes_[d.node]->steps;
+      any = true;
+    }
+    return any;
+  };
+  // The run is over: every latency step still out finishes (as with one thread, where it has
+  // stepped), and what it did is dropped.
+  auto drop_deliveries = [&] {
+    for (auto& [at, d] : deliveries)
+      if (!d.collected) collect(d);
+    deliveries.clear();
+  };
   // A step's turn: stepped now, or, when it was handed out, what it did then is done now.
   auto turn = [&](std::size_t i, Trigger t) {
     NodeRuntime& n = *nodes_[i];
+    if (n.rn->latency_ns > 0) {
+      latency_turn(i);
+      return;
+    }
     if (n.ahead.load() == 0) {
       step(n, std::move(t));
       return;
@@ -151,7 +226,7 @@ void Executive::run_sim() {
   auto settle = [&] {
     auto drop = [&](std::size_t i) {
       NodeRuntime& n = *nodes_[i];
-      if (n.ahead.load() == 0) return;
+      if (n.ahead.load() == 0 || n.undelivered) return;  // a latency step: drop_deliveries
       pool.wait(n);
       n.ahead.store(0);
       n.deferred.clear();
@@ -162,11 +237,12 @@ void Executive::run_sim() {
 
   std::uint64_t events = 0;
   while (!stop_) {
-    if (timers.empty()) {
+    if (timers.empty() && deliveries.empty()) {
       host_log("no periodic node left to step: the run ends");
       break;
     }
-    const std::int64_t t = timers.top().first;
+    std::int64_t t = timers.empty() ? INT64_MAX : timers.top().first;
+    if (!deliveries.empty()) t = std::min(t, deliveries.begin()->first.first);
     if (t > end_ns) {
       sim_now_ns_ = end_ns;
       break;
@@ -179,7 +255,8 @@ void Executive::run_sim() {
       timers.pop();
     }
     while (!stop_) {
-      if (ready.empty() && next_due == due.size()) break;
+      if (ready.empty() && next_due == due.size() && !deliver()) break;
+      if (ready.empty() && next_due == due.size()) continue;
       hand_out();
       if (!ready.empty()) {
         const std::size_t i = ready.front();
@@ -199,6 +276,8 @@ void Executive::run_sim() {
     }
     if (stop_) settle();
   }
+  drop_deliveries();
 }
 
 }  // namespace brickyard::fw
+

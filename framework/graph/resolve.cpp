@@ -154,7 +154,7 @@ ResolvedGraph resolve_graph(const GraphDecl& g, const Registry& reg, const std::
     for (const auto& t : m.triggers) {
       if (t.kind == TriggerSpec::Kind::on_input) {
         rn.trigger_inputs.insert(t.ref);
-      } else if (rn.params.has(t.ref)) {
+      } else if (t.kind == TriggerSpec::Kind::periodic && rn.params.has(t.ref)) {
         double hz = rn.params.number(t.ref);
         if (!(hz > 0) || !std::isfinite(hz)) {
           err(ptr + "/params/" + t.ref, "rate must be positive, found " + fmt_num(hz));
@@ -166,6 +166,27 @@ ResolvedGraph resolve_graph(const GraphDecl& g, const Registry& reg, const std::
         rn.period_ns = g.clock.sim ? static_cast<std::int64_t>(std::llround(steps * step_ns))
                                    : static_cast<std::int64_t>(std::llround(1e9 / hz));
       }
+    }
+    // A modelled latency: the sim scheduler runs the step beside what follows it and delivers its
+    // outputs later, which needs inputs that no sample wakes and a step done before the next one.
+    for (const auto& t : m.triggers) {
+      if (t.kind != TriggerSpec::Kind::latency || !rn.params.has(t.ref)) continue;
+      const double s = rn.params.number(t.ref);
+      const std::string at = ptr + "/params/" + pointer_escape(t.ref);
+      if (!(s >= 0) || !std::isfinite(s)) {
+        err(at, "latency must be zero or more seconds, found " + fmt_num(s));
+        continue;
+      }
+      if (s == 0 || !g.clock.sim) continue;  // the real clock's latency is the real one
+      const double step_ns = g.clock.step_s * 1e9;
+      const std::int64_t ns = static_cast<std::int64_t>(std::llround(std::llround(s * 1e9 / step_ns) * step_ns));
+      if (rn.period_ns <= 0 || !rn.trigger_inputs.empty())
+        err(at, "a latency needs a node that steps on its rate alone (plugin " + m.name + " also steps on input)");
+      else if (ns > rn.period_ns)
+        err(at, "latency " + fmt_num(s) + " s is longer than the node's period (" + fmt_num(rn.period_ns * 1e-9) +
+                    " s): a step's outputs must be delivered before its next step");
+      else
+        rn.latency_ns = ns;
     }
     by_name.emplace(name, std::move(rn));
   }

@@ -14,6 +14,7 @@ struct ResolvedNode {
   Params params;
   std::int64_t period_ns = 0;             // 0: no periodic trigger
   std::set<std::string> trigger_inputs;   // inputs whose arrival steps the node
+  std::int64_t latency_ns = 0;            // sim clock: a step's outputs delivered this long after it
   std::size_t order = 0;                  // position in the deterministic schedule order
 };
 

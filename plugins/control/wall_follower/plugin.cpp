@@ -20,6 +20,8 @@
 #include "vehicle_param.hpp"
 
 #include <cmath>
+#include <cstdlib>
+#include <deque>
 #include <memory>
 
 #include <optional>
@@ -200,11 +202,19 @@ class WallFollowerNode : public Plugin {
         ctx.log(LogLevel::warn, std::string("map ignored: ") + e.what());
       }
     }
-    for (auto& e : estimate_.take()) pose_ = e;
+    for (auto& e : estimate_.take()) {
+      pose_ = e;
+      poses_.push_back(e);
+      if (poses_.size() > kHistory) poses_.pop_front();
+    }
     for (auto& p : path_.take()) planned_path_ = p;
     for (auto& m : imu_.take()) {
       const double ts = static_cast<double>(m->header().stamp_ns()) * 1e-9;
-      if (imu_t_ >= 0 && ts > imu_t_) line_.moved(ts - imu_t_, speed_, m->gyro_z());
+      if (imu_t_ >= 0 && ts > imu_t_) {
+        line_.moved(ts - imu_t_, speed_, m->gyro_z());
+        motion_.push_back({ts, ts - imu_t_, speed_, m->gyro_z()});
+        if (motion_.size() > kHistory) motion_.pop_front();
+      }
       imu_t_ = ts;
       yaw_rate_ = m->gyro_z();
     }
@@ -221,12 +231,17 @@ class WallFollowerNode : public Plugin {
       }
     }
     if (fresh) {
+      // A wall frame is the car's surroundings at its stamp, which may be some time ago (a
+      // LiDAR's frame is delivered when its sweep is over, docs/architecture.md): the map's edges
+      // and the path are placed with the estimate of that stamp, and the line, once set, is
+      // carried by the motion since (below).
+      const std::shared_ptr<const msgs::LocalizationEstimate> pose = pose_at(stamp);
       std::vector<EdgePoint> edges[2];
-      const bool mapped = track_ && pose_;
+      const bool mapped = track_ && pose;
       if (mapped) {
         const WallLineParams& lp = line_params_;
         for (int i = 0; i < 2; ++i)
-          edges[i] = mapped_edge(*track_, i == 0 ? 1 : -1, pose_->x(), pose_->y(), pose_->yaw(), lp.map_behind, lp.map_ahead, hint_);
+          edges[i] = mapped_edge(*track_, i == 0 ? 1 : -1, pose->x(), pose->y(), pose->yaw(), lp.map_behind, lp.map_ahead, hint_);
       }
       std::vector<PathPoint> planned;  // the planner's path in the vehicle frame of the estimate
       if (mapped && planned_path_) {
@@ -234,14 +249,17 @@ class WallFollowerNode : public Plugin {
         const auto& speeds = planned_path_->speed();
         for (std::size_t i = 0; i < poses.size(); ++i)
           planned.push_back({poses[i].x(), poses[i].y(), i < speeds.size() ? speeds[i] : 0.0});
-        planned = in_vehicle_frame(std::move(planned), pose_->x(), pose_->y(), pose_->yaw());
+        planned = in_vehicle_frame(std::move(planned), pose->x(), pose->y(), pose->yaw());
       }
       // The car's place along the map, and whether localization is good (the manager drives the
       // path): the follower learns there where the walls stand from the edges.
-      const double s_car = mapped ? track_->project(pose_->x(), pose_->y(), hint_).s : 0.0;
+      const double s_car = mapped ? track_->project(pose->x(), pose->y(), hint_).s : 0.0;
       const bool calibrating = mapped && mode_.connected() && !active_ && path_mode_;
       line_.walls(t, last_[0], last_[1], mapped ? &edges[0] : nullptr, mapped ? &edges[1] : nullptr,
                   planned.size() >= 2 ? &planned : nullptr, s_car, calibrating);
+      const double since = static_cast<double>(stamp) * 1e-9;
+      for (const Motion& m : motion_)
+        if (m.t > since) line_.moved(std::min(m.dt, m.t - since), m.speed, m.yaw_rate);
       const bool line = line_.has_line(t);
       if (line && line_.side() != 0) ++frames_[line_.side() > 0 ? 0 : 1];
       held_ += line && !last_[line_.side() > 0 ? 0 : 1].valid;
@@ -267,6 +285,21 @@ class WallFollowerNode : public Plugin {
     }
   }
 
+  // The estimate nearest a stamp (the newest when there is none).
+  std::shared_ptr<const msgs::LocalizationEstimate> pose_at(std::int64_t stamp) const {
+    std::shared_ptr<const msgs::LocalizationEstimate> best = pose_;
+    for (const auto& e : poses_)
+      if (std::llabs(e->header().stamp_ns() - stamp) < std::llabs(best->header().stamp_ns() - stamp)) best = e;
+    return best;
+  }
+
+  // The IMU's steps of the car's motion, kept to carry a line from its wall frame's stamp on.
+  struct Motion {
+    double t, dt, speed, yaw_rate;  // the step ends at t
+  };
+  static constexpr std::size_t kHistory = 64;
+  std::deque<std::shared_ptr<const msgs::LocalizationEstimate>> poses_;
+  std::deque<Motion> motion_;
   WallFollower follower_;
   WallLineFollower line_;
   bool line_mode_ = false;

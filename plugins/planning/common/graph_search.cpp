@@ -17,10 +17,10 @@ double relative_s(double s, double s0, double length) {
 }
 
 bool edge_blocked(const EdgeShape& e, const FrenetObstacle& o, double half_width, const SearchParams& p,
-                  double* side_gap) {
+                  double* side_gap, double from) {
   // The car's reference point runs along the edge; the car covers [s - rear, s + front] of the
   // line, so it is beside the obstacle while s is in this window.
-  const double w0 = std::max(e.s_a, o.s - p.car_front - o.radius), w1 = std::min(e.s_b, o.s + p.car_rear + o.radius);
+  const double w0 = std::max({e.s_a, from, o.s - p.car_front - o.radius}), w1 = std::min(e.s_b, o.s + p.car_rear + o.radius);
   if (w0 > w1) {
     if (side_gap) *side_gap = kInf;
     return false;

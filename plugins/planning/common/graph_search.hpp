@@ -71,8 +71,9 @@ double relative_s(double s, double s0, double length);
 
 // Whether the car following the edge from (rel_a, d_a) to (rel_b, d_b) comes nearer than the
 // clearance to the obstacle (its s relative to the same origin); `side_gap` gets the least gap.
+// `from`: where the car's reference point is now, on the edge (the part before it is driven).
 bool edge_blocked(const EdgeShape& e, const FrenetObstacle& o, double half_width, const SearchParams& p,
-                  double* side_gap = nullptr);
+                  double* side_gap = nullptr, double from = -1e300);
 
 class GraphSearch {
  public:

@@ -59,7 +59,8 @@ void RoadGraphPlanner::observe(const std::vector<MapObstacle>& seen, std::int64_
                 memory_.end());
 }
 
-bool RoadGraphPlanner::committed_blocked(const std::vector<Piece>& pieces, const std::vector<FrenetObstacle>& obs) const {
+bool RoadGraphPlanner::committed_blocked(const std::vector<Piece>& pieces, const std::vector<FrenetObstacle>& obs,
+                                         double s_c) const {
   if (obs.empty()) return false;
   const double L = line_.length();
   SearchParams keep = p_.search;
@@ -71,7 +72,7 @@ bool RoadGraphPlanner::committed_blocked(const std::vector<Piece>& pieces, const
     for (const auto& o : obs) {
       FrenetObstacle r = o;
       r.s = relative_s(o.s, pc.shape.s_a, L);
-      if (edge_blocked(e, r, hw, keep)) return true;
+      if (edge_blocked(e, r, hw, keep, nullptr, relative_s(s_c, pc.shape.s_a, L))) return true;
     }
   }
   return false;
@@ -268,7 +269,7 @@ std::vector<std::pair<std::uint32_t, double>> RoadGraphPlanner::lead_ins(double 
       FrenetObstacle r = o;
       r.s = relative_s(o.s, s_c, L);
       double gap;
-      if (edge_blocked(e, r, hw, sp, &gap)) { ok = false; break; }
+      if (edge_blocked(e, r, hw, sp, &gap, 0.0)) { ok = false; break; }  // from the car on
       if (gap < sp.soft_clearance) cost += sp.k_proximity * (sp.soft_clearance - gap) * (sp.soft_clearance - gap);
     }
     if (!ok) continue;
@@ -279,7 +280,7 @@ std::vector<std::pair<std::uint32_t, double>> RoadGraphPlanner::lead_ins(double 
   return out;
 }
 
-double RoadGraphPlanner::stop_at(const std::vector<Piece>& pieces, const std::vector<FrenetObstacle>& obs) const {
+double RoadGraphPlanner::stop_at(const std::vector<Piece>& pieces, const std::vector<FrenetObstacle>& obs, double s_c) const {
   const double L = line_.length();
   double stop = pieces.back().shape.s_b;
   if (obs.empty()) return stop;
@@ -289,7 +290,7 @@ double RoadGraphPlanner::stop_at(const std::vector<Piece>& pieces, const std::ve
     for (const auto& o : obs) {
       FrenetObstacle r = o;
       r.s = relative_s(o.s, pc.shape.s_a, L);
-      if (edge_blocked(e, r, hw, p_.search))
+      if (edge_blocked(e, r, hw, p_.search, nullptr, relative_s(s_c, pc.shape.s_a, L)))
         stop = std::min(stop, pc.shape.s_a + r.s - p_.search.car_front - r.radius - p_.search.clearance);
     }
   }
@@ -323,7 +324,7 @@ const PlannedPath& RoadGraphPlanner::plan(double x, double y, double speed) {
     kept.push_back(pc);
     if (rb >= commit && !stopping_) break;
   }
-  const bool usable = on_it && !kept.empty() && !committed_blocked(kept, obs);
+  const bool usable = on_it && !kept.empty() && !committed_blocked(kept, obs, s_c);
   const bool reaches = usable && relative_s(kept.back().shape.s_b, s_c, L) >= commit && kept.back().end != kNoNode;
   Plan plan;
   SearchParams sp = p_.search;  // the car's speed, for the curvature its speed allows
@@ -406,7 +407,7 @@ const PlannedPath& RoadGraphPlanner::plan(double x, double y, double speed) {
     pieces_ = kept;
   }
   stopping_ = true;
-  make_path(speed, true, stop_at(pieces_, obs));
+  make_path(speed, true, stop_at(pieces_, obs, s_c));
   return out_;
 }
 

@@ -102,7 +102,10 @@ class RoadGraphPlanner {
     EdgeShape shape;       // s on the line, s_b may run past the line's length
     std::uint32_t end;     // the node it ends at
   };
-  bool committed_blocked(const std::vector<Piece>& pieces, const std::vector<FrenetObstacle>& obs) const;
+  // Whether an obstacle blocks the pieces from the car (at s_c on the line) on: an obstacle the
+  // car has passed blocks nothing (with the part of the path behind the car counted, a car that
+  // passed one near and stopped could never start again).
+  bool committed_blocked(const std::vector<Piece>& pieces, const std::vector<FrenetObstacle>& obs, double s_c) const;
   // Lead-ins from the car (s_c, d_c) to the reachable nodes of the layer at the commitment
   // distance, each with its cost (as an edge's, in the search's terms); at the car's speed
   // (sp.speed), a lead-in sharper than sp.lateral_accel allows is not one.
@@ -110,7 +113,7 @@ class RoadGraphPlanner {
                                                          const std::vector<FrenetObstacle>& obs, const SearchParams& sp) const;
   // Where a car on these pieces must stop (s on the line, unwrapped like the pieces): before the
   // first obstacle that blocks them, or at their end.
-  double stop_at(const std::vector<Piece>& pieces, const std::vector<FrenetObstacle>& obs) const;
+  double stop_at(const std::vector<Piece>& pieces, const std::vector<FrenetObstacle>& obs, double s_c) const;
   // With no route: from (s_a, d_a) on over `length` metres, layer by layer at the offset d_a
   // brought within each layer's nodes (inside the track), at a slope of at most 3° and early
   // enough for where the band narrows: a parallel to the line would leave the track where the

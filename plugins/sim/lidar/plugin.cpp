@@ -39,6 +39,10 @@ ParamBinding<Settings> bindings() {
   ParamBinding<Settings> b;
   b.bind("sensor_id", &Settings::sensor_id).range(0, 255);
   b.declare(ParamSpec::number("rate_hz", 20).in_unit("Hz").at_least(0.1));  // the host's trigger only
+  // The host's too (Manifest::delivered_after): a frame is delivered once its sweep is over.
+  b.declare(ParamSpec::number("latency_s", 0.05).in_unit("s").at_least(0)
+                .doc("a frame, stamped at its scan, is delivered this long after it (sim clock): a sweep, 1 / rate_hz, "
+                     "as a spinning LiDAR's frame is ready when its sweep ends; at most 1 / rate_hz"));
   plugins::bind_vehicle(b, &Settings::vehicle).doc("the car's description file: where its LiDARs sit");
   b.bind("vehicle_mount", &Settings::vehicle_mount).doc("the sensor's mount in the vehicle file");
   b.bind("mount", &Settings::mount).doc("sensor position in base_link, m (x, y, z); empty: vehicle_mount's");
@@ -75,7 +79,8 @@ class Lidar : public Plugin {
         .input<msgs::VehicleState>("truth", "vehicle pose", true, 1)
         .output<msgs::PointCloud>("cloud", "points in the sensor frame")
         .parameters(bindings())
-        .periodic("rate_hz");
+        .periodic("rate_hz")
+        .delivered_after("latency_s");
   }
 
   void configure(Context& ctx) override {

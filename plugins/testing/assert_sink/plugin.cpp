@@ -4,6 +4,9 @@
 #include <brickyard/msgs/Scalar.h>
 #include <brickyard/plugin.hpp>
 
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <optional>
 
 namespace {
@@ -13,6 +16,7 @@ using namespace brickyard;
 struct Settings {
   testing::StreamExpectations expect;
   std::int64_t finish_after = 0;
+  double min_age_s = NAN, max_age_s = NAN;  // a sample's age when it arrives: now - its stamp
 };
 
 ParamBinding<Settings> bindings() {
@@ -28,7 +32,10 @@ ParamBinding<Settings> bindings() {
   b.bind("expect_values", &Settings::expect, &E::expect_values).doc("the first samples must equal these");
   b.bind("finish_after", &Settings::finish_after).at_least(0)
       .doc("end the run successfully after this many samples; 0: never");
+  b.bind("min_age_s", &Settings::min_age_s).in_unit("s").doc("each sample at least this old when it arrives (now - stamp); NaN: no check");
+  b.bind("max_age_s", &Settings::max_age_s).in_unit("s").doc("each sample at most this old when it arrives; NaN: no check");
   b.not_above("min_value", "max_value");
+  b.not_above("min_age_s", "max_age_s");
   b.not_above("min_rate_hz", "max_rate_hz");
   return b;
 }
@@ -46,6 +53,8 @@ class AssertSink : public Plugin {
   void configure(Context& ctx) override {
     Settings s = bindings().read(ctx.params());
     finish_after_ = s.finish_after;
+    min_age_ = s.min_age_s;
+    max_age_ = s.max_age_s;
     checker_.emplace(std::move(s.expect));
     in_ = ctx.input<msgs::Scalar>("in");
   }
@@ -55,6 +64,16 @@ class AssertSink : public Plugin {
       if (auto v = checker_->observe(s->header().stamp_ns(), s->value())) {
         violations_.push_back(*v);
         ctx.fail(*v);
+      }
+      const double age = static_cast<double>(ctx.now_ns() - s->header().stamp_ns()) * 1e-9;
+      max_seen_age_ = std::max(max_seen_age_, age);
+      if (age < min_age_ - 1e-9 || age > max_age_ + 1e-9) {
+        char b[160];
+        std::snprintf(b, sizeof b, "sample %lld stamped %.6f s arrived %.6f s old (expected %g to %g s)",
+                      static_cast<long long>(checker_->count()), static_cast<double>(s->header().stamp_ns()) * 1e-9, age,
+                      min_age_, max_age_);
+        violations_.push_back(b);
+        ctx.fail(b);
       }
       if (finish_after_ > 0 && checker_->count() == finish_after_) ctx.finish("received " + std::to_string(finish_after_) + " samples");
     }
@@ -69,6 +88,7 @@ class AssertSink : public Plugin {
     ctx.metric("max", checker_->max());
     ctx.metric("last", checker_->last());
     ctx.metric("digest", checker_->digest());
+    ctx.metric("max_age_s", max_seen_age_);
     ctx.metric("passed", violations_.empty() && end.empty() ? 1.0 : 0.0);
     for (const auto& v : end) ctx.fail(v);
   }
@@ -76,6 +96,7 @@ class AssertSink : public Plugin {
  private:
   std::optional<testing::StreamChecker> checker_;
   std::int64_t finish_after_ = 0;
+  double min_age_ = NAN, max_age_ = NAN, max_seen_age_ = 0;
   std::vector<std::string> violations_;
   Input<msgs::Scalar> in_;
 };

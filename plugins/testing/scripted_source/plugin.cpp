@@ -29,6 +29,9 @@ ParamBinding<Settings> bindings() {
   b.bind("step", &Settings::step).doc("ramp increment per sample");
   b.bind("count", &Settings::count).at_least(-1).doc("samples to publish; -1: unlimited");
   b.bind("noise_std", &Settings::noise_std).at_least(0).doc("Gaussian noise added to each value, seeded by --seed");
+  // The host's (Manifest::delivered_after): a source that models a sensor's latency.
+  b.declare(ParamSpec::number("latency_s", 0).in_unit("s").at_least(0)
+                .doc("sim clock: each sample, stamped when it is made, is delivered this long after; at most 1 / rate_hz"));
   return b;
 }
 
@@ -39,7 +42,8 @@ class ScriptedSource : public Plugin {
         .describe("Publishes a scripted sequence of values: a list, or a ramp start + k*step")
         .output<msgs::Scalar>("out", "one value per step")
         .parameters(bindings())
-        .periodic("rate_hz");
+        .periodic("rate_hz")
+        .delivered_after("latency_s");
   }
 
   void configure(Context& ctx) override {

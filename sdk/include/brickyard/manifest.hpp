@@ -93,10 +93,12 @@ struct ParamConstraint {
   }
 };
 
+// When a node steps, and (latency, ABI 2.1) when what a step publishes is delivered.
 struct TriggerSpec {
-  enum class Kind { periodic, on_input };
+  enum class Kind { periodic, on_input, latency };
   Kind kind = Kind::periodic;
-  // periodic: name of the number parameter that holds the rate in Hz; on_input: the input port.
+  // periodic: name of the number parameter that holds the rate in Hz; on_input: the input port;
+  // latency: name of the number parameter that holds the latency in seconds.
   std::string ref;
 };
 
@@ -137,6 +139,15 @@ struct Manifest {
   // Step the node when a sample arrives on the named input.
   Manifest& on_input(std::string port) {
     triggers.push_back({TriggerSpec::Kind::on_input, std::move(port)});
+    return *this;
+  }
+  // On the sim clock, what a step publishes (and logs) is delivered this many seconds (the named
+  // number parameter) after the step: a sensor's frame that is ready only once its sweep is
+  // over, a computation that takes time. Its inputs are read at the step's instant. For a
+  // periodic node with no input trigger, at most one period (the host checks). On the real clock
+  // a step's outputs go when it returns: its latency is the real one. (ABI 2.1)
+  Manifest& delivered_after(std::string seconds_param) {
+    triggers.push_back({TriggerSpec::Kind::latency, std::move(seconds_param)});
     return *this;
   }
 
