@@ -714,3 +714,35 @@ TEST(RoadGraphPlanner, WithNoNodeBesideAnObstacleTheCarSwervesPastIt) {
   for (int k = 0; k < pp.confirmations; ++k) blocked.observe(wall, 0);
   EXPECT_FALSE(blocked.plan(130, 0, 80).swerve);
 }
+
+// A car that passed an obstacle near (under the clearance) and stopped just past it must start
+// again: the path behind it is driven, the obstacle there blocks nothing. (On Spielberg's hairpin
+// a car stopped 8 m past a pylon it had passed 0.57 m off stood for ever: every lead-in, path
+// behind the car included, "hit" the pylon.)
+TEST(RoadGraphPlanner, ACarStoppedJustPastAnObstacleDrivesOn) {
+  const RefLine line = stadium();
+  const RoadGraph g = RoadGraph::build(line, kRoom, RoadGraphParams{});
+  RoadGraphPlanner planner(g, line, std::vector<double>(line.size(), 40.0), PlannerParams{});
+  for (int k = 0; k < PlannerParams{}.confirmations; ++k) planner.observe({{300, 1.5, 0.2, 0}}, 0);
+  const PlannedPath p = planner.plan(302.5, 0, 0);  // its rear 1.5 m past the pylon, 0.3 m beside it
+  EXPECT_TRUE(p.route_found);
+  double v_max = 0;
+  for (std::size_t i = 0; i < p.points.size(); ++i) v_max = std::max(v_max, p.speed[i]);
+  EXPECT_GT(v_max, 5.0) << "it drives on";
+}
+
+// A car standing beside the band where it narrows (it stopped there) has no lead-in sharp enough
+// to the layer at the commitment distance; one to a layer farther on bends gently back in.
+TEST(RoadGraphPlanner, ACarStoppedBesideTheBandRejoinsItFartherOn) {
+  const RefLine line = stadium();
+  const TrackRoom room = [](double s) { return std::make_pair(-7.0, s < 290 ? 7.0 : 0.5); };
+  const RoadGraph g = RoadGraph::build(line, room, RoadGraphParams{});
+  auto found = [&](double rejoin) {
+    PlannerParams pp;
+    pp.rejoin_reach = rejoin;
+    RoadGraphPlanner planner(g, line, std::vector<double>(line.size(), 40.0), pp);
+    return planner.plan(300, 5.5, 0).route_found;
+  };
+  EXPECT_FALSE(found(0)) << "the layer at the commitment distance is out of the car's steering";
+  EXPECT_TRUE(found(PlannerParams{}.rejoin_reach));
+}

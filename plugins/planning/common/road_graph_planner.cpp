@@ -352,6 +352,14 @@ const PlannedPath& RoadGraphPlanner::plan(double x, double y, double speed) {
         out_.edges_relaxed += fresh.edges_relaxed;
         if (fresh.found || reach <= p_.commit_min) break;
       }
+      // A slow car beside the band (it stopped there) may have no lead-in sharp enough to the
+      // layer at the commitment distance, but one to a layer farther on: there, its lead-in
+      // bends gently back into the band (lead_ins keeps it clear of the obstacles).
+      for (double reach = commit + 10; !fresh.found && reach <= commit + p_.rejoin_reach; reach += 10) {
+        sp.ahead = reach;
+        fresh = search_.plan(lead_ins(s_c, d_c, reach, obs, sp), obs, sp);
+        out_.edges_relaxed += fresh.edges_relaxed;
+      }
     }
     sp.clearance = p_.search.clearance;
     if (fresh.found) {

@@ -38,6 +38,9 @@ struct PlannerParams {
   double rejoin = 2.0;            // m off the committed path before it is dropped
   double path_step = 2.0;         // m between path points
   double behind = 3.0;            // m of path behind the car (the tracker projects the car on it)
+  // With no route from the layer at the commitment distance: lead-ins to layers up to this much
+  // farther are tried (a car that stopped beside the band rejoins it gently).
+  double rejoin_reach = 50;       // m
   double obstacle_memory = 2.0;   // s an obstacle is kept after it was last seen
   double merge_distance = 1.5;    // m: a detection this near a remembered obstacle is that one
   // On: a remembered obstacle's place is its detections fused, each weighted by the spread of its
@@ -45,11 +48,9 @@ struct PlannerParams {
   // growing by obstacle_drift² (m²/s) a second so a moving obstacle is followed. Off: each
   // detection replaces the place. Fused, a pylon 100 m ahead no longer jumps ±0.5 m sideways with
   // the estimate's heading, and the plan round it no longer flips sides at 70 m/s (Monza's Roggia
-  // with walls at both edges); but on Spielberg's hairpin the car then braked, in lap 2, to a
-  // stand beside the nodes' band, where no lead-in reaches the band, and stood there
-  // (graph.race_spielberg_pylon_at_1400). Off by default until that stop is mended
-  // (docs/planning.md).
-  bool obstacle_fusion = false;
+  // with walls at both edges). (It was off while a car that stopped near a pylon could stand for
+  // ever: mended, see committed_blocked and rejoin_reach; docs/planning.md.)
+  bool obstacle_fusion = true;
   double obstacle_drift = 0.5;
   int confirmations = 3;          // frames an obstacle must be seen in before it is planned around:
                                   // one frame's false detection must not close the road

@@ -86,6 +86,8 @@ ParamBinding<Settings> bindings() {
   b.bind("k_proximity", planner, search, &S::k_proximity).at_least(0);
   b.bind("commit_time", planner, &P::commit_time).in_unit("s").at_least(0);
   b.bind("commit_min", planner, &P::commit_min).in_unit("m").at_least(1);
+  b.bind("rejoin_reach", planner, &P::rejoin_reach).in_unit("m").at_least(0)
+      .doc("with no route from the layer at the commitment distance, lead-ins this much farther are tried (a stopped car rejoins the band)");
   b.bind("obstacle_memory", planner, &P::obstacle_memory).in_unit("s").range(0, 3600);
   b.bind("obstacle_fusion", planner, &P::obstacle_fusion)
       .doc("a remembered obstacle's place fuses its detections by their spread (off: each detection replaces it)");
