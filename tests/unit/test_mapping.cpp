@@ -1,10 +1,14 @@
 // Mapping's algorithms (issue 17): point covariances, the voxel map, scan-to-map registration by
 // voxelized GICP. Beside PCL's GICP: test_mapping_pcl.cpp.
 #include "common/covariances.hpp"
+#include "common/pcd.hpp"
+#include "common/scan_mapper.hpp"
 #include "common/vgicp.hpp"
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
+#include <fstream>
 #include <random>
 
 using namespace brickyard::mapping;
@@ -103,4 +107,106 @@ TEST(Mapping, RegistrationWithNothingToMatchKeepsTheGuess) {
   const RegistrationResult b = register_scan(bad, point_covariances(bad), map, guess);
   EXPECT_FALSE(b.converged);
   EXPECT_TRUE(b.transform.isApprox(guess));
+}
+
+namespace {
+
+// A corridor: flat ground and two smooth parallel walls along x, nothing across: a scan of it
+// says where the car is across and how it is turned, not how far along.
+Points corridor(double step, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<float> n(0.0f, 0.01f);
+  Points pts;
+  for (double x = -30; x <= 30; x += step) {
+    for (double y = -6; y <= 6; y += step) pts.emplace_back(x + n(rng), y + n(rng), n(rng));
+    for (double z = 0; z <= 1.2; z += step) pts.emplace_back(x + n(rng), -6 + n(rng), z), pts.emplace_back(x + n(rng), 6 + n(rng), z);
+  }
+  return pts;
+}
+
+Eigen::Isometry3d planar(double x, double y, double yaw_deg) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.translate(Eigen::Vector3d(x, y, 0));
+  T.rotate(Eigen::AngleAxisd(yaw_deg * M_PI / 180, Eigen::Vector3d::UnitZ()));
+  return T;
+}
+
+double yaw_of(const Eigen::Isometry3d& T) { return std::atan2(T.linear()(1, 0), T.linear()(0, 0)); }
+
+}  // namespace
+
+// In a corridor the registration fixes the pose across and in heading and leaves it where the
+// prior says along the corridor, and the covariance says which is which. In the yard (boxes
+// fix every direction) it fixes all three.
+TEST(ScanMapper, FixesWhatTheScanShowsAndKeepsThePriorAlongACorridor) {
+  const Eigen::Matrix3d prior = Eigen::Vector3d(0.5 * 0.5, 0.5 * 0.5, 0.05 * 0.05).asDiagonal();
+  for (bool boxes : {false, true}) {
+    ScanMapper mapper;
+    const Points world = boxes ? yard(0.15, 0.01, 1) : corridor(0.15, 1);
+    const ScanResult first = mapper.add(world, Eigen::Isometry3d::Identity(), planar_information(prior));
+    EXPECT_TRUE(first.keyframe);
+    EXPECT_FALSE(first.registered);  // nothing to register on yet
+    const Eigen::Isometry3d truth = planar(2.0, 0.0, 0.0);
+    const Points scan = moved(boxes ? yard(0.2, 0.01, 2) : corridor(0.2, 2), truth.inverse());
+    const Eigen::Isometry3d guess = planar(2.3, 0.25, 1.0);
+    const ScanResult r = mapper.add(scan, guess, planar_information(prior));
+    ASSERT_TRUE(r.registered) << (boxes ? "yard" : "corridor");
+    EXPECT_NEAR(r.pose.translation().y(), 0.0, 0.02) << (boxes ? "yard" : "corridor");
+    EXPECT_NEAR(yaw_of(r.pose) * 180 / M_PI, 0.0, 0.05) << (boxes ? "yard" : "corridor");
+    const Eigen::Matrix3d c = planar_covariance(r.covariance);
+    if (boxes) {
+      EXPECT_NEAR(r.pose.translation().x(), 2.0, 0.02);
+      EXPECT_LT(c(0, 0), 1e-3);
+    } else {
+      EXPECT_NEAR(r.pose.translation().x(), 2.3, 0.05) << "along the corridor: the prior's";
+      EXPECT_GT(c(0, 0), 100 * c(1, 1)) << "the covariance says the along-track is the prior's";
+      EXPECT_GT(c(0, 0), 0.5 * 0.25);
+    }
+  }
+}
+
+// A frame joins the map only when the car has moved keyframe_distance; a registration that would
+// move the estimate more than max_correction is not taken.
+TEST(ScanMapper, KeyframesByDistanceAndImplausibleCorrectionsRefused) {
+  ScanMapperParams p;
+  p.keyframe_distance = 2.0;
+  p.max_correction = 0.2;
+  ScanMapper mapper(p);
+  const Eigen::Matrix3d prior = Eigen::Vector3d(1, 1, 0.01).asDiagonal();
+  const Points world = yard(0.15, 0.01, 1);
+  mapper.add(world, Eigen::Isometry3d::Identity(), planar_information(prior));
+  const std::size_t voxels = mapper.fine_map().size();
+  const ScanResult still = mapper.add(yard(0.2, 0.01, 3), planar(0.0, 0.02, 0), planar_information(prior));
+  EXPECT_TRUE(still.registered);
+  EXPECT_FALSE(still.keyframe);
+  EXPECT_EQ(mapper.fine_map().size(), voxels);
+  EXPECT_EQ(mapper.keyframes(), 1u);
+  // The car 0.5 m from where the estimate says: the registration finds it, but the correction is
+  // more than 0.2 m, so the estimate stands.
+  const ScanResult far = mapper.add(moved(yard(0.2, 0.01, 4), planar(0.5, 0, 0).inverse()), planar(0.0, 0.0, 0),
+                                    planar_information(prior));
+  EXPECT_FALSE(far.registered);
+  EXPECT_NEAR(far.pose.translation().x(), 0.0, 1e-12);
+}
+
+// The map written as PCD is read back point for point; an unwritable place is an error naming
+// the file, and no half-written file is left.
+TEST(ScanMapper, MapAsPcdRoundTrip) {
+  VoxelMap m(0.5f);
+  const Points pts = yard(0.3, 0.0, 1);
+  m.add(pts, point_covariances(pts));
+  const std::string path = testing::TempDir() + "map_round_trip.pcd";
+  write_pcd(path, m);
+  const Points back = read_pcd(path);
+  ASSERT_EQ(back.size(), m.size());
+  for (std::size_t i = 0; i < back.size(); i += 17) EXPECT_TRUE(back[i].isApprox(m.voxels()[i].mean().cast<float>(), 1e-6f));
+  std::remove(path.c_str());
+  try {
+    write_pcd("/nonexistent_dir/map.pcd", m);
+    FAIL() << "wrote into a folder that does not exist";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("/nonexistent_dir/map.pcd"), std::string::npos) << e.what();
+  }
+  std::ofstream(testing::TempDir() + "bad.pcd") << "VERSION 0.7\nFIELDS x y z\nPOINTS 3\nDATA ascii\n1 2 3\n4 5\n";
+  EXPECT_THROW(read_pcd(testing::TempDir() + "bad.pcd"), std::runtime_error);
 }

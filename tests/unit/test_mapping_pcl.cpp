@@ -1,6 +1,7 @@
 // Our registration beside PCL's GICP on real scans (data/lidar, MIT, see data/lidar/LICENSE.cupcl),
 // issue 17.
 #include "common/covariances.hpp"
+#include "common/pcd.hpp"
 #include "common/vgicp.hpp"
 #include "pcl_baseline.hpp"
 
@@ -88,4 +89,17 @@ TEST(MappingPcl, TheShippedPairBesidePcl) {
               nearest(theirs.transform), nearest(mine));
   EXPECT_LT(apart_m(mine, theirs.transform), 0.3);
   EXPECT_LT(apart_deg(mine, theirs.transform), 3);
+}
+
+// The map file is PCL's: pcl::io::loadPCDFile reads it, point for point.
+TEST(MappingPcl, PclReadsTheMapFile) {
+  Points pts;
+  for (int i = 0; i < 500; ++i) pts.emplace_back(0.37f * i, std::sin(0.1f * i) * 5.0f, 0.01f * i);
+  VoxelMap m(0.25f);
+  m.add(pts, point_covariances(pts));
+  const std::string path = testing::TempDir() + "map_for_pcl.pcd";
+  write_pcd(path, m);
+  const Points back = brickyard::baseline::load_pcd(path);
+  ASSERT_EQ(back.size(), m.size());
+  for (std::size_t i = 0; i < back.size(); ++i) EXPECT_TRUE(back[i].isApprox(m.voxels()[i].mean().cast<float>(), 1e-6f)) << i;
 }

@@ -56,6 +56,21 @@ Linearized linearize(const Points& scan, const Covariances& covs, const VoxelMap
   return out;
 }
 
+// The prior's term at T, added to L (see PosePrior): r changes by (omega, -[t]x omega + v).
+void add_prior(const PosePrior& pr, const Eigen::Isometry3d& T, bool derivatives, Linearized& L) {
+  Vec6 r;
+  const Eigen::AngleAxisd turn(T.linear() * pr.mean.linear().transpose());
+  r.head<3>() = turn.angle() * turn.axis();
+  r.tail<3>() = T.translation() - pr.mean.translation();
+  const Vec6 Lr = pr.information * r;
+  L.cost += r.dot(Lr);
+  if (!derivatives) return;
+  Mat6 J = Mat6::Identity();
+  J.bottomLeftCorner<3, 3>() = -skew(T.translation());
+  L.H.noalias() += J.transpose() * pr.information * J;
+  L.g.noalias() += J.transpose() * Lr;
+}
+
 Eigen::Isometry3d step(const Vec6& d, const Eigen::Isometry3d& T) {
   const Eigen::Vector3d w = d.head<3>(), v = d.tail<3>();
   const double a = w.norm();
@@ -69,14 +84,25 @@ Eigen::Isometry3d step(const Vec6& d, const Eigen::Isometry3d& T) {
 }  // namespace
 
 RegistrationResult register_scan(const Points& scan, const Covariances& covs, const VoxelMap& map,
-                                 const Eigen::Isometry3d& guess, const RegistrationParams& p) {
+                                 const Eigen::Isometry3d& guess, const RegistrationParams& p, const PosePrior* prior) {
   RegistrationResult r;
   r.transform = guess;
   double lambda = 1e-6;
+  auto at = [&](const Eigen::Isometry3d& T, bool derivatives) {
+    Linearized L = linearize(scan, covs, map, T, p, derivatives);
+    if (prior) add_prior(*prior, T, derivatives, L);
+    return L;
+  };
+  // Each trial point is linearized in full: a step that is taken needs no second pass at its
+  // point (the trial's system is the next iteration's).
+  Linearized L = at(r.transform, true);
+  auto keep = [&](const Linearized& at_T) {
+    r.hessian = at_T.H;
+    r.matched = at_T.matched;
+    r.cost = at_T.matched ? at_T.cost / static_cast<double>(at_T.matched) : 0;
+  };
+  keep(L);
   for (r.iterations = 0; r.iterations < p.max_iterations; ++r.iterations) {
-    const Linearized L = linearize(scan, covs, map, r.transform, p, true);
-    r.matched = L.matched;
-    r.cost = L.matched ? L.cost / static_cast<double>(L.matched) : 0;
     if (L.matched < 6) return r;
     // Levenberg-Marquardt: a step that raises the objective is taken again, more damped.
     bool taken = false;
@@ -87,11 +113,11 @@ RegistrationResult register_scan(const Points& scan, const Covariances& covs, co
       d = A.ldlt().solve(-L.g);
       if (!d.allFinite()) return r;
       const Eigen::Isometry3d next = step(d, r.transform);
-      const Linearized N = linearize(scan, covs, map, next, p, false);
+      Linearized N = at(next, true);
       if (N.matched >= 6 && N.cost <= L.cost) {
         r.transform = next;
-        r.matched = N.matched;
-        r.cost = N.cost / static_cast<double>(N.matched);
+        L = std::move(N);
+        keep(L);
         lambda = std::max(1e-9, lambda / 10);
         taken = true;
       } else {
@@ -108,13 +134,13 @@ RegistrationResult register_scan(const Points& scan, const Covariances& covs, co
 }
 
 RegistrationResult register_scan(const Points& scan, const Covariances& covs, const std::vector<const VoxelMap*>& maps,
-                                 const Eigen::Isometry3d& guess, const RegistrationParams& p) {
+                                 const Eigen::Isometry3d& guess, const RegistrationParams& p, const PosePrior* prior) {
   RegistrationResult r;
   r.transform = guess;
   int iterations = 0;
   for (const VoxelMap* m : maps) {
     if (!m) continue;
-    r = register_scan(scan, covs, *m, r.transform, p);
+    r = register_scan(scan, covs, *m, r.transform, p, prior);
     iterations += r.iterations;
   }
   r.iterations = iterations;

@@ -21,18 +21,32 @@ struct RegistrationParams {
   bool face_neighbours = true;
 };
 
+// A prior on the pose (another estimate of it, such as the fusion's): its mean and its
+// information (inverse covariance) over the step's coordinates, rotation omega then translation
+// v, both in the map frame. Its term (r^T Lambda r, r = (log(R R_p^T), t - t_p)) is added to the
+// objective: what the scans do not tell (the motion along a smooth straight between smooth walls)
+// the prior does.
+struct PosePrior {
+  Eigen::Isometry3d mean = Eigen::Isometry3d::Identity();
+  Eigen::Matrix<double, 6, 6> information = Eigen::Matrix<double, 6, 6>::Zero();
+};
+
 struct RegistrationResult {
   Eigen::Isometry3d transform = Eigen::Isometry3d::Identity();  // map from scan
   int iterations = 0;
   bool converged = false;
   std::size_t matched = 0;  // source points with at least one voxel at the end
   double cost = 0;          // the objective at the end, per matched point
+  // The Gauss-Newton system's matrix at the end (prior included): its inverse is the pose's
+  // covariance, as far as the points' own covariances are right and their errors independent.
+  Eigen::Matrix<double, 6, 6> hessian = Eigen::Matrix<double, 6, 6>::Zero();
 };
 
 // Registers `scan` (scan frame, with its covariances in the scan frame) onto `map`, from `guess`
 // (map from scan). Fewer than 6 matched points: not converged, the guess returned.
 RegistrationResult register_scan(const Points& scan, const Covariances& covs, const VoxelMap& map,
-                                 const Eigen::Isometry3d& guess, const RegistrationParams& p = {});
+                                 const Eigen::Isometry3d& guess, const RegistrationParams& p = {},
+                                 const PosePrior* prior = nullptr);
 
 // Coarse to fine: the same scan registered on each map in turn (largest voxels first), each
 // from the last one's result. Why: a voxel's mean stands for all its points, so coarse voxels
@@ -41,6 +55,7 @@ RegistrationResult register_scan(const Points& scan, const Covariances& covs, co
 // on a walled yard: 1 m voxels from 0.4 m off, 9 cm left; 0.25 m voxels from there, 1 mm).
 // Not converged when the last stage did not converge.
 RegistrationResult register_scan(const Points& scan, const Covariances& covs, const std::vector<const VoxelMap*>& maps,
-                                 const Eigen::Isometry3d& guess, const RegistrationParams& p = {});
+                                 const Eigen::Isometry3d& guess, const RegistrationParams& p = {},
+                                 const PosePrior* prior = nullptr);
 
 }  // namespace brickyard::mapping

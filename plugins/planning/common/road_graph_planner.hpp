@@ -48,9 +48,10 @@ struct PlannerParams {
   // growing by obstacle_drift² (m²/s) a second so a moving obstacle is followed. Off: each
   // detection replaces the place. Fused, a pylon 100 m ahead no longer jumps ±0.5 m sideways with
   // the estimate's heading, and the plan round it no longer flips sides at 70 m/s (Monza's Roggia
-  // with walls at both edges). (It was off while a car that stopped near a pylon could stand for
-  // ever: mended, see committed_blocked and rejoin_reach; docs/planning.md.)
-  bool obstacle_fusion = true;
+  // with walls at both edges, frames delivered at once). Off by default: with the LiDAR's frames
+  // a sweep late (docs/architecture.md), the same Roggia pylon put the car into the wall with it
+  // on and passes with it off (docs/planning.md).
+  bool obstacle_fusion = false;
   double obstacle_drift = 0.5;
   int confirmations = 3;          // frames an obstacle must be seen in before it is planned around:
                                   // one frame's false detection must not close the road

@@ -1,0 +1,116 @@
+#include "scan_mapper.hpp"
+
+#include <Eigen/Eigenvalues>
+
+#include <cmath>
+
+namespace brickyard::mapping {
+
+namespace {
+constexpr int kVx = 3, kVy = 4, kWz = 2;  // (omega, v) indices of x, y and yaw
+}
+
+ScanMapper::ScanMapper(ScanMapperParams p) : p_(p), coarse_(p.coarse_voxel), fine_(p.fine_voxel) {}
+
+ScanResult ScanMapper::add(const Points& scan, const Eigen::Isometry3d& guess, const Eigen::Matrix<double, 6, 6>& information) {
+  ScanResult out;
+  out.pose = guess;
+  Points near;
+  near.reserve(scan.size());
+  const float r2 = static_cast<float>(p_.max_range * p_.max_range);
+  for (const Point& q : scan)
+    if (perception::in_range(q) && q.squaredNorm() <= r2) near.push_back(q);
+  const Covariances covs = point_covariances(near, p_.covariances);
+  const Eigen::FullPivLU<Eigen::Matrix<double, 6, 6>> prior_lu(information);
+  prior_covariance_.reset();
+  if (prior_lu.isInvertible()) {
+    out.covariance = prior_lu.inverse();
+    prior_covariance_ = out.covariance;
+  }
+
+  if (fine_.size() > 0 && !near.empty()) {
+    PosePrior prior{guess, information};
+    const RegistrationResult r = register_scan(near, covs, {&coarse_, &fine_}, guess, p_.registration, &prior);
+    out.matched = r.matched;
+    out.iterations = r.iterations;
+    const Eigen::Isometry3d moved = guess.inverse() * r.transform;
+    const bool plausible = moved.translation().norm() <= p_.max_correction &&
+                           Eigen::AngleAxisd(moved.linear()).angle() <= p_.max_turn;
+    if (r.converged && r.matched >= p_.min_matched && plausible) {
+      const Eigen::FullPivLU<Eigen::Matrix<double, 6, 6>> lu(r.hessian);
+      if (lu.isInvertible()) {
+        out.pose = r.transform;
+        out.covariance = lu.inverse();
+        out.registered = true;
+        keep_prior_where_unseen(near, covs, guess, out);
+      }
+    }
+  }
+  // A frame joins the map on the pose found, once the car has moved keyframe_distance since the
+  // last one: a car standing still does not pile up the same scan.
+  if (fine_.size() == 0 || (out.pose.translation() - last_key_).norm() >= p_.keyframe_distance) {
+    Points world(near.size());
+    Covariances wcovs(near.size());
+    const Eigen::Matrix3f R = out.pose.linear().cast<float>();
+    const Eigen::Vector3f t = out.pose.translation().cast<float>();
+    for (std::size_t i = 0; i < near.size(); ++i) {
+      world[i] = R * near[i] + t;
+      wcovs[i] = R * covs[i] * R.transpose();
+    }
+    coarse_.add(world, wcovs);
+    fine_.add(world, wcovs);
+    last_key_ = out.pose.translation();
+    ++keyframes_;
+    out.keyframe = true;
+  }
+  return out;
+}
+
+void ScanMapper::keep_prior_where_unseen(const Points& scan, const Covariances& covs, const Eigen::Isometry3d& guess,
+                                         ScanResult& out) const {
+  // The surfaces' normals, summed as n n^T: GICP's regularized covariance is V diag(1, 1, eps) V^T,
+  // so I - C = (1 - eps) n n^T, and the sum needs no eigenvectors. (A point with too few
+  // neighbours has C = I: it faces nowhere.)
+  Eigen::Matrix3d support = Eigen::Matrix3d::Zero();
+  for (std::size_t i = 0; i < scan.size() && i < covs.size(); ++i) support += (Eigen::Matrix3d::Identity() - covs[i].cast<double>());
+  const double eps = p_.covariances.epsilon;
+  const Eigen::Matrix3d R = out.pose.linear();
+  support = R * support * R.transpose() / (1.0 - eps);
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(support);
+  Eigen::Matrix3d unseen = Eigen::Matrix3d::Zero();  // projector onto the directions not told
+  for (int k = 0; k < 3; ++k)
+    if (es.eigenvalues()(k) < p_.min_support) {
+      unseen += es.eigenvectors().col(k) * es.eigenvectors().col(k).transpose();
+      ++out.degenerate;
+    }
+  if (out.degenerate == 0) return;
+  // There: the guess's translation, and the prior's variance (its covariance, inverted from
+  // the information the caller gave; without one, the registration's stays).
+  out.pose.translation() += unseen * (guess.translation() - out.pose.translation());
+  Eigen::Matrix<double, 6, 6> M = Eigen::Matrix<double, 6, 6>::Identity();
+  M.bottomRightCorner<3, 3>() = Eigen::Matrix3d::Identity() - unseen;
+  Eigen::Matrix<double, 6, 6> c = M * out.covariance * M.transpose();
+  if (prior_covariance_) c.bottomRightCorner<3, 3>() += unseen * prior_covariance_->bottomRightCorner<3, 3>() * unseen;
+  out.covariance = c;
+}
+
+Eigen::Matrix3d planar_covariance(const Eigen::Matrix<double, 6, 6>& c) {
+  const int idx[3] = {kVx, kVy, kWz};
+  Eigen::Matrix3d out;
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b) out(a, b) = c(idx[a], idx[b]);
+  return out;
+}
+
+Eigen::Matrix<double, 6, 6> planar_information(const Eigen::Matrix3d& xy_yaw, double weak) {
+  Eigen::Matrix<double, 6, 6> info = Eigen::Matrix<double, 6, 6>::Identity() * weak;
+  const Eigen::FullPivLU<Eigen::Matrix3d> lu(xy_yaw);
+  if (!xy_yaw.allFinite() || !lu.isInvertible()) return info;
+  const Eigen::Matrix3d inv = lu.inverse();
+  const int idx[3] = {kVx, kVy, kWz};
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b) info(idx[a], idx[b]) = inv(a, b);
+  return info;
+}
+
+}  // namespace brickyard::mapping

@@ -1,0 +1,81 @@
+#pragma once
+// The paper's mapping (§III-C), framework-free: each LiDAR frame (vehicle frame) registered onto
+// the map built so far from the pose estimate, with that estimate as a prior, and added to the
+// map on the pose found when the car has moved far enough since the last frame added. The pose
+// found is a second estimate of the car's pose: across the track and in heading the walls and
+// the road fix it; along a smooth straight between smooth walls nothing in the scan does, and
+// the prior (the estimate's own covariance) holds it there, so its covariance says so.
+#include "covariances.hpp"
+#include "vgicp.hpp"
+#include "voxel_map.hpp"
+
+#include <Eigen/Geometry>
+
+#include <optional>
+
+namespace brickyard::mapping {
+
+struct ScanMapperParams {
+  float coarse_voxel = 1.0f;       // m: the map registered on first, from the guess (reaches far)
+  float fine_voxel = 0.25f;        // m: then on this one (accurate near the answer); also the map written out
+  double keyframe_distance = 2.0;  // m the car moves before a frame joins the map
+  double max_range = 60.0;         // m from the car: farther points are left out (sparse, poor covariances)
+  double max_correction = 1.5;     // m: a registration moving the guess farther is not taken
+  double max_turn = 0.05;          // rad: nor one turning it more
+  std::size_t min_matched = 100;   // points matched to the map, at least, for a registration to count
+  // A direction of motion in which fewer than this many points' worth of surface faces (the sum
+  // over the scan of n n^T, n each point's surface normal, has an eigenvalue below it) is not
+  // one the scan can tell: there the pose and its variance are the prior's. Why: along a smooth
+  // straight between smooth walls the registration still "finds" a motion, from how the voxel
+  // means fall on the sampled surfaces (aliasing), and its Hessian claims as much information
+  // along the track as across it.
+  double min_support = 30;
+  CovarianceParams covariances;
+  RegistrationParams registration;
+};
+
+struct ScanResult {
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  // map from vehicle: registered, else the guess
+  bool registered = false;  // the registration converged, matched enough and was taken
+  bool keyframe = false;    // the frame joined the map
+  // The pose's covariance over (rotation omega, translation v), map frame: the registration's
+  // system with the prior, inverted (the prior's alone when not registered).
+  Eigen::Matrix<double, 6, 6> covariance = Eigen::Matrix<double, 6, 6>::Identity();
+  std::size_t matched = 0;
+  int iterations = 0;
+  int degenerate = 0;  // directions of translation the scan could not tell (the prior's there)
+};
+
+class ScanMapper {
+ public:
+  explicit ScanMapper(ScanMapperParams p = {});
+  const ScanMapperParams& params() const { return p_; }
+
+  // One frame (vehicle frame) with the pose estimate `guess` (map from vehicle) and its
+  // information (the prior; zero: none). The first frame starts the map on the guess.
+  ScanResult add(const Points& scan, const Eigen::Isometry3d& guess, const Eigen::Matrix<double, 6, 6>& information);
+
+  const VoxelMap& fine_map() const { return fine_; }
+  const VoxelMap& coarse_map() const { return coarse_; }
+  std::size_t keyframes() const { return keyframes_; }
+
+ private:
+  // Where the scan's surfaces tell nothing (ScanMapperParams::min_support): the guess's
+  // translation and the prior's variance.
+  void keep_prior_where_unseen(const Points& scan, const Covariances& covs, const Eigen::Isometry3d& guess,
+                               ScanResult& out) const;
+
+  ScanMapperParams p_;
+  std::optional<Eigen::Matrix<double, 6, 6>> prior_covariance_;  // of the frame being added
+  VoxelMap coarse_, fine_;
+  std::size_t keyframes_ = 0;
+  Eigen::Vector3d last_key_ = Eigen::Vector3d::Constant(1e300);
+};
+
+// The (x, y, yaw) covariance of a pose covariance over (omega, v): rows and columns v_x, v_y, omega_z.
+Eigen::Matrix3d planar_covariance(const Eigen::Matrix<double, 6, 6>& c);
+// The information over (omega, v) of a planar (x, y, yaw) covariance; roll, pitch and z get `weak`
+// (a small information: the scan fixes them).
+Eigen::Matrix<double, 6, 6> planar_information(const Eigen::Matrix3d& xy_yaw, double weak = 1e-6);
+
+}  // namespace brickyard::mapping

@@ -1,0 +1,193 @@
+// mapping.scan_mapper: the paper's mapping (§III-C) as a node (common/scan_mapper.hpp). Each frame
+// of the ground filter's voxels (vertical features and ground, vehicle frame) is registered onto
+// the map so far from the pose estimate of its stamp, that estimate as the prior, and joins the
+// map on the pose found; the pose found is published as a second estimate with its covariance.
+// At the end the map is written as a PCD file (`map_file`).
+#include <brickyard/msgs/LocalizationEstimate.h>
+#include <brickyard/msgs/PointCloud.h>
+#include <brickyard/plugin.hpp>
+
+#include "common/pcd.hpp"
+#include "common/scan_mapper.hpp"
+#include "../../perception/messages.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <cstdlib>
+#include <deque>
+
+namespace {
+
+using namespace brickyard;
+using namespace brickyard::mapping;
+
+struct Settings {
+  ScanMapperParams mapper;
+  std::string map_file;  // empty: none
+  double max_estimate_age = 0.1;
+};
+
+ParamBinding<Settings> bindings() {
+  using M = ScanMapperParams;
+  ParamBinding<Settings> b;
+  b.bind("coarse_voxel", &Settings::mapper, &M::coarse_voxel).in_unit("m").range(0.05, 10)
+      .doc("the map registered on first, from the estimate: reaches far");
+  b.bind("fine_voxel", &Settings::mapper, &M::fine_voxel).in_unit("m").range(0.02, 10)
+      .doc("then on this one, accurate near the answer; also the map written out");
+  b.bind("keyframe_distance", &Settings::mapper, &M::keyframe_distance).in_unit("m").at_least(0)
+      .doc("a frame joins the map once the car has moved this far since the last one");
+  b.bind("max_range", &Settings::mapper, &M::max_range).in_unit("m").at_least(1).doc("points farther from the car are left out");
+  b.bind("max_correction", &Settings::mapper, &M::max_correction).in_unit("m").at_least(0)
+      .doc("a registration moving the estimate farther is not taken");
+  b.bind("max_turn", &Settings::mapper, &M::max_turn).in_unit("rad").at_least(0).doc("nor one turning it more");
+  b.bind("face_neighbours", &Settings::mapper, &M::registration, &RegistrationParams::face_neighbours)
+      .doc("each point matched to its voxel and the 6 sharing a face (VGICP's DIRECT7); off: its own (DIRECT1)");
+  b.bind("map_file", &Settings::map_file).doc("the map written here at the end (PCD, binary x y z); empty: not written");
+  b.bind("max_estimate_age", &Settings::max_estimate_age).in_unit("s").at_least(0)
+      .doc("a frame with no estimate within this of its stamp is left out");
+  b.not_above("fine_voxel", "coarse_voxel");
+  return b;
+}
+
+using CloudPtr = std::shared_ptr<const msgs::PointCloud>;
+using EstimatePtr = std::shared_ptr<const msgs::LocalizationEstimate>;
+
+class ScanMapperNode : public Plugin {
+ public:
+  static Manifest manifest() {
+    return Manifest("mapping.scan_mapper", "1.0.0")
+        .describe("each frame registered onto the map so far (voxelized GICP, the pose estimate as prior) and added to it; "
+                  "the pose found published as a second estimate; the map written as a PCD file at the end")
+        .input<msgs::PointCloud>("points", "the ground filter's vertical features, vehicle frame", true, 8)
+        .input<msgs::PointCloud>("ground", "the ground filter's ground, vehicle frame, the same frames", true, 8)
+        .input<msgs::LocalizationEstimate>("estimate", "the pose estimate (the fusion's), its covariance the prior", true, 64)
+        .output<msgs::LocalizationEstimate>("pose", "the pose found, stamped with the frame; covariance over (x, y, yaw)")
+        .parameters(bindings())
+        .on_input("ground");
+  }
+
+  void configure(Context& ctx) override {
+    const Settings s = bindings().read(ctx.params());
+    mapper_ = ScanMapper(s.mapper);
+    map_file_ = s.map_file;
+    if (!map_file_.empty()) {  // a place that cannot be written is said now, not after the laps
+      const std::string probe = map_file_ + ".part";
+      if (!std::ofstream(probe)) throw BadInput("map_file '" + map_file_ + "': cannot write there (does its folder exist?)");
+      std::remove(probe.c_str());
+    }
+    max_age_ns_ = static_cast<std::int64_t>(s.max_estimate_age * 1e9);
+    points_ = ctx.input<msgs::PointCloud>("points");
+    ground_ = ctx.input<msgs::PointCloud>("ground");
+    estimate_ = ctx.input<msgs::LocalizationEstimate>("estimate");
+    out_ = ctx.output<msgs::LocalizationEstimate>("pose");
+  }
+
+  void step(Context& ctx) override {
+    for (auto& e : estimate_.take()) {
+      estimates_.push_back(e);
+      if (estimates_.size() > 256) estimates_.pop_front();
+    }
+    for (auto& p : points_.take()) {
+      features_.push_back(p);
+      if (features_.size() > 8) features_.pop_front();
+    }
+    for (auto& g : ground_.take()) frame(ctx, *g);
+  }
+
+  void deactivate(Context& ctx) override {
+    ctx.metric("frames", static_cast<double>(frames_));
+    ctx.metric("registered", static_cast<double>(registered_));
+    ctx.metric("keyframes", static_cast<double>(mapper_.keyframes()));
+    ctx.metric("map_voxels", static_cast<double>(mapper_.fine_map().size()));
+    ctx.metric("frames_without_estimate", static_cast<double>(no_estimate_));
+    ctx.metric("malformed_clouds", static_cast<double>(malformed_));
+    ctx.metric("correction_mean_m", registered_ ? correction_sum_ / static_cast<double>(registered_) : 0.0);
+    ctx.metric("correction_max_m", correction_max_);
+    if (map_file_.empty()) return;
+    try {
+      write_pcd(map_file_, mapper_.fine_map());
+      ctx.log(LogLevel::info, "map written: " + map_file_ + " (" + std::to_string(mapper_.fine_map().size()) + " points)");
+    } catch (const std::exception& e) {
+      ctx.fail(e.what());
+    }
+  }
+
+ private:
+  void frame(Context& ctx, const msgs::PointCloud& ground) {
+    const std::int64_t stamp = ground.header().stamp_ns();
+    Points pts;
+    try {
+      perception::append_vehicle_points(ground, pts);
+      for (const auto& f : features_)
+        if (f->header().stamp_ns() == stamp) perception::append_vehicle_points(*f, pts);
+    } catch (const std::runtime_error& e) {
+      if (malformed_++ == 0) ctx.log(LogLevel::warn, std::string(e.what()) + ": frame skipped");
+      return;
+    }
+    // The estimate of the frame's stamp (the nearest: the fusion runs at 100 Hz and more).
+    EstimatePtr est;
+    for (const auto& e : estimates_)
+      if (!est || std::llabs(e->header().stamp_ns() - stamp) < std::llabs(est->header().stamp_ns() - stamp)) est = e;
+    if (!est || std::llabs(est->header().stamp_ns() - stamp) > max_age_ns_ || !std::isfinite(est->x()) ||
+        !std::isfinite(est->y()) || !std::isfinite(est->yaw())) {
+      ++no_estimate_;
+      return;
+    }
+    ++frames_;
+    // The guess: the estimate's (x, y, yaw), with the height, roll and pitch the last frame found
+    // (the estimate is planar; a banked turn tilts the car).
+    Eigen::Isometry3d guess = Eigen::Isometry3d::Identity();
+    guess.linear() = (Eigen::AngleAxisd(est->yaw(), Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(pitch_, Eigen::Vector3d::UnitY()) *
+                      Eigen::AngleAxisd(roll_, Eigen::Vector3d::UnitX())).toRotationMatrix();
+    guess.translation() = Eigen::Vector3d(est->x(), est->y(), z_);
+    Eigen::Matrix3d cov;
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b) cov(a, b) = est->covariance()[3 * a + b];
+    const ScanResult r = mapper_.add(pts, guess, planar_information(cov));
+    if (r.registered) {
+      ++registered_;
+      const double c = std::hypot(r.pose.translation().x() - est->x(), r.pose.translation().y() - est->y());
+      correction_sum_ += c;
+      correction_max_ = std::max(correction_max_, c);
+      // Roll and pitch as the small angles they are (z-y-x order: the car is never upside down).
+      const Eigen::Vector3d fwd = r.pose.linear().col(0), left = r.pose.linear().col(1);
+      pitch_ = -std::asin(std::clamp(fwd.z(), -1.0, 1.0));
+      roll_ = std::asin(std::clamp(left.z() / std::cos(pitch_), -1.0, 1.0));
+      z_ = r.pose.translation().z();
+    }
+    msgs::LocalizationEstimate m;
+    m.header().stamp_ns(stamp);
+    m.header().seq(seq_++);
+    m.header().frame_id("map");
+    m.x(r.pose.translation().x());
+    m.y(r.pose.translation().y());
+    const Eigen::Vector3d fwd = r.pose.linear().col(0);
+    m.yaw(std::atan2(fwd.y(), fwd.x()));
+    m.speed(est->speed());
+    m.yaw_rate(est->yaw_rate());
+    const Eigen::Matrix3d pc = planar_covariance(r.covariance);
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b) m.covariance()[3 * a + b] = pc(a, b);
+    m.update_case(r.registered ? 2 : 0);
+    m.status(est->status());
+    out_.publish(std::move(m));
+  }
+
+  ScanMapper mapper_;
+  std::string map_file_;
+  std::int64_t max_age_ns_ = 0;
+  Input<msgs::PointCloud> points_, ground_;
+  Input<msgs::LocalizationEstimate> estimate_;
+  Output<msgs::LocalizationEstimate> out_;
+  std::deque<EstimatePtr> estimates_;
+  std::deque<CloudPtr> features_;
+  double roll_ = 0, pitch_ = 0, z_ = 0;
+  std::uint32_t seq_ = 0;
+  std::uint64_t frames_ = 0, registered_ = 0, no_estimate_ = 0, malformed_ = 0;
+  double correction_sum_ = 0, correction_max_ = 0;
+};
+
+}  // namespace
+
+BRICKYARD_PLUGINS(ScanMapperNode)
