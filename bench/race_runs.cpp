@@ -26,6 +26,9 @@ RaceRun run_race(const std::string& host, const std::string& graph, const std::v
   for (const auto& a : args) cmd += " --arg " + quoted(a);
   for (const auto& a : sets) cmd += " --set " + quoted(a);
   cmd += " > " + quoted(dir + ".log") + " 2>&1";
+  // A summary left by an earlier sweep must not stand for a run that never wrote one.
+  std::error_code ec;
+  std::filesystem::remove_all(dir, ec);
   std::system(cmd.c_str());
   RaceRun r;
   std::ifstream sf(dir + "/summary.json");

@@ -2,6 +2,9 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "common/cell_map.hpp"
+
+#include <algorithm>
 #include <cmath>
 
 namespace brickyard::mapping {
@@ -15,11 +18,7 @@ ScanMapper::ScanMapper(ScanMapperParams p) : p_(p), coarse_(p.coarse_voxel), fin
 ScanResult ScanMapper::add(const Points& scan, const Eigen::Isometry3d& guess, const Eigen::Matrix<double, 6, 6>& information) {
   ScanResult out;
   out.pose = guess;
-  Points near;
-  near.reserve(scan.size());
-  const float r2 = static_cast<float>(p_.max_range * p_.max_range);
-  for (const Point& q : scan)
-    if (perception::in_range(q) && q.squaredNorm() <= r2) near.push_back(q);
+  const Points near = thinned(scan);
   const Covariances covs = point_covariances(near, p_.covariances);
   const Eigen::FullPivLU<Eigen::Matrix<double, 6, 6>> prior_lu(information);
   prior_covariance_.reset();
@@ -30,7 +29,9 @@ ScanResult ScanMapper::add(const Points& scan, const Eigen::Isometry3d& guess, c
 
   if (fine_.size() > 0 && !near.empty()) {
     PosePrior prior{guess, information};
-    const RegistrationResult r = register_scan(near, covs, {&coarse_, &fine_}, guess, p_.registration, &prior);
+    RegistrationParams rp = p_.registration;
+    if (p_.points_worth > 0) rp.weight *= std::min(1.0, p_.points_worth / static_cast<double>(near.size()));
+    const RegistrationResult r = register_scan(near, covs, {&coarse_, &fine_}, guess, rp, &prior);
     out.matched = r.matched;
     out.iterations = r.iterations;
     const Eigen::Isometry3d moved = guess.inverse() * r.transform;
@@ -64,6 +65,30 @@ ScanResult ScanMapper::add(const Points& scan, const Eigen::Isometry3d& guess, c
     out.keyframe = true;
   }
   return out;
+}
+
+Points ScanMapper::thinned(const Points& scan) const {
+  // One point per scan_voxel (the mean of those in it), within max_range; in first-met order.
+  const float r2 = static_cast<float>(p_.max_range * p_.max_range), inv = 1.0f / p_.scan_voxel;
+  perception::CellMap<std::uint32_t> cells;
+  cells.reset(scan.size());
+  Points sum;
+  std::vector<std::uint32_t> count;
+  for (const Point& q : scan) {
+    if (!perception::in_range(q) || q.squaredNorm() > r2) continue;
+    bool inserted;
+    const std::uint32_t c = cells.find_or_insert(
+        perception::cell_key(perception::cell_of(q.x(), inv), perception::cell_of(q.y(), inv), perception::cell_of(q.z(), inv)),
+        static_cast<std::uint32_t>(sum.size()), inserted);
+    if (inserted) {
+      sum.push_back(Point::Zero());
+      count.push_back(0);
+    }
+    sum[c] += q;
+    ++count[c];
+  }
+  for (std::size_t i = 0; i < sum.size(); ++i) sum[i] /= static_cast<float>(count[i]);
+  return sum;
 }
 
 void ScanMapper::keep_prior_where_unseen(const Points& scan, const Covariances& covs, const Eigen::Isometry3d& guess,

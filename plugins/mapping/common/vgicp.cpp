@@ -40,7 +40,7 @@ Linearized linearize(const Points& scan, const Covariances& covs, const VoxelMap
       if (!v) continue;
       any = true;
       const Eigen::Vector3d e = v->mean() - q;
-      const Eigen::Matrix3d W = static_cast<double>(v->count) * (v->covariance() + rcr).inverse();
+      const Eigen::Matrix3d W = p.weight * static_cast<double>(v->count) * (v->covariance() + rcr).inverse();
       if (!W.allFinite()) continue;
       const Eigen::Vector3d We = W * e;
       out.cost += e.dot(We);

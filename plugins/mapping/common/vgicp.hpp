@@ -19,6 +19,11 @@ struct RegistrationParams {
   // On: each point is matched to its own voxel and the 6 that share a face with it (VGICP's
   // DIRECT7), which pulls from farther; off: its own voxel alone (DIRECT1), a seventh of the cost.
   bool face_neighbours = true;
+  // The scan's terms are multiplied by this. GICP takes every point's error as independent, so
+  // its information grows with the number of points, far past what a scan knows (neighbouring
+  // points share the surface's sampling and the pose's error): beside a prior, the weight says
+  // how many points' worth a scan is (ScanMapperParams::points_worth).
+  double weight = 1.0;
 };
 
 // A prior on the pose (another estimate of it, such as the fusion's): its mean and its

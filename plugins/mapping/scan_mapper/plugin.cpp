@@ -125,29 +125,41 @@ class ScanMapperNode : public Plugin {
       if (malformed_++ == 0) ctx.log(LogLevel::warn, std::string(e.what()) + ": frame skipped");
       return;
     }
-    // The estimate of the frame's stamp (the nearest: the fusion runs at 100 Hz and more).
-    EstimatePtr est;
-    for (const auto& e : estimates_)
+    // The estimate at the frame's stamp: interpolated between the two around it (the fusion's
+    // 125 Hz is not the LiDAR's 20 Hz: the nearest one may be 4 ms off, 15 cm at 37 m/s).
+    EstimatePtr est, before, after;
+    for (const auto& e : estimates_) {
       if (!est || std::llabs(e->header().stamp_ns() - stamp) < std::llabs(est->header().stamp_ns() - stamp)) est = e;
+      if (e->header().stamp_ns() <= stamp && (!before || e->header().stamp_ns() > before->header().stamp_ns())) before = e;
+      if (e->header().stamp_ns() >= stamp && (!after || e->header().stamp_ns() < after->header().stamp_ns())) after = e;
+    }
     if (!est || std::llabs(est->header().stamp_ns() - stamp) > max_age_ns_ || !std::isfinite(est->x()) ||
         !std::isfinite(est->y()) || !std::isfinite(est->yaw())) {
       ++no_estimate_;
       return;
     }
+    double ex = est->x(), ey = est->y(), eyaw = est->yaw();
+    if (before && after && after->header().stamp_ns() > before->header().stamp_ns()) {
+      const double u = static_cast<double>(stamp - before->header().stamp_ns()) /
+                       static_cast<double>(after->header().stamp_ns() - before->header().stamp_ns());
+      ex = before->x() + u * (after->x() - before->x());
+      ey = before->y() + u * (after->y() - before->y());
+      eyaw = before->yaw() + u * std::remainder(after->yaw() - before->yaw(), 2 * M_PI);
+    }
     ++frames_;
     // The guess: the estimate's (x, y, yaw), with the height, roll and pitch the last frame found
     // (the estimate is planar; a banked turn tilts the car).
     Eigen::Isometry3d guess = Eigen::Isometry3d::Identity();
-    guess.linear() = (Eigen::AngleAxisd(est->yaw(), Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(pitch_, Eigen::Vector3d::UnitY()) *
+    guess.linear() = (Eigen::AngleAxisd(eyaw, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(pitch_, Eigen::Vector3d::UnitY()) *
                       Eigen::AngleAxisd(roll_, Eigen::Vector3d::UnitX())).toRotationMatrix();
-    guess.translation() = Eigen::Vector3d(est->x(), est->y(), z_);
+    guess.translation() = Eigen::Vector3d(ex, ey, z_);
     Eigen::Matrix3d cov;
     for (int a = 0; a < 3; ++a)
       for (int b = 0; b < 3; ++b) cov(a, b) = est->covariance()[3 * a + b];
     const ScanResult r = mapper_.add(pts, guess, planar_information(cov));
     if (r.registered) {
       ++registered_;
-      const double c = std::hypot(r.pose.translation().x() - est->x(), r.pose.translation().y() - est->y());
+      const double c = std::hypot(r.pose.translation().x() - ex, r.pose.translation().y() - ey);
       correction_sum_ += c;
       correction_max_ = std::max(correction_max_, c);
       // Roll and pitch as the small angles they are (z-y-x order: the car is never upside down).

@@ -38,6 +38,7 @@ bool LocalizationScore::estimate(double t, double x, double y, int status) {
   max_ = std::max(max_, e);
   if (status == 0) max_normal_ = std::max(max_normal_, e);
   for (const auto& [a, b] : p_.windows) {
+    if (t >= a && t <= b) max_window_ = std::max(max_window_, e);
     if (t < a || t >= b + p_.grace_s) continue;
     if (status >= 1 && flag_ < 0) flag_ = t - a;
     if (status >= 2 && emergency_ < 0) emergency_ = t - a;

@@ -30,13 +30,16 @@ class LocalizationScore {
   double time_to_flag() const { return flag_; }            // -1: never flagged in a window
   double time_to_emergency() const { return emergency_; }  // -1: never
   int false_alarms() const { return false_alarms_; }
+  // The largest error in any fault window (from its start to its end): how far the estimate
+  // drifted while the fault lasted. 0 without a window or a sample in one.
+  double max_error_in_windows() const { return max_window_; }
 
  private:
   bool in_window(double t, double grace) const;
   ScoreParams p_;
   std::deque<std::pair<double, std::pair<double, double>>> truth_;
   std::size_t n_ = 0;
-  double sq_ = 0, max_ = 0, max_normal_ = 0, flag_ = -1, emergency_ = -1;
+  double sq_ = 0, max_ = 0, max_normal_ = 0, max_window_ = 0, flag_ = -1, emergency_ = -1;
   int false_alarms_ = 0, last_status_ = 0;
 };
 

@@ -82,6 +82,7 @@ class Scorer : public Plugin {
     ctx.metric("rmse_m", s.rmse());
     ctx.metric("max_error_m", s.max_error());
     ctx.metric("max_error_normal_m", s.max_error_normal());
+    ctx.metric("max_error_in_windows_m", s.max_error_in_windows());
     ctx.metric("time_to_flag_s", s.time_to_flag());
     ctx.metric("time_to_emergency_s", s.time_to_emergency());
     ctx.metric("false_alarms", static_cast<double>(s.false_alarms()));
