@@ -746,3 +746,16 @@ TEST(RoadGraphPlanner, ACarStoppedBesideTheBandRejoinsItFartherOn) {
   EXPECT_FALSE(found(0)) << "the layer at the commitment distance is out of the car's steering";
   EXPECT_TRUE(found(PlannerParams{}.rejoin_reach));
 }
+
+// A frame's stamp between two estimates: the pose interpolated, the heading across ±pi the short
+// way; before the first or after the last, the nearest.
+TEST(PlanFrames, PoseAtInterpolatesBetweenTheTwoAroundTheStamp) {
+  const std::vector<StampedPose> poses = {{0, 0.0, 0.0, 3.1, 0.1, 0.01}, {8'000'000, 0.64, 0.08, -3.1, 0.2, 0.02}};
+  const StampedPose p = pose_at(poses, 2'000'000);
+  EXPECT_NEAR(p.x, 0.16, 1e-12);
+  EXPECT_NEAR(p.y, 0.02, 1e-12);
+  EXPECT_NEAR(std::remainder(p.yaw - (3.1 + 0.25 * (2 * M_PI - 6.2)), 2 * M_PI), 0.0, 1e-12);
+  EXPECT_EQ(p.stamp_ns, 2'000'000);
+  EXPECT_EQ(pose_at(poses, 9'000'000).x, 0.64);
+  EXPECT_EQ(pose_at(poses, -1).x, 0.0);
+}

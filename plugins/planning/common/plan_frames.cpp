@@ -33,6 +33,26 @@ int nearest_pose(const std::vector<StampedPose>& poses, std::int64_t stamp) {
   return best;
 }
 
+StampedPose pose_at(const std::vector<StampedPose>& poses, std::int64_t stamp) {
+  const int n = nearest_pose(poses, stamp);
+  if (n < 0) return {};
+  int before = -1, after = -1;
+  for (int i = 0; i < static_cast<int>(poses.size()); ++i) {
+    const std::int64_t t = poses[i].stamp_ns;
+    if (t <= stamp && (before < 0 || t > poses[before].stamp_ns)) before = i;
+    if (t >= stamp && (after < 0 || t < poses[after].stamp_ns)) after = i;
+  }
+  if (before < 0 || after < 0 || poses[after].stamp_ns <= poses[before].stamp_ns) return poses[n];
+  const StampedPose &a = poses[before], &b = poses[after];
+  const double u = static_cast<double>(stamp - a.stamp_ns) / static_cast<double>(b.stamp_ns - a.stamp_ns);
+  StampedPose p = u < 0.5 ? a : b;  // the spreads of the nearer
+  p.stamp_ns = stamp;
+  p.x = a.x + u * (b.x - a.x);
+  p.y = a.y + u * (b.y - a.y);
+  p.yaw = a.yaw + u * std::remainder(b.yaw - a.yaw, 2 * M_PI);
+  return p;
+}
+
 PathGeometry path_geometry(const std::vector<PathSample>& pts) {
   PathGeometry g;
   double s = 0;

@@ -42,6 +42,10 @@ double placement_band(const StampedPose& at, double ox, double oy, double edge_b
 // strictly nearer (then the first of those); compared in double so that odd stamps cannot
 // overflow. -1 for no poses.
 int nearest_pose(const std::vector<StampedPose>& poses, std::int64_t stamp_ns);
+// The pose at a stamp: interpolated between the two poses around it (in stamp order), else the
+// nearest. Why: the estimate runs at its own rate (125 Hz), not the LiDAR's; the nearest pose
+// may be 4 ms from a frame's stamp, 0.3 m at 80 m/s.
+StampedPose pose_at(const std::vector<StampedPose>& poses, std::int64_t stamp_ns);
 
 struct PathGeometry {
   std::vector<double> x, y, yaw, curvature, s;

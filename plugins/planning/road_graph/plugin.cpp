@@ -165,7 +165,7 @@ class RoadGraphNode : public Plugin {
     }
     if (!planner_ && !setup(ctx)) return;
     if (poses_.empty()) return;
-    // Obstacles into the map frame with the estimate nearest their stamp.
+    // Obstacles into the map frame with the estimate at their stamp.
     std::vector<MapObstacle> seen;
     std::vector<StampedPose> poses;
     for (auto& list : obstacles_.take()) {
@@ -175,7 +175,7 @@ class RoadGraphNode : public Plugin {
           poses.push_back({e->header().stamp_ns(), e->x(), e->y(), e->yaw(), std::sqrt(std::max({cov[0], cov[4], 0.0})),
                            std::sqrt(std::max(cov[8], 0.0))});
         }
-      const StampedPose& at = poses[nearest_pose(poses, list->header().stamp_ns())];
+      const StampedPose at = pose_at(poses, list->header().stamp_ns());
       for (const auto& o : list->obstacles())
         if (auto m = obstacle_in_map(at, o.x(), o.y(), o.size_x(), o.size_y())) {
           if (track_ && !on_track(*track_, m->x, m->y, placement_band(at, o.x(), o.y(), edge_band_, place_sigmas_))) ++off_track_;
