@@ -330,3 +330,28 @@ TEST(WallLine, TheWallsOffsetFromTheEdgeIsLearntNotTakenForDrift) {
   for (double t = 1.05; t < 3; t += 0.05) f.walls(t, WallView{}, wall, &none, &drifted, &path, 110, false);
   for (const auto& q : f.line()) EXPECT_NEAR(q.y, -0.5, 1e-3);
 }
+
+// A wall frame that arrives late is carried from its stamp: the motion after the stamp, a step
+// that straddles it cut at it, oldest first. Set at the stamp and carried by what came after, the
+// car's place in the line's frame is the one it would have had with the frame on time; only the
+// last `keep` steps are kept.
+TEST(WallLine, MotionHistoryCarriesALineFromItsStamp) {
+  MotionHistory h(64);
+  LineOdometry on_time, late;
+  const double dt = 0.01;
+  for (int k = 1; k <= 40; ++k) {
+    const double t = k * dt, v = 30 + 0.1 * k, w = 0.05 * std::sin(0.2 * k);
+    h.add(t, dt, v, w);
+    if (t > 0.1049) on_time.advance(t - std::max(t - dt, 0.105), v, w);  // the frame stamped 0.105 s, on time
+  }
+  h.since(0.105, [&](double d, double v, double w) { late.advance(d, v, w); });
+  EXPECT_NEAR(late.x(), on_time.x(), 1e-12);
+  EXPECT_NEAR(late.y(), on_time.y(), 1e-12);
+  EXPECT_NEAR(late.yaw(), on_time.yaw(), 1e-12);
+  EXPECT_GT(late.x(), 8.0);  // it moved: 0.295 s at about 32 m/s
+  MotionHistory short_memory(3);
+  for (int k = 1; k <= 10; ++k) short_memory.add(k * dt, dt, 1.0, 0.0);
+  LineOdometry kept;
+  short_memory.since(0.0, [&](double d, double v, double w) { kept.advance(d, v, w); });
+  EXPECT_NEAR(kept.x(), 0.03, 1e-12);  // the last three steps only
+}

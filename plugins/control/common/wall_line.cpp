@@ -87,6 +87,11 @@ void LineOdometry::advance(double dt, double speed, double yaw_rate) {
   yaw_ += yaw_rate * dt;
 }
 
+void MotionHistory::add(double t, double dt, double speed, double yaw_rate) {
+  steps_.push_back({t, dt, speed, yaw_rate});
+  if (steps_.size() > keep_) steps_.pop_front();
+}
+
 WallLineFollower::WallLineFollower(WallLineParams line, WallFollowerParams policy, TrackerParams tracker,
                                    RegistrationParams registration)
     : line_(line), policy_(policy), reg_params_(registration) {

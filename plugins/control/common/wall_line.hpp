@@ -20,7 +20,9 @@
 #include "control/path_tracker.hpp"
 #include "wall_follower.hpp"
 
+#include <algorithm>
 #include <cstdint>
+#include <deque>
 #include <map>
 #include <vector>
 
@@ -96,6 +98,29 @@ class LineOdometry {
 
  private:
   double x_ = 0, y_ = 0, yaw_ = 0;
+};
+
+// The IMU's steps of the car's motion (each ends at t and lasts dt), the last `keep` of them: a
+// wall frame arrives some time after its stamp (a LiDAR frame is delivered a sweep after its
+// scan), and its line, set in the vehicle frame of that stamp, is carried to now by the motion
+// since.
+class MotionHistory {
+ public:
+  explicit MotionHistory(std::size_t keep = 64) : keep_(keep) {}
+  void add(double t, double dt, double speed, double yaw_rate);
+  // Calls moved(dt, speed, yaw_rate) for the motion after `since`, oldest first (a step that
+  // straddles it, for its part after).
+  template <class F> void since(double since, F&& moved) const {
+    for (const Step& m : steps_)
+      if (m.t > since) moved(std::min(m.dt, m.t - since), m.speed, m.yaw_rate);
+  }
+
+ private:
+  struct Step {
+    double t, dt, speed, yaw_rate;
+  };
+  std::size_t keep_;
+  std::deque<Step> steps_;
 };
 
 // The follower: chooses the wall, keeps its line, and drives it with a PathTracker. The speed

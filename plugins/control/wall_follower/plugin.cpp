@@ -212,8 +212,7 @@ class WallFollowerNode : public Plugin {
       const double ts = static_cast<double>(m->header().stamp_ns()) * 1e-9;
       if (imu_t_ >= 0 && ts > imu_t_) {
         line_.moved(ts - imu_t_, speed_, m->gyro_z());
-        motion_.push_back({ts, ts - imu_t_, speed_, m->gyro_z()});
-        if (motion_.size() > kHistory) motion_.pop_front();
+        motion_.add(ts, ts - imu_t_, speed_, m->gyro_z());
       }
       imu_t_ = ts;
       yaw_rate_ = m->gyro_z();
@@ -257,9 +256,7 @@ class WallFollowerNode : public Plugin {
       const bool calibrating = mapped && mode_.connected() && !active_ && path_mode_;
       line_.walls(t, last_[0], last_[1], mapped ? &edges[0] : nullptr, mapped ? &edges[1] : nullptr,
                   planned.size() >= 2 ? &planned : nullptr, s_car, calibrating);
-      const double since = static_cast<double>(stamp) * 1e-9;
-      for (const Motion& m : motion_)
-        if (m.t > since) line_.moved(std::min(m.dt, m.t - since), m.speed, m.yaw_rate);
+      motion_.since(static_cast<double>(stamp) * 1e-9, [&](double dt, double v, double w) { line_.moved(dt, v, w); });
       const bool line = line_.has_line(t);
       if (line && line_.side() != 0) ++frames_[line_.side() > 0 ? 0 : 1];
       held_ += line && !last_[line_.side() > 0 ? 0 : 1].valid;
@@ -293,13 +290,9 @@ class WallFollowerNode : public Plugin {
     return best;
   }
 
-  // The IMU's steps of the car's motion, kept to carry a line from its wall frame's stamp on.
-  struct Motion {
-    double t, dt, speed, yaw_rate;  // the step ends at t
-  };
   static constexpr std::size_t kHistory = 64;
   std::deque<std::shared_ptr<const msgs::LocalizationEstimate>> poses_;
-  std::deque<Motion> motion_;
+  MotionHistory motion_{kHistory};  // to carry a line from its wall frame's stamp on
   WallFollower follower_;
   WallLineFollower line_;
   bool line_mode_ = false;
