@@ -53,7 +53,7 @@ int main(int argc, char** argv) {
   o.pylons = {{0, 0, 0.15, 0.7}};
   const scenes::Ims ims(std::string(BRICKYARD_SOURCE_DIR) + "/data", o);
   constexpr float kLeaf = 0.25f;
-  std::vector<double> ours_ms, pcl_ms, ours_m, ours_deg, pcl_m, pcl_deg, cov_ms, d1_ms, d1_m, d1_deg;
+  std::vector<double> ours_ms, pcl_ms, ours_m, ours_deg, pcl_m, pcl_deg, cov_ms, d1_ms, d1_m, d1_deg, ndt_ms, ndt_m, ndt_deg;
   std::size_t points = 0;
   for (int k = 0; k < scans; ++k) {
     // Half the scans on the straight, half in the banked turn.
@@ -103,6 +103,10 @@ int main(int argc, char** argv) {
     pcl_ms.push_back(theirs.ms);
     pcl_m.push_back(err_m(theirs.transform, truth));
     pcl_deg.push_back(err_deg(theirs.transform, truth));
+    const auto n = baseline::ndt(scan, map_pts, guess.matrix());
+    ndt_ms.push_back(n.ms);
+    ndt_m.push_back(err_m(n.transform, truth));
+    ndt_deg.push_back(err_deg(n.transform, truth));
     std::printf("scan %d (s %.0f, %zu points, map %zu): ours %.1f ms, %.3f m %.3f deg | PCL GICP %.1f ms, %.3f m %.3f deg\n", k, s,
                 scan.size(), map_pts.size(), ours_ms.back(), ours_m.back(), ours_deg.back(), pcl_ms.back(), pcl_m.back(), pcl_deg.back());
   }
@@ -116,6 +120,8 @@ int main(int argc, char** argv) {
   std::printf("%-28s %10.1f\n", "  of which the covariances", median(cov_ms));
   std::printf("%-28s %10.1f %12.3f %12.3f\n", "baseline: PCL GICP", median(pcl_ms), *std::max_element(pcl_m.begin(), pcl_m.end()),
               *std::max_element(pcl_deg.begin(), pcl_deg.end()));
+  std::printf("%-28s %10.1f %12.3f %12.3f\n", "baseline: PCL NDT (1 m)", median(ndt_ms), *std::max_element(ndt_m.begin(), ndt_m.end()),
+              *std::max_element(ndt_deg.begin(), ndt_deg.end()));
   std::printf("ratio PCL / ours: %.1f\n", median(pcl_ms) / median(ours_ms));
   return 0;
 }

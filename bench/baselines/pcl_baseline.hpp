@@ -45,5 +45,8 @@ struct GicpResult {
   double ms = 0;
 };
 GicpResult gicp(const Points& source, const Points& target, const Eigen::Matrix4d& guess, int max_iterations = 64);
+// pcl::NormalDistributionsTransform (pcl_gicp.cpp): voxels of `resolution` m, step 0.1, epsilon
+// 1e-3, at most 35 iterations (PCL's tutorial's settings); the wall time of align().
+GicpResult ndt(const Points& source, const Points& target, const Eigen::Matrix4d& guess, float resolution = 1.0f);
 
 }  // namespace brickyard::baseline
