@@ -280,4 +280,3 @@ void Executive::run_sim() {
 }
 
 }  // namespace brickyard::fw
-

@@ -181,7 +181,8 @@ ResolvedGraph resolve_graph(const GraphDecl& g, const Registry& reg, const std::
       const double step_ns = g.clock.step_s * 1e9;
       const std::int64_t ns = static_cast<std::int64_t>(std::llround(std::llround(s * 1e9 / step_ns) * step_ns));
       if (rn.period_ns <= 0 || !rn.trigger_inputs.empty())
-        err(at, "a latency needs a node that steps on its rate alone (plugin " + m.name + " also steps on input)");
+        err(at, "a latency needs a node that steps on its rate alone (plugin " + m.name +
+                    (rn.period_ns <= 0 ? " has no rate)" : " also steps on input)"));
       else if (ns > rn.period_ns)
         err(at, "latency " + fmt_num(s) + " s is longer than the node's period (" + fmt_num(rn.period_ns * 1e-9) +
                     " s): a step's outputs must be delivered before its next step");

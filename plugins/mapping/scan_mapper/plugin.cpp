@@ -9,6 +9,7 @@
 
 #include "common/pcd.hpp"
 #include "common/scan_mapper.hpp"
+#include "math/planar_pose.hpp"
 #include "../../perception/messages.hpp"
 
 #include <cmath>
@@ -138,14 +139,11 @@ class ScanMapperNode : public Plugin {
       ++no_estimate_;
       return;
     }
-    double ex = est->x(), ey = est->y(), eyaw = est->yaw();
-    if (before && after && after->header().stamp_ns() > before->header().stamp_ns()) {
-      const double u = static_cast<double>(stamp - before->header().stamp_ns()) /
-                       static_cast<double>(after->header().stamp_ns() - before->header().stamp_ns());
-      ex = before->x() + u * (after->x() - before->x());
-      ey = before->y() + u * (after->y() - before->y());
-      eyaw = before->yaw() + u * std::remainder(after->yaw() - before->yaw(), 2 * M_PI);
-    }
+    math::PlanarPose at{est->x(), est->y(), est->yaw()};
+    if (before && after)
+      at = math::interpolate_pose(before->header().stamp_ns(), {before->x(), before->y(), before->yaw()},
+                                  after->header().stamp_ns(), {after->x(), after->y(), after->yaw()}, stamp);
+    const double ex = at.x, ey = at.y, eyaw = at.yaw;
     ++frames_;
     // The guess: the estimate's (x, y, yaw), with the height, roll and pitch the last frame found
     // (the estimate is planar; a banked turn tilts the car).

@@ -1,6 +1,8 @@
 #include "plan_frames.hpp"
 
 #include <algorithm>
+#include "math/planar_pose.hpp"
+
 #include <cmath>
 
 namespace brickyard::planning {
@@ -44,12 +46,12 @@ StampedPose pose_at(const std::vector<StampedPose>& poses, std::int64_t stamp) {
   }
   if (before < 0 || after < 0 || poses[after].stamp_ns <= poses[before].stamp_ns) return poses[n];
   const StampedPose &a = poses[before], &b = poses[after];
-  const double u = static_cast<double>(stamp - a.stamp_ns) / static_cast<double>(b.stamp_ns - a.stamp_ns);
-  StampedPose p = u < 0.5 ? a : b;  // the spreads of the nearer
+  const math::PlanarPose q = math::interpolate_pose(a.stamp_ns, {a.x, a.y, a.yaw}, b.stamp_ns, {b.x, b.y, b.yaw}, stamp);
+  StampedPose p = 2 * (stamp - a.stamp_ns) < b.stamp_ns - a.stamp_ns ? a : b;  // the spreads of the nearer (b at a tie)
   p.stamp_ns = stamp;
-  p.x = a.x + u * (b.x - a.x);
-  p.y = a.y + u * (b.y - a.y);
-  p.yaw = a.yaw + u * std::remainder(b.yaw - a.yaw, 2 * M_PI);
+  p.x = q.x;
+  p.y = q.y;
+  p.yaw = q.yaw;
   return p;
 }
 
