@@ -640,12 +640,14 @@ TEST(RoadGraphPlanner, WithNoRoomToStopTheCarSwervesAsFarAsItCan) {
   for (std::size_t i = 0; i < fast.points.size(); ++i) {
     const auto& q = fast.points[i];
     if (std::abs(q.x - 300) < 1.5) beside = std::abs(q.y);
-    if (q.x > 130 && q.x < 290) kv2 = std::max(kv2, std::abs(q.kappa) * 80 * 80);
+    // At most the speed the car can brake to by there (the swerve is judged at the speeds it
+    // brakes to within the grip its bends leave, never lower than braking at full a_decel).
+    if (q.x > 130 && q.x < 290) kv2 = std::max(kv2, std::abs(q.kappa) * std::max(0.0, 80 * 80 - 2 * pp.limits.a_decel * (q.x - 130)));
     EXPECT_LE(std::abs(q.d), 4.1 - hw - pp.swerve_edge_margin + 1e-6) << "at s " << q.s;
   }
   EXPECT_GT(beside, 0.3) << "moved off the pylon's line";
   EXPECT_LT(beside - hw - r, pp.keep_clearance) << "short of the full clearance (that one is not steerable)";
-  EXPECT_LE(kv2, pp.search.lateral_accel * 1.05) << "steerable at the car's speed";
+  EXPECT_LE(kv2, pp.search.lateral_accel * 1.05) << "steerable at the speeds the car brakes to";
   const PlannedPath slow = plan_at(55);  // stops in 126 m: brakes straight
   EXPECT_FALSE(slow.swerve);
 }
@@ -713,6 +715,35 @@ TEST(RoadGraphPlanner, WithNoNodeBesideAnObstacleTheCarSwervesPastIt) {
   for (double d = -4; d <= 4; d += 0.5) wall.push_back({300, d, 0.3, 0});
   for (int k = 0; k < pp.confirmations; ++k) blocked.observe(wall, 0);
   EXPECT_FALSE(blocked.plan(130, 0, 80).swerve);
+}
+
+// A pylon hidden until 95 m ahead in a bend the car takes near its lateral limit (Monza's Lesmo
+// behind its inner wall): the lane change round it is sharper than the car can steer at its speed
+// now, but not at the speed it has there while it brakes within the grip its bend leaves. The
+// swerve is judged by that, and passes at keep_clearance instead of least-harm short of it.
+TEST(RoadGraphPlanner, ASwerveInABendIsJudgedAtTheSpeedTheCarBrakesTo) {
+  const RefLine line = stadium();  // a 200 m radius turn from s = 600 m
+  const TrackRoom narrow = [](double) { return std::make_pair(-4.1, 4.1); };
+  const RoadGraph g = RoadGraph::build(line, narrow, RoadGraphParams{});
+  PlannerParams pp;
+  pp.search.lateral_accel = 20;  // m/s²: at 60 m/s the bend alone takes 18
+  RoadGraphPlanner planner(g, line, std::vector<double>(line.size(), 80.0), pp);
+  const double r = 0.1, hw = g.params().half_width, v = 60;
+  const Eigen::Vector2d pylon = line.point(895, 0), car = line.point(800, 0);
+  for (int k = 0; k < pp.confirmations; ++k) planner.observe({{pylon.x(), pylon.y(), r, 0}}, 0);
+  const PlannedPath& p = planner.plan(car.x(), car.y(), v);
+  EXPECT_FALSE(p.route_found);
+  ASSERT_TRUE(p.swerve);
+  EXPECT_FALSE(p.swerve_short) << "a full swerve, steerable at the speeds braked to";
+  double kv2 = 0, gap = 1e9;
+  for (std::size_t i = 0; i < p.points.size(); ++i) {
+    const PathSample& q = p.points[i];
+    kv2 = std::max(kv2, std::abs(q.kappa) * p.speed[i] * p.speed[i]);
+    if (q.s >= 895 - SearchParams{}.car_front - r && q.s <= 895 + SearchParams{}.car_rear + r)
+      gap = std::min(gap, std::abs(q.d) - hw - r);
+  }
+  EXPECT_GE(gap, pp.keep_clearance - 0.05) << "beside the pylon";
+  EXPECT_LE(kv2, pp.search.lateral_accel * 1.05) << "the path's speeds keep within the car's lateral limit";
 }
 
 // A car that passed an obstacle near (under the clearance) and stopped just past it must start

@@ -124,9 +124,28 @@ std::vector<RoadGraphPlanner::Piece> RoadGraphPlanner::emergency_swerve(double s
                               {EdgeShape{s0, d_c, s1, d_t}, kNoNode},
                               {EdgeShape{s1, d_t, s2, d_t}, kNoNode}};
   };
+  // Steerable: within the graph's curvature limit, and at the speed the car has at each point of
+  // the lane change and the stretch past the obstacle while it brakes as hard as the grip its
+  // bend leaves allows (the friction ellipse). Judged at the car's speed now for the whole of it,
+  // a swerve in a bend near the car's lateral limit was never steerable, and the car passed
+  // Monza's Lesmo pylon, hidden by the inner wall until 97 m ahead at 65 m/s, 0.44 m off.
   auto steerable = [&](const std::vector<Piece>& ps) {
-    const double kmax = max_kappa(ps[1].shape);
-    return kmax <= g_.params().max_curvature && !(keep.lateral_accel > 0 && kmax * speed * speed > keep.lateral_accel);
+    double v2 = speed * speed;
+    for (std::size_t i = 1; i < ps.size(); ++i) {
+      const EdgeShape& e = ps[i].shape;
+      const int n = std::max(1, static_cast<int>(std::ceil((e.s_b - e.s_a) / 1.0)));
+      const double ds = (e.s_b - e.s_a) / n;
+      for (int k = 0; k < n; ++k) {
+        const double s = e.s_a + (k + 0.5) * ds;
+        const double kappa = std::abs(offset_curvature(line_.kappa(s), e.d(s), e.d1(s), e.d2(s)));
+        if (kappa > g_.params().max_curvature) return false;
+        if (keep.lateral_accel <= 0) continue;
+        const double lat = kappa * v2 / keep.lateral_accel;
+        if (lat > 1) return false;
+        v2 = std::max(0.0, v2 - 2 * p_.limits.a_decel * std::sqrt(1 - lat * lat) * ds);
+      }
+    }
+    return true;
   };
   // The least gap between the car's swept side and the obstacles along the pieces: `first`
   // alone, or every other one.
