@@ -32,7 +32,9 @@ std::vector<Surface> voxel_truth(const scenes::Frame& f, const PipelineResult& r
   std::map<std::uint64_t, std::array<int, 4>> votes;
   const float inv = 1.0f / leaf;
   auto key = [&](const Point& p) { return cell_key(cell_of(p.x(), inv), cell_of(p.y(), inv), cell_of(p.z(), inv)); };
-  for (std::size_t i = 0; i < f.points.size(); ++i) ++votes[key(f.points[i])][static_cast<int>(f.surface[i])];
+  // Grass beyond the edges is ground as the road is.
+  for (std::size_t i = 0; i < f.points.size(); ++i)
+    ++votes[key(f.points[i])][static_cast<int>(f.surface[i] == Surface::grass ? Surface::road : f.surface[i])];
   // Centroids lie in their voxel, so the centroid's key is the voxel's.
   std::vector<Surface> t;
   for (const Point& v : r.ground.voxels) {

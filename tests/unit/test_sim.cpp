@@ -203,6 +203,37 @@ TEST(Lidar, RayToAWallAtAKnownDistance) {
   EXPECT_NEAR(road.range, 0.5 / std::sin(std::atan(0.05)), 1e-4);
 }
 
+// Beyond the road's edge, short of the wall, the ground is grass: a mapping drive sees the edge
+// by the grass's brighter returns (docs/mapping.md).
+TEST(Lidar, TheGroundBeyondTheEdgeIsGrassAndReturnsMoreLight) {
+  WorldSpec w;
+  w.line = oval();
+  w.walls.left = true;
+  w.walls.left_offset = 1.0;  // the left edge at d = 7.5, its wall at 8.5
+  Track t(w);
+  const Frenet f = t.at(400, 1.0);
+  const Eigen::Vector3d o(t.position(f).x(), t.position(f).y(), 0.5);
+  LidarSpec s;
+  s.mount = {0, 0, 0.5};
+  s.columns = 1;
+  s.range_noise = 0;
+  auto hit = [&](double lateral) {  // the ray down to the ground `lateral` metres to the left
+    s.elevations = {-std::atan(0.5 / lateral)};
+    LidarCaster c(t, s);
+    const RayHit h = c.cast(o, Eigen::Vector3d(0, lateral, -0.5).normalized(), f.seg);
+    Rng rng(1);
+    PointBuffers out;
+    c.scan(Eigen::Translation3d(o.x(), o.y(), 0) * Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()), f.seg, rng, 0.0, out);
+    EXPECT_EQ(out.intensity.size(), 1u);
+    return std::make_pair(h.surface, out.intensity.empty() ? -1.0 : out.intensity[0] / h.cos_incidence);
+  };
+  const auto road = hit(6.0), grass = hit(7.0);  // d = 7 on the road, d = 8 beyond its edge
+  EXPECT_EQ(road.first, Surface::road);
+  EXPECT_EQ(grass.first, Surface::grass);
+  EXPECT_NEAR(road.second, LidarSpec{}.reflectivity_road, 1e-5);
+  EXPECT_NEAR(grass.second, LidarSpec{}.reflectivity_grass, 1e-5);
+}
+
 TEST(Lidar, PointsOnTheBankedTurnLieOnTheBankedSurface) {
   WorldSpec w;
   w.line = load_centerline_csv(ims_path());

@@ -12,7 +12,10 @@
 
 namespace brickyard::sim {
 
-enum class Surface : unsigned char { none = 0, road = 1, wall = 2, pylon = 3 };
+// grass: the ground beyond the road's edges (level at the edge's height), which returns more of
+// a LiDAR's near-infrared light than asphalt: what shows a mapping drive where an edge without a
+// wall is (docs/mapping.md).
+enum class Surface : unsigned char { none = 0, road = 1, wall = 2, pylon = 3, grass = 4 };
 
 struct RayHit {
   double range = 0;  // m along the ray
@@ -37,7 +40,7 @@ struct LidarSpec {
   // the sim clock the executive already steps a car's LiDARs side by side, and a second thread
   // per frame there only costs its start (docs/performance.md).
   int threads = 1;
-  double reflectivity_road = 0.15, reflectivity_wall = 0.6, reflectivity_pylon = 0.9;
+  double reflectivity_road = 0.15, reflectivity_wall = 0.6, reflectivity_pylon = 0.9, reflectivity_grass = 0.45;
 };
 
 // Row elevations: "uniform" spacing, or "horizon": rows concentrated near 0 deg as the Hydra

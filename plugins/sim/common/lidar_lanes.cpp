@@ -249,7 +249,7 @@ template <int W>
       const D inv_n = on_road ? (g.dtb == 0 ? zero + g.inv_n0 : 1 / vsqrt(1 + tb * tb)) : zero + 1.0;
       L.range = road ? t : L.range;
       L.cos = road ? vabs(-gx * vx - gy * vy + vz) * inv_n : L.cos;
-      L.surf = road ? M{} + static_cast<long>(Surface::road) : L.surf;
+      L.surf = road ? (on_road ? M{} + static_cast<long>(Surface::road) : M{} + static_cast<long>(Surface::grass)) : L.surf;
       act &= ~road;
     }
     const M wall = act & (t_wall <= tf);

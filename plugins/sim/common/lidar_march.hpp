@@ -198,9 +198,9 @@ using lidar_detail::road_root;
         t = t0;
       }
       best_t = t;
-      best.surface = Surface::road;
       const double a = std::clamp(a0 + va * t, 0.0, g.len), d = d0 + vd * t;
       const bool on_road = d <= g.wl0 + g.dwl * a && d >= -(g.wr0 + g.dwr * a);
+      best.surface = on_road ? Surface::road : Surface::grass;
       // Surface normal (-grad z, 1): grad z = tan(bank) * (left normal) on the road, 0 beyond.
       const double tb = on_road ? g.tb0 + g.dtb * a : 0.0;
       const double gx = -tb * g.ty, gy = tb * g.tx;
@@ -265,9 +265,10 @@ struct LidarCaster::Staging {
   const double range = h.range + (sigma > 0 ? rng.normal_fast(sigma) : 0.0);
   if (spec_.dropout > 0 && rng.uniform() < spec_.dropout) return;
   if (range < spec_.min_range || range > spec_.max_range) return;
-  const double refl = h.surface == Surface::road   ? spec_.reflectivity_road
-                      : h.surface == Surface::wall ? spec_.reflectivity_wall
-                                                   : spec_.reflectivity_pylon;
+  const double refl = h.surface == Surface::road    ? spec_.reflectivity_road
+                      : h.surface == Surface::wall  ? spec_.reflectivity_wall
+                      : h.surface == Surface::grass ? spec_.reflectivity_grass
+                                                    : spec_.reflectivity_pylon;
   st.x[st.m] = static_cast<float>(range * (row_c_[r] * col_c_[c]));
   st.y[st.m] = static_cast<float>(range * (row_c_[r] * col_s_[c]));
   st.z[st.m] = static_cast<float>(range * row_s_[r]);
