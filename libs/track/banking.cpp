@@ -17,6 +17,12 @@ std::vector<double> bank_profile(const CenterLine& c, const BankSpec& spec) {
   std::vector<double> s(n, 0.0);
   for (int i = 1; i < n; ++i) s[i] = s[i - 1] + std::hypot(c.x[i] - c.x[i - 1], c.y[i] - c.y[i - 1]);
   if (spec.mode == "none") return target;
+  if (spec.mode == "file") {  // the track file's own column, as it was measured: no ramps added
+    if (c.bank_deg.size() != c.x.size())
+      throw std::invalid_argument(c.source + ": bank_mode 'file', but the track file has no bank_deg column");
+    for (int i = 0; i < n; ++i) target[i] = c.bank_deg[i] * M_PI / 180.0;
+    return target;
+  }
   if (spec.mode == "constant") {
     target.assign(n, loop_sign * rad);
     return target;

@@ -9,7 +9,7 @@
 namespace brickyard::track {
 
 struct BankSpec {
-  std::string mode = "none";          // none | constant | curvature | segments
+  std::string mode = "none";          // none | constant | curvature | segments | file (the track file's bank_deg column)
   double degrees = 0;                 // constant and curvature modes
   double curvature_threshold = 0.002;  // 1/m: a point is in a turn above this (curvature mode)
   double transition_m = 100;          // m over which the bank ramps in and out

@@ -1,13 +1,14 @@
 #include "centre_line.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 
 namespace brickyard::track {
 namespace {
 
-std::vector<double> parse_row(const std::string& row, std::size_t want, const std::string& where) {
+std::vector<double> parse_row(const std::string& row, std::size_t want, std::size_t or_want, const std::string& where) {
   std::vector<double> v;
   std::size_t start = 0;
   for (;;) {
@@ -24,8 +25,9 @@ std::vector<double> parse_row(const std::string& row, std::size_t want, const st
     if (comma == std::string::npos) break;
     start = comma + 1;
   }
-  if (v.size() != want)
-    throw TrackFileError(where + ": " + std::to_string(v.size()) + " fields, expected " + std::to_string(want));
+  if (v.size() != want && v.size() != or_want)
+    throw TrackFileError(where + ": " + std::to_string(v.size()) + " fields, expected " + std::to_string(want) +
+                         (or_want != want ? " (or " + std::to_string(or_want) + " with the bank angle, as the first row)" : ""));
   return v;
 }
 
@@ -40,7 +42,13 @@ CenterLine parse(std::istream& in, const std::string& name, std::size_t fields) 
     auto first = row.find_first_not_of(" \t\r");
     if (first == std::string::npos || row[first] == '#') continue;
     const std::string where = name + ":" + std::to_string(line);
-    auto v = parse_row(row, fields, where);
+    // A track file's first row says whether it carries the bank column; every row then does.
+    const std::size_t want = fields == 4 && !lines.empty() ? (c.bank_deg.empty() ? 4 : 5) : fields;
+    auto v = parse_row(row, want, fields == 4 && lines.empty() ? 5 : want, where);
+    if (v.size() == 5) {
+      if (std::abs(v[4]) > 45) throw TrackFileError(where + ": bank angle " + std::to_string(v[4]) + " deg is beyond 45");
+      c.bank_deg.push_back(v[4]);
+    }
     if (fields == 4 && (v[2] <= 0 || v[3] <= 0))
       throw TrackFileError(where + ": track widths must be positive");
     if (!c.x.empty() && std::hypot(v[0] - c.x.back(), v[1] - c.y.back()) < 1e-6)
@@ -54,6 +62,7 @@ CenterLine parse(std::istream& in, const std::string& name, std::size_t fields) 
   // A file may close the loop by repeating its first point.
   if (c.x.size() > 1 && std::hypot(c.x.back() - c.x[0], c.y.back() - c.y[0]) < 1e-6) {
     c.x.pop_back(); c.y.pop_back(); c.width_right.pop_back(); c.width_left.pop_back();
+    if (!c.bank_deg.empty()) c.bank_deg.pop_back();
   }
   if (c.x.size() < 4) throw TrackFileError(name + ": needs at least 4 points, has " + std::to_string(c.x.size()));
   return c;
@@ -70,6 +79,33 @@ CenterLine load(const std::string& path, std::size_t fields) {
 CenterLine parse_centerline_csv(std::istream& in, const std::string& name) { return parse(in, name, 4); }
 CenterLine load_centerline_csv(const std::string& path) { return load(path, 4); }
 CenterLine load_xy_csv(const std::string& path) { return load(path, 2); }
+
+void write_centerline_csv(const std::string& path, const CenterLine& c) {
+  const bool bank = !c.bank_deg.empty();
+  if (bank && c.bank_deg.size() != c.x.size()) throw TrackFileError(path + ": one bank angle per point needed");
+  const std::string part = path + ".part";
+  {
+    std::ofstream f(part);
+    if (!f) throw TrackFileError(path + ": cannot write there (does its folder exist?)");
+    f << "# x_m,y_m,w_tr_right_m,w_tr_left_m" << (bank ? ",bank_deg" : "") << "\n";
+    char row[192];
+    for (std::size_t i = 0; i < c.x.size(); ++i) {
+      const int n = bank ? std::snprintf(row, sizeof row, "%.4f,%.4f,%.4f,%.4f,%.3f\n", c.x[i], c.y[i], c.width_right[i],
+                                         c.width_left[i], c.bank_deg[i])
+                         : std::snprintf(row, sizeof row, "%.4f,%.4f,%.4f,%.4f\n", c.x[i], c.y[i], c.width_right[i], c.width_left[i]);
+      f.write(row, n);
+    }
+    f.flush();
+    if (!f) {
+      std::remove(part.c_str());
+      throw TrackFileError(path + ": write failed (disk full?)");
+    }
+  }
+  if (std::rename(part.c_str(), path.c_str()) != 0) {
+    std::remove(part.c_str());
+    throw TrackFileError(path + ": cannot rename " + part + " to it");
+  }
+}
 
 bool counter_clockwise(const CenterLine& c) {
   const std::size_t n = c.x.size();

@@ -12,6 +12,9 @@ namespace brickyard::track {
 struct CenterLine {
   std::string source;
   std::vector<double> x, y, width_right, width_left;
+  // A fifth column, when the file has one: the road's bank angle across the centre line, degrees,
+  // positive raising the left edge (a mapped track carries its own: docs/mapping.md). Empty: none.
+  std::vector<double> bank_deg;
 };
 
 // A problem with a track file; what() starts with "<file>:<line>:".
@@ -20,10 +23,15 @@ class TrackFileError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// Four fields a row, or five with the bank angle (every row alike).
 CenterLine parse_centerline_csv(std::istream& in, const std::string& name);
 CenterLine load_centerline_csv(const std::string& path);
 // Racing lines carry x, y only (TUM `x_m,y_m`); widths are left at zero.
 CenterLine load_xy_csv(const std::string& path);
+
+// Writes a track file (with the bank column when bank_deg is filled): to `path`.part, then renamed,
+// so a reader never sees half a file. Throws TrackFileError naming the path when it cannot.
+void write_centerline_csv(const std::string& path, const CenterLine& line);
 
 // Whether the closed line runs counter-clockwise (positive shoelace area): its outside is then on
 // the right.

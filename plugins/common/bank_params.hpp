@@ -30,8 +30,8 @@ inline std::vector<track::BankSpec::Range> parse_bank_segments(const std::string
 // track::BankSpec at `path` in the plugin's settings.
 template <class S, class... M> void bind_bank(ParamBinding<S>& b, M... path) {
   using B = track::BankSpec;
-  b.bind("bank_mode", path..., &B::mode).one_of({"none", "constant", "curvature", "segments"})
-      .doc("where the road is banked: nowhere, everywhere, in turns, or in listed ranges of s");
+  b.bind("bank_mode", path..., &B::mode).one_of({"none", "constant", "curvature", "segments", "file"})
+      .doc("where the road is banked: nowhere, everywhere, in turns, in listed ranges of s, or as the track file's bank_deg column says");
   b.bind("bank_deg", path..., &B::degrees).in_unit("deg").range(-45, 45)
       .doc("bank angle raising the outside (IMS turns: 9 deg 12 min)");
   b.bind("bank_curvature_threshold", path..., &B::curvature_threshold).in_unit("1/m").at_least(0)

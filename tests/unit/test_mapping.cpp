@@ -3,13 +3,18 @@
 #include "common/covariances.hpp"
 #include "common/pcd.hpp"
 #include "common/scan_mapper.hpp"
+#include "common/track_extraction.hpp"
+#include "track/banking.hpp"
 #include "common/vgicp.hpp"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <random>
+#include <sstream>
 
 using namespace brickyard::mapping;
 
@@ -209,4 +214,113 @@ TEST(ScanMapper, MapAsPcdRoundTrip) {
   }
   std::ofstream(testing::TempDir() + "bad.pcd") << "VERSION 0.7\nFIELDS x y z\nPOINTS 3\nDATA ascii\n1 2 3\n4 5\n";
   EXPECT_THROW(read_pcd(testing::TempDir() + "bad.pcd"), std::runtime_error);
+}
+
+// ---- the track's lines from a drive (road_surface.hpp, track_extraction.hpp) ----
+
+namespace {
+
+// A ring road of radius 100 m (centre line), 6 m to the left edge (inside) and 5 m to the right,
+// banked 4° raising the left edge, grass beyond both edges level at the edge's height. The car
+// drives 1 m left of the centre line; at every pose a sensor 1.5 m up sees the ground on a polar
+// grid out to 20 m, each return's intensity its surface's reflectivity times the cosine of the ray
+// against the ground's normal (level: drop / range).
+struct Ring {
+  double r = 100, wl = 6, wr = 5, bank_deg = 4;
+  double height(double d) const {  // d: left of the centre line
+    return std::tan(bank_deg * M_PI / 180) * std::clamp(d, -wr, wl);
+  }
+};
+
+RoadSurface drive_ring(const Ring& ring, std::vector<Eigen::Vector2d>& driven, double laps) {
+  RoadSurface surface;
+  const Eigen::Isometry3d mount(Eigen::Translation3d(0, 0, 1.5));
+  const double path_r = ring.r - 1.0;  // counter-clockwise: left is inward
+  for (double s = 0; s <= laps * 2 * M_PI * path_r; s += 2.0) {
+    const double a = s / path_r;
+    const Eigen::Vector2d at(path_r * std::cos(a), path_r * std::sin(a));
+    driven.push_back(at);
+    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+    pose.translate(Eigen::Vector3d(at.x(), at.y(), ring.height(1.0)));
+    pose.rotate(Eigen::AngleAxisd(a + M_PI / 2, Eigen::Vector3d::UnitZ()));
+    std::vector<float> x, y, z, in;
+    for (double rho = 2; rho <= 20; rho += 0.13)
+      for (double phi = 0; phi < 2 * M_PI; phi += 0.02) {
+        const Eigen::Vector3d pv = pose * Eigen::Vector3d(rho * std::cos(phi), rho * std::sin(phi), 0);
+        const double d = ring.r - std::hypot(pv.x(), pv.y());  // left of the centre line
+        const Eigen::Vector3d ground(pv.x(), pv.y(), ring.height(d));
+        const Eigen::Vector3d ps = (pose * mount).inverse() * ground;
+        const double refl = d <= ring.wl && d >= -ring.wr ? 0.15 : 0.45;
+        x.push_back(ps.x()); y.push_back(ps.y()); z.push_back(ps.z());
+        in.push_back(static_cast<float>(refl * -ps.z() / ps.norm()));
+      }
+    surface.add_scan(x.data(), y.data(), z.data(), in.data(), x.size(), mount, pose);
+  }
+  return surface;
+}
+
+}  // namespace
+
+TEST(TrackExtraction, FindsTheEdgesAndTheBankOfARingRoad) {
+  const Ring ring;
+  std::vector<Eigen::Vector2d> driven;
+  const RoadSurface surface = drive_ring(ring, driven, 1.1);
+  const ExtractedTrack t = extract_track(surface, driven);
+  ASSERT_GT(t.stations, 250u);
+  EXPECT_GE(t.sides_found, 2 * t.stations - 4);
+  double worst_edge = 0, worst_bank = 0;
+  for (std::size_t k = 0; k < t.line.x.size(); ++k) {
+    const double rc = std::hypot(t.line.x[k], t.line.y[k]);
+    // The left (inner) edge at r − 6, the right at r + 5, whatever the centre found.
+    worst_edge = std::max({worst_edge, std::abs(rc - t.line.width_left[k] - (ring.r - ring.wl)),
+                           std::abs(rc + t.line.width_right[k] - (ring.r + ring.wr))});
+    worst_bank = std::max(worst_bank, std::abs(t.line.bank_deg[k] - ring.bank_deg));
+  }
+  EXPECT_LT(worst_edge, 0.05);
+  EXPECT_LT(worst_bank, 0.2);
+}
+
+TEST(TrackExtraction, ADriveThatNeverClosesALapIsRefused) {
+  const Ring ring;
+  std::vector<Eigen::Vector2d> driven;
+  const RoadSurface surface = drive_ring(ring, driven, 0.6);
+  try {
+    extract_track(surface, driven);
+    FAIL() << "extracted a track from part of a lap";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("never came back"), std::string::npos) << e.what();
+  }
+}
+
+// The mapped track's file: today's four columns and the bank angle; read back as written, its
+// banking used by bank_mode "file", and a row that drops the column refused by its line.
+TEST(TrackExtraction, TheTrackFileCarriesItsBanking) {
+  const Ring ring;
+  std::vector<Eigen::Vector2d> driven;
+  const ExtractedTrack t = extract_track(drive_ring(ring, driven, 1.1), driven);
+  const std::string path = ::testing::TempDir() + "mapped_track.csv";
+  brickyard::track::write_centerline_csv(path, t.line);
+  const brickyard::track::CenterLine back = brickyard::track::load_centerline_csv(path);
+  ASSERT_EQ(back.x.size(), t.line.x.size());
+  ASSERT_EQ(back.bank_deg.size(), t.line.x.size());
+  for (std::size_t k = 0; k < back.x.size(); k += 37) {
+    EXPECT_NEAR(back.x[k], t.line.x[k], 1e-4);
+    EXPECT_NEAR(back.width_left[k], t.line.width_left[k], 1e-4);
+    EXPECT_NEAR(back.bank_deg[k], t.line.bank_deg[k], 1e-3);
+  }
+  brickyard::track::BankSpec file;
+  file.mode = "file";
+  const std::vector<double> bank = brickyard::track::bank_profile(back, file);
+  EXPECT_NEAR(bank[10], back.bank_deg[10] * M_PI / 180, 1e-12);
+  std::istringstream mixed("# x_m,y_m,w_tr_right_m,w_tr_left_m,bank_deg\n0,0,7,7,1\n0,-5,7,7,1\n0,-10,7,7\n0,-15,7,7,1\n");
+  try {
+    brickyard::track::parse_centerline_csv(mixed, "mixed.csv");
+    FAIL() << "a row without the bank column was read";
+  } catch (const brickyard::track::TrackFileError& e) {
+    EXPECT_NE(std::string(e.what()).find("mixed.csv:4"), std::string::npos) << e.what();
+  }
+  brickyard::track::CenterLine flat = back;
+  flat.bank_deg.clear();
+  EXPECT_THROW(brickyard::track::bank_profile(flat, file), std::invalid_argument);
+  std::remove(path.c_str());
 }

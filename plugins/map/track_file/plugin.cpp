@@ -82,7 +82,11 @@ class TrackFileMap : public Plugin {
       throw BadInput("track file " + path + ": " + where + ", narrower than the car (" + width + " m, " + s.vehicle + ")");
     }
     g.name = s.name.empty() ? std::filesystem::path(path).stem().string() : s.name;
-    g.bank = track::bank_profile(g.line, s.bank);
+    try {
+      g.bank = track::bank_profile(g.line, s.bank);
+    } catch (const std::invalid_argument& e) {
+      throw BadInput(std::string("parameter 'bank_mode': ") + e.what());
+    }
     try {
       const track::Track t(g);  // the geometry the readers will build: refused here, not downstream
       length_ = t.length();

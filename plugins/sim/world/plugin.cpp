@@ -96,7 +96,11 @@ class World : public Plugin {
       throw BadInput(std::string("track file ") + e.what());
     }
     w.name = s.name.empty() ? std::filesystem::path(path).stem().string() : s.name;
-    w.bank = bank_profile(w.line, s.bank);
+    try {
+      w.bank = bank_profile(w.line, s.bank);
+    } catch (const std::invalid_argument& e) {
+      throw BadInput(std::string("parameter 'bank_mode': ") + e.what());
+    }
     std::string outer = s.outer_side;
     if (outer == "auto") outer = counter_clockwise(w.line) ? "right" : "left";
     const bool outer_left = outer == "left";

@@ -1,0 +1,168 @@
+#include "track_extraction.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace brickyard::mapping {
+
+namespace {
+
+// The closed polyline `lap` resampled at m evenly spaced points.
+std::vector<Eigen::Vector2d> resample_closed(const std::vector<Eigen::Vector2d>& lap, double length, int m) {
+  std::vector<Eigen::Vector2d> out;
+  out.reserve(m);
+  const std::size_t n = lap.size();
+  std::size_t i = 0;
+  double at = 0;  // arc length at lap[i]
+  for (int k = 0; k < m; ++k) {
+    const double s = length * k / m;
+    for (;;) {
+      const double seg = (lap[(i + 1) % n] - lap[i]).norm();
+      if (at + seg >= s || i + 1 >= n) {
+        const double f = seg > 1e-9 ? std::clamp((s - at) / seg, 0.0, 1.0) : 0.0;
+        out.push_back(lap[i] + f * (lap[(i + 1) % n] - lap[i]));
+        break;
+      }
+      at += seg;
+      ++i;
+    }
+  }
+  return out;
+}
+
+// Circular median of the finite values within ±half; NaN where none.
+std::vector<double> median_filter(const std::vector<double>& v, int half) {
+  const int m = static_cast<int>(v.size());
+  std::vector<double> out(m, NAN), w;
+  for (int k = 0; k < m; ++k) {
+    w.clear();
+    for (int j = -half; j <= half; ++j)
+      if (const double x = v[((k + j) % m + m) % m]; std::isfinite(x)) w.push_back(x);
+    if (w.empty()) continue;
+    std::nth_element(w.begin(), w.begin() + w.size() / 2, w.end());
+    out[k] = w[w.size() / 2];
+  }
+  return out;
+}
+
+// NaNs filled by linear interpolation between the nearest finite values either side (circular).
+// Returns false when there is none at all.
+bool fill_gaps(std::vector<double>& v) {
+  const int m = static_cast<int>(v.size());
+  int first = -1;
+  for (int k = 0; k < m && first < 0; ++k)
+    if (std::isfinite(v[k])) first = k;
+  if (first < 0) return false;
+  int last = first;
+  for (int step = 1; step <= m; ++step) {
+    const int k = (first + step) % m;
+    if (!std::isfinite(v[k])) continue;
+    const int gap = ((k - last) % m + m) % m;
+    for (int j = 1; j < gap; ++j) v[(last + j) % m] = v[last] + (v[k] - v[last]) * j / gap;
+    last = k;
+  }
+  return true;
+}
+
+}  // namespace
+
+ExtractedTrack extract_track(const RoadSurface& surface, const std::vector<Eigen::Vector2d>& driven,
+                             const TrackExtractionParams& p) {
+  // 1. One lap of the driven path.
+  std::size_t end = 0;
+  double length = 0;
+  for (std::size_t i = 1; i < driven.size(); ++i) {
+    length += (driven[i] - driven[i - 1]).norm();
+    if (length > p.min_lap && (driven[i] - driven[0]).norm() < p.close_within) {
+      end = i;
+      // On to where it passes nearest the start.
+      while (end + 1 < driven.size() && (driven[end + 1] - driven[0]).norm() < (driven[end] - driven[0]).norm()) {
+        length += (driven[end + 1] - driven[end]).norm();
+        ++end;
+      }
+      break;
+    }
+  }
+  if (end == 0)
+    throw std::invalid_argument("the drive never came back to where it started (" + std::to_string(static_cast<long>(length)) +
+                                " m driven): a track needs a whole lap");
+  const std::vector<Eigen::Vector2d> lap(driven.begin(), driven.begin() + static_cast<long>(end));
+  double perimeter = 0;
+  for (std::size_t i = 0; i < lap.size(); ++i) perimeter += (lap[(i + 1) % lap.size()] - lap[i]).norm();
+  const int m = std::max(8, static_cast<int>(std::lround(perimeter / p.station_step)));
+  std::vector<Eigen::Vector2d> raw = resample_closed(lap, perimeter, m), ref(m);
+  const int half = std::max(0, static_cast<int>(std::lround(p.smooth / (perimeter / m))));
+  for (int k = 0; k < m; ++k) {
+    Eigen::Vector2d sum = Eigen::Vector2d::Zero();
+    for (int j = -half; j <= half; ++j) sum += raw[((k + j) % m + m) % m];
+    ref[k] = sum / (2 * half + 1);
+  }
+  std::vector<Eigen::Vector2d> normal(m);
+  for (int k = 0; k < m; ++k) {
+    const Eigen::Vector2d t = (ref[(k + 1) % m] - ref[(k + m - 1) % m]).normalized();
+    normal[k] = {-t.y(), t.x()};  // left
+  }
+  // 2. The edges either side.
+  ExtractedTrack out;
+  out.stations = static_cast<std::size_t>(m);
+  std::vector<double> wl(m, NAN), wr(m, NAN);
+  for (int k = 0; k < m; ++k) {
+    for (int side : {+1, -1}) {
+      double prev_t = 0, prev_r = 0;
+      bool prev_known = false;
+      for (double t = 0; t <= p.max_half_width; t += p.probe_step) {
+        const Eigen::Vector2d q = ref[k] + side * t * normal[k];
+        const RoadSurface::Sample s = surface.at(q.x(), q.y(), p.standing_value);
+        if (!s.known) {
+          prev_known = false;
+          continue;
+        }
+        if (s.reflectivity >= p.threshold) {
+          double edge = t;
+          if (prev_known) edge = prev_t + (p.threshold - prev_r) / (s.reflectivity - prev_r) * (t - prev_t);
+          if (t > 0) (side > 0 ? wl : wr)[k] = edge;
+          break;
+        }
+        prev_t = t;
+        prev_r = s.reflectivity;
+        prev_known = true;
+      }
+    }
+    out.sides_found += std::isfinite(wl[k]) + std::isfinite(wr[k]);
+  }
+  // 3. Filtered along the track, gaps filled; the centre between the edges.
+  const int mh = std::max(0, p.median_window / 2);
+  wl = median_filter(wl, mh);
+  wr = median_filter(wr, mh);
+  if (!fill_gaps(wl) || !fill_gaps(wr))
+    throw std::invalid_argument("no edge found on one side anywhere round the lap (no ground returns beside the road?)");
+  track::CenterLine& c = out.line;
+  c.source = "mapped";
+  std::vector<double> bank(m, NAN);
+  for (int k = 0; k < m; ++k) {
+    const Eigen::Vector2d centre = ref[k] + 0.5 * (wl[k] - wr[k]) * normal[k];
+    c.x.push_back(centre.x());
+    c.y.push_back(centre.y());
+    c.width_left.push_back(0.5 * (wl[k] + wr[k]));
+    c.width_right.push_back(0.5 * (wl[k] + wr[k]));
+    // 4. The ground's slope across the road, left positive.
+    double su = 0, sz = 0, suu = 0, suz = 0;
+    int n = 0;
+    for (double u = -wr[k] + p.bank_margin; u <= wl[k] - p.bank_margin; u += 0.25) {
+      const Eigen::Vector2d q = ref[k] + u * normal[k];
+      const RoadSurface::Sample s = surface.at(q.x(), q.y(), p.standing_value);
+      if (!s.has_z || s.standing || s.reflectivity >= p.threshold) continue;
+      su += u; sz += s.z; suu += u * u; suz += u * s.z;
+      ++n;
+    }
+    const double den = n * suu - su * su;
+    if (n >= 5 && den > 1e-9) bank[k] = std::atan((n * suz - su * sz) / den) * 180.0 / M_PI;
+  }
+  bank = median_filter(bank, mh);
+  if (!fill_gaps(bank)) bank.assign(m, 0.0);
+  c.bank_deg = std::move(bank);
+  return out;
+}
+
+}  // namespace brickyard::mapping

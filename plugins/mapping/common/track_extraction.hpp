@@ -1,0 +1,50 @@
+#pragma once
+// The track's lines and banking from a mapping drive, framework-free (the paper's §III-C extracts
+// the inner and outer lines from its map; the road graph is built on them).
+//
+// 1. The reference: one lap of the poses the car drove (map frame, in order), from the first
+//    pose round to where the path comes back to it, resampled every `station_step` and smoothed.
+// 2. The edges: at each station, out along the normal to each side, the first place where the
+//    ground stops being road — its reflectivity crosses `threshold` (asphalt is dark, grass
+//    bright) or something stands there (a wall) — found between samples `probe_step` apart on
+//    the grid interpolated bilinearly, and placed where the interpolated reflectivity crosses the
+//    threshold. A station whose side finds no edge (no returns there) takes its neighbours'.
+// 3. The widths filtered along the track (a median over `median_window` stations: a pylon left
+//    on the road, or a patch of missing returns, is one station's outlier), the centre line moved
+//    to the middle between the edges, the widths half their sum.
+// 4. The banking: per station, the slope of the ground's height across the road between its
+//    edges (a least-squares line through the interpolated heights), as an angle, positive raising
+//    the left edge, filtered along the track like the widths.
+#include "road_surface.hpp"
+
+#include "track/centre_line.hpp"
+
+#include <string>
+#include <vector>
+
+namespace brickyard::mapping {
+
+struct TrackExtractionParams {
+  double station_step = 2.0;      // m between stations along the reference
+  double smooth = 10.0;           // m either side: the driven path's moving average
+  double threshold = 0.30;        // reflectivity halfway between asphalt's and grass's (0.15, 0.45): unbiased where a cell straddles the edge
+  double standing_value = 1.0;    // the reflectivity a cell where something stands counts as
+  double probe_step = 0.05;       // m between samples out along a normal
+  double max_half_width = 25;     // m from the reference a side's edge is looked for
+  int median_window = 7;          // stations
+  double bank_margin = 1.0;       // m inside each edge left out of the bank's fit (kerbs, walls)
+  double min_lap = 200;           // m: a drive shorter than this has not closed a lap
+  double close_within = 10;       // m: the path has come round when it passes this near its start
+};
+
+struct ExtractedTrack {
+  track::CenterLine line;        // centre, widths and bank_deg (the track file's five columns)
+  std::size_t stations = 0;
+  std::size_t sides_found = 0;   // of 2 × stations: the rest took their neighbours' widths
+};
+
+// Throws std::invalid_argument saying why (the path never closes a lap, no edge found anywhere).
+ExtractedTrack extract_track(const RoadSurface& surface, const std::vector<Eigen::Vector2d>& driven,
+                             const TrackExtractionParams& p = {});
+
+}  // namespace brickyard::mapping
