@@ -86,6 +86,7 @@ Frame Ims::frame(double s, double d, std::uint64_t seed) const {
                                     .cast<float>();
     for (std::size_t i = 0; i < b.x.size(); ++i) fr.points.push_back(t * Eigen::Vector3f(b.x[i], b.y[i], b.z[i]));
     fr.surface.insert(fr.surface.end(), b.surface.begin(), b.surface.end());
+    fr.scans.push_back({t.cast<double>(), std::move(b.x), std::move(b.y), std::move(b.z), std::move(b.intensity)});
   }
   return fr;
 }

@@ -17,6 +17,12 @@ using perception::Points;
 struct Frame {
   Points points;                        // vehicle frame, all three sensors
   std::vector<sim::Surface> surface;    // per point
+  // Each sensor's returns as it gives them (sensor frame, with intensities) and its mount.
+  struct Scan {
+    Eigen::Isometry3d vehicle_from_sensor;
+    std::vector<float> x, y, z, intensity;
+  };
+  std::vector<Scan> scans;
   Eigen::Isometry3d world_from_body;
   double s = 0, d = 0;
 };

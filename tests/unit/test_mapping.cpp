@@ -224,7 +224,7 @@ namespace {
 // banked 4° raising the left edge, grass beyond both edges level at the edge's height. The car
 // drives 1 m left of the centre line; at every pose a sensor 1.5 m up sees the ground on a polar
 // grid out to 20 m, each return's intensity its surface's reflectivity times the cosine of the ray
-// against the ground's normal (level: drop / range).
+// against the road's normal (drop / range in the sensor's frame, which tilts with the road).
 struct Ring {
   double r = 100, wl = 6, wr = 5, bank_deg = 4;
   double height(double d) const {  // d: left of the centre line
@@ -243,6 +243,7 @@ RoadSurface drive_ring(const Ring& ring, std::vector<Eigen::Vector2d>& driven, d
     Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
     pose.translate(Eigen::Vector3d(at.x(), at.y(), ring.height(1.0)));
     pose.rotate(Eigen::AngleAxisd(a + M_PI / 2, Eigen::Vector3d::UnitZ()));
+    pose.rotate(Eigen::AngleAxisd(ring.bank_deg * M_PI / 180, Eigen::Vector3d::UnitX()));  // the car tilts with the road
     std::vector<float> x, y, z, in;
     for (double rho = 2; rho <= 20; rho += 0.13)
       for (double phi = 0; phi < 2 * M_PI; phi += 0.02) {

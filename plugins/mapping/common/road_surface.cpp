@@ -1,5 +1,6 @@
 #include "road_surface.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace brickyard::mapping {
@@ -33,27 +34,28 @@ void RoadSurface::add_scan(const float* x, const float* y, const float* z, const
   for (std::size_t i = 0; i < n; ++i) {
     const Eigen::Vector3d ps(x[i], y[i], z[i]);
     const double range = ps.norm();
-    if (!(range > 0.5 && range <= p_.max_range) || !std::isfinite(intensity[i])) continue;
+    if (!(range > 0.5 && range <= p_.max_range)) continue;
     const Eigen::Vector3d pv = vehicle_from_sensor * ps;
+    const bool ground = std::abs(pv.z()) <= p_.ground_band, standing = pv.z() >= p_.standing_from && pv.z() <= p_.standing_to;
+    if (!ground && !standing) continue;
     const double drop = sensor.z() - pv.z();
-    if (drop < p_.min_drop) continue;  // level with the sensor or above: not the ground
-    const double cos = drop / range;   // against the road's normal under the car
-    if (cos < p_.min_cos) continue;
+    const double cos = drop / range;  // against the road's normal under the car
+    if (ground && (drop < p_.min_drop || cos < p_.min_cos || !std::isfinite(intensity[i]))) continue;
     const Eigen::Vector3d pm = map_from_sensor * ps;
-    Cell* c = cell(static_cast<std::int64_t>(std::floor(pm.x() * inv)), static_cast<std::int64_t>(std::floor(pm.y() * inv)), true);
+    const double fx = std::floor(pm.x() * inv), fy = std::floor(pm.y() * inv);
+    Cell* c = cell(static_cast<std::int64_t>(fx), static_cast<std::int64_t>(fy), true);
     if (c->n == 0 && c->standing == 0) ++cells_;
-    c->refl_sum += static_cast<float>(intensity[i] / cos);
-    c->z_sum += static_cast<float>(pm.z());
-    ++c->n;
+    if (ground) {
+      c->refl_sum += static_cast<float>(intensity[i] / cos);
+      c->z_sum += static_cast<float>(pm.z());
+      ++c->n;
+    } else {
+      c->sx += static_cast<float>(pm.x() - fx * p_.cell);
+      c->sy += static_cast<float>(pm.y() - fy * p_.cell);
+      c->s_zmax = std::max(c->s_zmax, static_cast<float>(pm.z()));
+      ++c->standing;
+    }
   }
-}
-
-void RoadSurface::add_standing(double x, double y) {
-  if (!(std::isfinite(x) && std::isfinite(y))) return;
-  const double inv = 1.0 / p_.cell;
-  Cell* c = cell(static_cast<std::int64_t>(std::floor(x * inv)), static_cast<std::int64_t>(std::floor(y * inv)), true);
-  if (c->n == 0 && c->standing == 0) ++cells_;
-  ++c->standing;
 }
 
 RoadSurface::Sample RoadSurface::at(double x, double y, double standing_value) const {
@@ -62,25 +64,41 @@ RoadSurface::Sample RoadSurface::at(double x, double y, double standing_value) c
   const double u = x / p_.cell - 0.5, v = y / p_.cell - 0.5;
   const std::int64_t i0 = static_cast<std::int64_t>(std::floor(u)), j0 = static_cast<std::int64_t>(std::floor(v));
   const double fu = u - static_cast<double>(i0), fv = v - static_cast<double>(j0);
-  double w_sum = 0, r = 0, zw = 0, z = 0;
-  for (int dj = 0; dj < 2; ++dj)
-    for (int di = 0; di < 2; ++di) {
-      const Cell* c = cell(i0 + di, j0 + dj);
-      if (!c || (c->n == 0 && c->standing == 0)) continue;
-      const double w = (di ? fu : 1 - fu) * (dj ? fv : 1 - fv) + 1e-9;
-      if (c->standing > 0) {
-        r += w * standing_value;
-        out.standing = true;
-      } else {
-        r += w * c->refl_sum / c->n;
-        z += w * c->z_sum / c->n;
-        zw += w;
-      }
-      w_sum += w;
+  const Cell* cells[4];
+  double w[4];
+  double zw = 0, z = 0;
+  for (int k = 0; k < 4; ++k) {
+    const int di = k & 1, dj = k >> 1;
+    cells[k] = cell(i0 + di, j0 + dj);
+    w[k] = (di ? fu : 1 - fu) * (dj ? fv : 1 - fv) + 1e-9;
+    if (cells[k] && cells[k]->n > 0) {
+      z += w[k] * cells[k]->z_sum / cells[k]->n;
+      zw += w[k];
     }
+  }
+  double w_sum = 0, r = 0, standing_n = 0;
+  Eigen::Vector2d standing_at = Eigen::Vector2d::Zero();
+  for (int k = 0; k < 4; ++k) {
+    const Cell* c = cells[k];
+    if (!c) continue;
+    // Standing: rising standing_height above the ground here (its own cell's, else round it).
+    const double ground = c->n > 0 ? c->z_sum / c->n : zw > 0 ? z / zw : -1e30;
+    if (c->standing > 0 && c->s_zmax - ground >= p_.standing_height) {
+      r += w[k] * standing_value;
+      const Eigen::Vector2d corner(static_cast<double>(i0 + (k & 1)) * p_.cell, static_cast<double>(j0 + (k >> 1)) * p_.cell);
+      standing_at += c->standing * (corner + Eigen::Vector2d(c->sx, c->sy) / c->standing);
+      standing_n += c->standing;
+      out.standing = true;
+      w_sum += w[k];
+    } else if (c->n > 0) {
+      r += w[k] * c->refl_sum / c->n;
+      w_sum += w[k];
+    }
+  }
   if (w_sum <= 0) return out;
   out.known = true;
   out.reflectivity = r / w_sum;
+  if (standing_n > 0) out.standing_at = standing_at / standing_n;
   out.has_z = zw > 0;
   out.z = out.has_z ? z / zw : 0.0;
   return out;

@@ -1,8 +1,17 @@
 #pragma once
 // What a mapping drive learns of the ground, framework-free: a 2-D grid in the map frame holding,
-// per cell, the mean reflectivity of the LiDAR returns that fell in it, their mean height, and
-// whether a wall stands there. The track's edges and banking are read from it
-// (track_extraction.hpp).
+// per cell, the mean reflectivity of the LiDAR's ground returns that fell in it, their mean
+// height, and where in it something stands (a wall: the mean place of the returns above the
+// road). The track's edges and banking are read from it (track_extraction.hpp).
+//
+// Ground and standing are told apart by height in the vehicle frame, whose x-y plane is the road
+// the car stands on (it tilts with a banked road): within `ground_band` of it, the ground; from
+// `standing_from` up to `standing_to`, something standing if it also rises `standing_height` above
+// the ground returns of its cell (or of the cells round it): the road's plane under the car is
+// not the plane of ground 20 m away where the bank changes, nor of the level grass beyond a
+// banked turn's lower edge, and those returned as walls. Not the ground filter's vertical
+// features: its 0.5 m cells count the asphalt at a wall's foot as the wall's, which put the
+// mapped edges 0.2 to 0.4 m inside the walls.
 //
 // Reflectivity, not raw intensity: a return's intensity is the surface's reflectivity times the
 // cosine of its incidence, and on the ground the cosine falls with range (a ray 10 m out from a
@@ -24,6 +33,9 @@ struct RoadSurfaceParams {
   double max_range = 25;      // m from the sensor: farther, the ground's returns are too grazing
   double min_drop = 0.3;      // m a return must lie below the sensor to be the ground
   double min_cos = 0.03;      // a ray meeting the ground flatter than this (1.7°) says little
+  double ground_band = 0.5;   // m above or below the car's road plane: the ground
+  double standing_from = 0.5, standing_to = 3.0;  // m above it: maybe something standing,
+  double standing_height = 0.4;  // when it also rises this far above the ground of its cell (or round it)
 };
 
 class RoadSurface {
@@ -35,15 +47,14 @@ class RoadSurface {
   // map_from_vehicle the car's pose at the scan.
   void add_scan(const float* x, const float* y, const float* z, const float* intensity, std::size_t n,
                 const Eigen::Isometry3d& vehicle_from_sensor, const Eigen::Isometry3d& map_from_vehicle);
-  // Vertical features (map frame): a wall, or anything standing, in their cells.
-  void add_standing(double x, double y);
 
   struct Sample {
     bool known = false;     // returns fell near enough
     double reflectivity = 0;
     double z = 0;           // the ground's height (has_z: some ground returns among the cells)
     bool has_z = false;
-    bool standing = false;
+    bool standing = false;  // something stands in one of the cells: at standing_at (the mean place of its returns)
+    Eigen::Vector2d standing_at = Eigen::Vector2d::Zero();
   };
   // The grid bilinearly interpolated at (x, y) over the four cells round it that hold returns
   // (a cell where something stands counts as reflectivity `standing_value`).
@@ -53,6 +64,8 @@ class RoadSurface {
  private:
   struct Cell {
     float refl_sum = 0, z_sum = 0;
+    float sx = 0, sy = 0;  // standing returns' places, summed from the cell's corner (float keeps cm there)
+    float s_zmax = -1e30f;  // the highest standing return (map frame)
     std::uint32_t n = 0, standing = 0;
   };
   static constexpr int kTile = 64;  // cells a side: storage only where the car has been

@@ -65,10 +65,41 @@ bool fill_gaps(std::vector<double>& v) {
   return true;
 }
 
+// The edge near t (where the profile first rose past the threshold) at half height between the
+// road's level just before it and the ground's just after: beyond a banked turn's lower edge the
+// grass faces the car and returns up to 1.9 (against 0.45 level), and a fixed threshold of 0.3
+// crossed 0.15 m short of the edge there.
+template <class Sample>
+double refine_edge(const Sample& sample, double t, const TrackExtractionParams& p) {
+  double r0 = 0, r1 = 0;
+  int n0 = 0, n1 = 0;
+  for (double u = t - 1.0; u <= t - 0.3; u += p.probe_step)
+    if (const auto s = sample(u); s.known && !s.standing && s.reflectivity < p.threshold) r0 += s.reflectivity, ++n0;
+  for (double u = t + 0.3; u <= t + 1.0; u += p.probe_step)
+    if (const auto s = sample(u); s.known && !s.standing) r1 += s.reflectivity, ++n1;
+  if (n0 == 0 || n1 == 0) return t;
+  const double mid = 0.5 * (r0 / n0 + r1 / n1);
+  double prev_u = t - 0.5, prev_r = NAN;
+  for (double u = t - 0.5; u <= t + 0.5; u += p.probe_step) {
+    const auto s = sample(u);
+    if (!s.known || s.standing) {
+      prev_r = NAN;
+      continue;
+    }
+    if (s.reflectivity >= mid) {
+      if (std::isfinite(prev_r) && s.reflectivity > prev_r) return prev_u + (mid - prev_r) / (s.reflectivity - prev_r) * (u - prev_u);
+      return u;
+    }
+    prev_u = u;
+    prev_r = s.reflectivity;
+  }
+  return t;
+}
+
 }  // namespace
 
 ExtractedTrack extract_track(const RoadSurface& surface, const std::vector<Eigen::Vector2d>& driven,
-                             const TrackExtractionParams& p) {
+                             const TrackExtractionParams& p, const std::vector<double>* roll) {
   // 1. One lap of the driven path.
   std::size_t end = 0;
   double length = 0;
@@ -109,28 +140,68 @@ ExtractedTrack extract_track(const RoadSurface& surface, const std::vector<Eigen
   std::vector<double> wl(m, NAN), wr(m, NAN);
   for (int k = 0; k < m; ++k) {
     for (int side : {+1, -1}) {
-      double prev_t = 0, prev_r = 0;
+      // The ground at t across the track, averaged over a strip along it (±strip): the ground's
+      // returns lie on the LiDAR's rings, which a drive samples every frame's distance along the
+      // track, so one cell in several along a line across holds none.
+      const Eigen::Vector2d along(normal[k].y(), -normal[k].x());
+      auto sample = [&](double t) {
+        RoadSurface::Sample out;
+        double rs = 0, zs = 0;
+        int n = 0, nz = 0, ns = 0;
+        for (int j = 0; j < p.strip_samples; ++j) {
+          const double a = p.strip_samples > 1 ? p.strip * (2.0 * j / (p.strip_samples - 1) - 1) : 0.0;
+          const Eigen::Vector2d q = ref[k] + side * t * normal[k] + a * along;
+          const RoadSurface::Sample s = surface.at(q.x(), q.y(), p.standing_value);
+          if (!s.known) continue;
+          if (s.standing) {
+            out.standing_at += s.standing_at;
+            ++ns;
+          }
+          rs += s.reflectivity;
+          ++n;
+          if (s.has_z) zs += s.z, ++nz;
+        }
+        if (n == 0) return out;
+        out.known = true;
+        out.reflectivity = rs / n;
+        out.standing = ns > 0;
+        if (ns > 0) out.standing_at /= ns;
+        out.has_z = nz > 0;
+        out.z = nz > 0 ? zs / nz : 0.0;
+        return out;
+      };
+      double prev_t = 0, last_road = -1;
       bool prev_known = false;
       for (double t = 0; t <= p.max_half_width; t += p.probe_step) {
-        const Eigen::Vector2d q = ref[k] + side * t * normal[k];
-        const RoadSurface::Sample s = surface.at(q.x(), q.y(), p.standing_value);
+        const RoadSurface::Sample s = sample(t);
         if (!s.known) {
           prev_known = false;
           continue;
         }
+        if (s.standing) {
+          // A wall: where its returns are (a cell's worth nearer, interpolated, would be 0.1 m
+          // inside it), not short of the road's last sample.
+          const double at = side * (s.standing_at - ref[k]).dot(normal[k]);
+          if (t > 0) (side > 0 ? wl : wr)[k] = std::clamp(at, prev_known ? prev_t : t - p.probe_step, t + 0.5);
+          break;
+        }
         if (s.reflectivity >= p.threshold) {
-          double edge = t;
-          if (prev_known) edge = prev_t + (p.threshold - prev_r) / (s.reflectivity - prev_r) * (t - prev_t);
+          // After a stretch with no returns (far from the car the ground's are sparse), the edge
+          // is somewhere in it: its middle, not its far end (0.4 to 0.8 m out on IMS's main
+          // straight, seen from across the track).
+          const double edge = prev_known ? refine_edge(sample, t, p) : last_road >= 0 && t - last_road < 1.0 ? 0.5 * (last_road + t) : t;
           if (t > 0) (side > 0 ? wl : wr)[k] = edge;
           break;
         }
         prev_t = t;
-        prev_r = s.reflectivity;
+        last_road = t;
         prev_known = true;
       }
     }
     out.sides_found += std::isfinite(wl[k]) + std::isfinite(wr[k]);
   }
+  out.reference = ref;
+  out.normal = normal;
   // 3. Filtered along the track, gaps filled; the centre between the edges.
   const int mh = std::max(0, p.median_window / 2);
   wl = median_filter(wl, mh);
@@ -158,6 +229,37 @@ ExtractedTrack extract_track(const RoadSurface& surface, const std::vector<Eigen
     }
     const double den = n * suu - su * su;
     if (n >= 5 && den > 1e-9) bank[k] = std::atan((n * suz - su * sz) / den) * 180.0 / M_PI;
+  }
+  if (roll && roll->size() == driven.size()) {
+    // The car's roll near each station: every driven pose to its nearest station (the poses in
+    // order, so a short search from the last one's).
+    std::vector<std::vector<double>> near(m);
+    std::size_t at = 0;
+    for (std::size_t i = 0; i < driven.size(); ++i) {
+      if (!std::isfinite((*roll)[i])) continue;
+      std::size_t best = at;
+      double best_d = (driven[i] - ref[at]).squaredNorm();
+      for (int j = -20; j <= 20; ++j) {
+        const std::size_t k = static_cast<std::size_t>(((static_cast<long>(at) + j) % m + m) % m);
+        const double d = (driven[i] - ref[k]).squaredNorm();
+        if (d < best_d) best_d = d, best = k;
+      }
+      if (best_d > 4 * p.station_step * p.station_step) {  // lost (a jump in the drive): search all
+        for (int k = 0; k < m; ++k)
+          if (const double d = (driven[i] - ref[k]).squaredNorm(); d < best_d) best_d = d, best = static_cast<std::size_t>(k);
+      }
+      at = best;
+      if (best_d <= 4 * p.station_step * p.station_step) near[best].push_back((*roll)[i] * 180.0 / M_PI);
+    }
+    for (int k = 0; k < m; ++k) {
+      auto& v = near[k];
+      if (v.empty()) {
+        bank[k] = NAN;
+        continue;
+      }
+      std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+      bank[k] = v[v.size() / 2];
+    }
   }
   bank = median_filter(bank, mh);
   if (!fill_gaps(bank)) bank.assign(m, 0.0);

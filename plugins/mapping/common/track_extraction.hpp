@@ -12,9 +12,14 @@
 // 3. The widths filtered along the track (a median over `median_window` stations: a pylon left
 //    on the road, or a patch of missing returns, is one station's outlier), the centre line moved
 //    to the middle between the edges, the widths half their sum.
-// 4. The banking: per station, the slope of the ground's height across the road between its
-//    edges (a least-squares line through the interpolated heights), as an angle, positive raising
-//    the left edge, filtered along the track like the widths.
+// 4. The banking: per station, the car's roll where it drove past (the median of the poses
+//    nearest the station: the car stands on the road, so its roll is the road's bank there), or,
+//    with no rolls given, the slope of the ground's height across the road between its edges (a
+//    least-squares line through the interpolated heights); an angle, positive raising the left
+//    edge, filtered along the track like the widths. Why the roll first: heights from two passes
+//    of a drive meet in the same cells, and a few centimetres of height between the passes,
+//    across a road the passes shared unevenly, read as degrees of bank (IMS, mapped at 40 m/s:
+//    up to 30° off from the map's heights; the car's registered roll: docs/mapping.md).
 #include "road_surface.hpp"
 
 #include "track/centre_line.hpp"
@@ -30,6 +35,8 @@ struct TrackExtractionParams {
   double threshold = 0.30;        // reflectivity halfway between asphalt's and grass's (0.15, 0.45): unbiased where a cell straddles the edge
   double standing_value = 1.0;    // the reflectivity a cell where something stands counts as
   double probe_step = 0.05;       // m between samples out along a normal
+  double strip = 1.0;             // m: each sample the mean over ±this along the track
+  int strip_samples = 6;
   double max_half_width = 25;     // m from the reference a side's edge is looked for
   int median_window = 7;          // stations
   double bank_margin = 1.0;       // m inside each edge left out of the bank's fit (kerbs, walls)
@@ -41,10 +48,12 @@ struct ExtractedTrack {
   track::CenterLine line;        // centre, widths and bank_deg (the track file's five columns)
   std::size_t stations = 0;
   std::size_t sides_found = 0;   // of 2 × stations: the rest took their neighbours' widths
+  std::vector<Eigen::Vector2d> reference, normal;  // per station: the smoothed drive and its left normal
 };
 
 // Throws std::invalid_argument saying why (the path never closes a lap, no edge found anywhere).
+// roll (when not null): the car's roll at each driven pose, rad (NaN: unknown there).
 ExtractedTrack extract_track(const RoadSurface& surface, const std::vector<Eigen::Vector2d>& driven,
-                             const TrackExtractionParams& p = {});
+                             const TrackExtractionParams& p = {}, const std::vector<double>* roll = nullptr);
 
 }  // namespace brickyard::mapping

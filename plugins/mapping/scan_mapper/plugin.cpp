@@ -9,6 +9,7 @@
 
 #include "common/pcd.hpp"
 #include "common/scan_mapper.hpp"
+#include "common/track_extraction.hpp"
 #include "math/planar_pose.hpp"
 #include "../../perception/messages.hpp"
 
@@ -23,9 +24,14 @@ namespace {
 using namespace brickyard;
 using namespace brickyard::mapping;
 
+constexpr int kScans = 4;  // LiDARs whose raw returns the road surface may take
+
 struct Settings {
   ScanMapperParams mapper;
   std::string map_file;  // empty: none
+  std::string track_file;  // empty: none
+  RoadSurfaceParams surface;
+  TrackExtractionParams extraction;
   double max_estimate_age = 0.1;
 };
 
@@ -45,6 +51,17 @@ ParamBinding<Settings> bindings() {
   b.bind("face_neighbours", &Settings::mapper, &M::registration, &RegistrationParams::face_neighbours)
       .doc("each point matched to its voxel and the 6 sharing a face (VGICP's DIRECT7); off: its own (DIRECT1)");
   b.bind("map_file", &Settings::map_file).doc("the map written here at the end (PCD, binary x y z); empty: not written");
+  b.bind("track_file", &Settings::track_file)
+      .doc("the track's centre line, widths and banking extracted from the drive (one lap at least; the scan inputs wired), "
+           "written here at the end as a track file; empty: not written");
+  b.bind("road_cell", &Settings::surface, &RoadSurfaceParams::cell).in_unit("m").range(0.02, 2)
+      .doc("the road surface's grid: each cell's mean reflectivity and height");
+  b.bind("road_range", &Settings::surface, &RoadSurfaceParams::max_range).in_unit("m").range(1, 200)
+      .doc("returns farther from their LiDAR are left out of the road surface (too grazing)");
+  b.bind("edge_reflectivity", &Settings::extraction, &TrackExtractionParams::threshold).range(0, 10)
+      .doc("the road's edge: where the ground's reflectivity rises past this (asphalt below, grass above)");
+  b.bind("station_step", &Settings::extraction, &TrackExtractionParams::station_step).in_unit("m").range(0.1, 50)
+      .doc("the extracted track's points: this far apart along the drive");
   b.bind("max_estimate_age", &Settings::max_estimate_age).in_unit("s").at_least(0)
       .doc("a frame with no estimate within this of its stamp is left out");
   b.not_above("fine_voxel", "coarse_voxel");
@@ -63,6 +80,10 @@ class ScanMapperNode : public Plugin {
         .input<msgs::PointCloud>("points", "the ground filter's vertical features, vehicle frame", true, 8)
         .input<msgs::PointCloud>("ground", "the ground filter's ground, vehicle frame, the same frames", true, 8)
         .input<msgs::LocalizationEstimate>("estimate", "the pose estimate (the fusion's), its covariance the prior", true, 64)
+        .input<msgs::PointCloud>("scan0", "a LiDAR's raw returns with their intensities (sensor frame): the road surface", false, 8)
+        .input<msgs::PointCloud>("scan1", "another LiDAR's", false, 8)
+        .input<msgs::PointCloud>("scan2", "another LiDAR's", false, 8)
+        .input<msgs::PointCloud>("scan3", "another LiDAR's", false, 8)
         .output<msgs::LocalizationEstimate>("pose", "the pose found, stamped with the frame; covariance over (x, y, yaw)")
         .parameters(bindings())
         .on_input("ground");
@@ -77,6 +98,15 @@ class ScanMapperNode : public Plugin {
       if (!std::ofstream(probe)) throw BadInput("map_file '" + map_file_ + "': cannot write there (does its folder exist?)");
       std::remove(probe.c_str());
     }
+    track_file_ = s.track_file;
+    if (!track_file_.empty()) {
+      const std::string probe = track_file_ + ".part";
+      if (!std::ofstream(probe)) throw BadInput("track_file '" + track_file_ + "': cannot write there (does its folder exist?)");
+      std::remove(probe.c_str());
+    }
+    surface_ = RoadSurface(s.surface);
+    extraction_ = s.extraction;
+    for (int k = 0; k < kScans; ++k) scans_in_[k] = ctx.input<msgs::PointCloud>("scan" + std::to_string(k));
     max_age_ns_ = static_cast<std::int64_t>(s.max_estimate_age * 1e9);
     points_ = ctx.input<msgs::PointCloud>("points");
     ground_ = ctx.input<msgs::PointCloud>("ground");
@@ -93,6 +123,11 @@ class ScanMapperNode : public Plugin {
       features_.push_back(p);
       if (features_.size() > 8) features_.pop_front();
     }
+    for (auto& in : scans_in_)
+      for (auto& c : in.take()) {
+        scans_.push_back(c);
+        if (scans_.size() > 4 * kScans) scans_.pop_front();
+      }
     for (auto& g : ground_.take()) frame(ctx, *g);
   }
 
@@ -105,16 +140,52 @@ class ScanMapperNode : public Plugin {
     ctx.metric("malformed_clouds", static_cast<double>(malformed_));
     ctx.metric("correction_mean_m", registered_ ? correction_sum_ / static_cast<double>(registered_) : 0.0);
     ctx.metric("correction_max_m", correction_max_);
-    if (map_file_.empty()) return;
-    try {
-      write_pcd(map_file_, mapper_.fine_map());
-      ctx.log(LogLevel::info, "map written: " + map_file_ + " (" + std::to_string(mapper_.fine_map().size()) + " points)");
-    } catch (const std::exception& e) {
-      ctx.fail(e.what());
+    ctx.metric("road_cells", static_cast<double>(surface_.cells()));
+    if (!map_file_.empty()) {
+      try {
+        write_pcd(map_file_, mapper_.fine_map());
+        ctx.log(LogLevel::info, "map written: " + map_file_ + " (" + std::to_string(mapper_.fine_map().size()) + " points)");
+      } catch (const std::exception& e) {
+        ctx.fail(e.what());
+      }
     }
+    if (!track_file_.empty()) write_track(ctx);
   }
 
  private:
+  // The track from the drive: a mapping run that could not make one did not do its job.
+  void write_track(Context& ctx) {
+    try {
+      const ExtractedTrack t = extract_track(surface_, driven_, extraction_, &driven_roll_);
+      track::write_centerline_csv(track_file_, t.line);
+      ctx.metric("track_points", static_cast<double>(t.line.x.size()));
+      ctx.metric("track_sides_found", static_cast<double>(t.sides_found) / (2.0 * static_cast<double>(t.stations)));
+      ctx.log(LogLevel::info, "track written: " + track_file_ + " (" + std::to_string(t.line.x.size()) + " points, edges found on " +
+                                  std::to_string(t.sides_found) + " of " + std::to_string(2 * t.stations) + " sides)");
+    } catch (const std::exception& e) {
+      ctx.fail("track_file '" + track_file_ + "' not written: " + e.what());
+    }
+  }
+
+  // The frame's raw returns (the LiDARs' clouds of its stamp) onto the road surface, at the pose
+  // found.
+  void add_to_surface(std::int64_t stamp, const Eigen::Isometry3d& pose, bool registered) {
+    if (track_file_.empty()) return;
+    driven_.emplace_back(pose.translation().x(), pose.translation().y());
+    // The car's roll where it drove, for the banking (NaN: not registered, the guess's).
+    const Eigen::Vector3d fwd = pose.linear().col(0), left = pose.linear().col(1);
+    driven_roll_.push_back(registered ? std::asin(std::clamp(left.z() / std::sqrt(1 - fwd.z() * fwd.z()), -1.0, 1.0)) : NAN);
+    for (const auto& c : scans_) {
+      if (c->header().stamp_ns() != stamp) continue;
+      const std::size_t n = c->x().size();
+      if (c->y().size() != n || c->z().size() != n || c->intensity().size() != n) continue;
+      const perception::SensorPose sp = perception::sensor_pose(*c);
+      const Eigen::Isometry3d mount = sp.vehicle_from_sensor().cast<double>();
+      if (!mount.matrix().allFinite()) continue;
+      surface_.add_scan(c->x().data(), c->y().data(), c->z().data(), c->intensity().data(), n, mount, pose);
+    }
+  }
+
   void frame(Context& ctx, const msgs::PointCloud& ground) {
     const std::int64_t stamp = ground.header().stamp_ns();
     Points pts;
@@ -166,6 +237,7 @@ class ScanMapperNode : public Plugin {
       roll_ = std::asin(std::clamp(left.z() / std::cos(pitch_), -1.0, 1.0));
       z_ = r.pose.translation().z();
     }
+    add_to_surface(stamp, r.pose, r.registered);
     msgs::LocalizationEstimate m;
     m.header().stamp_ns(stamp);
     m.header().seq(seq_++);
@@ -185,7 +257,13 @@ class ScanMapperNode : public Plugin {
   }
 
   ScanMapper mapper_;
-  std::string map_file_;
+  std::string map_file_, track_file_;
+  RoadSurface surface_;
+  TrackExtractionParams extraction_;
+  std::vector<Eigen::Vector2d> driven_;
+  std::vector<double> driven_roll_;
+  Input<msgs::PointCloud> scans_in_[kScans];
+  std::deque<CloudPtr> scans_;
   std::int64_t max_age_ns_ = 0;
   Input<msgs::PointCloud> points_, ground_;
   Input<msgs::LocalizationEstimate> estimate_;
