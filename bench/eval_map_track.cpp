@@ -5,6 +5,9 @@
 // the track file the simulator drove on: each mapped edge point's distance to the true edge, and
 // the mapped banking against the simulator's. Prints per track p50 / p95 / max of the edges and
 // of the banking, with the targets (p50 ≤ 0.10 m, p95 ≤ 0.25 m, banking within 0.5°).
+// Then the race: configs/race.json, 2 laps at the car's limit, on the simulator's true track, once
+// with the car's map from the true file and once from the mapped one (`--set map.track=…
+// map.bank_mode=file`): the laps, lap times, wall contacts and least wall clearance of each.
 // usage: eval_map_track [--tracks DIR] [--only NAME]... [--layout outer|both] [--seed N] [--jobs N]
 //                       [--fault START] [--out DIR]
 //        eval_map_track --mapped FILE --truth FILE [--bank-deg D]   (two files compared, no run;
@@ -74,21 +77,25 @@ int main(int argc, char** argv) {
     const scenes::Ims ims(src + "/data", o);
     mapping::RoadSurface surface;
     std::vector<Eigen::Vector2d> driven;
+    std::vector<double> roll;  // the car's, as the scan mapper gives its registered one
     const double L = ims.track().length();
     for (double s = 0; s <= L + 60; s += 2.0) {
       const scenes::Frame f = ims.frame(s, offset, static_cast<std::uint64_t>(s * 10) + 1);
       driven.emplace_back(f.world_from_body.translation().x(), f.world_from_body.translation().y());
+      const Eigen::Vector3d fwd = f.world_from_body.linear().col(0), left = f.world_from_body.linear().col(1);
+      roll.push_back(std::asin(std::clamp(left.z() / std::sqrt(1 - fwd.z() * fwd.z()), -1.0, 1.0)));
       for (const auto& sc : f.scans)
         surface.add_scan(sc.x.data(), sc.y.data(), sc.z.data(), sc.intensity.data(), sc.x.size(), sc.vehicle_from_sensor,
                          f.world_from_body);
     }
-    const mapping::ExtractedTrack t = mapping::extract_track(surface, driven);
+    const mapping::ExtractedTrack t = mapping::extract_track(surface, driven, {}, &roll);
     const std::string file = out + "/true_poses_track.csv";
     fs::create_directories(out);
     track::write_centerline_csv(file, t.line);
     const auto truth = track::load_centerline_csv(src + "/data/tracks/IMS.csv");
     track::BankSpec bank;
     bank.mode = "curvature", bank.degrees = 9.2;
+    bank.curvature_threshold = 1e-3;  // the perception scenes' IMS (perception_scenes.cpp)
     const auto c = mapping::compare_tracks(t.line, truth, track::bank_profile(truth, bank));
     std::printf("IMS from true poses, %.1f m left of the centre line (%s): edges p50 %.3f m, p95 %.3f m, max %.3f m "
                 "(left p95 %.3f, right p95 %.3f); banking p50 %.2f°, p95 %.2f°, max %.2f°\n",
@@ -121,7 +128,7 @@ int main(int argc, char** argv) {
   }
   fs::create_directories(out);
   const std::string graph = src + "/configs/map_ims.json";
-  std::vector<brickyard::bench::RaceRun> runs(files.size());
+  std::vector<brickyard::bench::RaceRun> runs(files.size()), on_truth(files.size()), on_map(files.size());
   std::atomic<std::size_t> next{0};
   auto worker = [&](int domain) {
     for (std::size_t k; (k = next++) < files.size();) {
@@ -136,6 +143,14 @@ int main(int argc, char** argv) {
                          "map_file=" + dir + "/map.pcd", "track_file=" + dir + "/track.csv"});
       std::remove((dir + "/track.csv").c_str());  // an earlier run's file must not stand for this one's
       runs[k] = brickyard::bench::run_race(host, graph, a, {}, seed, dir + "/run", domain);
+      if (!runs[k].ok) continue;
+      const std::vector<std::string> race = brickyard::bench::track_args(tf.path, tf.name, tf.line, layout == "both");
+      std::vector<std::string> race_args = race;
+      if (tf.name != "IMS") race_args.insert(race_args.end(), {"bank_mode=none", "bank_deg=0"});
+      const std::string race_graph = src + "/configs/race.json";
+      on_truth[k] = brickyard::bench::run_race(host, race_graph, race_args, {}, seed, dir + "/race_true", domain);
+      on_map[k] = brickyard::bench::run_race(host, race_graph, race_args, {"map.track=" + dir + "/track.csv", "map.bank_mode=file"}, seed,
+                                             dir + "/race_mapped", domain);
     }
   };
   std::vector<std::thread> pool;
@@ -166,6 +181,26 @@ int main(int argc, char** argv) {
     } catch (const std::exception& e) {
       std::printf("| %s | %s | %s |\n", tf.name.c_str(), layout.c_str(), e.what());
       all_ok = false;
+    }
+  }
+  std::printf("\n| track | walls | car's map | race | lap times | wall contacts | least wall clearance | planned lap |\n"
+              "|---|---|---|---|---|---|---|---|\n");
+  for (std::size_t k = 0; k < files.size(); ++k) {
+    if (!runs[k].ok) continue;
+    for (int m = 0; m < 2; ++m) {
+      const brickyard::bench::RaceRun& r = m ? on_map[k] : on_truth[k];
+      std::string laps;
+      if (r.referee.contains("lap_times_s"))
+        for (const auto& x : r.referee["lap_times_s"]) {
+          char b[32];
+          std::snprintf(b, sizeof b, "%s%.2f s", laps.empty() ? "" : ", ", x.get<double>());
+          laps += b;
+        }
+      std::printf("| %s | %s | %s | %s | %s | %.0f | %.2f m | %.2f s |\n", files[k].name.c_str(), layout.c_str(),
+                  m ? "mapped" : "true file", r.ok ? "finished" : r.reason.c_str(), laps.c_str(),
+                  brickyard::bench::metric(r.referee, "wall_contacts"), brickyard::bench::metric(r.referee, "min_wall_clearance_m"),
+                  brickyard::bench::metric(r.planner, "planned_lap_s"));
+      all_ok = all_ok && r.ok;
     }
   }
   return all_ok ? 0 : 1;

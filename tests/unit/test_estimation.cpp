@@ -327,3 +327,42 @@ TEST(Localizer, ComesBackAfterAnOutageThatDriftedPastDelta) {
     }
   }
 }
+
+// The scan mapper's pose as a second estimate (docs/mapping.md): not taken while fixes are
+// accepted (the mapper's prior is this filter's estimate: the same information twice), taken in an
+// outage — each one stamped a LiDAR sweep ago and moved to now by the filter's motion since — and
+// a pose far off refused by the gate.
+TEST(Localizer, TakesTheScanPoseOnlyWhileGnssIsDegraded) {
+  auto run = [](bool scan, Eigen::Vector2d scan_offset, std::uint64_t* updates, std::uint64_t* refused, std::uint64_t* before) {
+    LocalizerParams p;
+    p.manager.receivers = 1;
+    p.lever[0] = Eigen::Vector3d::Zero();
+    p.roll_filter_s = 0;
+    Localizer loc(p);
+    const double v = 20;
+    for (double t = 0; t < 15.0 - 1e-9; t += 0.01) {
+      loc.speed(v * 1.03);  // the wheels read 3 % high: dead reckoning drifts 0.6 m a second
+      loc.imu(t, 0.0, 0.0);
+      const bool gnss = t < 5.0;
+      if (gnss && std::fmod(t + 1e-9, 0.05) < 0.01) loc.fixes(t, {Fix{0, {v * t, 0}, p.lever[0], 0.015}});
+      if (scan && t > 0.5 && std::fmod(t + 1e-9, 0.05) < 0.01) {
+        const double stamp = t - 0.05;  // the frame's time: a sweep ago
+        loc.scan_pose(stamp, Eigen::Vector2d(v * stamp, 0) + scan_offset, Eigen::Matrix2d::Identity() * 0.01);
+      }
+      if (std::abs(t - 4.99) < 1e-6) *before = loc.scan_updates();
+    }
+    *updates = loc.scan_updates();
+    *refused = loc.scan_refused();
+    return (loc.filter().position() - Eigen::Vector2d(v * 14.99, 0)).norm();
+  };
+  std::uint64_t updates = 0, refused = 0, before = 0;
+  const double without = run(false, {0, 0}, &updates, &refused, &before);
+  const double with = run(true, {0, 0}, &updates, &refused, &before);
+  EXPECT_GT(without, 4.0) << "10 s of dead reckoning on wheels 3 % high";
+  EXPECT_LT(with, 0.5) << "the scan poses, moved to now, hold it (a lag remains: the filter has no state for a wheel-speed scale error)";
+  EXPECT_EQ(before, 0u) << "none taken while the fixes were accepted";
+  EXPECT_GT(updates, 150u);
+  const double far = run(true, {0, 8.0}, &updates, &refused, &before);
+  EXPECT_GT(refused, 0u);
+  EXPECT_GT(far, 4.0) << "poses 8 m off are refused, not followed";
+}

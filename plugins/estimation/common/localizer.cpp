@@ -1,5 +1,7 @@
 #include "localizer.hpp"
 
+#include <Eigen/Geometry>
+
 #include <algorithm>
 #include <cmath>
 
@@ -13,6 +15,49 @@ void Localizer::advance(double t) {
   if (t_ < 0) t_ = t;
   if (t > t_ && have_imu_) filter_.predict(t - t_, speed_, yaw_rate_);
   t_ = std::max(t_, t);
+  if (!filter_.initialized()) return;
+  constexpr std::size_t kPast = 200;
+  const Past now{t_, filter_.state()(PoseFilter::X), filter_.state()(PoseFilter::Y), filter_.state()(PoseFilter::YAW)};
+  if (past_.size() < kPast) {
+    past_.push_back(now);
+  } else {
+    past_[past_next_] = now;
+    past_next_ = (past_next_ + 1) % kPast;
+  }
+}
+
+bool Localizer::scan_pose(double stamp, const Eigen::Vector2d& xy, const Eigen::Matrix2d& cov) {
+  if (!p_.scan_pose || !filter_.initialized() || t_ - last_accepted_t_ < p_.scan_after_s) return false;
+  if (!xy.allFinite() || !cov.allFinite() || !std::isfinite(stamp)) return false;
+  // The filter's pose at the stamp: the two kept around it, interpolated.
+  const Past* before = nullptr;
+  const Past* after = nullptr;
+  for (const Past& q : past_) {
+    if (q.t <= stamp && (!before || q.t > before->t)) before = &q;
+    if (q.t >= stamp && (!after || q.t < after->t)) after = &q;
+  }
+  if (!before || !after) return false;  // older than the history, or from the future
+  const double f = after->t > before->t ? (stamp - before->t) / (after->t - before->t) : 0.0;
+  const Eigen::Vector2d then(before->x + f * (after->x - before->x), before->y + f * (after->y - before->y));
+  const double yaw_then = before->yaw + f * std::remainder(after->yaw - before->yaw, 2 * M_PI);
+  // The pose carried by the motion since: the offset from the filter's pose then, turned by the
+  // turn since and put at the filter's pose now.
+  const double turn = std::remainder(filter_.state()(PoseFilter::YAW) - yaw_then, 2 * M_PI);
+  const Eigen::Rotation2Dd r(turn);
+  const Eigen::Vector2d z = filter_.position() + r * (xy - then);
+  const double floor = p_.scan_min_sigma * p_.scan_min_sigma;
+  Eigen::Matrix2d R = r.toRotationMatrix() * cov * r.toRotationMatrix().transpose();
+  R(0, 0) = std::max(R(0, 0), floor);
+  R(1, 1) = std::max(R(1, 1), floor);
+  const Eigen::Vector2d e = z - filter_.position();
+  const Eigen::Matrix2d S = filter_.innovation_cov(R);
+  if (!(e.dot(S.ldlt().solve(e)) <= p_.scan_gate)) {
+    ++scan_refused_;
+    return false;
+  }
+  filter_.update_position(z, R);
+  ++scan_updates_;
+  return true;
 }
 
 void Localizer::imu(double t, double gyro_z, double accel_y) {
@@ -35,6 +80,7 @@ void Localizer::fixes(double t, const std::vector<Fix>& epoch) {
   if (!filter_.initialized()) {
     initialize(epoch);
     for (const auto& f : epoch) manager_.on_fix(f.receiver, t, true);
+    last_accepted_t_ = t;
     return;
   }
   EpochResult r = apply_fixes(filter_, epoch, p_.policy, p_.selection);
@@ -48,6 +94,7 @@ void Localizer::fixes(double t, const std::vector<Fix>& epoch) {
       last_delta_[epoch[i].receiver] = r.delta[i];
     manager_.on_fix(epoch[i].receiver, t, r.accepted[i]);
     rejected_ += !r.accepted[i];
+    if (r.accepted[i]) last_accepted_t_ = t;
   }
 }
 

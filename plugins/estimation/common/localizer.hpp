@@ -21,6 +21,13 @@ struct LocalizerParams {
   double init_distance = 5;                        // m of travel before the heading is taken
   double roll_filter_s = 1;                        // s; 0: roll not used
   ReacquireParams reacquire;                       // resilient: coming back after a long outage
+  // A second estimate of the pose (the scan mapper's, registered on its map): taken only while no
+  // fix has been accepted for `scan_after_s` (GNSS degraded). With GNSS healthy it would count
+  // the same information twice: the mapper starts from this filter's estimate as its prior.
+  bool scan_pose = true;
+  double scan_after_s = 0.3;                       // s without an accepted fix
+  double scan_min_sigma = 0.05;                    // m: floor on the pose's reported spread
+  double scan_gate = 13.8;                         // chi-square, 2 dof, 0.999: a pose farther is refused
 };
 
 class Localizer {
@@ -34,6 +41,11 @@ class Localizer {
   void speed(double v) { speed_ = v; }
   // One epoch of fixes, all stamped t (receiver ids 0 .. receivers - 1).
   void fixes(double t, const std::vector<Fix>& epoch);
+  // A pose of base_link from another estimator (the scan mapper), stamped `stamp` (earlier than
+  // now: a LiDAR frame arrives a sweep late and takes its registration's time): moved to now by
+  // the filter's own motion since the stamp, then a position update, when GNSS is degraded (see
+  // LocalizerParams::scan_pose). Returns whether it was taken.
+  bool scan_pose(double stamp, const Eigen::Vector2d& xy, const Eigen::Matrix2d& cov);
   // The manager's status at t (WARNING while the heading is not known yet).
   Status status(double t);
 
@@ -47,6 +59,8 @@ class Localizer {
   std::uint64_t rejected() const { return rejected_; }
   std::uint64_t epochs_of(UpdateCase c) const { return cases_[static_cast<int>(c)]; }
   std::uint64_t reacquisitions() const { return reacquisitions_; }
+  std::uint64_t scan_updates() const { return scan_updates_; }
+  std::uint64_t scan_refused() const { return scan_refused_; }
 
  private:
   void advance(double t);
@@ -63,6 +77,14 @@ class Localizer {
   std::vector<double> last_delta_;
   std::uint64_t epochs_ = 0, rejected_ = 0, cases_[5] = {0, 0, 0, 0, 0}, reacquisitions_ = 0;
   Reacquisition reacquisition_;
+  // The filter's pose after each prediction, for a late pose's stamp (about 1.5 s).
+  struct Past {
+    double t, x, y, yaw;
+  };
+  std::vector<Past> past_;
+  std::size_t past_next_ = 0;
+  double last_accepted_t_ = -1e300;
+  std::uint64_t scan_updates_ = 0, scan_refused_ = 0;
 };
 
 }  // namespace brickyard::estimation

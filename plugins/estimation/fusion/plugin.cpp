@@ -31,6 +31,7 @@ Manifest common_ports(Manifest m) {
       .input<msgs::WheelSpeeds>("wheels", "wheel speeds: the rear axle's speed drives the prediction", true, 256)
       .input<msgs::GnssFix>("gnss0", "fixes of the first receiver", true, 64)
       .input<msgs::GnssFix>("gnss1", "fixes of the second receiver (optional)", false, 64)
+      .input<msgs::LocalizationEstimate>("scan_pose", "a second estimate of the pose (the scan mapper's), taken while GNSS is degraded (optional)", false, 16)
       .output<msgs::LocalizationEstimate>("estimate", "pose, covariance, the update case, delta per receiver, status")
       .output<msgs::ModeStatus>("mode", "the localization manager's status, on change and at 10 Hz");
 }
@@ -64,6 +65,10 @@ template <Policy P> ParamBinding<Settings> bindings() {
   b.bind("process_position", &Settings::loc, &L::noise, &N::position).in_unit("m/sqrt(s)").at_least(0);
   b.bind("process_yaw", &Settings::loc, &L::noise, &N::yaw).in_unit("rad/sqrt(s)").at_least(0);
   b.bind("process_slip_gain", &Settings::loc, &L::noise, &N::slip_gain).in_unit("s^2/m/sqrt(s)").at_least(0);
+  b.bind("scan_pose", &Settings::loc, &L::scan_pose)
+      .doc("with scan_pose wired: its registered poses are position updates while no fix has been accepted for scan_after_s (docs/mapping.md)");
+  b.bind("scan_after_s", &Settings::loc, &L::scan_after_s).in_unit("s").at_least(0).doc("GNSS degraded: no fix accepted for this long");
+  b.bind("scan_min_sigma", &Settings::loc, &L::scan_min_sigma).in_unit("m").at_least(0.001).doc("floor on a scan pose's spread");
   b.bind("init_distance", &Settings::loc, &L::init_distance).in_unit("m").at_least(0.5).doc("travel before the heading is taken from the fixes");
   b.bind("emergency_after_s", &Settings::loc, &L::manager, &M::emergency_after_s).in_unit("s").at_least(0)
       .doc("every receiver rejected or silent this long: EMERGENCY");
@@ -131,6 +136,7 @@ template <Policy P> class Estimator : public Plugin {
     wheels_ = ctx.input<msgs::WheelSpeeds>("wheels");
     gnss_[0] = ctx.input<msgs::GnssFix>("gnss0");
     gnss_[1] = ctx.input<msgs::GnssFix>("gnss1");
+    scan_ = ctx.input<msgs::LocalizationEstimate>("scan_pose");
     receivers_ = gnss_[1].connected() ? 2 : 1;
     lp.manager.receivers = receivers_;
     loc_.emplace(lp);
@@ -169,6 +175,14 @@ template <Policy P> class Estimator : public Plugin {
       epoch.push_back(f);
     }
     loc_->fixes(epoch_t, epoch);
+    // The scan mapper's poses, each of a LiDAR frame a sweep and a registration ago: only those
+    // it registered (update case 2), moved to now by the filter's motion since.
+    for (auto& s : scan_.take()) {
+      if (s->update_case() != 2) continue;
+      Eigen::Matrix2d cov;
+      cov << s->covariance()[0], s->covariance()[1], s->covariance()[3], s->covariance()[4];
+      loc_->scan_pose(stamp_s(*s), {s->x(), s->y()}, cov);
+    }
     publish(ctx);
   }
 
@@ -182,6 +196,10 @@ template <Policy P> class Estimator : public Plugin {
     ctx.metric("time_warning_s", time_in_[1]);
     ctx.metric("time_emergency_s", time_in_[2]);
     if constexpr (P == Policy::resilient) ctx.metric("reacquisitions", static_cast<double>(loc_->reacquisitions()));
+    if (scan_.connected()) {
+      ctx.metric("scan_updates", static_cast<double>(loc_->scan_updates()));
+      ctx.metric("scan_refused", static_cast<double>(loc_->scan_refused()));
+    }
     if constexpr (P == Policy::resilient) {  // the thresholds, for the report's Δk figure
       ctx.metric("epsilon_m", epsilon_);
       ctx.metric("delta_m", delta_);
@@ -243,6 +261,7 @@ template <Policy P> class Estimator : public Plugin {
   Input<msgs::Imu> imu_;
   Input<msgs::WheelSpeeds> wheels_;
   Input<msgs::GnssFix> gnss_[2];
+  Input<msgs::LocalizationEstimate> scan_;
   Output<msgs::LocalizationEstimate> estimate_;
   Output<msgs::ModeStatus> mode_;
 };

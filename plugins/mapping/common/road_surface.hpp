@@ -35,7 +35,7 @@ struct RoadSurfaceParams {
   double min_cos = 0.03;      // a ray meeting the ground flatter than this (1.7°) says little
   double ground_band = 0.5;   // m above or below the car's road plane: the ground
   double standing_from = 0.5, standing_to = 3.0;  // m above it: maybe something standing,
-  double standing_height = 0.4;  // when it also rises this far above the ground of its cell (or round it)
+  double standing_height = 0.6;  // when it also rises this far above the ground of its cell (or round it)
 };
 
 class RoadSurface {

@@ -100,25 +100,36 @@ double refine_edge(const Sample& sample, double t, const TrackExtractionParams& 
 
 ExtractedTrack extract_track(const RoadSurface& surface, const std::vector<Eigen::Vector2d>& driven,
                              const TrackExtractionParams& p, const std::vector<double>* roll) {
-  // 1. One lap of the driven path.
-  std::size_t end = 0;
-  double length = 0;
-  for (std::size_t i = 1; i < driven.size(); ++i) {
-    length += (driven[i] - driven[i - 1]).norm();
-    if (length > p.min_lap && (driven[i] - driven[0]).norm() < p.close_within) {
-      end = i;
-      // On to where it passes nearest the start.
-      while (end + 1 < driven.size() && (driven[end + 1] - driven[0]).norm() < (driven[end] - driven[0]).norm()) {
-        length += (driven[end + 1] - driven[end]).norm();
-        ++end;
+  // 1. One lap of the driven path, from `lap_from` metres into the drive (the start is off the
+  //    line the car then drives: a lap closed there joined two lines metres apart, and the
+  //    reference's kink put IMS's edges 2.8 m off at the line) round to where it passes nearest
+  //    that point again; from the first pose when the drive is too short for that.
+  auto lap_from = [&](std::size_t i0, std::size_t& end, double& length) {
+    end = 0;
+    length = 0;
+    for (std::size_t i = i0 + 1; i < driven.size(); ++i) {
+      length += (driven[i] - driven[i - 1]).norm();
+      if (length > p.min_lap && (driven[i] - driven[i0]).norm() < p.close_within) {
+        end = i;
+        while (end + 1 < driven.size() && (driven[end + 1] - driven[i0]).norm() < (driven[end] - driven[i0]).norm()) {
+          length += (driven[end + 1] - driven[end]).norm();
+          ++end;
+        }
+        return true;
       }
-      break;
     }
+    return false;
+  };
+  std::size_t start = 0, end = 0;
+  double length = 0;
+  for (double along = 0; start + 1 < driven.size() && along < p.lap_from; ++start) along += (driven[start + 1] - driven[start]).norm();
+  if (!lap_from(start, end, length)) {
+    start = 0;
+    if (!lap_from(0, end, length))
+      throw std::invalid_argument("the drive never came back to where it started (" + std::to_string(static_cast<long>(length)) +
+                                  " m driven): a track needs a whole lap");
   }
-  if (end == 0)
-    throw std::invalid_argument("the drive never came back to where it started (" + std::to_string(static_cast<long>(length)) +
-                                " m driven): a track needs a whole lap");
-  const std::vector<Eigen::Vector2d> lap(driven.begin(), driven.begin() + static_cast<long>(end));
+  const std::vector<Eigen::Vector2d> lap(driven.begin() + static_cast<long>(start), driven.begin() + static_cast<long>(end));
   double perimeter = 0;
   for (std::size_t i = 0; i < lap.size(); ++i) perimeter += (lap[(i + 1) % lap.size()] - lap[i]).norm();
   const int m = std::max(8, static_cast<int>(std::lround(perimeter / p.station_step)));
@@ -129,85 +140,102 @@ ExtractedTrack extract_track(const RoadSurface& surface, const std::vector<Eigen
     for (int j = -half; j <= half; ++j) sum += raw[((k + j) % m + m) % m];
     ref[k] = sum / (2 * half + 1);
   }
-  std::vector<Eigen::Vector2d> normal(m);
-  for (int k = 0; k < m; ++k) {
-    const Eigen::Vector2d t = (ref[(k + 1) % m] - ref[(k + m - 1) % m]).normalized();
-    normal[k] = {-t.y(), t.x()};  // left
-  }
-  // 2. The edges either side.
   ExtractedTrack out;
   out.stations = static_cast<std::size_t>(m);
-  std::vector<double> wl(m, NAN), wr(m, NAN);
-  for (int k = 0; k < m; ++k) {
-    for (int side : {+1, -1}) {
-      // The ground at t across the track, averaged over a strip along it (±strip): the ground's
-      // returns lie on the LiDAR's rings, which a drive samples every frame's distance along the
-      // track, so one cell in several along a line across holds none.
-      const Eigen::Vector2d along(normal[k].y(), -normal[k].x());
-      auto sample = [&](double t) {
-        RoadSurface::Sample out;
-        double rs = 0, zs = 0;
-        int n = 0, nz = 0, ns = 0;
-        for (int j = 0; j < p.strip_samples; ++j) {
-          const double a = p.strip_samples > 1 ? p.strip * (2.0 * j / (p.strip_samples - 1) - 1) : 0.0;
-          const Eigen::Vector2d q = ref[k] + side * t * normal[k] + a * along;
-          const RoadSurface::Sample s = surface.at(q.x(), q.y(), p.standing_value);
-          if (!s.known) continue;
-          if (s.standing) {
-            out.standing_at += s.standing_at;
-            ++ns;
-          }
-          rs += s.reflectivity;
-          ++n;
-          if (s.has_z) zs += s.z, ++nz;
-        }
-        if (n == 0) return out;
-        out.known = true;
-        out.reflectivity = rs / n;
-        out.standing = ns > 0;
-        if (ns > 0) out.standing_at /= ns;
-        out.has_z = nz > 0;
-        out.z = nz > 0 ? zs / nz : 0.0;
-        return out;
-      };
-      double prev_t = 0, last_road = -1;
-      bool prev_known = false;
-      for (double t = 0; t <= p.max_half_width; t += p.probe_step) {
-        const RoadSurface::Sample s = sample(t);
-        if (!s.known) {
-          prev_known = false;
-          continue;
-        }
-        if (s.standing) {
-          // A wall: where its returns are (a cell's worth nearer, interpolated, would be 0.1 m
-          // inside it), not short of the road's last sample.
-          const double at = side * (s.standing_at - ref[k]).dot(normal[k]);
-          if (t > 0) (side > 0 ? wl : wr)[k] = std::clamp(at, prev_known ? prev_t : t - p.probe_step, t + 0.5);
-          break;
-        }
-        if (s.reflectivity >= p.threshold) {
-          // After a stretch with no returns (far from the car the ground's are sparse), the edge
-          // is somewhere in it: its middle, not its far end (0.4 to 0.8 m out on IMS's main
-          // straight, seen from across the track).
-          const double edge = prev_known ? refine_edge(sample, t, p) : last_road >= 0 && t - last_road < 1.0 ? 0.5 * (last_road + t) : t;
-          if (t > 0) (side > 0 ? wl : wr)[k] = edge;
-          break;
-        }
-        prev_t = t;
-        last_road = t;
-        prev_known = true;
+  std::vector<Eigen::Vector2d> normal(m);
+  std::vector<double> wl, wr;
+  // Twice: the second time across the centre line the first found, smoothed. The driven line's
+  // normals in a chicane or a hairpin cross the edges slantwise, and the edges measured along them
+  // stood up to 2.8 m off (Monza's Roggia, Spielberg's hairpin).
+  for (int pass = 0; pass < std::max(1, p.passes); ++pass) {
+    if (pass > 0) {
+      std::vector<Eigen::Vector2d> centre(m);
+      for (int k = 0; k < m; ++k) centre[k] = ref[k] + 0.5 * (wl[k] - wr[k]) * normal[k];
+      for (int k = 0; k < m; ++k) {
+        Eigen::Vector2d sum = Eigen::Vector2d::Zero();
+        for (int j = -half; j <= half; ++j) sum += centre[((k + j) % m + m) % m];
+        ref[k] = sum / (2 * half + 1);
       }
     }
-    out.sides_found += std::isfinite(wl[k]) + std::isfinite(wr[k]);
+    for (int k = 0; k < m; ++k) {
+      const Eigen::Vector2d t = (ref[(k + 1) % m] - ref[(k + m - 1) % m]).normalized();
+      normal[k] = {-t.y(), t.x()};  // left
+    }
+    // 2. The edges either side.
+    wl.assign(m, NAN);
+    wr.assign(m, NAN);
+    out.sides_found = 0;
+    for (int k = 0; k < m; ++k) {
+      for (int side : {+1, -1}) {
+        // The ground at t across the track, averaged over a strip along it (±strip): the ground's
+        // returns lie on the LiDAR's rings, which a drive samples every frame's distance along the
+        // track, so one cell in several along a line across holds none.
+        const Eigen::Vector2d along(normal[k].y(), -normal[k].x());
+        auto sample = [&](double t) {
+          RoadSurface::Sample out;
+          double rs = 0, zs = 0;
+          int n = 0, nz = 0, ns = 0;
+          for (int j = 0; j < p.strip_samples; ++j) {
+            const double a = p.strip_samples > 1 ? p.strip * (2.0 * j / (p.strip_samples - 1) - 1) : 0.0;
+            const Eigen::Vector2d q = ref[k] + side * t * normal[k] + a * along;
+            const RoadSurface::Sample s = surface.at(q.x(), q.y(), p.standing_value);
+            if (!s.known) continue;
+            if (s.standing) {
+              out.standing_at += s.standing_at;
+              ++ns;
+            }
+            rs += s.reflectivity;
+            ++n;
+            if (s.has_z) zs += s.z, ++nz;
+          }
+          if (n == 0) return out;
+          out.known = true;
+          out.reflectivity = rs / n;
+          out.standing = ns > 0;
+          if (ns > 0) out.standing_at /= ns;
+          out.has_z = nz > 0;
+          out.z = nz > 0 ? zs / nz : 0.0;
+          return out;
+        };
+        double prev_t = 0, last_road = -1;
+        bool prev_known = false;
+        for (double t = 0; t <= p.max_half_width; t += p.probe_step) {
+          const RoadSurface::Sample s = sample(t);
+          if (!s.known) {
+            prev_known = false;
+            continue;
+          }
+          if (s.standing) {
+            // A wall: where its returns are (a cell's worth nearer, interpolated, would be 0.1 m
+            // inside it), not short of the road's last sample.
+            const double at = side * (s.standing_at - ref[k]).dot(normal[k]);
+            if (t > 0) (side > 0 ? wl : wr)[k] = std::clamp(at, prev_known ? prev_t : t - p.probe_step, t + 0.5);
+            break;
+          }
+          if (s.reflectivity >= p.threshold) {
+            // After a stretch with no returns (far from the car the ground's are sparse), the edge
+            // is somewhere in it: its middle, not its far end (0.4 to 0.8 m out on IMS's main
+            // straight, seen from across the track).
+            const double edge = prev_known ? refine_edge(sample, t, p) : last_road >= 0 && t - last_road < 1.0 ? 0.5 * (last_road + t) : t;
+            if (t > 0) (side > 0 ? wl : wr)[k] = edge;
+            break;
+          }
+          prev_t = t;
+          last_road = t;
+          prev_known = true;
+        }
+      }
+      out.sides_found += std::isfinite(wl[k]) + std::isfinite(wr[k]);
+    }
+    // 3. Filtered along the track, gaps filled; the centre between the edges.
+    const int mh = std::max(0, p.median_window / 2);
+    wl = median_filter(wl, mh);
+    wr = median_filter(wr, mh);
+    if (!fill_gaps(wl) || !fill_gaps(wr))
+      throw std::invalid_argument("no edge found on one side anywhere round the lap (no ground returns beside the road?)");
   }
   out.reference = ref;
   out.normal = normal;
-  // 3. Filtered along the track, gaps filled; the centre between the edges.
-  const int mh = std::max(0, p.median_window / 2);
-  wl = median_filter(wl, mh);
-  wr = median_filter(wr, mh);
-  if (!fill_gaps(wl) || !fill_gaps(wr))
-    throw std::invalid_argument("no edge found on one side anywhere round the lap (no ground returns beside the road?)");
   track::CenterLine& c = out.line;
   c.source = "mapped";
   std::vector<double> bank(m, NAN);
@@ -239,17 +267,21 @@ ExtractedTrack extract_track(const RoadSurface& surface, const std::vector<Eigen
       if (!std::isfinite((*roll)[i])) continue;
       std::size_t best = at;
       double best_d = (driven[i] - ref[at]).squaredNorm();
+      int best_j = 0;
       for (int j = -20; j <= 20; ++j) {
         const std::size_t k = static_cast<std::size_t>(((static_cast<long>(at) + j) % m + m) % m);
         const double d = (driven[i] - ref[k]).squaredNorm();
-        if (d < best_d) best_d = d, best = k;
+        if (d < best_d) best_d = d, best = k, best_j = j;
       }
-      if (best_d > 4 * p.station_step * p.station_step) {  // lost (a jump in the drive): search all
+      // Lost (the window's edge, or far from the line: the drive before the lap, a jump): all.
+      const double reach = p.max_half_width * p.max_half_width;
+      if (std::abs(best_j) == 20 || best_d > reach) {
         for (int k = 0; k < m; ++k)
           if (const double d = (driven[i] - ref[k]).squaredNorm(); d < best_d) best_d = d, best = static_cast<std::size_t>(k);
       }
       at = best;
-      if (best_d <= 4 * p.station_step * p.station_step) near[best].push_back((*roll)[i] * 180.0 / M_PI);
+      // (The racing line runs metres from the centre line: any pose on the road counts.)
+      if (best_d <= reach) near[best].push_back((*roll)[i] * 180.0 / M_PI);
     }
     for (int k = 0; k < m; ++k) {
       auto& v = near[k];
@@ -261,7 +293,7 @@ ExtractedTrack extract_track(const RoadSurface& surface, const std::vector<Eigen
       bank[k] = v[v.size() / 2];
     }
   }
-  bank = median_filter(bank, mh);
+  bank = median_filter(bank, std::max(0, p.bank_window / 2));
   if (!fill_gaps(bank)) bank.assign(m, 0.0);
   c.bank_deg = std::move(bank);
   return out;

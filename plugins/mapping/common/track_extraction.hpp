@@ -2,8 +2,9 @@
 // The track's lines and banking from a mapping drive, framework-free (the paper's §III-C extracts
 // the inner and outer lines from its map; the road graph is built on them).
 //
-// 1. The reference: one lap of the poses the car drove (map frame, in order), from the first
-//    pose round to where the path comes back to it, resampled every `station_step` and smoothed.
+// 1. The reference: one lap of the poses the car drove (map frame, in order), from `lap_from`
+//    metres into the drive round to where the path comes back there, resampled every
+//    `station_step` and smoothed.
 // 2. The edges: at each station, out along the normal to each side, the first place where the
 //    ground stops being road — its reflectivity crosses `threshold` (asphalt is dark, grass
 //    bright) or something stands there (a wall) — found between samples `probe_step` apart on
@@ -39,8 +40,11 @@ struct TrackExtractionParams {
   int strip_samples = 6;
   double max_half_width = 25;     // m from the reference a side's edge is looked for
   int median_window = 7;          // stations
+  int bank_window = 15;           // stations: the bank's median (30 m; a bank ramps over 100 m)
+  int passes = 2;                 // the second across the first's centre line
   double bank_margin = 1.0;       // m inside each edge left out of the bank's fit (kerbs, walls)
   double min_lap = 200;           // m: a drive shorter than this has not closed a lap
+  double lap_from = 300;          // m into the drive the lap starts (the car's start is off its line)
   double close_within = 10;       // m: the path has come round when it passes this near its start
 };
 
