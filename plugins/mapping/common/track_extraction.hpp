@@ -10,6 +10,7 @@
 //    bright) or something stands there (a wall) — found between samples `probe_step` apart on
 //    the grid interpolated bilinearly, and placed where the interpolated reflectivity crosses the
 //    threshold. A station whose side finds no edge (no returns there) takes its neighbours'.
+//    Three times: the second and third across the centre line the one before found.
 // 3. The widths filtered along the track (a median over `median_window` stations: a pylon left
 //    on the road, or a patch of missing returns, is one station's outlier), the centre line moved
 //    to the middle between the edges, the widths half their sum.
@@ -17,10 +18,12 @@
 //    nearest the station: the car stands on the road, so its roll is the road's bank there), or,
 //    with no rolls given, the slope of the ground's height across the road between its edges (a
 //    least-squares line through the interpolated heights); an angle, positive raising the left
-//    edge, filtered along the track like the widths. Why the roll first: heights from two passes
-//    of a drive meet in the same cells, and a few centimetres of height between the passes,
-//    across a road the passes shared unevenly, read as degrees of bank (IMS, mapped at 40 m/s:
-//    up to 30° off from the map's heights; the car's registered roll: docs/mapping.md).
+//    edge, filtered along the track like the widths. Why the roll first: heights from two
+//    passes of a drive meet in the same cells, and a few centimetres of height between the
+//    passes, across a road the passes shared unevenly, read as degrees of bank (IMS, mapped at
+//    40 m/s: up to 30° off from the map's heights; the car's registered roll: docs/mapping.md).
+// 5. Written every `output_step` (6 m): a line planner takes the edges' station-to-station
+//    jitter at 2 m for curvature.
 #include "road_surface.hpp"
 
 #include "track/centre_line.hpp"
@@ -32,6 +35,7 @@ namespace brickyard::mapping {
 
 struct TrackExtractionParams {
   double station_step = 2.0;      // m between stations along the reference
+  double output_step = 6.0;       // m between the track file's points (every few stations)
   double smooth = 10.0;           // m either side: the driven path's moving average
   double threshold = 0.30;        // reflectivity halfway between asphalt's and grass's (0.15, 0.45): unbiased where a cell straddles the edge
   double standing_value = 1.0;    // the reflectivity a cell where something stands counts as
@@ -41,7 +45,7 @@ struct TrackExtractionParams {
   double max_half_width = 25;     // m from the reference a side's edge is looked for
   int median_window = 7;          // stations
   int bank_window = 15;           // stations: the bank's median (30 m; a bank ramps over 100 m)
-  int passes = 2;                 // the second across the first's centre line
+  int passes = 3;                 // the later ones across the last one's centre line
   double bank_margin = 1.0;       // m inside each edge left out of the bank's fit (kerbs, walls)
   double min_lap = 200;           // m: a drive shorter than this has not closed a lap
   double lap_from = 300;          // m into the drive the lap starts (the car's start is off its line)
