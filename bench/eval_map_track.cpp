@@ -18,6 +18,7 @@
 //                       does with a perfect localization)
 // The mapped files stay in --out (default /tmp/eval_map_track): NAME/track.csv, NAME/map.pcd.
 // Exit 1 when a run failed or a target was missed.
+#include "common/scan_mapper.hpp"
 #include "common/track_compare.hpp"
 #include "common/track_extraction.hpp"
 #include "perception_scenes.hpp"
@@ -82,8 +83,7 @@ int main(int argc, char** argv) {
     for (double s = 0; s <= L + 60; s += 2.0) {
       const scenes::Frame f = ims.frame(s, offset, static_cast<std::uint64_t>(s * 10) + 1);
       driven.emplace_back(f.world_from_body.translation().x(), f.world_from_body.translation().y());
-      const Eigen::Vector3d fwd = f.world_from_body.linear().col(0), left = f.world_from_body.linear().col(1);
-      roll.push_back(std::asin(std::clamp(left.z() / std::sqrt(1 - fwd.z() * fwd.z()), -1.0, 1.0)));
+      roll.push_back(mapping::roll_of(f.world_from_body));
       for (const auto& sc : f.scans)
         surface.add_scan(sc.x.data(), sc.y.data(), sc.z.data(), sc.intensity.data(), sc.x.size(), sc.vehicle_from_sensor,
                          f.world_from_body);

@@ -11,6 +11,8 @@
 
 #include <Eigen/Geometry>
 
+#include <cmath>
+
 #include <optional>
 
 namespace brickyard::mapping {
@@ -84,5 +86,15 @@ Eigen::Matrix3d planar_covariance(const Eigen::Matrix<double, 6, 6>& c);
 // The information over (omega, v) of a planar (x, y, yaw) covariance; roll, pitch and z get `weak`
 // (a small information: the scan fixes them).
 Eigen::Matrix<double, 6, 6> planar_information(const Eigen::Matrix3d& xy_yaw, double weak = 1e-6);
+
+// A pose's pitch and roll (z-y-x order, the car never upside down): the small angles they are.
+inline double pitch_of(const Eigen::Isometry3d& pose) {
+  const double s = pose.linear()(2, 0);
+  return -std::asin(s < -1 ? -1.0 : s > 1 ? 1.0 : s);
+}
+inline double roll_of(const Eigen::Isometry3d& pose) {
+  const double s = pose.linear()(2, 1) / std::cos(pitch_of(pose));
+  return std::asin(s < -1 ? -1.0 : s > 1 ? 1.0 : s);
+}
 
 }  // namespace brickyard::mapping

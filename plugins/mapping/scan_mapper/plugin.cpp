@@ -93,17 +93,9 @@ class ScanMapperNode : public Plugin {
     const Settings s = bindings().read(ctx.params());
     mapper_ = ScanMapper(s.mapper);
     map_file_ = s.map_file;
-    if (!map_file_.empty()) {  // a place that cannot be written is said now, not after the laps
-      const std::string probe = map_file_ + ".part";
-      if (!std::ofstream(probe)) throw BadInput("map_file '" + map_file_ + "': cannot write there (does its folder exist?)");
-      std::remove(probe.c_str());
-    }
     track_file_ = s.track_file;
-    if (!track_file_.empty()) {
-      const std::string probe = track_file_ + ".part";
-      if (!std::ofstream(probe)) throw BadInput("track_file '" + track_file_ + "': cannot write there (does its folder exist?)");
-      std::remove(probe.c_str());
-    }
+    writable("map_file", map_file_);
+    writable("track_file", track_file_);
     surface_ = RoadSurface(s.surface);
     extraction_ = s.extraction;
     for (int k = 0; k < kScans; ++k) scans_in_[k] = ctx.input<msgs::PointCloud>("scan" + std::to_string(k));
@@ -153,6 +145,14 @@ class ScanMapperNode : public Plugin {
   }
 
  private:
+  // A place that cannot be written is said now, not after the laps.
+  static void writable(const char* param, const std::string& path) {
+    if (path.empty()) return;
+    const std::string probe = path + ".part";
+    if (!std::ofstream(probe)) throw BadInput(std::string(param) + " '" + path + "': cannot write there (does its folder exist?)");
+    std::remove(probe.c_str());
+  }
+
   // The track from the drive: a mapping run that could not make one did not do its job.
   void write_track(Context& ctx) {
     try {
@@ -173,8 +173,7 @@ class ScanMapperNode : public Plugin {
     if (track_file_.empty()) return;
     driven_.emplace_back(pose.translation().x(), pose.translation().y());
     // The car's roll where it drove, for the banking (NaN: not registered, the guess's).
-    const Eigen::Vector3d fwd = pose.linear().col(0), left = pose.linear().col(1);
-    driven_roll_.push_back(registered ? std::asin(std::clamp(left.z() / std::sqrt(1 - fwd.z() * fwd.z()), -1.0, 1.0)) : NAN);
+    driven_roll_.push_back(registered ? roll_of(pose) : NAN);
     for (const auto& c : scans_) {
       if (c->header().stamp_ns() != stamp) continue;
       const std::size_t n = c->x().size();
@@ -231,10 +230,8 @@ class ScanMapperNode : public Plugin {
       const double c = std::hypot(r.pose.translation().x() - ex, r.pose.translation().y() - ey);
       correction_sum_ += c;
       correction_max_ = std::max(correction_max_, c);
-      // Roll and pitch as the small angles they are (z-y-x order: the car is never upside down).
-      const Eigen::Vector3d fwd = r.pose.linear().col(0), left = r.pose.linear().col(1);
-      pitch_ = -std::asin(std::clamp(fwd.z(), -1.0, 1.0));
-      roll_ = std::asin(std::clamp(left.z() / std::cos(pitch_), -1.0, 1.0));
+      pitch_ = pitch_of(r.pose);
+      roll_ = roll_of(r.pose);
       z_ = r.pose.translation().z();
     }
     add_to_surface(stamp, r.pose, r.registered);
