@@ -1,6 +1,7 @@
 // Mapping's algorithms (issue 17): point covariances, the voxel map, scan-to-map registration by
 // voxelized GICP. Beside PCL's GICP: test_mapping_pcl.cpp.
 #include "common/covariances.hpp"
+#include "track/track.hpp"
 #include "common/pcd.hpp"
 #include "common/scan_mapper.hpp"
 #include "common/track_extraction.hpp"
@@ -279,6 +280,38 @@ TEST(TrackExtraction, FindsTheEdgesAndTheBankOfARingRoad) {
   }
   EXPECT_LT(worst_edge, 0.05);
   EXPECT_LT(worst_bank, 0.2);
+}
+
+// A tight bend written every 6 m: a reader joins the points straight (track::Track), and on the
+// bend's inside that chord cuts beyond the edge (on a 19 m radius by 0.24 m). The written widths
+// are narrowed there, so the file claims no road the drive did not see, and stay 6 m apart.
+TEST(TrackExtraction, TheFileClaimsNoRoadBeyondTheEdgesInATightBend) {
+  Ring ring;
+  ring.r = 25;
+  std::vector<Eigen::Vector2d> driven;
+  const RoadSurface surface = drive_ring(ring, driven, 2.2);
+  TrackExtractionParams p;
+  p.lap_from = 30;
+  p.min_lap = 100;
+  const ExtractedTrack t = extract_track(surface, driven, p);
+  const std::size_t n = t.line.x.size();
+  ASSERT_GT(n, 20u);
+  EXPECT_NEAR(std::hypot(t.line.x[1] - t.line.x[0], t.line.y[1] - t.line.y[0]), 6.0, 0.5);
+  const brickyard::track::Track reader(brickyard::track::TrackGeometry{"ring", t.line, {}});
+  double beyond = -1e9, inside = 1e9;  // how far the file's edges reach past the true ones, m
+  for (double a = 0; a < 2 * M_PI; a += 0.002) {
+    const Eigen::Vector2d dir(std::cos(a), std::sin(a));
+    const Eigen::Vector2d inner = (ring.r - ring.wl) * dir, outer = (ring.r + ring.wr) * dir;
+    const brickyard::track::Frenet fi = reader.project(inner.x(), inner.y()), fo = reader.project(outer.x(), outer.y());
+    const double over_inner = reader.width_left(fi.seg, fi.u) - fi.d, over_outer = reader.width_right(fo.seg, fo.u) + fo.d;
+    beyond = std::max(beyond, over_inner);
+    inside = std::min({inside, over_inner, over_outer});
+    // (Outside a bend, past a segment's end, the reader extrapolates the segment's edge, which
+    // bulges outward at every vertex of any polyline file, the true ones too: not judged there.)
+    if (fo.u >= 0 && fo.u <= 1) beyond = std::max(beyond, over_outer);
+  }
+  EXPECT_LT(beyond, 0.05);   // 0.24 m written straight every 6 m
+  EXPECT_GT(inside, -0.35);  // and not much narrower than the road
 }
 
 TEST(TrackExtraction, ADriveThatNeverClosesALapIsRefused) {

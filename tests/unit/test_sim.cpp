@@ -553,6 +553,8 @@ TEST(Referee, DetectsAWallContactAndCountsLaps) {
   EXPECT_TRUE(contact);
   EXPECT_EQ(r.wall_contacts(), 1);
   EXPECT_LE(r.min_wall_clearance(), 0);
+  // Where along the track the least clearance was: where the car drifted into the wall.
+  EXPECT_NEAR(r.min_wall_clearance_s(), std::fmod(s, t.length()), 5.0);
   // Localization error against the truth interpolated at the estimate's time: 2 m off the car.
   Frenet f = t.at(s, -0.1);
   Eigen::Vector2d p = t.position(f);

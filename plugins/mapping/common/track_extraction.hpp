@@ -23,7 +23,8 @@
 //    passes, across a road the passes shared unevenly, read as degrees of bank (IMS, mapped at
 //    40 m/s: up to 30° off from the map's heights; the car's registered roll: docs/mapping.md).
 // 5. Written every `output_step` (6 m): a line planner takes the edges' station-to-station
-//    jitter at 2 m for curvature.
+//    jitter at 2 m for curvature. The written widths are narrowed where the straight segment
+//    between two written points would claim road beyond a station's edge (the inside of a bend).
 #include "road_surface.hpp"
 
 #include "track/centre_line.hpp"

@@ -3,7 +3,9 @@
 // pose T that brings a scan's points, each with its covariance, onto a VoxelMap, minimizing
 //   sum_i  N_v (mu_v - T a_i)^T (Sigma_v + R C_i R^T)^-1 (mu_v - T a_i)
 // over each point's voxel v (N_v points, mean mu_v, mean covariance Sigma_v), by Gauss-Newton
-// with Levenberg-Marquardt damping on SE(3). Framework-free; one thread.
+// with Levenberg-Marquardt damping on SE(3). Steps are (omega, v): a turn omega about the scan's
+// own origin in the map (the car) and a move v of it, both in the map's axes. Framework-free;
+// one thread.
 #include "voxel_map.hpp"
 
 #include <Eigen/Geometry>
@@ -24,11 +26,18 @@ struct RegistrationParams {
   // points share the surface's sampling and the pose's error): beside a prior, the weight says
   // how many points' worth a scan is (ScanMapperParams::points_worth).
   double weight = 1.0;
+  // Every stride-th point of the scan is used (its terms weighted by stride, so the prior keeps
+  // its share).
+  int stride = 1;
+  // Coarse to fine (the register_scan of several maps): the stages before the last use every
+  // coarse_stride-th point. A coarse voxel's mean stands for a metre of surface; the coarse
+  // stage brings the guess near, the last one is accurate with every point.
+  int coarse_stride = 4;
 };
 
 // A prior on the pose (another estimate of it, such as the fusion's): its mean and its
 // information (inverse covariance) over the step's coordinates, rotation omega then translation
-// v, both in the map frame. Its term (r^T Lambda r, r = (log(R R_p^T), t - t_p)) is added to the
+// v (the car's turn and position), both in the map's axes. Its term (r^T Lambda r, r = (log(R R_p^T), t - t_p)) is added to the
 // objective: what the scans do not tell (the motion along a smooth straight between smooth walls)
 // the prior does.
 struct PosePrior {
@@ -42,8 +51,9 @@ struct RegistrationResult {
   bool converged = false;
   std::size_t matched = 0;  // source points with at least one voxel at the end
   double cost = 0;          // the objective at the end, per matched point
-  // The Gauss-Newton system's matrix at the end (prior included): its inverse is the pose's
-  // covariance, as far as the points' own covariances are right and their errors independent.
+  // The Gauss-Newton system's matrix at the end (prior included), over (omega, v): its inverse
+  // is the pose's covariance (the car's turn and position), as far as the points' own
+  // covariances are right and their errors independent.
   Eigen::Matrix<double, 6, 6> hessian = Eigen::Matrix<double, 6, 6>::Zero();
 };
 

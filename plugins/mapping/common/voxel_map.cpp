@@ -15,11 +15,18 @@ void VoxelMap::add(const Points& pts, const Covariances& covs) {
     bool inserted;
     const std::uint32_t v = index_.find_or_insert(perception::cell_key(cell(q.x(), inv_), cell(q.y(), inv_), cell(q.z(), inv_)),
                                                   static_cast<std::uint32_t>(voxels_.size()), inserted);
-    if (inserted) voxels_.emplace_back();
+    if (inserted) {
+      voxels_.emplace_back();
+      targets_.emplace_back();
+    }
     Voxel& x = voxels_[v];
     x.sum += q;
     x.cov_sum += covs[i].cast<double>();
     ++x.count;
+    VoxelTarget& t = targets_[v];
+    t.mean = x.mean().cast<float>();
+    t.covariance = x.covariance().cast<float>();
+    t.count = static_cast<float>(x.count);
   }
 }
 

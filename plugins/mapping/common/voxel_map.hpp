@@ -19,6 +19,14 @@ struct Voxel {
   Eigen::Matrix3d covariance() const { return cov_sum / count; }
 };
 
+// What a registration reads of a voxel, kept up to date as points are added: its mean and mean
+// covariance in float (the registration's arithmetic) and its count.
+struct VoxelTarget {
+  Eigen::Vector3f mean = Eigen::Vector3f::Zero();
+  Eigen::Matrix3f covariance = Eigen::Matrix3f::Zero();
+  float count = 0;
+};
+
 class VoxelMap {
  public:
   explicit VoxelMap(float voxel = 1.0f) : voxel_(voxel), inv_(1.0f / voxel) { index_.reset(0); }
@@ -27,6 +35,23 @@ class VoxelMap {
   void add(const Points& pts, const Covariances& covs);
   // The voxel holding map point q, or null.
   const Voxel* at(const Eigen::Vector3d& q) const;
+  // Its target (the same voxel's mean, covariance and count in float), or null.
+  const VoxelTarget* target(const Eigen::Vector3f& q) const { return target(key(q)); }
+  // The same in two steps, so a loop can prefetch a point's voxel a few points ahead of reading
+  // it (the lookups of a scan's points are scattered over the map: each a cache miss).
+  static constexpr std::uint64_t kNoKey = ~std::uint64_t{0};
+  std::uint64_t key(const Eigen::Vector3f& q) const {
+    if (!q.allFinite() || q.cwiseAbs().maxCoeff() > perception::kMaxCoordinate) return kNoKey;
+    return perception::cell_key(perception::cell_of(q.x(), inv_), perception::cell_of(q.y(), inv_), perception::cell_of(q.z(), inv_));
+  }
+  void prefetch(std::uint64_t key) const {
+    if (key != kNoKey) index_.prefetch(key);
+  }
+  const VoxelTarget* target(std::uint64_t key) const {
+    if (key == kNoKey) return nullptr;
+    const std::uint32_t* v = index_.find(key);
+    return v ? &targets_[*v] : nullptr;
+  }
   std::size_t size() const { return voxels_.size(); }
   const std::vector<Voxel>& voxels() const { return voxels_; }
 
@@ -34,6 +59,7 @@ class VoxelMap {
   float voxel_, inv_;
   perception::CellMap<std::uint32_t> index_;
   std::vector<Voxel> voxels_;  // first-added order
+  std::vector<VoxelTarget> targets_;  // the same order
 };
 
 }  // namespace brickyard::mapping

@@ -46,7 +46,10 @@ Referee::Events Referee::update(const TruthSample& s) {
     clearance = std::min({clearance, track_.wall_left_d(fc.seg, fc.u) - fc.d, fc.d - track_.wall_right_d(fc.seg, fc.u)});
   }
   last_wall_clearance_ = clearance;
-  min_wall_clearance_ = std::min(min_wall_clearance_, clearance);
+  if (clearance < min_wall_clearance_) {
+    min_wall_clearance_ = clearance;
+    min_wall_clearance_s_ = f.s;
+  }
   bool contact = clearance <= 0;
   if (contact && !in_contact_) { ++wall_contacts_; ev.wall_contact = true; }
   in_contact_ = contact;

@@ -40,6 +40,7 @@ class Referee {
   int wall_contacts() const { return wall_contacts_; }
   int track_violations() const { return track_violations_; }
   double min_wall_clearance() const { return min_wall_clearance_; }
+  double min_wall_clearance_s() const { return min_wall_clearance_s_; }  // where (centre line's s); NaN: no sample
   int obstacles_hit() const { return obstacles_hit_; }
   double obstacle_min_clearance() const { return obstacle_min_clearance_; }  // +inf: no pylons
   double localization_rmse() const;                                           // NaN: no samples
@@ -66,6 +67,7 @@ class Referee {
   double last_moving_t_ = 0;
   std::vector<bool> pylon_hit_;
   double min_wall_clearance_ = std::numeric_limits<double>::infinity();
+  double min_wall_clearance_s_ = std::numeric_limits<double>::quiet_NaN();
   double last_wall_clearance_ = std::numeric_limits<double>::infinity();
   double obstacle_min_clearance_ = std::numeric_limits<double>::infinity();
   std::deque<TruthSample> history_;

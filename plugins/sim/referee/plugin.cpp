@@ -142,6 +142,7 @@ class RefereeNode : public Plugin {
     ctx.metric("wall_contacts", static_cast<double>(ref_->wall_contacts()));
     ctx.metric("track_violations", static_cast<double>(ref_->track_violations()));
     ctx.metric("min_wall_clearance_m", ref_->min_wall_clearance());
+    ctx.metric("min_wall_clearance_s_m", ref_->min_wall_clearance_s());
     ctx.metric("obstacles_hit", static_cast<double>(ref_->obstacles_hit()));
     ctx.metric("obstacle_min_clearance_m", ref_->obstacle_min_clearance());
     ctx.metric("localization_rmse_m", ref_->localization_rmse());
