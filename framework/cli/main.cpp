@@ -2,6 +2,9 @@
 #include "cli/commands.hpp"
 #include "exec/executive.hpp"
 #include "graph/diagnostics.hpp"
+#include "record/recording_info.hpp"
+
+#include "map_build_graph.hpp"
 
 #include <brickyard/version.hpp>
 
@@ -32,6 +35,9 @@ usage:
   brickyard plugins [--json]               list the plugins found and their manifests
   brickyard graph GRAPH.json --dot         print the graph for Graphviz
   brickyard report RUN_DIR                 write RUN_DIR/report.html from a run's recording
+  brickyard map build RECORDING --out DIR  a track file and a point map from a recorded drive:
+                                           DIR/track.csv, DIR/map.pcd, DIR/summary.json
+                                           (configs/map_build.json; docs/mapping.md)
   brickyard new-plugin NAME --dir DIR      scaffold a plugin project from the SDK template
   brickyard --version
 
@@ -63,6 +69,7 @@ exit codes: 0 success, 1 the run failed, 2 invalid input
 
 struct Args {
   std::string command, target, dir, out, process, record;
+  std::vector<std::string> more;  // positional arguments after the target (map build RECORDING)
   std::vector<std::string> record_only;
   std::vector<std::string> sets, args, plugin_paths;
   std::optional<double> duration;
@@ -143,6 +150,7 @@ Args parse_args(int argc, char** argv) {
     else if (f == "--quiet" || f == "-q") a.quiet = true;
     else if (f.rfind("--", 0) == 0) usage_error(f, "unknown option (see brickyard --help)");
     else if (a.target.empty()) a.target = f;
+    else if (a.command == "map") a.more.push_back(f);
     else usage_error(f, "unexpected argument");
   }
   return a;
@@ -250,9 +258,72 @@ std::string profile_table(const nlohmann::json& j) {
   return out + row;
 }
 
+int run_graph(const Args& a, GraphDecl g, bool validate_only);
+
 int cmd_run(const Args& a, bool validate_only) {
   if (a.target.empty()) usage_error(a.command, "needs a graph file");
-  GraphDecl g = load_graph_file(a.target, a.sets, a.args);
+  return run_graph(a, load_graph_file(a.target, a.sets, a.args), validate_only);
+}
+
+// `brickyard map build RECORDING --out DIR`: configs/map_build.json (built in) on the recording.
+// What is wrong with the file is said before anything runs (exit 2); a drive from which no
+// track could be made is bad input too (the recording is the input), and leaves no track file.
+int cmd_map(const Args& a) {
+  if (a.target != "build") usage_error("map " + a.target, "unknown map command (brickyard map build RECORDING --out DIR)");
+  if (a.more.size() != 1) usage_error("map build", "needs one recording (brickyard run GRAPH --record FILE)");
+  if (a.out.empty()) usage_error("map build", "needs --out DIR (for DIR/track.csv, DIR/map.pcd, DIR/summary.json)");
+  const std::string rec = a.more[0];
+  RecordingInfo info;
+  try {
+    info = read_recording_info(rec);
+  } catch (const std::exception& e) {
+    usage_error(rec, e.what());
+  }
+  if (info.messages == 0) usage_error(rec, "the recording holds no samples");
+  if (info.clock != "sim")
+    usage_error(rec, "recorded on the " + (info.clock.empty() ? std::string("unknown") : info.clock) +
+                         " clock: map build replays a sim-clock recording (a real drive's, re-timed: not yet; docs/mapping.md)");
+  for (const auto& arg : a.args)
+    for (const char* ours : {"recording=", "map_file=", "track_file=", "duration="})
+      if (arg.rfind(ours, 0) == 0) usage_error("--arg " + arg, "map build sets this one itself");
+  std::error_code ec;
+  fs::create_directories(a.out, ec);
+  if (ec) usage_error("--out " + a.out, "cannot create the folder: " + ec.message());
+  const fs::path dir = fs::absolute(a.out), track = dir / "track.csv", map = dir / "map.pcd";
+  if (fs::equivalent(rec, dir / "recording.db3", ec))
+    usage_error("--out " + a.out, "holds the recording as recording.db3, which a run into the folder replaces: use another folder");
+  // An earlier build's files must not stand for this one's.
+  fs::remove(track, ec);
+  fs::remove(map, ec);
+  std::vector<std::string> args = a.args;
+  args.push_back("recording=" + fs::absolute(rec).string());
+  args.push_back("map_file=" + map.string());
+  args.push_back("track_file=" + track.string());
+  char duration[64];
+  std::snprintf(duration, sizeof duration, "duration=%.3f", static_cast<double>(info.last_ns) * 1e-9 + 0.1);
+  args.push_back(duration);
+  Args run = a;
+  run.no_report = true;  // DIR gets the summary; the recording is the input, not recorded again
+  const int rc = run_graph(run, parse_graph_text(kMapBuildGraph, "configs/map_build.json (built into brickyard)", a.sets, args), false);
+  if (rc != 1) {
+    if (rc == 0) std::printf("map build: %s and %s from %s\n", track.c_str(), map.c_str(), rec.c_str());
+    return rc;
+  }
+  // The mapper's end (no lap in the drive, no edge found): the recording's fault.
+  std::ifstream f(dir / "summary.json");
+  std::string reason;
+  try {
+    reason = nlohmann::json::parse(f).value("reason", "");
+  } catch (...) {
+  }
+  if (reason.rfind("node 'mapper'", 0) == 0 && reason.find("track_file") != std::string::npos) {
+    std::fprintf(stderr, "error: %s: no track from this drive: %s\n", rec.c_str(), reason.c_str());
+    return 2;
+  }
+  return rc;
+}
+
+int run_graph(const Args& a, GraphDecl g, bool validate_only) {
   Registry reg = load_registry(a, &g);
   ResolvedGraph rg = resolve_graph(g, reg, a.process);
   if (validate_only) {
@@ -399,7 +470,8 @@ int main(int argc, char** argv) {
     if (a.command == "graph") return cmd_graph(a);
     if (a.command == "report") return cmd_report(a);
     if (a.command == "new-plugin") return cmd_new_plugin(a);
-    usage_error(a.command, "unknown command (commands: run, validate, plugins, graph, new-plugin)");
+    if (a.command == "map") return cmd_map(a);
+    usage_error(a.command, "unknown command (commands: run, validate, plugins, graph, report, map, new-plugin)");
   } catch (const InvalidInput& e) {
     std::cerr << format_diagnostics(e.diagnostics());
     return 2;

@@ -1,0 +1,60 @@
+#include "record/recording_info.hpp"
+
+#include <sqlite3.h>
+
+#include <filesystem>
+#include <stdexcept>
+
+namespace brickyard::fw {
+
+namespace {
+
+// An open read-only database, closed however the reading ends.
+struct Db {
+  sqlite3* db = nullptr;
+  ~Db() { sqlite3_close(db); }
+};
+
+[[noreturn]] void fail(sqlite3* db, const std::string& what) {
+  throw std::runtime_error(what + (db ? std::string(": ") + sqlite3_errmsg(db) : std::string()));
+}
+
+// Runs sql, calling row(stmt) for each row.
+template <class Row> void query(sqlite3* db, const char* sql, Row&& row) {
+  sqlite3_stmt* st = nullptr;
+  if (sqlite3_prepare_v2(db, sql, -1, &st, nullptr) != SQLITE_OK) fail(db, "not a readable recording");
+  int rc;
+  while ((rc = sqlite3_step(st)) == SQLITE_ROW) row(st);
+  sqlite3_finalize(st);
+  if (rc != SQLITE_DONE) fail(db, "not a readable recording");
+}
+
+std::string text(sqlite3_stmt* st, int col) {
+  const unsigned char* t = sqlite3_column_text(st, col);
+  return t ? reinterpret_cast<const char*>(t) : "";
+}
+
+}  // namespace
+
+RecordingInfo read_recording_info(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) throw std::runtime_error("no such file");
+  Db d;
+  if (sqlite3_open_v2(path.c_str(), &d.db, SQLITE_OPEN_READONLY, nullptr) != SQLITE_OK) fail(d.db, "cannot open");
+  int ours = 0;
+  query(d.db, "SELECT name FROM sqlite_master WHERE type = 'table' AND name IN ('metadata', 'topics', 'messages')",
+        [&](sqlite3_stmt*) { ++ours; });
+  if (ours != 3) throw std::runtime_error("not a recording (no metadata, topics and messages tables: brickyard run --record FILE)");
+  RecordingInfo info;
+  query(d.db, "SELECT value FROM metadata WHERE key = 'clock'", [&](sqlite3_stmt* st) { info.clock = text(st, 0); });
+  query(d.db, "SELECT name, type FROM topics ORDER BY id", [&](sqlite3_stmt* st) { info.topics.emplace_back(text(st, 0), text(st, 1)); });
+  // Ids are the publication order and stamps the run's clock at publication: the last row is the
+  // last sample (read by rowid, not by scanning gigabytes of clouds).
+  query(d.db, "SELECT id, timestamp FROM messages ORDER BY id DESC LIMIT 1", [&](sqlite3_stmt* st) {
+    info.messages = static_cast<std::uint64_t>(sqlite3_column_int64(st, 0));
+    info.last_ns = sqlite3_column_int64(st, 1);
+  });
+  return info;
+}
+
+}  // namespace brickyard::fw

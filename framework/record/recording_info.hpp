@@ -1,0 +1,23 @@
+#pragma once
+// What a recording (`brickyard run --record FILE`, docs/recording.md) holds, read without its
+// samples: its clock, how many samples and until when, its topics. For commands that run a graph
+// on a recording (`brickyard map build`) and must say what is wrong with the file first.
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace brickyard::fw {
+
+struct RecordingInfo {
+  std::string clock;                                       // "sim" or "real" (metadata)
+  std::uint64_t messages = 0;                              // the last sample's id: how many were written
+  std::int64_t last_ns = 0;                                // the last sample's time, the run's clock
+  std::vector<std::pair<std::string, std::string>> topics;  // name, type
+};
+
+// Throws std::runtime_error saying what is wrong: not there, not an SQLite file, not a recording
+// (the tables are not ours), unreadable (truncated, corrupt).
+RecordingInfo read_recording_info(const std::string& path);
+
+}  // namespace brickyard::fw
