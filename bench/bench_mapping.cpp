@@ -55,7 +55,8 @@ int main(int argc, char** argv) {
   const scenes::Ims ims(std::string(BRICKYARD_SOURCE_DIR) + "/data", o);
   constexpr float kLeaf = 0.25f;
   std::vector<double> ours_ms, pcl_ms, ours_m, ours_deg, pcl_m, pcl_deg, cov_ms, d1_ms, d1_m, d1_deg, ndt_ms, ndt_m, ndt_deg;
-  std::size_t points = 0;
+  std::vector<double> thin_ms, thin_m, thin_deg, pcl_thin_ms, pcl_thin_m, pcl_thin_deg;
+  std::size_t points = 0, thin_points = 0;
   for (int k = 0; k < scans; ++k) {
     // Half the scans on the straight, half in the banked turn.
     const double s = (k % 2 ? ims.turn_s() : ims.straight_s()) + 40.0 * (k / 2);
@@ -105,6 +106,25 @@ int main(int argc, char** argv) {
     pcl_ms.push_back(theirs.ms);
     pcl_m.push_back(err_m(theirs.transform, truth));
     pcl_deg.push_back(err_deg(theirs.transform, truth));
+    // The scan as the scan mapper thins it before registering (one point, the mean, per
+    // scan_voxel: 0.4 m), ours and PCL's GICP on those same points.
+    const mapping::ScanMapperParams mp;
+    const perception::Points thin = perception::voxel_filter(f.points, mp.scan_voxel);
+    thin_points += thin.size();
+    mapping::RegistrationResult rt;
+    std::vector<double> tt;
+    for (int run = 0; run < 5; ++run) {
+      const auto t0 = std::chrono::steady_clock::now();
+      rt = mapping::register_scan(thin, mapping::point_covariances(thin, mp.covariances), {&coarse, &fine}, guess, direct1);
+      tt.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    }
+    thin_ms.push_back(median(tt));
+    thin_m.push_back(err_m(rt.transform.matrix(), truth));
+    thin_deg.push_back(err_deg(rt.transform.matrix(), truth));
+    const auto theirs_thin = baseline::gicp(thin, map_pts, guess.matrix());
+    pcl_thin_ms.push_back(theirs_thin.ms);
+    pcl_thin_m.push_back(err_m(theirs_thin.transform, truth));
+    pcl_thin_deg.push_back(err_deg(theirs_thin.transform, truth));
     const auto n = baseline::ndt(scan, map_pts, guess.matrix());
     ndt_ms.push_back(n.ms);
     ndt_m.push_back(err_m(n.transform, truth));
@@ -126,5 +146,12 @@ int main(int argc, char** argv) {
               *std::max_element(ndt_deg.begin(), ndt_deg.end()));
   std::printf("PCL GICP / ours: %.1f (DIRECT1, as the mapper), %.1f (DIRECT7)\n", median(pcl_ms) / median(d1_ms),
               median(pcl_ms) / median(ours_ms));
+  std::printf("\nthe same scans thinned as the scan mapper thins them (%.2f m voxels, %zu points a scan on average)\n",
+              static_cast<double>(mapping::ScanMapperParams{}.scan_voxel), thin_points / scans);
+  std::printf("%-28s %10.1f %12.3f %12.3f\n", "ours: DIRECT1, as the mapper", median(thin_ms), *std::max_element(thin_m.begin(), thin_m.end()),
+              *std::max_element(thin_deg.begin(), thin_deg.end()));
+  std::printf("%-28s %10.1f %12.3f %12.3f\n", "baseline: PCL GICP", median(pcl_thin_ms),
+              *std::max_element(pcl_thin_m.begin(), pcl_thin_m.end()), *std::max_element(pcl_thin_deg.begin(), pcl_thin_deg.end()));
+  std::printf("PCL GICP / ours: %.1f\n", median(pcl_thin_ms) / median(thin_ms));
   return 0;
 }
