@@ -43,6 +43,20 @@ double err_deg(const Eigen::Matrix4d& a, const Eigen::Matrix4d& b) {
   return Eigen::AngleAxisd(Eigen::Matrix3d(a.block<3, 3>(0, 0).transpose() * b.block<3, 3>(0, 0))).angle() * 180 / M_PI;
 }
 
+// One registration's figures over the scans: per-scan time and the error against the truth.
+struct Row {
+  std::vector<double> ms, m, deg;
+  void add(double time_ms, const Eigen::Matrix4d& found, const Eigen::Matrix4d& truth) {
+    ms.push_back(time_ms);
+    m.push_back(err_m(found, truth));
+    deg.push_back(err_deg(found, truth));
+  }
+  void print(const char* name) const {
+    std::printf("%-28s %10.1f %12.3f %12.3f\n", name, median(ms), *std::max_element(m.begin(), m.end()),
+                *std::max_element(deg.begin(), deg.end()));
+  }
+};
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -54,8 +68,8 @@ int main(int argc, char** argv) {
   o.pylons = {{0, 0, 0.15, 0.7}};
   const scenes::Ims ims(std::string(BRICKYARD_SOURCE_DIR) + "/data", o);
   constexpr float kLeaf = 0.25f;
-  std::vector<double> ours_ms, pcl_ms, ours_m, ours_deg, pcl_m, pcl_deg, cov_ms, d1_ms, d1_m, d1_deg, ndt_ms, ndt_m, ndt_deg;
-  std::vector<double> thin_ms, thin_m, thin_deg, pcl_thin_ms, pcl_thin_m, pcl_thin_deg;
+  Row ours, d1, pcl, ndt, thin, pcl_thin;
+  std::vector<double> cov_ms;
   std::size_t points = 0, thin_points = 0;
   for (int k = 0; k < scans; ++k) {
     // Half the scans on the straight, half in the banked turn.
@@ -95,63 +109,46 @@ int main(int argc, char** argv) {
       tc.push_back(std::chrono::duration<double, std::milli>(ta - t0).count());
       t1.push_back(std::chrono::duration<double, std::milli>((ta - t0) + (te - tb)).count());
     }
-    ours_ms.push_back(median(t));
+    ours.add(median(t), r.transform.matrix(), truth);
     cov_ms.push_back(median(tc));
-    d1_ms.push_back(median(t1));
-    d1_m.push_back(err_m(r1.transform.matrix(), truth));
-    d1_deg.push_back(err_deg(r1.transform.matrix(), truth));
-    ours_m.push_back(err_m(r.transform.matrix(), truth));
-    ours_deg.push_back(err_deg(r.transform.matrix(), truth));
+    d1.add(median(t1), r1.transform.matrix(), truth);
     const auto theirs = baseline::gicp(scan, map_pts, guess.matrix());
-    pcl_ms.push_back(theirs.ms);
-    pcl_m.push_back(err_m(theirs.transform, truth));
-    pcl_deg.push_back(err_deg(theirs.transform, truth));
+    pcl.add(theirs.ms, theirs.transform, truth);
     // The scan as the scan mapper thins it before registering (one point, the mean, per
     // scan_voxel: 0.4 m), ours and PCL's GICP on those same points.
     const mapping::ScanMapperParams mp;
-    const perception::Points thin = perception::voxel_filter(f.points, mp.scan_voxel);
-    thin_points += thin.size();
+    const perception::Points thin_scan = perception::voxel_filter(f.points, mp.scan_voxel);
+    thin_points += thin_scan.size();
     mapping::RegistrationResult rt;
     std::vector<double> tt;
     for (int run = 0; run < 5; ++run) {
       const auto t0 = std::chrono::steady_clock::now();
-      rt = mapping::register_scan(thin, mapping::point_covariances(thin, mp.covariances), {&coarse, &fine}, guess, direct1);
+      rt = mapping::register_scan(thin_scan, mapping::point_covariances(thin_scan, mp.covariances), {&coarse, &fine}, guess, direct1);
       tt.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
     }
-    thin_ms.push_back(median(tt));
-    thin_m.push_back(err_m(rt.transform.matrix(), truth));
-    thin_deg.push_back(err_deg(rt.transform.matrix(), truth));
-    const auto theirs_thin = baseline::gicp(thin, map_pts, guess.matrix());
-    pcl_thin_ms.push_back(theirs_thin.ms);
-    pcl_thin_m.push_back(err_m(theirs_thin.transform, truth));
-    pcl_thin_deg.push_back(err_deg(theirs_thin.transform, truth));
+    thin.add(median(tt), rt.transform.matrix(), truth);
+    const auto theirs_thin = baseline::gicp(thin_scan, map_pts, guess.matrix());
+    pcl_thin.add(theirs_thin.ms, theirs_thin.transform, truth);
     const auto n = baseline::ndt(scan, map_pts, guess.matrix());
-    ndt_ms.push_back(n.ms);
-    ndt_m.push_back(err_m(n.transform, truth));
-    ndt_deg.push_back(err_deg(n.transform, truth));
+    ndt.add(n.ms, n.transform, truth);
     std::printf("scan %d (s %.0f, %zu points, map %zu): ours %.1f ms, %.3f m %.3f deg (DIRECT1 %d iterations) | PCL GICP %.1f ms, %.3f m %.3f deg\n", k, s,
-                scan.size(), map_pts.size(), ours_ms.back(), ours_m.back(), ours_deg.back(), r1.iterations, pcl_ms.back(), pcl_m.back(), pcl_deg.back());
+                scan.size(), map_pts.size(), ours.ms.back(), ours.m.back(), ours.deg.back(), r1.iterations, pcl.ms.back(), pcl.m.back(),
+                pcl.deg.back());
   }
   std::printf("\nscan-to-map registration, IMS, 3 LiDARs voxel-filtered at %.2f m (%zu points a scan on average), %d scans, one thread\n",
               kLeaf, points / scans, scans);
   std::printf("%-28s %10s %12s %12s\n", "", "ms/scan", "worst m", "worst deg");
-  std::printf("%-28s %10.1f %12.3f %12.3f\n", "ours: DIRECT7, 1 m -> 0.25 m", median(ours_ms), *std::max_element(ours_m.begin(), ours_m.end()),
-              *std::max_element(ours_deg.begin(), ours_deg.end()));
-  std::printf("%-28s %10.1f %12.3f %12.3f\n", "ours: DIRECT1, as the mapper", median(d1_ms), *std::max_element(d1_m.begin(), d1_m.end()),
-              *std::max_element(d1_deg.begin(), d1_deg.end()));
+  ours.print("ours: DIRECT7, 1 m -> 0.25 m");
+  d1.print("ours: DIRECT1, as the mapper");
   std::printf("%-28s %10.1f\n", "  of which the covariances", median(cov_ms));
-  std::printf("%-28s %10.1f %12.3f %12.3f\n", "baseline: PCL GICP", median(pcl_ms), *std::max_element(pcl_m.begin(), pcl_m.end()),
-              *std::max_element(pcl_deg.begin(), pcl_deg.end()));
-  std::printf("%-28s %10.1f %12.3f %12.3f\n", "baseline: PCL NDT (1 m)", median(ndt_ms), *std::max_element(ndt_m.begin(), ndt_m.end()),
-              *std::max_element(ndt_deg.begin(), ndt_deg.end()));
-  std::printf("PCL GICP / ours: %.1f (DIRECT1, as the mapper), %.1f (DIRECT7)\n", median(pcl_ms) / median(d1_ms),
-              median(pcl_ms) / median(ours_ms));
+  pcl.print("baseline: PCL GICP");
+  ndt.print("baseline: PCL NDT (1 m)");
+  std::printf("PCL GICP / ours: %.1f (DIRECT1, as the mapper), %.1f (DIRECT7)\n", median(pcl.ms) / median(d1.ms),
+              median(pcl.ms) / median(ours.ms));
   std::printf("\nthe same scans thinned as the scan mapper thins them (%.2f m voxels, %zu points a scan on average)\n",
               static_cast<double>(mapping::ScanMapperParams{}.scan_voxel), thin_points / scans);
-  std::printf("%-28s %10.1f %12.3f %12.3f\n", "ours: DIRECT1, as the mapper", median(thin_ms), *std::max_element(thin_m.begin(), thin_m.end()),
-              *std::max_element(thin_deg.begin(), thin_deg.end()));
-  std::printf("%-28s %10.1f %12.3f %12.3f\n", "baseline: PCL GICP", median(pcl_thin_ms),
-              *std::max_element(pcl_thin_m.begin(), pcl_thin_m.end()), *std::max_element(pcl_thin_deg.begin(), pcl_thin_deg.end()));
-  std::printf("PCL GICP / ours: %.1f\n", median(pcl_thin_ms) / median(thin_ms));
+  thin.print("ours: DIRECT1, as the mapper");
+  pcl_thin.print("baseline: PCL GICP");
+  std::printf("PCL GICP / ours: %.1f\n", median(pcl_thin.ms) / median(thin.ms));
   return 0;
 }
