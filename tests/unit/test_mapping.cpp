@@ -99,6 +99,38 @@ TEST(Mapping, RegistrationFindsTheScansPose) {
   EXPECT_GT((alone.transform.translation() - truth.translation()).norm(), 0.01);
 }
 
+// The registration's system is over the car's own turn and position (the step turns the scan
+// about its origin), so its inverse is the car's pose covariance wherever the map is: the yard
+// registered 3 km from the map's origin gives the same position covariance as at the origin, and
+// the same pose relative to the yard. (Turned about the map's origin, a turn moved the car by
+// omega x t: the position's variance grew by t^2 sigma_omega^2, and in single precision the
+// points' kilometres of coordinates cost millimetres.)
+TEST(Mapping, ThePoseCovarianceIsTheCarsWhereverTheMapIs) {
+  Eigen::Isometry3d truth = Eigen::Isometry3d::Identity();
+  truth.translate(Eigen::Vector3d(0.3, -0.2, 0.02));
+  truth.rotate(Eigen::AngleAxisd(2 * M_PI / 180, Eigen::Vector3d::UnitZ()));
+  const Points map_here = yard(0.15, 0.01, 1);
+  const Points scan = moved(yard(0.2, 0.01, 2), truth.inverse());
+  const Covariances covs = point_covariances(scan);
+  const Eigen::Isometry3d far(Eigen::Translation3d(3000, -2000, 40));
+  RegistrationResult at[2];
+  for (int k = 0; k < 2; ++k) {
+    const Eigen::Isometry3d where = k ? far : Eigen::Isometry3d::Identity();
+    const Points map_pts = moved(map_here, where);
+    const Covariances map_covs = point_covariances(map_pts);
+    VoxelMap coarse(1.0f), fine(0.25f);
+    coarse.add(map_pts, map_covs);
+    fine.add(map_pts, map_covs);
+    at[k] = register_scan(scan, covs, {&coarse, &fine}, where * Eigen::Isometry3d(Eigen::Translation3d(0.25, -0.15, 0)));
+    ASSERT_TRUE(at[k].converged);
+    const Eigen::Isometry3d found = where.inverse() * at[k].transform;  // relative to the yard
+    EXPECT_LT((found.translation() - truth.translation()).norm(), 0.01) << "k " << k;
+  }
+  const Eigen::Matrix3d here = planar_covariance(at[0].hessian.inverse()), there = planar_covariance(at[1].hessian.inverse());
+  for (int a = 0; a < 3; ++a) EXPECT_NEAR(there(a, a) / here(a, a), 1.0, 0.2) << "variance " << a << ": " << here(a, a) << " at the origin, "
+                                                                              << there(a, a) << " 3 km away";
+}
+
 // Bad input: an empty scan or map, non-finite points: no step taken, not converged, no crash.
 TEST(Mapping, RegistrationWithNothingToMatchKeepsTheGuess) {
   const Points pts = yard(0.5, 0.0, 3);
