@@ -103,8 +103,7 @@ TEST(Mapping, RegistrationFindsTheScansPose) {
 // about its origin), so its inverse is the car's pose covariance wherever the map is: the yard
 // registered 3 km from the map's origin gives the same position covariance as at the origin, and
 // the same pose relative to the yard. (Turned about the map's origin, a turn moved the car by
-// omega x t: the position's variance grew by t^2 sigma_omega^2, and in single precision the
-// points' kilometres of coordinates cost millimetres.)
+// omega x t: the position's variance grew by t^2 sigma_omega^2.)
 TEST(Mapping, ThePoseCovarianceIsTheCarsWhereverTheMapIs) {
   Eigen::Isometry3d truth = Eigen::Isometry3d::Identity();
   truth.translate(Eigen::Vector3d(0.3, -0.2, 0.02));
