@@ -35,6 +35,8 @@ usage:
   brickyard plugins [--json]               list the plugins found and their manifests
   brickyard graph GRAPH.json --dot         print the graph for Graphviz
   brickyard report RUN_DIR                 write RUN_DIR/report.html from a run's recording
+  brickyard bag info RECORDING [--json]    a recording's clock, span and topics (types, counts, rates,
+                                           bytes)
   brickyard map build RECORDING --out DIR  a track file and a point map from a recorded drive:
                                            DIR/track.csv, DIR/map.pcd, DIR/summary.json
                                            (configs/map_build.json; docs/mapping.md)
@@ -150,7 +152,7 @@ Args parse_args(int argc, char** argv) {
     else if (f == "--quiet" || f == "-q") a.quiet = true;
     else if (f.rfind("--", 0) == 0) usage_error(f, "unknown option (see brickyard --help)");
     else if (a.target.empty()) a.target = f;
-    else if (a.command == "map") a.more.push_back(f);
+    else if (a.command == "map" || a.command == "bag") a.more.push_back(f);
     else usage_error(f, "unexpected argument");
   }
   return a;
@@ -323,6 +325,52 @@ int cmd_map(const Args& a) {
   return rc;
 }
 
+// `brickyard bag info RECORDING`: what a recording holds, without decoding a sample.
+int cmd_bag(const Args& a) {
+  if (a.target != "info") usage_error("bag " + a.target, "unknown bag command (brickyard bag info RECORDING)");
+  if (a.more.size() != 1) usage_error("bag info", "needs one recording (brickyard run GRAPH --record FILE)");
+  const std::string& file = a.more[0];
+  RecordingInfo info;
+  std::vector<TopicStats> topics;
+  try {
+    info = read_recording_info(file);
+    topics = read_topic_stats(file);
+  } catch (const std::exception& e) {
+    usage_error(file, e.what());
+  }
+  std::error_code ec;
+  const auto size = fs::file_size(file, ec);
+  std::int64_t first = 0;
+  bool any = false;
+  for (const auto& t : topics)
+    if (t.count) first = any ? std::min(first, t.first_ns) : t.first_ns, any = true;
+  auto rate = [](const TopicStats& t) {
+    return t.count > 1 && t.last_ns > t.first_ns ? static_cast<double>(t.count - 1) / (static_cast<double>(t.last_ns - t.first_ns) * 1e-9) : 0.0;
+  };
+  if (a.json) {
+    nlohmann::json j = {{"file", file}, {"bytes", ec ? 0 : size}, {"clock", info.clock}, {"messages", info.messages},
+                        {"start_s", static_cast<double>(first) * 1e-9}, {"end_s", static_cast<double>(info.last_ns) * 1e-9}};
+    j["topics"] = nlohmann::json::array();
+    for (const auto& t : topics)
+      j["topics"].push_back({{"name", t.name}, {"type", t.type}, {"count", t.count}, {"bytes", t.bytes},
+                             {"first_s", static_cast<double>(t.first_ns) * 1e-9}, {"last_s", static_cast<double>(t.last_ns) * 1e-9},
+                             {"rate_hz", rate(t)}});
+    std::cout << j.dump(2) << "\n";
+    return 0;
+  }
+  std::printf("file      %s (%.1f MB)\nclock     %s\nspan      %.3f s to %.3f s (%.3f s)\nmessages  %llu\n", file.c_str(),
+              ec ? 0.0 : static_cast<double>(size) / 1e6, info.clock.c_str(), static_cast<double>(first) * 1e-9,
+              static_cast<double>(info.last_ns) * 1e-9, static_cast<double>(info.last_ns - first) * 1e-9,
+              static_cast<unsigned long long>(info.messages));
+  std::size_t wn = 5, wt = 4;
+  for (const auto& t : topics) wn = std::max(wn, t.name.size()), wt = std::max(wt, t.type.size());
+  std::printf("\n%-*s  %-*s  %10s  %9s  %12s\n", static_cast<int>(wn), "topic", static_cast<int>(wt), "type", "count", "rate Hz", "MB");
+  for (const auto& t : topics)
+    std::printf("%-*s  %-*s  %10llu  %9.2f  %12.3f\n", static_cast<int>(wn), t.name.c_str(), static_cast<int>(wt), t.type.c_str(),
+                static_cast<unsigned long long>(t.count), rate(t), static_cast<double>(t.bytes) / 1e6);
+  return 0;
+}
+
 int run_graph(const Args& a, GraphDecl g, bool validate_only) {
   Registry reg = load_registry(a, &g);
   ResolvedGraph rg = resolve_graph(g, reg, a.process);
@@ -471,7 +519,8 @@ int main(int argc, char** argv) {
     if (a.command == "report") return cmd_report(a);
     if (a.command == "new-plugin") return cmd_new_plugin(a);
     if (a.command == "map") return cmd_map(a);
-    usage_error(a.command, "unknown command (commands: run, validate, plugins, graph, report, map, new-plugin)");
+    if (a.command == "bag") return cmd_bag(a);
+    usage_error(a.command, "unknown command (commands: run, validate, plugins, graph, report, map, bag, new-plugin)");
   } catch (const InvalidInput& e) {
     std::cerr << format_diagnostics(e.diagnostics());
     return 2;

@@ -34,17 +34,22 @@ std::string text(sqlite3_stmt* st, int col) {
   return t ? reinterpret_cast<const char*>(t) : "";
 }
 
-}  // namespace
-
-RecordingInfo read_recording_info(const std::string& path) {
+// The recording opened read-only, checked to be one.
+void open_recording(const std::string& path, Db& d) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) throw std::runtime_error("no such file");
-  Db d;
   if (sqlite3_open_v2(path.c_str(), &d.db, SQLITE_OPEN_READONLY, nullptr) != SQLITE_OK) fail(d.db, "cannot open");
   int ours = 0;
   query(d.db, "SELECT name FROM sqlite_master WHERE type = 'table' AND name IN ('metadata', 'topics', 'messages')",
         [&](sqlite3_stmt*) { ++ours; });
   if (ours != 3) throw std::runtime_error("not a recording (no metadata, topics and messages tables: brickyard run --record FILE)");
+}
+
+}  // namespace
+
+RecordingInfo read_recording_info(const std::string& path) {
+  Db d;
+  open_recording(path, d);
   RecordingInfo info;
   query(d.db, "SELECT value FROM metadata WHERE key = 'clock'", [&](sqlite3_stmt* st) { info.clock = text(st, 0); });
   query(d.db, "SELECT name, type FROM topics ORDER BY id", [&](sqlite3_stmt* st) { info.topics.emplace_back(text(st, 0), text(st, 1)); });
@@ -55,6 +60,26 @@ RecordingInfo read_recording_info(const std::string& path) {
     info.last_ns = sqlite3_column_int64(st, 1);
   });
   return info;
+}
+
+std::vector<TopicStats> read_topic_stats(const std::string& path) {
+  Db d;
+  open_recording(path, d);
+  std::vector<TopicStats> out;
+  query(d.db,
+        "SELECT t.name, t.type, count(m.id), coalesce(sum(length(m.data)), 0), coalesce(min(m.timestamp), 0), "
+        "coalesce(max(m.timestamp), 0) FROM topics t LEFT JOIN messages m ON m.topic_id = t.id GROUP BY t.id ORDER BY t.id",
+        [&](sqlite3_stmt* st) {
+          TopicStats s;
+          s.name = text(st, 0);
+          s.type = text(st, 1);
+          s.count = static_cast<std::uint64_t>(sqlite3_column_int64(st, 2));
+          s.bytes = static_cast<std::uint64_t>(sqlite3_column_int64(st, 3));
+          s.first_ns = sqlite3_column_int64(st, 4);
+          s.last_ns = sqlite3_column_int64(st, 5);
+          out.push_back(std::move(s));
+        });
+  return out;
 }
 
 }  // namespace brickyard::fw

@@ -20,4 +20,13 @@ struct RecordingInfo {
 // (the tables are not ours), unreadable (truncated, corrupt).
 RecordingInfo read_recording_info(const std::string& path);
 
+// Per topic: its samples (reads every sample's row, not its data: seconds for gigabytes).
+struct TopicStats {
+  std::string name, type;
+  std::uint64_t count = 0, bytes = 0;
+  std::int64_t first_ns = 0, last_ns = 0;
+};
+// In the recording's topic order; topics without samples included (count 0). Throws as above.
+std::vector<TopicStats> read_topic_stats(const std::string& path);
+
 }  // namespace brickyard::fw

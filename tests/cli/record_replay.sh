@@ -41,4 +41,20 @@ expect2 "was made on the real clock, this run is on the sim clock" \
 echo "not a database" > "$out/junk.db3"
 expect2 "junk.db3" "$by" run "$replay" --domain "$domain" $sets --set gnss_left.file="$out/junk.db3"
 expect2 "--record-only: needs --record FILE" "$by" run "$replay" --domain "$domain" $sets --record-only 'x.*'
+# brickyard bag info: the recording's topics, types and counts as the file holds them.
+"$by" bag info "$a" --json > "$out/info.json" || { echo "FAIL: bag info"; exit 1; }
+python3 - "$a" "$out/info.json" <<'PY' || exit 1
+import json, sqlite3, sys
+info = json.load(open(sys.argv[2]))
+c = sqlite3.connect(sys.argv[1])
+want = {n: (t, k) for n, t, k in c.execute(
+    "SELECT t.name, t.type, count(m.id) FROM topics t LEFT JOIN messages m ON m.topic_id = t.id GROUP BY t.id")}
+got = {t["name"]: (t["type"], t["count"]) for t in info["topics"]}
+total = sum(k for _, k in want.values())
+print(f"bag info: {len(got)} topics, {info['messages']} samples, {info['end_s']:.3f} s")
+sys.exit(0 if got == want and info["messages"] == total and info["clock"] == "sim" and total > 1000 else 1)
+PY
+"$by" bag info "$a" | grep -q "^estimator.estimate  *brickyard::msgs::LocalizationEstimate" || { echo "FAIL: bag info's table"; exit 1; }
+expect2 "junk.db3: not a readable recording: file is not a database" "$by" bag info "$out/junk.db3"
+expect2 "nope.db3: no such file" "$by" bag info "$out/nope.db3"
 echo "record_replay: ok"
