@@ -363,6 +363,21 @@ TEST(TrackExtraction, ADriveThatNeverClosesALapIsRefused) {
   }
 }
 
+// A map whose boundary cannot be closed: asphalt as far as the LiDAR sees on every side, no
+// edge anywhere round the lap. Refused with the reason, no track made.
+TEST(TrackExtraction, ARoadWithNoEdgeAnywhereIsRefused) {
+  Ring ring;
+  ring.wl = ring.wr = 1000;  // road everywhere
+  std::vector<Eigen::Vector2d> driven;
+  const RoadSurface surface = drive_ring(ring, driven, 1.1);
+  try {
+    extract_track(surface, driven);
+    FAIL() << "extracted a track without edges";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("no edge found on one side anywhere round the lap"), std::string::npos) << e.what();
+  }
+}
+
 // The mapped track's file: today's four columns and the bank angle; read back as written, its
 // banking used by bank_mode "file", and a row that drops the column refused by its line.
 TEST(TrackExtraction, TheTrackFileCarriesItsBanking) {
