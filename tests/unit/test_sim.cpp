@@ -1,5 +1,6 @@
 // The simulator's algorithms, called directly (no framework): track files, banking, the vehicle
 // model against the analytical bicycle model, LiDAR ray casting, fault windows, the referee.
+#include "common/command_watchdog.hpp"
 #include "common/faults.hpp"
 #include "common/lidar.hpp"
 #include "common/localization_score.hpp"
@@ -617,4 +618,33 @@ TEST(LocalizationScore, FlagTimesAndFalseAlarms) {
   EXPECT_NEAR(s.time_to_emergency(), 0.4, 1e-9);
   EXPECT_NEAR(s.max_error_normal(), 2.0, 1e-12);
   EXPECT_NEAR(s.max_error(), 2.0, 1e-12);
+}
+
+// The car's side of the command contract: the newest command holds while commands keep coming;
+// 0.25 s without one, the throttle is released and the car brakes, steering held; commands that
+// come back take over again; a stack that never sends one is caught after first_timeout_s.
+TEST(CommandWatchdog, BrakesToAStopWhenCommandsStopAndHandsBackWhenTheyCome) {
+  CommandWatchdog w;
+  Command drive;
+  drive.steer = 0.05, drive.throttle = 0.8;
+  double t = 0;
+  for (; t < 1.0; t += 0.002) EXPECT_DOUBLE_EQ(w.apply(t, std::fmod(t, 0.01) < 0.002, drive).throttle, 0.8);
+  EXPECT_FALSE(w.stopping());
+  Command c;
+  for (double end = t + 0.24; t < end; t += 0.002) c = w.apply(t, false, drive);
+  EXPECT_DOUBLE_EQ(c.throttle, 0.8) << "0.24 s without a command: still the stack's";
+  for (double end = t + 0.05; t < end; t += 0.002) c = w.apply(t, false, drive);
+  EXPECT_TRUE(w.stopping());
+  EXPECT_DOUBLE_EQ(c.throttle, 0);
+  EXPECT_DOUBLE_EQ(c.brake, CommandWatchdogParams{}.brake);
+  EXPECT_DOUBLE_EQ(c.steer, 0.05);
+  c = w.apply(t, true, drive);
+  EXPECT_FALSE(w.stopping());
+  EXPECT_DOUBLE_EQ(c.throttle, 0.8);
+  EXPECT_EQ(w.trips(), 1);
+  CommandWatchdog never;
+  EXPECT_FALSE(never.stopping());
+  for (t = 10; t < 11.9; t += 0.01) EXPECT_DOUBLE_EQ(never.apply(t, false, Command{}).brake, 0.0);
+  for (; t < 12.1; t += 0.01) never.apply(t, false, Command{});
+  EXPECT_TRUE(never.stopping());
 }

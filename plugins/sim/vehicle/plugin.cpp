@@ -7,6 +7,7 @@
 
 #include "vehicle_param.hpp"
 
+#include "../common/command_watchdog.hpp"
 #include "../common/vehicle_model.hpp"
 #include "../world_msg.hpp"
 
@@ -19,6 +20,7 @@ struct Settings {
   double rate_hz = 500;  // the trigger's rate, and 1 / rate_hz the integration step
   double start_s = 0, start_d = 0, start_speed = 0;
   std::string vehicle = plugins::default_vehicle_file;
+  CommandWatchdogParams watchdog;
 };
 
 ParamBinding<Settings> bindings() {
@@ -28,6 +30,12 @@ ParamBinding<Settings> bindings() {
   b.bind("start_d", &Settings::start_d).in_unit("m").doc("start lateral offset, left positive");
   b.bind("start_speed", &Settings::start_speed).in_unit("m/s").at_least(0);
   plugins::bind_vehicle(b, &Settings::vehicle);
+  using W = CommandWatchdogParams;
+  b.bind("command_timeout", &Settings::watchdog, &W::timeout_s).in_unit("s").at_least(0.01)
+      .doc("commands stale this long (once they have come): throttle off, brake to a stop (the command watchdog)");
+  b.bind("first_command_timeout", &Settings::watchdog, &W::first_timeout_s).in_unit("s").at_least(0.01)
+      .doc("no command this long after the car exists: the same");
+  b.bind("watchdog_brake", &Settings::watchdog, &W::brake).range(0, 1).doc("the brake pedal while the watchdog stops the car");
   return b;
 }
 
@@ -37,7 +45,7 @@ class Vehicle : public Plugin {
     return Manifest("sim.vehicle", "1.0.0")
         .describe("Dynamic single-track race car (the vehicle file's, AV-21 by default) on the world's banked road; publishes ground truth")
         .input<msgs::TrackWorld>("world", "the world to drive in", true, 1)
-        .input<msgs::ControlCommand>("command", "steer, throttle, brake (latest one holds)", false, 1)
+        .input<msgs::ControlCommand>("command", "steer, throttle, brake (the latest holds until it is command_timeout old: then the car brakes to a stop)", false, 1)
         .output<msgs::VehicleState>("truth", "ground truth at base_link (rear-axle centre), every step")
         .parameters(bindings())
         .periodic("rate_hz");
@@ -51,6 +59,7 @@ class Vehicle : public Plugin {
     start_s_ = s.start_s;
     start_d_ = s.start_d;
     start_speed_ = s.start_speed;
+    watchdog_ = CommandWatchdog(s.watchdog);
     world_in_ = ctx.input<msgs::TrackWorld>("world");
     cmd_in_ = ctx.input<msgs::ControlCommand>("command");
     out_ = ctx.output<msgs::VehicleState>("truth");
@@ -74,16 +83,30 @@ class Vehicle : public Plugin {
       return;
     }
     Command c;
-    if (auto m = newest(cmd_in_)) {
+    auto fresh = cmd_in_.take();
+    if (auto m = fresh.empty() ? cmd_in_.latest() : fresh.back()) {
       c.steer = m->steer();
       c.throttle = m->throttle();
       c.brake = m->brake();
+    }
+    // An unwired command input is a fixture (a car that coasts); a wired one is the stack's.
+    if (cmd_in_.connected()) {
+      const bool was = watchdog_.stopping();
+      c = watchdog_.apply(ctx.now_s(), !fresh.empty(), c);
+      if (watchdog_.stopping() && !was)
+        ctx.log(LogLevel::warn, "no command for " + std::to_string(ctx.now_s() - last_command_s_) + " s: throttle off, braking to a stop");
+      if (!fresh.empty()) last_command_s_ = ctx.now_s();
     }
     const auto& s = model_->state();
     Frenet f = track_->project(s.x, s.y, hint_);
     model_->step(dt_, c, track_->road_gradient(f));
     if (!std::isfinite(s.x) || !std::isfinite(s.vx)) throw std::runtime_error("vehicle state is not finite");
     publish(ctx);
+  }
+
+  void deactivate(Context& ctx) override {
+    ctx.metric("command_watchdog_trips", static_cast<double>(watchdog_.trips()));
+    if (model_) ctx.metric("final_speed_mps", model_->state().vx);
   }
 
  private:
@@ -117,7 +140,8 @@ class Vehicle : public Plugin {
 
   std::unique_ptr<VehicleModel> model_;
   std::unique_ptr<Track> track_;
-  double dt_ = 0.002, start_s_ = 0, start_d_ = 0, start_speed_ = 0;
+  CommandWatchdog watchdog_;
+  double dt_ = 0.002, start_s_ = 0, start_d_ = 0, start_speed_ = 0, last_command_s_ = 0;
   int hint_ = -1;
   std::uint32_t seq_ = 0;
   Input<msgs::TrackWorld> world_in_;
