@@ -351,31 +351,30 @@ TEST(TrackExtraction, TheFileClaimsNoRoadBeyondTheEdgesInATightBend) {
   }
 }
 
-TEST(TrackExtraction, ADriveThatNeverClosesALapIsRefused) {
-  const Ring ring;
+namespace {
+
+// extract_track refuses the drive of `laps` round `ring`, saying `why`.
+void expect_refused(const Ring& ring, double laps, const std::string& why) {
   std::vector<Eigen::Vector2d> driven;
-  const RoadSurface surface = drive_ring(ring, driven, 0.6);
+  const RoadSurface surface = drive_ring(ring, driven, laps);
   try {
     extract_track(surface, driven);
-    FAIL() << "extracted a track from part of a lap";
+    ADD_FAILURE() << "extracted a track; expected: " << why;
   } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("never came back"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(why), std::string::npos) << e.what();
   }
 }
+
+}  // namespace
+
+TEST(TrackExtraction, ADriveThatNeverClosesALapIsRefused) { expect_refused(Ring{}, 0.6, "never came back"); }
 
 // A map whose boundary cannot be closed: asphalt as far as the LiDAR sees on every side, no
 // edge anywhere round the lap. Refused with the reason, no track made.
 TEST(TrackExtraction, ARoadWithNoEdgeAnywhereIsRefused) {
   Ring ring;
   ring.wl = ring.wr = 1000;  // road everywhere
-  std::vector<Eigen::Vector2d> driven;
-  const RoadSurface surface = drive_ring(ring, driven, 1.1);
-  try {
-    extract_track(surface, driven);
-    FAIL() << "extracted a track without edges";
-  } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("no edge found on one side anywhere round the lap"), std::string::npos) << e.what();
-  }
+  expect_refused(ring, 1.1, "no edge found on one side anywhere round the lap");
 }
 
 // The mapped track's file: today's four columns and the bank angle; read back as written, its
