@@ -323,6 +323,58 @@ TEST(WallFollower, AMalformedWallBrakes) {
 
 // wall_pedals cautious: the wall follower steers, the pedals that slow the car more win (not
 // those of the lower target: each law's pedals are for its own line); a stale path command never.
+// A controller whose commands stop (it died or hangs) is not forwarded: its last command would
+// hold the car's last throttle. The path tracker silent for controller_timeout_s: the wall
+// follower takes the car if a wall is seen, else SAFE_STOP; the wall follower silent while it
+// drives: SAFE_STOP; no way back to a path tracker that is still silent. Controllers that have
+// not yet sent a command are not silent (a run's start).
+TEST(SystemManager, AControllerWhoseCommandsStopIsNotForwarded) {
+  SystemManager m;  // controller timeout 0.25 s
+  double t = 0;
+  for (; t < 1.0; t += 0.01) {
+    m.status(t, LocStatus::normal);
+    m.wall(t, true);
+    m.wall_command(t);
+    EXPECT_FALSE(m.update(t).happened) << "t " << t << ": no path command yet is not a silent tracker";
+    m.path_command(t);
+  }
+  // The path tracker stops at t = 1.
+  Transition tr;
+  for (; t < 1.4 && !tr.happened; t += 0.01) {
+    m.status(t, LocStatus::normal);
+    m.wall(t, true);
+    m.wall_command(t);
+    tr = m.update(t);
+  }
+  ASSERT_TRUE(tr.happened);
+  EXPECT_EQ(tr.to, Mode::wall);
+  EXPECT_NEAR(t, 1.26, 0.02);
+  EXPECT_NE(tr.reason.find("the path tracker's commands stopped"), std::string::npos) << tr.reason;
+  // Localization NORMAL all along, but the tracker still silent: the car stays with the wall.
+  for (; t < 4.0; t += 0.01) {
+    m.status(t, LocStatus::normal);
+    m.wall(t, true);
+    m.wall_command(t);
+    EXPECT_FALSE(m.update(t).happened) << "t " << t;
+  }
+  // Then the wall follower stops too: SAFE_STOP.
+  for (tr = {}; t < 4.5 && !tr.happened; t += 0.01) {
+    m.status(t, LocStatus::normal);
+    m.wall(t, true);
+    tr = m.update(t);
+  }
+  ASSERT_TRUE(tr.happened);
+  EXPECT_EQ(tr.to, Mode::safe_stop);
+  EXPECT_NE(tr.reason.find("the wall follower's commands stopped"), std::string::npos) << tr.reason;
+  // Without a wall, a silent path tracker is SAFE_STOP straight away.
+  SystemManager n;
+  n.status(0, LocStatus::normal);
+  n.path_command(0);
+  tr = n.update(0.3);
+  EXPECT_EQ(tr.to, Mode::safe_stop);
+  EXPECT_NE(tr.reason.find("no wall to follow"), std::string::npos) << tr.reason;
+}
+
 TEST(SystemManager, CautiousPedalsSlowTheCarMore) {
   const Pedals wall{0.4, 0.0, 25.0}, path_slow{0.0, 0.8, 12.0}, path_fast{1.0, 0.0, 60.0};
   EXPECT_EQ(cautious(wall, path_slow, true).brake, 0.8);

@@ -26,6 +26,9 @@ void SystemManager::wall(double t, bool valid) {
   if (valid) wall_valid_t_ = t;
 }
 
+void SystemManager::path_command(double t) { path_cmd_t_ = std::max(path_cmd_t_, t); }
+void SystemManager::wall_command(double t) { wall_cmd_t_ = std::max(wall_cmd_t_, t); }
+
 Transition SystemManager::go(Mode to, std::string reason) {
   Transition tr{true, mode_, to, std::move(reason)};
   mode_ = to;
@@ -36,9 +39,15 @@ Transition SystemManager::update(double t) {
   const bool stale = have_status_ ? t - status_t_ > p_.status_timeout_s : t > p_.status_timeout_s;
   const bool emergency = stale || status_ == LocStatus::emergency;
   const bool wall_ok = t - wall_valid_t_ <= p_.wall_timeout_s;
-  const bool recovered = !stale && status_ == LocStatus::normal && t - normal_since_ >= p_.recover_after_s;
+  // A controller is silent once its commands have come and then stopped for controller_timeout_s.
+  auto silent = [&](double last) { return last > -1e299 && t - last > p_.controller_timeout_s; };
+  const bool path_silent = silent(path_cmd_t_), wall_silent = silent(wall_cmd_t_);
+  const bool recovered = !stale && status_ == LocStatus::normal && t - normal_since_ >= p_.recover_after_s && !path_silent;
   switch (mode_) {
     case Mode::path:
+      if (path_silent)
+        return wall_ok && !wall_silent ? go(Mode::wall, "the path tracker's commands stopped: following the wall")
+                                       : go(Mode::safe_stop, "the path tracker's commands stopped and no wall to follow");
       if (emergency)
         return wall_ok ? go(Mode::wall, stale ? "no localization status: following the wall" : "localization EMERGENCY: following the wall")
                        : go(Mode::safe_stop, stale ? "no localization status and no valid wall" : "localization EMERGENCY and no valid wall");
@@ -46,6 +55,7 @@ Transition SystemManager::update(double t) {
     case Mode::wall:
       if (recovered) return go(Mode::path, "localization NORMAL again: back to the path");
       if (!wall_ok) return go(Mode::safe_stop, "wall estimate lost while following it");
+      if (wall_silent) return go(Mode::safe_stop, "the wall follower's commands stopped");
       break;
     case Mode::safe_stop:
       if (recovered) return go(Mode::path, "localization NORMAL again: back to the path");

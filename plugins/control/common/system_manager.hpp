@@ -5,8 +5,12 @@
 //   PATH ── EMERGENCY, no valid wall ──► SAFE_STOP
 //   WALL ── no valid wall for wall_timeout_s ──► SAFE_STOP
 //   WALL, SAFE_STOP ── localization NORMAL held for recover_after_s ──► PATH
+//   PATH ── the path tracker's commands stale (controller_timeout_s) ──► WALL, or SAFE_STOP with no valid wall
+//   WALL ── the wall follower's commands stale ──► SAFE_STOP
 // A localization status older than status_timeout_s counts as EMERGENCY (a silent estimator is
-// not a healthy one); WARNING keeps the path tracker. Every transition is returned with its
+// not a healthy one); WARNING keeps the path tracker. A controller whose commands have come and
+// then stopped (it died or hangs) is not forwarded: its last command would hold the car's last
+// throttle; nor is it handed the car back until its commands come again. Every transition is returned with its
 // reason so the plugin can log and count it.
 #include <string>
 
@@ -26,6 +30,7 @@ struct ManagerParams {
   double command_timeout_s = 0.1; // a path command older than this is not taken for its pedals
   double wall_timeout_s = 0.3;    // no valid wall this long: safe stop
   double status_timeout_s = 0.5;  // no localization status this long: EMERGENCY
+  double controller_timeout_s = 0.25;  // a controller whose commands have come and then not for this long: silent
 };
 
 struct Transition {
@@ -50,6 +55,8 @@ class SystemManager {
   // Inputs as they arrive (t in seconds on the run's clock).
   void status(double t, LocStatus s);
   void wall(double t, bool valid);
+  void path_command(double t);  // the path tracker sent a command (its stamp)
+  void wall_command(double t);  // the wall follower did
   // The mode at time t, after whatever the inputs so far imply.
   Transition update(double t);
   Mode mode() const { return mode_; }
@@ -60,6 +67,7 @@ class SystemManager {
   Mode mode_ = Mode::path;
   LocStatus status_ = LocStatus::normal;
   double status_t_ = -1e300, normal_since_ = -1e300, wall_valid_t_ = -1e300;
+  double path_cmd_t_ = -1e300, wall_cmd_t_ = -1e300;  // -1e300: none yet (not silent: not started)
   bool have_status_ = false;
 };
 

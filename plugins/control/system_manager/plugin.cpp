@@ -33,6 +33,8 @@ ParamBinding<Settings> bindings() {
       .doc("while the wall follower steers: its pedals (the paper), or cautious: the pedals of whichever of it and the path tracker (on dead reckoning) aims lower");
   b.bind("command_timeout_s", &Settings::manager, &M::command_timeout_s).in_unit("s").at_least(0)
       .doc("wall_pedals cautious: a path command older than this is not used");
+  b.bind("controller_timeout_s", &Settings::manager, &M::controller_timeout_s).in_unit("s").at_least(0.01)
+      .doc("a controller whose commands have come and then not for this long is silent: not forwarded (to the wall follower, or SAFE_STOP)");
   return b;
 }
 
@@ -66,8 +68,14 @@ class SystemManagerNode : public Plugin {
     const double t = ctx.now_s();
     for (auto& s : loc_.take()) manager_.status(stamp(s->header().stamp_ns()), static_cast<LocStatus>(std::min<int>(s->mode(), 2)));
     for (auto& w : wall_.take()) manager_.wall(stamp(w->header().stamp_ns()), w->valid());
-    for (auto& c : path_cmd_.take()) last_path_ = c;
-    for (auto& c : wall_cmd_.take()) last_wall_ = c;
+    for (auto& c : path_cmd_.take()) {
+      last_path_ = c;
+      manager_.path_command(stamp(c->header().stamp_ns()));
+    }
+    for (auto& c : wall_cmd_.take()) {
+      last_wall_ = c;
+      manager_.wall_command(stamp(c->header().stamp_ns()));
+    }
     const Transition tr = manager_.update(t);
     if (tr.happened) {
       ++transitions_;
