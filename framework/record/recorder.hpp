@@ -2,6 +2,7 @@
 // `brickyard run --record FILE`: every wire's samples (or those --record-only selects) in an
 // SQLite file, serialized as on the wire (CDR), with the run's clock at publication and each
 // type's IDL text, so a file explains itself. Schema in docs/recording.md (after rosbag2's .db3).
+#include <chrono>
 #include <cstdint>
 #include <memory>
 #include <mutex>
@@ -46,6 +47,8 @@ class Recorder {
   std::vector<std::unique_ptr<Topic>> topics_;
   std::mutex m_;
   std::uint64_t messages_ = 0, bytes_ = 0, in_transaction_ = 0;
+  std::chrono::steady_clock::time_point batch_wall_;  // when the open batch began
+  std::int64_t batch_stamp_ = 0;                      // its first sample's time on the run's clock
   bool failed_ = false;
 };
 
