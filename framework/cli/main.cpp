@@ -271,7 +271,9 @@ int cmd_run(const Args& a, bool validate_only) {
 // What is wrong with the file is said before anything runs (exit 2); a drive from which no
 // track could be made is bad input too (the recording is the input), and leaves no track file.
 int cmd_map(const Args& a) {
-  if (a.target != "build") usage_error("map " + a.target, "unknown map command (brickyard map build RECORDING --out DIR)");
+  if (a.target != "build")
+    usage_error(a.target.empty() ? "map" : "map " + a.target, a.target.empty() ? "needs a command (brickyard map build RECORDING --out DIR)"
+                                                                             : "unknown map command (brickyard map build RECORDING --out DIR)");
   if (a.more.size() != 1) usage_error("map build", "needs one recording (brickyard run GRAPH --record FILE)");
   if (a.out.empty()) usage_error("map build", "needs --out DIR (for DIR/track.csv, DIR/map.pcd, DIR/summary.json)");
   const std::string rec = a.more[0];
@@ -327,7 +329,9 @@ int cmd_map(const Args& a) {
 
 // `brickyard bag info RECORDING`: what a recording holds, without decoding a sample.
 int cmd_bag(const Args& a) {
-  if (a.target != "info") usage_error("bag " + a.target, "unknown bag command (brickyard bag info RECORDING)");
+  if (a.target != "info")
+    usage_error(a.target.empty() ? "bag" : "bag " + a.target, a.target.empty() ? "needs a command (brickyard bag info RECORDING)"
+                                                                             : "unknown bag command (brickyard bag info RECORDING)");
   if (a.more.size() != 1) usage_error("bag info", "needs one recording (brickyard run GRAPH --record FILE)");
   const std::string& file = a.more[0];
   RecordingInfo info;
