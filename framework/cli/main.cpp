@@ -313,15 +313,16 @@ int cmd_map(const Args& a) {
     if (rc == 0) std::printf("map build: %s and %s from %s\n", track.c_str(), map.c_str(), rec.c_str());
     return rc;
   }
-  // The mapper's end (no lap in the drive, no edge found): the recording's fault.
+  // The mapper could make no track (no lap in the drive, no edge found; its metric track_error
+  // says why): the recording's fault.
   std::ifstream f(dir / "summary.json");
-  std::string reason;
+  std::string why;
   try {
-    reason = nlohmann::json::parse(f).value("reason", "");
+    why = nlohmann::json::parse(f).at("nodes").at("mapper").at("metrics").value("track_error", "");
   } catch (...) {
   }
-  if (reason.rfind("node 'mapper'", 0) == 0 && reason.find("track_file") != std::string::npos) {
-    std::fprintf(stderr, "error: %s: no track from this drive: %s\n", rec.c_str(), reason.c_str());
+  if (!why.empty()) {
+    std::fprintf(stderr, "error: %s: no track from this drive: %s\n", rec.c_str(), why.c_str());
     return 2;
   }
   return rc;

@@ -40,6 +40,9 @@ expect2 "recording .*clouds.db3 has no topic 'estimator.estimate' (it has: lidar
   "$by" map build "$out/clouds.db3" --out "$out/x" --domain "$domain"
 "$by" run "$graphs/real_clock.json" --domain "$domain" --quiet --duration 0.3 --record "$out/real.db3" > /dev/null 2>&1
 expect2 "real.db3: recorded on the real clock: map build replays a sim-clock recording" "$by" map build "$out/real.db3" --out "$out/x"
+expect2 "node 'mapper'.*parameter 'track_file': the track is read from the LiDARs' raw returns, and none of the inputs scan0 .. scan3 is wired" \
+  "$by" run "$graphs/replay/map_without_scans.json" --domain "$domain" --set lidar_front.file="$rec" --set estimator.file="$rec" \
+  --set mapper.track_file="$out/x_track.csv"
 expect2 "map build: needs --out DIR" "$by" map build "$rec"
 expect2 "map build sets this one itself" "$by" map build "$rec" --out "$out/x" --arg track_file=/tmp/elsewhere.csv
 echo "PASS"

@@ -647,4 +647,5 @@ TEST(CommandWatchdog, BrakesToAStopWhenCommandsStopAndHandsBackWhenTheyCome) {
   for (t = 10; t < 11.9; t += 0.01) EXPECT_DOUBLE_EQ(never.apply(t, false, Command{}).brake, 0.0);
   for (; t < 12.1; t += 0.01) never.apply(t, false, Command{});
   EXPECT_TRUE(never.stopping());
+  EXPECT_DOUBLE_EQ(never.quiet_since(), 10.0);  // its first step: the warning's "for 2 s", not since the epoch
 }

@@ -98,7 +98,15 @@ class ScanMapperNode : public Plugin {
     writable("track_file", track_file_);
     surface_ = RoadSurface(s.surface);
     extraction_ = s.extraction;
-    for (int k = 0; k < kScans; ++k) scans_in_[k] = ctx.input<msgs::PointCloud>("scan" + std::to_string(k));
+    bool any_scan = false;
+    for (int k = 0; k < kScans; ++k) {
+      scans_in_[k] = ctx.input<msgs::PointCloud>("scan" + std::to_string(k));
+      any_scan = any_scan || scans_in_[k].connected();
+    }
+    // The track comes from the LiDARs' raw returns: without them a whole drive would end in "no
+    // edge found"; said now.
+    if (!track_file_.empty() && !any_scan)
+      throw BadInput("parameter 'track_file': the track is read from the LiDARs' raw returns, and none of the inputs scan0 .. scan3 is wired");
     max_age_ns_ = static_cast<std::int64_t>(s.max_estimate_age * 1e9);
     points_ = ctx.input<msgs::PointCloud>("points");
     ground_ = ctx.input<msgs::PointCloud>("ground");
@@ -163,6 +171,8 @@ class ScanMapperNode : public Plugin {
       ctx.log(LogLevel::info, "track written: " + track_file_ + " (" + std::to_string(t.line.x.size()) + " points, edges found on " +
                                   std::to_string(t.sides_found) + " of " + std::to_string(2 * t.stations) + " sides)");
     } catch (const std::exception& e) {
+      // Also as a metric: `brickyard map build` tells a recording without a track (exit 2) by it.
+      ctx.metric("track_error", std::string(e.what()));
       ctx.fail("track_file '" + track_file_ + "' not written: " + e.what());
     }
   }

@@ -34,6 +34,8 @@ class CommandWatchdog {
     return c;
   }
   bool stopping() const { return stopping_; }
+  // Since when it has heard nothing: the last command, or the car's first step before any.
+  double quiet_since() const { return any_ ? heard_ : start_; }
   int trips() const { return trips_; }  // times the commands went stale
 
  private:

@@ -94,8 +94,7 @@ class Vehicle : public Plugin {
       const bool was = watchdog_.stopping();
       c = watchdog_.apply(ctx.now_s(), !fresh.empty(), c);
       if (watchdog_.stopping() && !was)
-        ctx.log(LogLevel::warn, "no command for " + std::to_string(ctx.now_s() - last_command_s_) + " s: throttle off, braking to a stop");
-      if (!fresh.empty()) last_command_s_ = ctx.now_s();
+        ctx.log(LogLevel::warn, "no command for " + std::to_string(ctx.now_s() - watchdog_.quiet_since()) + " s: throttle off, braking to a stop");
     }
     const auto& s = model_->state();
     Frenet f = track_->project(s.x, s.y, hint_);
@@ -141,7 +140,7 @@ class Vehicle : public Plugin {
   std::unique_ptr<VehicleModel> model_;
   std::unique_ptr<Track> track_;
   CommandWatchdog watchdog_;
-  double dt_ = 0.002, start_s_ = 0, start_d_ = 0, start_speed_ = 0, last_command_s_ = 0;
+  double dt_ = 0.002, start_s_ = 0, start_d_ = 0, start_speed_ = 0;
   int hint_ = -1;
   std::uint32_t seq_ = 0;
   Input<msgs::TrackWorld> world_in_;
