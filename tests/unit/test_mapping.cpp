@@ -314,6 +314,28 @@ TEST(TrackExtraction, FindsTheEdgesAndTheBankOfARingRoad) {
   EXPECT_LT(worst_bank, 0.2);
 }
 
+// The banking from each station's first pass: a lap on, where the loop closes onto the drive's
+// first map, the registered roll tilts to reconcile the map's two ends (IMS: 0.4 deg for 250 m,
+// 1.2 deg where the bank begins). Here the second lap's rolls are 1.2 deg off over a quarter of
+// the ring: the file keeps the first pass's (before: the median of the two passes, 1.2 deg off).
+TEST(TrackExtraction, TheBankingIsEachStationsFirstPass) {
+  const Ring ring;
+  std::vector<Eigen::Vector2d> driven;
+  const RoadSurface surface = drive_ring(ring, driven, 2.1);
+  const double lap = 2 * M_PI * (ring.r - 1.0);
+  std::vector<double> roll;
+  for (std::size_t i = 0; i < driven.size(); ++i) {
+    const double s = 2.0 * static_cast<double>(i), a = std::fmod(s / (ring.r - 1.0), 2 * M_PI);
+    const bool tilted = s > lap && a < M_PI / 2;
+    roll.push_back((ring.bank_deg + (tilted ? 1.2 : 0.0)) * M_PI / 180);
+  }
+  const ExtractedTrack t = extract_track(surface, driven, {}, &roll);
+  ASSERT_GT(t.line.bank_deg.size(), 50u);
+  double worst = 0;
+  for (double b : t.line.bank_deg) worst = std::max(worst, std::abs(b - ring.bank_deg));
+  EXPECT_LT(worst, 0.05);
+}
+
 // A tight bend written every 6 m: a reader joins the points straight (track::Track), and on the
 // bend's inside that chord cuts beyond the edge (on a 19 m radius by 0.24 m). The written widths
 // are narrowed there, so the file claims no road the drive did not see, and stay 6 m apart.

@@ -294,6 +294,7 @@ ExtractedTrack extract_track(const RoadSurface& surface, const std::vector<Eigen
     // The car's roll near each station: every driven pose to its nearest station (the poses in
     // order, so a short search from the last one's).
     std::vector<std::vector<double>> near(m);
+    std::vector<std::size_t> last_seen(m, 0);
     std::size_t at = 0;
     for (std::size_t i = 0; i < driven.size(); ++i) {
       if (!std::isfinite((*roll)[i])) continue;
@@ -313,7 +314,14 @@ ExtractedTrack extract_track(const RoadSurface& surface, const std::vector<Eigen
       }
       at = best;
       // (The racing line runs metres from the centre line: any pose on the road counts.)
-      if (best_d <= reach) near[best].push_back((*roll)[i] * 180.0 / M_PI);
+      // Each station's first pass only: where the loop closes, a lap on, the map's two ends
+      // disagree by a lap's drift of height and pitch, and the frames there tilt to reconcile
+      // them (IMS: the roll 0.4 deg off for 250 m of the second lap's straight, 1.2 deg where
+      // the bank begins); on the first pass the roll has drifted by one lap at most.
+      if (best_d > reach) continue;
+      if (!near[best].empty() && i - last_seen[best] > p.pass_gap) continue;
+      near[best].push_back((*roll)[i] * 180.0 / M_PI);
+      last_seen[best] = i;
     }
     for (int k = 0; k < m; ++k) {
       auto& v = near[k];

@@ -46,6 +46,7 @@ struct TrackExtractionParams {
   double max_half_width = 25;     // m from the reference a side's edge is looked for
   int median_window = 7;          // stations
   int bank_window = 15;           // stations: the bank's median (30 m; a bank ramps over 100 m)
+  std::size_t pass_gap = 100;     // driven poses: a station seen again after more than these is a later pass
   int passes = 3;                 // the later ones across the last one's centre line
   double bank_margin = 1.0;       // m inside each edge left out of the bank's fit (kerbs, walls)
   double min_lap = 200;           // m: a drive shorter than this has not closed a lap
