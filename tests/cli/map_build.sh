@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# brickyard map build (issue 17): a recording of the mapping drive (its LiDARs' clouds and the
-# fusion's estimates) built into a map by configs/map_build.json gives the map the drive itself
+# brickyard map build (issue 17): a recording of the mapping drive (its LiDARs' clouds, the
+# fusion's estimates and the IMU) built into a map by configs/map_build.json gives the map the drive itself
 # wrote, byte for byte; a drive that never closed a lap gives no track file (exit 2, the reason);
 # and each way a recording can be unfit is refused with exit 2 naming the file and what is wrong.
 set -u
@@ -8,7 +8,7 @@ by=$1; configs=$2; graphs=$3; domain=$4; out=$5
 rm -rf "$out"; mkdir -p "$out"
 rec="$out/drive.db3"
 "$by" run "$configs/map_ims.json" --domain "$domain" --quiet --progress 0 --duration 4 --arg map_file="$out/live.pcd" \
-  --record "$rec" --record-only 'lidar_*.cloud,estimator.estimate' > "$out/drive.log" 2>&1
+  --record "$rec" --record-only 'lidar_*.cloud,estimator.estimate,imu.imu' > "$out/drive.log" 2>&1
 [ -s "$out/live.pcd" ] || { cat "$out/drive.log"; echo "FAIL: the drive wrote no map"; exit 1; }
 expect2() {  # pattern, then the command
   pat=$1; shift
@@ -33,11 +33,13 @@ expect2 "truncated.db3: not a readable recording" "$by" map build "$out/truncate
 "$by" run "$configs/map_ims.json" --domain "$domain" --quiet --progress 0 --duration 0.5 --record "$out/empty.db3" --record-only 'no.such' > /dev/null 2>&1
 expect2 "empty.db3: the recording holds no samples" "$by" map build "$out/empty.db3" --out "$out/x"
 "$by" run "$configs/map_ims.json" --domain "$domain" --quiet --progress 0 --duration 0.5 --record "$out/estimates.db3" --record-only 'estimator.estimate' > /dev/null 2>&1
-expect2 "recording .*estimates.db3 has no topic 'lidar_front.cloud' (it has: estimator.estimate)" \
+expect2 "recording .*estimates.db3 has no topic 'imu.imu' (it has: estimator.estimate)" \
   "$by" map build "$out/estimates.db3" --out "$out/x" --domain "$domain"
 "$by" run "$configs/map_ims.json" --domain "$domain" --quiet --progress 0 --duration 0.5 --record "$out/clouds.db3" --record-only 'lidar_*.cloud' > /dev/null 2>&1
 expect2 "recording .*clouds.db3 has no topic 'estimator.estimate' (it has: lidar_front.cloud" \
   "$by" map build "$out/clouds.db3" --out "$out/x" --domain "$domain"
+"$by" run "$configs/map_ims.json" --domain "$domain" --quiet --progress 0 --duration 0.5 --record "$out/no_imu.db3" --record-only 'lidar_*.cloud,estimator.estimate' > /dev/null 2>&1
+expect2 "recording .*no_imu.db3 has no topic 'imu.imu'" "$by" map build "$out/no_imu.db3" --out "$out/x" --domain "$domain"
 "$by" run "$graphs/real_clock.json" --domain "$domain" --quiet --duration 0.3 --record "$out/real.db3" > /dev/null 2>&1
 expect2 "real.db3: recorded on the real clock: map build replays a sim-clock recording" "$by" map build "$out/real.db3" --out "$out/x"
 expect2 "node 'mapper'.*parameter 'track_file': the track is read from the LiDARs' raw returns, and none of the inputs scan0 .. scan3 is wired" \

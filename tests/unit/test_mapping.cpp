@@ -1,6 +1,7 @@
 // Mapping's algorithms (issue 17): point covariances, the voxel map, scan-to-map registration by
 // voxelized GICP. Beside PCL's GICP: test_mapping_pcl.cpp.
 #include "common/covariances.hpp"
+#include "common/gravity_tilt.hpp"
 #include "track/track.hpp"
 #include "common/pcd.hpp"
 #include "common/scan_mapper.hpp"
@@ -200,6 +201,91 @@ TEST(ScanMapper, FixesWhatTheScanShowsAndKeepsThePriorAlongACorridor) {
       EXPECT_GT(c(0, 0), 100 * c(1, 1)) << "the covariance says the along-track is the prior's";
       EXPECT_GT(c(0, 0), 0.5 * 0.25);
     }
+  }
+}
+
+// Walls the map holds leaning (6 deg) where the frame sees them upright, as two walls' maps do
+// where their sampling misleads the registration: the whole frame's registration tilts the car
+// to meet them. With the frame's ground given, its roll, pitch and height come from the ground
+// alone (level), and the frame joins the map on the estimate's (x, y), the registration's heading
+// and the ground's roll, pitch and height.
+TEST(ScanMapper, TheGroundLevelsTheFrameWhereAWallWouldTiltIt) {
+  const Eigen::Matrix3d prior = Eigen::Vector3d(0.5 * 0.5, 0.5 * 0.5, 0.05 * 0.05).asDiagonal();
+  const double lean = std::tan(6.0 * M_PI / 180);
+  auto scene = [&](double step, unsigned seed, double wall_lean, Points* ground) {
+    std::mt19937 rng(seed);
+    std::normal_distribution<float> n(0.0f, 0.01f);
+    Points pts;
+    for (double x = -30; x <= 30; x += step) {
+      for (double y = -3; y <= 3; y += step) {
+        pts.emplace_back(x + n(rng), y + n(rng), n(rng));
+        if (ground) ground->push_back(pts.back());
+      }
+      for (double z = 0.2; z <= 3.0; z += step)
+        pts.emplace_back(x + n(rng), 6 + z * wall_lean + n(rng), z), pts.emplace_back(x + n(rng), -6 + z * wall_lean + n(rng), z);
+    }
+    return pts;
+  };
+  const Eigen::Isometry3d truth = planar(2.0, 0.0, 0.0), guess = planar(2.1, 0.05, 0.2);
+  double roll_whole = 0;
+  for (bool level : {false, true}) {
+    ScanMapper mapper;
+    mapper.add(scene(0.15, 1, lean, nullptr), Eigen::Isometry3d::Identity(), planar_information(prior));
+    Points ground;
+    const Points scan = moved(scene(0.2, 2, 0.0, &ground), truth.inverse());
+    const Points ground_v = moved(ground, truth.inverse());
+    const ScanResult r = mapper.add(scan, guess, planar_information(prior), level ? &ground_v : nullptr);
+    ASSERT_TRUE(r.registered) << level;
+    const double roll = roll_of(r.map_pose) * 180 / M_PI, pitch = pitch_of(r.map_pose) * 180 / M_PI;
+    if (!level) {
+      roll_whole = roll;
+      EXPECT_EQ(r.map_pose.matrix(), r.pose.matrix()) << "without the ground, the frame joins on the pose found";
+      continue;
+    }
+    EXPECT_NEAR(roll, 0.0, 0.05);
+    EXPECT_NEAR(pitch, 0.0, 0.05);
+    EXPECT_NEAR(r.map_pose.translation().z(), 0.0, 0.01);
+    EXPECT_NEAR(r.map_pose.translation().x(), guess.translation().x(), 1e-6) << "the estimate's (x, y)";
+    EXPECT_NEAR(r.map_pose.translation().y(), guess.translation().y(), 1e-6);
+    EXPECT_NEAR(yaw_of(r.map_pose), yaw_of(r.pose), 1e-9) << "the registration's heading";
+    EXPECT_NEAR(yaw_of(r.map_pose) * 180 / M_PI, 0.0, 0.05) << "the walls tell the heading (the guess's was 0.2 deg off)";
+  }
+  EXPECT_GT(std::abs(roll_whole), 0.2) << "the leaning walls tilt the whole frame's registration (the test's premise)";
+}
+
+// Gravity finds the drift of the map's attitude: a car turning and speeding up on a road whose
+// bank ramps from 0 to 9 deg in 3 s, its sideslip's rate swinging by 2 m/s^2 at 20 Hz (degrees of
+// roll sample to sample), pitched 1 deg; the frames' attitude 0.5 deg off in roll and 0.3 deg in
+// pitch. The drift comes out within 0.03 deg once a whole window is in, and not before; nor
+// while the car is slow (the start, its speed still settling).
+TEST(GravityTilt, FindsTheAttitudesDriftWhereTheBankRampsAndTheSideslipSwings) {
+  const double deg = M_PI / 180, pitch = 1.0 * deg;
+  auto bank = [&](double t) { return std::clamp(t - 5.0, 0.0, 3.0) / 3.0 * 9.0 * deg; };
+  auto speed = [](double t) { return 30.0 + 2.0 * std::sin(0.5 * t); };
+  for (double slow : {0.0, 1.0}) {
+    GravityTilt g(4.0);
+    Tilt d;
+    bool before_window = false;
+    for (int k = 0; k <= 125 * 9; ++k) {  // the last window (5 to 9 s) holds the ramp
+      const double t = k / 125.0, v = speed(t) * (slow ? 0.1 : 1.0), w = 0.2;
+      const double dv = 1.0 * std::cos(0.5 * t) * (slow ? 0.1 : 1.0), sideslip_rate = 2.0 * std::sin(2 * M_PI * 20 * t);
+      const double f_y = v * w + sideslip_rate + kGravity * std::sin(bank(t)) * std::cos(pitch);
+      const double f_x = dv - kGravity * std::sin(pitch);
+      const auto ns = static_cast<std::int64_t>(k) * 8'000'000;
+      g.add_imu(ns, f_x, f_y, w, v);
+      if (k % 6 == 0) {  // frames at about 20 Hz
+        g.add_frame(ns, bank(t) + 0.5 * deg, pitch + 0.3 * deg);
+        if (t < 3.9) before_window = before_window || g.drift(d);
+      }
+    }
+    EXPECT_FALSE(before_window) << "a drift before a whole window was in";
+    if (slow) {
+      EXPECT_FALSE(g.drift(d)) << "slower than min_speed";
+      continue;
+    }
+    ASSERT_TRUE(g.drift(d));
+    EXPECT_NEAR(d.roll / deg, 0.5, 0.03);
+    EXPECT_NEAR(d.pitch / deg, 0.3, 0.03);
   }
 }
 

@@ -10,14 +10,16 @@
 namespace brickyard::mapping {
 
 namespace {
-constexpr int kVx = 3, kVy = 4, kWz = 2;  // (omega, v) indices of x, y and yaw
+constexpr int kWz = 2, kVx = 3, kVy = 4;  // (omega, v) indices of yaw, x and y
+constexpr double kHold = 1e10;  // a prior's information that holds a coordinate where it is
 }
 
 ScanMapper::ScanMapper(ScanMapperParams p) : p_(p), coarse_(p.coarse_voxel), fine_(p.fine_voxel) {}
 
-ScanResult ScanMapper::add(const Points& scan, const Eigen::Isometry3d& guess, const Eigen::Matrix<double, 6, 6>& information) {
+ScanResult ScanMapper::add(const Points& scan, const Eigen::Isometry3d& guess, const Eigen::Matrix<double, 6, 6>& information,
+                           const Points* ground, const Tilt& tilt, bool on_estimate) {
   ScanResult out;
-  out.pose = guess;
+  out.pose = out.map_pose = guess;
   const Points near = thinned(scan);
   const Covariances covs = point_covariances(near, p_.covariances);
   const Eigen::FullPivLU<Eigen::Matrix<double, 6, 6>> prior_lu(information);
@@ -28,6 +30,15 @@ ScanResult ScanMapper::add(const Points& scan, const Eigen::Isometry3d& guess, c
   }
 
   if (fine_.size() > 0 && !near.empty()) {
+    // With the ground given: the roll, pitch and height from it alone, for the pose the frame
+    // joins the map on (ScanResult::map_pose). The whole frame's registration below is what is
+    // published: held at the ground's attitude, its (x, y) were worse in a GNSS outage
+    // (docs/mapping.md).
+    std::optional<Eigen::Isometry3d> level;
+    if (ground) level = level_on_ground(*ground, guess);
+    if (level && (tilt.roll != 0 || tilt.pitch != 0))  // turned about the car's own position
+      level->linear() = attitude(heading_of(*level), pitch_of(*level) - tilt.pitch, roll_of(*level) - tilt.roll);
+    if (level && on_estimate) out.map_pose = *level;
     PosePrior prior{guess, information};
     RegistrationParams rp = p_.registration;
     if (p_.points_worth > 0) rp.weight *= std::min(1.0, p_.points_worth / static_cast<double>(near.size()));
@@ -44,27 +55,50 @@ ScanResult ScanMapper::add(const Points& scan, const Eigen::Isometry3d& guess, c
         out.covariance = lu.inverse();
         out.registered = true;
         keep_prior_where_unseen(near, covs, guess, out);
+        if (!(level && on_estimate)) {
+          out.map_pose = out.pose;
+        } else {  // the registration's heading: the estimate's jitters by tenths of a degree
+          out.map_pose.linear() = attitude(heading_of(out.pose), pitch_of(*level), roll_of(*level));
+        }
       }
     }
   }
-  // A frame joins the map on the pose found, once the car has moved keyframe_distance since the
-  // last one: a car standing still does not pile up the same scan.
-  if (fine_.size() == 0 || (out.pose.translation() - last_key_).norm() >= p_.keyframe_distance) {
+  // A frame joins the map (on map_pose) once the car has moved keyframe_distance since the last
+  // one: a car standing still does not pile up the same scan.
+  if (fine_.size() == 0 || (out.map_pose.translation() - last_key_).norm() >= p_.keyframe_distance) {
     Points world(near.size());
     Covariances wcovs(near.size());
-    const Eigen::Matrix3f R = out.pose.linear().cast<float>();
-    const Eigen::Vector3f t = out.pose.translation().cast<float>();
+    const Eigen::Matrix3f R = out.map_pose.linear().cast<float>();
+    const Eigen::Vector3f t = out.map_pose.translation().cast<float>();
     for (std::size_t i = 0; i < near.size(); ++i) {
       world[i] = R * near[i] + t;
       wcovs[i] = R * covs[i] * R.transpose();
     }
     coarse_.add(world, wcovs);
     fine_.add(world, wcovs);
-    last_key_ = out.pose.translation();
+    last_key_ = out.map_pose.translation();
     ++keyframes_;
     out.keyframe = true;
   }
   return out;
+}
+
+std::optional<Eigen::Isometry3d> ScanMapper::level_on_ground(const Points& ground, const Eigen::Isometry3d& from) const {
+  const Points near = thinned(ground);
+  if (near.size() < p_.min_matched) return std::nullopt;
+  const Covariances covs = point_covariances(near, p_.covariances);
+  // The (x, y, yaw) held at `from`'s (flat ground cannot tell them); roll, pitch and height free.
+  Eigen::Matrix<double, 6, 6> hold = Eigen::Matrix<double, 6, 6>::Identity() * 1e-6;
+  hold(kWz, kWz) = hold(kVx, kVx) = hold(kVy, kVy) = kHold;
+  const PosePrior prior{from, hold};
+  RegistrationParams rp = p_.registration;
+  if (p_.points_worth > 0) rp.weight *= std::min(1.0, p_.points_worth / static_cast<double>(near.size()));
+  const RegistrationResult r = register_scan(near, covs, {&coarse_, &fine_}, from, rp, &prior);
+  const Eigen::Isometry3d moved = from.inverse() * r.transform;
+  if (!r.converged || r.matched < p_.min_matched || moved.translation().norm() > p_.max_correction ||
+      Eigen::AngleAxisd(moved.linear()).angle() > p_.max_turn)
+    return std::nullopt;
+  return r.transform;
 }
 
 Points ScanMapper::thinned(const Points& scan) const {

@@ -3,6 +3,7 @@
 // the map so far from the pose estimate of its stamp, that estimate as the prior, and joins the
 // map on the pose found; the pose found is published as a second estimate with its covariance.
 // At the end the map is written as a PCD file (`map_file`).
+#include <brickyard/msgs/Imu.h>
 #include <brickyard/msgs/LocalizationEstimate.h>
 #include <brickyard/msgs/PointCloud.h>
 #include <brickyard/plugin.hpp>
@@ -33,6 +34,8 @@ struct Settings {
   RoadSurfaceParams surface;
   TrackExtractionParams extraction;
   double max_estimate_age = 0.1;
+  bool level_on_ground = true;
+  double level_window = 4.0, level_time = 5.0;
 };
 
 ParamBinding<Settings> bindings() {
@@ -64,6 +67,12 @@ ParamBinding<Settings> bindings() {
       .doc("the extracted track's points: this far apart along the drive");
   b.bind("max_estimate_age", &Settings::max_estimate_age).in_unit("s").at_least(0)
       .doc("a frame with no estimate within this of its stamp is left out");
+  b.bind("level_on_ground", &Settings::level_on_ground)
+      .doc("each registered pose's roll, pitch and height from the frame's ground alone (the walls tilt it); off: the whole frame's");
+  b.bind("level_window", &Settings::level_window).in_unit("s").range(0.5, 60)
+      .doc("gravity's level (imu wired): the attitude's drift is its mean less gravity's over this window");
+  b.bind("level_time", &Settings::level_time).in_unit("s").range(0.1, 600)
+      .doc("and is turned out of the frames joining the map over about this time (a part each frame)");
   b.not_above("fine_voxel", "coarse_voxel");
   return b;
 }
@@ -84,6 +93,7 @@ class ScanMapperNode : public Plugin {
         .input<msgs::PointCloud>("scan1", "another LiDAR's", false, 8)
         .input<msgs::PointCloud>("scan2", "another LiDAR's", false, 8)
         .input<msgs::PointCloud>("scan3", "another LiDAR's", false, 8)
+        .input<msgs::Imu>("imu", "the IMU (specific force, yaw rate): gravity, the map's level (with level_on_ground)", false, 64)
         .output<msgs::LocalizationEstimate>("pose", "the pose found, stamped with the frame; covariance over (x, y, yaw)")
         .parameters(bindings())
         .on_input("ground");
@@ -108,6 +118,10 @@ class ScanMapperNode : public Plugin {
     if (!track_file_.empty() && !any_scan)
       throw BadInput("parameter 'track_file': the track is read from the LiDARs' raw returns, and none of the inputs scan0 .. scan3 is wired");
     max_age_ns_ = static_cast<std::int64_t>(s.max_estimate_age * 1e9);
+    level_on_ground_ = s.level_on_ground;
+    tilt_ = GravityTilt(s.level_window);
+    level_time_ = s.level_time;
+    imu_ = ctx.input<msgs::Imu>("imu");
     points_ = ctx.input<msgs::PointCloud>("points");
     ground_ = ctx.input<msgs::PointCloud>("ground");
     estimate_ = ctx.input<msgs::LocalizationEstimate>("estimate");
@@ -119,6 +133,9 @@ class ScanMapperNode : public Plugin {
       estimates_.push_back(e);
       if (estimates_.size() > 256) estimates_.pop_front();
     }
+    for (auto& m : imu_.take())
+      if (!estimates_.empty())  // with the newest estimate's speed (both come at 125 Hz)
+        tilt_.add_imu(m->header().stamp_ns(), m->accel_x(), m->accel_y(), m->gyro_z(), estimates_.back()->speed());
     for (auto& p : points_.take()) {
       features_.push_back(p);
       if (features_.size() > 8) features_.pop_front();
@@ -141,6 +158,7 @@ class ScanMapperNode : public Plugin {
     ctx.metric("correction_mean_m", registered_ ? correction_sum_ / static_cast<double>(registered_) : 0.0);
     ctx.metric("correction_max_m", correction_max_);
     ctx.metric("road_cells", static_cast<double>(surface_.cells()));
+    ctx.metric("gravity_levelled_frames", static_cast<double>(levelled_));
     if (!map_file_.empty()) {
       try {
         write_pcd(map_file_, mapper_.fine_map());
@@ -198,8 +216,10 @@ class ScanMapperNode : public Plugin {
   void frame(Context& ctx, const msgs::PointCloud& ground) {
     const std::int64_t stamp = ground.header().stamp_ns();
     Points pts;
+    std::size_t n_ground = 0;
     try {
       perception::append_vehicle_points(ground, pts);
+      n_ground = pts.size();
       for (const auto& f : features_)
         if (f->header().stamp_ns() == stamp) perception::append_vehicle_points(*f, pts);
     } catch (const std::runtime_error& e) {
@@ -228,23 +248,35 @@ class ScanMapperNode : public Plugin {
     // The guess: the estimate's (x, y, yaw), with the height, roll and pitch the last frame found
     // (the estimate is planar; a banked turn tilts the car).
     Eigen::Isometry3d guess = Eigen::Isometry3d::Identity();
-    guess.linear() = (Eigen::AngleAxisd(eyaw, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(pitch_, Eigen::Vector3d::UnitY()) *
-                      Eigen::AngleAxisd(roll_, Eigen::Vector3d::UnitX())).toRotationMatrix();
+    guess.linear() = attitude(eyaw, pitch_, roll_);
     guess.translation() = Eigen::Vector3d(ex, ey, z_);
     Eigen::Matrix3d cov;
     for (int a = 0; a < 3; ++a)
       for (int b = 0; b < 3; ++b) cov(a, b) = est->covariance()[3 * a + b];
-    const ScanResult r = mapper_.add(pts, guess, planar_information(cov));
+    const Points ground_pts(pts.begin(), pts.begin() + static_cast<long>(n_ground));
+    // Gravity's level: a part of the attitude's drift turned out each frame, all of it over about
+    // level_time (the drift is a window's mean, level_window / 2 behind: a correction much faster
+    // than that would overshoot).
+    Tilt tilt, drift;
+    if (level_on_ground_ && imu_.connected() && tilt_.drift(drift)) {
+      const double part = std::min(1.0, static_cast<double>(stamp - last_stamp_) * 1e-9 / level_time_);
+      tilt = {drift.roll * part, drift.pitch * part};
+      ++levelled_;
+    }
+    last_stamp_ = stamp;
+    const ScanResult r = mapper_.add(pts, guess, planar_information(cov), level_on_ground_ ? &ground_pts : nullptr, tilt,
+                                     est->status() == 0);  // NORMAL: its GNSS's
     if (r.registered) {
       ++registered_;
       const double c = std::hypot(r.pose.translation().x() - ex, r.pose.translation().y() - ey);
       correction_sum_ += c;
       correction_max_ = std::max(correction_max_, c);
-      pitch_ = pitch_of(r.pose);
-      roll_ = roll_of(r.pose);
-      z_ = r.pose.translation().z();
+      pitch_ = pitch_of(r.map_pose);
+      roll_ = roll_of(r.map_pose);
+      z_ = r.map_pose.translation().z();
+      tilt_.add_frame(stamp, roll_, pitch_);
     }
-    add_to_surface(stamp, r.pose, r.registered);
+    add_to_surface(stamp, r.map_pose, r.registered);
     msgs::LocalizationEstimate m;
     m.header().stamp_ns(stamp);
     m.header().seq(seq_++);
@@ -272,6 +304,12 @@ class ScanMapperNode : public Plugin {
   Input<msgs::PointCloud> scans_in_[kScans];
   std::deque<CloudPtr> scans_;
   std::int64_t max_age_ns_ = 0;
+  bool level_on_ground_ = true;
+  GravityTilt tilt_;
+  double level_time_ = 5.0;
+  std::int64_t last_stamp_ = 0;
+  std::uint64_t levelled_ = 0;
+  Input<msgs::Imu> imu_;
   Input<msgs::PointCloud> points_, ground_;
   Input<msgs::LocalizationEstimate> estimate_;
   Output<msgs::LocalizationEstimate> out_;
