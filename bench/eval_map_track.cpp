@@ -110,9 +110,10 @@ int main(int argc, char** argv) {
       brickyard::track::BankSpec bank;
       if (bank_deg != 0) bank.mode = "curvature", bank.degrees = bank_deg;
       const auto c = brickyard::mapping::compare_tracks(mapped, truth, brickyard::track::bank_profile(truth, bank));
-      std::printf("edges: p50 %.3f m, p95 %.3f m, max %.3f m (left p95 %.3f, right p95 %.3f)\nbanking: p50 %.2f°, p95 %.2f°, "
-                  "max %.2f°%s\n", c.edges.p50, c.edges.p95, c.edges.max, c.left.p95, c.right.p95, c.bank.p50, c.bank.p95,
-                  c.bank.max, c.reversed ? " (mapped the other way round)" : "");
+      std::printf("edges: p50 %.3f m, p95 %.3f m, max %.3f m at s = %.0f m (left p95 %.3f, right p95 %.3f)\nbanking: p50 %.2f°, "
+                  "p95 %.2f°, max %.2f° at s = %.0f m%s\n(s: along the true file from its first point)\n", c.edges.p50, c.edges.p95,
+                  c.edges.max, c.edges_max_at_s, c.left.p95, c.right.p95, c.bank.p50, c.bank.p95, c.bank.max, c.bank_max_at_s,
+                  c.reversed ? " (mapped the other way round)" : "");
       return c.edges.p50 <= 0.10 && c.edges.p95 <= 0.25 && c.bank.max <= 0.5 ? 0 : 1;
     } catch (const std::exception& e) {
       std::fprintf(stderr, "eval_map_track: %s\n", e.what());
@@ -156,7 +157,7 @@ int main(int argc, char** argv) {
   std::vector<std::thread> pool;
   for (int j = 0; j < jobs; ++j) pool.emplace_back(worker, 170 + j);
   for (auto& th : pool) th.join();
-  std::printf("| track | walls | edges p50 | p95 | max | left p95 | right p95 | banking p50 | p95 | max | targets |\n"
+  std::printf("| track | walls | edges p50 | p95 | max (at s) | left p95 | right p95 | banking p50 | p95 | max (at s) | targets |\n"
               "|---|---|---|---|---|---|---|---|---|---|---|\n");
   bool all_ok = true;
   for (std::size_t k = 0; k < files.size(); ++k) {
@@ -175,9 +176,9 @@ int main(int argc, char** argv) {
       const auto c = brickyard::mapping::compare_tracks(mapped, tf.line, brickyard::track::bank_profile(tf.line, bank));
       const bool met = c.edges.p50 <= 0.10 && c.edges.p95 <= 0.25 && c.bank.max <= 0.5;
       all_ok = all_ok && met;
-      std::printf("| %s | %s | %.3f m | %.3f m | %.3f m | %.3f m | %.3f m | %.2f° | %.2f° | %.2f° | %s |\n", tf.name.c_str(),
-                  layout.c_str(), c.edges.p50, c.edges.p95, c.edges.max, c.left.p95, c.right.p95, c.bank.p50, c.bank.p95,
-                  c.bank.max, met ? "met" : "not met");
+      std::printf("| %s | %s | %.3f m | %.3f m | %.3f m at %.0f m | %.3f m | %.3f m | %.2f° | %.2f° | %.2f° at %.0f m | %s |\n",
+                  tf.name.c_str(), layout.c_str(), c.edges.p50, c.edges.p95, c.edges.max, c.edges_max_at_s, c.left.p95, c.right.p95,
+                  c.bank.p50, c.bank.p95, c.bank.max, c.bank_max_at_s, met ? "met" : "not met");
     } catch (const std::exception& e) {
       std::printf("| %s | %s | %s |\n", tf.name.c_str(), layout.c_str(), e.what());
       all_ok = false;

@@ -79,7 +79,10 @@ TrackComparison compare_tracks(const track::CenterLine& mapped, const track::Cen
   out.reversed = along < 0;
   const auto& t_left = out.reversed ? t.right : t.left;
   const auto& t_right = out.reversed ? t.left : t.right;
+  std::vector<double> at_s(t.centre.size() + 1, 0.0);  // the truth's arc length at each point
+  for (std::size_t i = 1; i <= t.centre.size(); ++i) at_s[i] = at_s[i - 1] + (t.centre[i % t.centre.size()] - t.centre[i - 1]).norm();
   std::vector<double> l, r, both, bank;
+  double worst_edge = -1, worst_bank = -1;
   for (std::size_t i = 0; i < m.centre.size(); ++i) {
     l.push_back(to_polyline(m.left[i], t_left));
     r.push_back(to_polyline(m.right[i], t_right));
@@ -89,6 +92,9 @@ TrackComparison compare_tracks(const track::CenterLine& mapped, const track::Cen
     const double tb = (1 - frac[i]) * truth_bank_rad[a] + frac[i] * truth_bank_rad[b];
     const double mb = i < mapped.bank_deg.size() ? mapped.bank_deg[i] : 0.0;
     bank.push_back(std::abs(mb - (out.reversed ? -1 : 1) * tb * 180.0 / M_PI));
+    const double here = at_s[a] + frac[i] * (at_s[a + 1] - at_s[a]);
+    if (std::max(l.back(), r.back()) > worst_edge) worst_edge = std::max(l.back(), r.back()), out.edges_max_at_s = here;
+    if (bank.back() > worst_bank) worst_bank = bank.back(), out.bank_max_at_s = here;
   }
   out.left = error_stats(l);
   out.right = error_stats(r);

@@ -19,6 +19,9 @@ struct TrackComparison {
   ErrorStats left, right, edges;  // m; edges: both sides together
   ErrorStats bank;                // degrees
   bool reversed = false;          // the mapped line runs the other way round (sides swapped)
+  // Where the largest errors are: the truth's arc length (m from its first point) nearest the
+  // mapped point with the largest edge error, and with the largest bank error.
+  double edges_max_at_s = 0, bank_max_at_s = 0;
 };
 
 // truth_bank_rad: the truth's bank per point (track::bank_profile), positive raising the left edge;
