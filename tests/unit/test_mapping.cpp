@@ -287,6 +287,13 @@ TEST(GravityTilt, FindsTheAttitudesDriftWhereTheBankRampsAndTheSideslipSwings) {
     ASSERT_TRUE(g.drift(d));
     EXPECT_NEAR(d.roll / deg, 0.5, 0.03);
     EXPECT_NEAR(d.pitch / deg, 0.3, 0.03);
+    // Turned out a part at a time: the first call none, then 50 ms of a 5 s level, 1 %.
+    Tilt part;
+    const std::int64_t end = std::int64_t{125 * 9} * 8'000'000;
+    EXPECT_FALSE(g.correction(end, 5.0, part));
+    ASSERT_TRUE(g.correction(end + 50'000'000, 5.0, part));
+    EXPECT_NEAR(part.roll, 0.01 * d.roll, 1e-12);
+    EXPECT_NEAR(part.pitch, 0.01 * d.pitch, 1e-12);
   }
 }
 

@@ -51,4 +51,15 @@ bool GravityTilt::drift(Tilt& out, double min_speed) const {
   return true;
 }
 
+bool GravityTilt::correction(std::int64_t t_ns, double level_time_s, Tilt& out) {
+  out = {};
+  const std::int64_t last = last_correction_;
+  last_correction_ = t_ns;
+  Tilt d;
+  if (last < 0 || t_ns <= last || !drift(d)) return false;
+  const double part = std::min(1.0, static_cast<double>(t_ns - last) * 1e-9 / level_time_s);
+  out = {d.roll * part, d.pitch * part};
+  return true;
+}
+
 }  // namespace brickyard::mapping

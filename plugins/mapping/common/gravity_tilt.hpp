@@ -2,8 +2,8 @@
 // Gravity as the map's level (issue 17, docs/mapping.md "Gravity's level"). The roll and pitch
 // the mapper takes from the ground (scan_mapper.hpp, level_on_ground) have no reference but the
 // map's first frames: the ground ahead joins the map on frames levelled on the ground behind, and
-// a bias of a hundredth of a degree a frame adds up (IMS: the roll 0.48 deg off and the pitch
-// 0.42 deg within a lap, the height metres). The accelerometer has the reference. Its specific
+// a small bias a frame adds up (IMS: the roll and the pitch about half a degree off within a lap,
+// the height metres; docs/mapping.md). The accelerometer has the reference. Its specific
 // force is the tyres' and the air's alone, so in the vehicle frame
 //   f_y = v omega_z + dvy/dt + g sin(roll) cos(pitch)   and   f_x = dv/dt - g sin(pitch)
 // (pitch nose-down positive). The sideslip's rate dvy/dt is degrees' worth from one sample to the
@@ -35,6 +35,11 @@ class GravityTilt {
   // window of both is in, or while the car is slower than min_speed (m/s) in it (the start: the
   // speed's estimate still settling).
   bool drift(Tilt& out, double min_speed = 5.0) const;
+  // What to turn out of the frame at `t_ns`: the part of the drift the time since the last call
+  // asks for, all of it over about level_time_s (the drift is a window's mean, half a window
+  // behind: a correction much faster than that overshoots). False, and zero, without a drift or on
+  // the first call.
+  bool correction(std::int64_t t_ns, double level_time_s, Tilt& out);
 
  private:
   struct Imu {
@@ -49,6 +54,7 @@ class GravityTilt {
   std::int64_t window_ns_;
   std::deque<Imu> imu_;
   std::deque<Frame> frames_;
+  std::int64_t last_correction_ = -1;  // ns; none yet
 };
 
 }  // namespace brickyard::mapping

@@ -31,9 +31,9 @@ ScanResult ScanMapper::add(const Points& scan, const Eigen::Isometry3d& guess, c
 
   if (fine_.size() > 0 && !near.empty()) {
     // With the ground given: the roll, pitch and height from it alone, for the pose the frame
-    // joins the map on (ScanResult::map_pose). The whole frame's registration below is what is
-    // published: held at the ground's attitude, its (x, y) were worse in a GNSS outage
-    // (docs/mapping.md).
+    // joins the map on (ScanResult::map_pose). The pose published is the whole frame's
+    // registration below, not held at the ground's attitude: held, its (x, y) were worse in a
+    // GNSS outage (docs/mapping.md).
     std::optional<Eigen::Isometry3d> level;
     if (ground) level = level_on_ground(*ground, guess);
     if (level && (tilt.roll != 0 || tilt.pitch != 0))  // turned about the car's own position

@@ -1,8 +1,10 @@
 // mapping.scan_mapper: the paper's mapping (§III-C) as a node (common/scan_mapper.hpp). Each frame
 // of the ground filter's voxels (vertical features and ground, vehicle frame) is registered onto
-// the map so far from the pose estimate of its stamp, that estimate as the prior, and joins the
-// map on the pose found; the pose found is published as a second estimate with its covariance.
-// At the end the map is written as a PCD file (`map_file`).
+// the map so far from the pose estimate of its stamp, that estimate as the prior; the pose found
+// is published as a second estimate with its covariance. The frame joins the map with its
+// ground's roll, pitch and height (levelled by gravity when the IMU is wired), on the estimate's
+// (x, y) while that is GNSS's, else on the pose found (ScanResult::map_pose). At the end the map
+// is written as a PCD file (`map_file`) and the track extracted (`track_file`).
 #include <brickyard/msgs/Imu.h>
 #include <brickyard/msgs/LocalizationEstimate.h>
 #include <brickyard/msgs/PointCloud.h>
@@ -68,7 +70,8 @@ ParamBinding<Settings> bindings() {
   b.bind("max_estimate_age", &Settings::max_estimate_age).in_unit("s").at_least(0)
       .doc("a frame with no estimate within this of its stamp is left out");
   b.bind("level_on_ground", &Settings::level_on_ground)
-      .doc("each registered pose's roll, pitch and height from the frame's ground alone (the walls tilt it); off: the whole frame's");
+      .doc("frames join the map with their ground's roll, pitch and height (the walls tilt the whole frame's registration) and, "
+           "while the estimate is NORMAL, on its (x, y); off: on the pose found");
   b.bind("level_window", &Settings::level_window).in_unit("s").range(0.5, 60)
       .doc("gravity's level (imu wired): the attitude's drift is its mean less gravity's over this window");
   b.bind("level_time", &Settings::level_time).in_unit("s").range(0.1, 600)
@@ -254,16 +257,9 @@ class ScanMapperNode : public Plugin {
     for (int a = 0; a < 3; ++a)
       for (int b = 0; b < 3; ++b) cov(a, b) = est->covariance()[3 * a + b];
     const Points ground_pts(pts.begin(), pts.begin() + static_cast<long>(n_ground));
-    // Gravity's level: a part of the attitude's drift turned out each frame, all of it over about
-    // level_time (the drift is a window's mean, level_window / 2 behind: a correction much faster
-    // than that would overshoot).
-    Tilt tilt, drift;
-    if (level_on_ground_ && imu_.connected() && tilt_.drift(drift)) {
-      const double part = std::min(1.0, static_cast<double>(stamp - last_stamp_) * 1e-9 / level_time_);
-      tilt = {drift.roll * part, drift.pitch * part};
-      ++levelled_;
-    }
-    last_stamp_ = stamp;
+    // Gravity's level: a part of the attitude's drift turned out each frame (GravityTilt).
+    Tilt tilt;
+    if (level_on_ground_ && imu_.connected() && tilt_.correction(stamp, level_time_, tilt)) ++levelled_;
     const ScanResult r = mapper_.add(pts, guess, planar_information(cov), level_on_ground_ ? &ground_pts : nullptr, tilt,
                                      est->status() == 0);  // NORMAL: its GNSS's
     if (r.registered) {
@@ -307,7 +303,6 @@ class ScanMapperNode : public Plugin {
   bool level_on_ground_ = true;
   GravityTilt tilt_;
   double level_time_ = 5.0;
-  std::int64_t last_stamp_ = 0;
   std::uint64_t levelled_ = 0;
   Input<msgs::Imu> imu_;
   Input<msgs::PointCloud> points_, ground_;
