@@ -81,9 +81,10 @@ RoadSurface::Sample RoadSurface::at(double x, double y, double standing_value) c
   for (int k = 0; k < 4; ++k) {
     const Cell* c = cells[k];
     if (!c) continue;
-    // Standing: rising standing_height above the ground here (its own cell's, else round it).
+    // Standing: rising standing_height above the ground here (its own cell's, else round it), and
+    // not a few strays among the road's returns.
     const double ground = c->n > 0 ? c->z_sum / c->n : zw > 0 ? z / zw : -1e30;
-    if (c->standing > 0 && c->s_zmax - ground >= p_.standing_height) {
+    if (c->standing > 0 && c->standing >= p_.standing_share * c->n && c->s_zmax - ground >= p_.standing_height) {
       r += w[k] * standing_value;
       const Eigen::Vector2d corner(static_cast<double>(i0 + (k & 1)) * p_.cell, static_cast<double>(j0 + (k >> 1)) * p_.cell);
       standing_at += c->standing * (corner + Eigen::Vector2d(c->sx, c->sy) / c->standing);

@@ -9,7 +9,10 @@
 // `standing_from` up to `standing_to`, something standing if it also rises `standing_height` above
 // the ground returns of its cell (or of the cells round it): the road's plane under the car is
 // not the plane of ground 20 m away where the bank changes, nor of the level grass beyond a
-// banked turn's lower edge, and those returned as walls. Not the ground filter's vertical
+// banked turn's lower edge, and those returned as walls. Nor a few standing returns among a cell's
+// many road returns: one frame whose attitude is a degree or two off reads the road 20 m ahead as
+// rising 1.4 m (IMS's mapped inner edge was 2.2 m inside the road where turn 2's bank runs out,
+// one such return among 114 making a cell of the road a wall). Not the ground filter's vertical
 // features: its 0.5 m cells count the asphalt at a wall's foot as the wall's, which put the
 // mapped edges 0.2 to 0.4 m inside the walls.
 //
@@ -36,6 +39,7 @@ struct RoadSurfaceParams {
   double ground_band = 0.5;   // m above or below the car's road plane: the ground
   double standing_from = 0.5, standing_to = 3.0;  // m above it: maybe something standing,
   double standing_height = 0.6;  // when it also rises this far above the ground of its cell (or round it)
+  double standing_share = 0.25;  // and its standing returns are at least this share of its ground returns
 };
 
 class RoadSurface {
