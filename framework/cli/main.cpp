@@ -26,6 +26,8 @@ using namespace brickyard::fw;
 namespace fs = std::filesystem;
 
 namespace {
+// The recording `--out DIR` writes (everything but point clouds), which the report reads.
+constexpr const char* kOutRecording = "recording.mcap";
 
 const char* kUsage = R"(brickyard — plugin-based autonomy framework
 
@@ -57,9 +59,11 @@ options:
   --progress S         a progress line every S seconds (default: 0.25 on a terminal, one
                        updating line; 5 otherwise, plain lines); 0: none
   --out DIR            write DIR/summary.json, and (unless --no-report) record the run's wires
-                       but its point clouds into DIR/recording.db3 and write DIR/report.html
+                       but its point clouds into DIR/recording.mcap and write DIR/report.html
   --no-report          with --out: the summary alone (also the case with --process)
-  --record FILE        record every wire's samples into FILE (SQLite; docs/recording.md)
+  --record FILE        record every wire's samples into FILE: MCAP, or SQLite when FILE ends in
+                       .db3 (docs/recording.md)
+  --record-compression zstd|lz4|none   the MCAP chunks' (default zstd)
   --record-only P,...  record only the topics NODE.PORT matching these patterns ('*' any)
   --threads N          sim clock: step nodes that cannot see each other on N threads (default:
                        the machine's cores, at most 4); the run is the same on any number
@@ -70,7 +74,7 @@ exit codes: 0 success, 1 the run failed, 2 invalid input
 )";
 
 struct Args {
-  std::string command, target, dir, out, process, record;
+  std::string command, target, dir, out, process, record, record_compression = "zstd";
   std::vector<std::string> more;  // positional arguments after the target (map build RECORDING)
   std::vector<std::string> record_only;
   std::vector<std::string> sets, args, plugin_paths;
@@ -126,6 +130,11 @@ Args parse_args(int argc, char** argv) {
     } else if (f == "--plugin-path") a.plugin_paths.push_back(value());
     else if (f == "--dir") a.dir = value();
     else if (f == "--record") a.record = value();
+    else if (f == "--record-compression") {
+      a.record_compression = value();
+      if (a.record_compression != "zstd" && a.record_compression != "lz4" && a.record_compression != "none")
+        usage_error("--record-compression " + a.record_compression, "expected zstd, lz4 or none");
+    }
     else if (f == "--no-report") a.no_report = true;
     else if (f == "--profile") a.profile = true;
     else if (f == "--threads") {
@@ -283,6 +292,7 @@ int cmd_map(const Args& a) {
   } catch (const std::exception& e) {
     usage_error(rec, e.what());
   }
+  if (!info.damage.empty()) usage_error(rec, info.damage);
   if (info.messages == 0) usage_error(rec, "the recording holds no samples");
   if (info.clock != "sim")
     usage_error(rec, "recorded on the " + (info.clock.empty() ? std::string("unknown") : info.clock) +
@@ -294,8 +304,9 @@ int cmd_map(const Args& a) {
   fs::create_directories(a.out, ec);
   if (ec) usage_error("--out " + a.out, "cannot create the folder: " + ec.message());
   const fs::path dir = fs::absolute(a.out), track = dir / "track.csv", map = dir / "map.pcd";
-  if (fs::equivalent(rec, dir / "recording.db3", ec))
-    usage_error("--out " + a.out, "holds the recording as recording.db3, which a run into the folder replaces: use another folder");
+  for (const char* own : {"recording.mcap", "recording.db3"})
+    if (fs::equivalent(rec, dir / own, ec))
+      usage_error("--out " + a.out, std::string("holds the recording as ") + own + ", which a run into the folder replaces: use another folder");
   // An earlier build's files must not stand for this one's.
   fs::remove(track, ec);
   fs::remove(map, ec);
@@ -338,8 +349,12 @@ int cmd_bag(const Args& a) {
   RecordingInfo info;
   std::vector<TopicStats> topics;
   try {
-    info = read_recording_info(file);
-    topics = read_topic_stats(file);
+    if (is_mcap_file(file)) {
+      read_mcap_recording(file, info, topics);
+    } else {
+      info = read_recording_info(file);
+      topics = read_topic_stats(file);
+    }
   } catch (const std::exception& e) {
     usage_error(file, e.what());
   }
@@ -360,19 +375,25 @@ int cmd_bag(const Args& a) {
       j["topics"].push_back({{"name", t.name}, {"type", t.type}, {"count", t.count}, {"bytes", t.bytes},
                              {"first_s", static_cast<double>(t.first_ns) * 1e-9}, {"last_s", static_cast<double>(t.last_ns) * 1e-9},
                              {"rate_hz", rate(t)}});
+    if (!info.damage.empty()) j["damage"] = info.damage;
     std::cout << j.dump(2) << "\n";
-    return 0;
+  } else {
+    std::printf("file      %s (%.1f MB)\nclock     %s\nspan      %.3f s to %.3f s (%.3f s)\nmessages  %llu\n", file.c_str(),
+                ec ? 0.0 : static_cast<double>(size) / 1e6, info.clock.c_str(), static_cast<double>(first) * 1e-9,
+                static_cast<double>(info.last_ns) * 1e-9, static_cast<double>(info.last_ns - first) * 1e-9,
+                static_cast<unsigned long long>(info.messages));
+    std::size_t wn = 5, wt = 4;
+    for (const auto& t : topics) wn = std::max(wn, t.name.size()), wt = std::max(wt, t.type.size());
+    std::printf("\n%-*s  %-*s  %10s  %9s  %12s\n", static_cast<int>(wn), "topic", static_cast<int>(wt), "type", "count", "rate Hz", "MB");
+    for (const auto& t : topics)
+      std::printf("%-*s  %-*s  %10llu  %9.2f  %12.3f\n", static_cast<int>(wn), t.name.c_str(), static_cast<int>(wt), t.type.c_str(),
+                  static_cast<unsigned long long>(t.count), rate(t), static_cast<double>(t.bytes) / 1e6);
   }
-  std::printf("file      %s (%.1f MB)\nclock     %s\nspan      %.3f s to %.3f s (%.3f s)\nmessages  %llu\n", file.c_str(),
-              ec ? 0.0 : static_cast<double>(size) / 1e6, info.clock.c_str(), static_cast<double>(first) * 1e-9,
-              static_cast<double>(info.last_ns) * 1e-9, static_cast<double>(info.last_ns - first) * 1e-9,
-              static_cast<unsigned long long>(info.messages));
-  std::size_t wn = 5, wt = 4;
-  for (const auto& t : topics) wn = std::max(wn, t.name.size()), wt = std::max(wt, t.type.size());
-  std::printf("\n%-*s  %-*s  %10s  %9s  %12s\n", static_cast<int>(wn), "topic", static_cast<int>(wt), "type", "count", "rate Hz", "MB");
-  for (const auto& t : topics)
-    std::printf("%-*s  %-*s  %10llu  %9.2f  %12.3f\n", static_cast<int>(wn), t.name.c_str(), static_cast<int>(wt), t.type.c_str(),
-                static_cast<unsigned long long>(t.count), rate(t), static_cast<double>(t.bytes) / 1e6);
+  // A damaged file is read up to the damage (above), then refused: what it lacks is unknown.
+  if (!info.damage.empty()) {
+    std::fprintf(stderr, "error: %s: %s (what is above was read before it)\n", file.c_str(), info.damage.c_str());
+    return 2;
+  }
   return 0;
 }
 
@@ -401,6 +422,7 @@ int run_graph(const Args& a, GraphDecl g, bool validate_only) {
   opt.record = a.record;
   opt.progress_s = a.progress;
   opt.record_only = a.record_only;
+  opt.record_compression = a.record_compression;
   opt.profile = a.profile;
   opt.threads = a.threads;
   if (!a.record_only.empty() && a.record.empty()) usage_error("--record-only", "needs --record FILE");
@@ -413,17 +435,21 @@ int run_graph(const Args& a, GraphDecl g, bool validate_only) {
     // What an earlier run left in the folder goes — its report, and its recording when the
     // folder's own (its summary says so) — so nothing stale is drawn; a recording made there
     // with --record is never removed: the run refuses instead.
-    const fs::path dir(a.out), rec = dir / "recording.db3";
+    const fs::path dir(a.out);
     std::error_code ec;
-    if (fs::exists(rec, ec)) {
-      bool ours = false;
+    std::string ours_name;  // the recording the folder's last run wrote (its summary says)
+    {
       std::ifstream old(dir / "summary.json");
       try {
         const auto j = nlohmann::json::parse(old);
-        ours = j.contains("recording") && j["recording"].value("file", "") == "recording.db3";
+        if (j.contains("recording") && j["recording"].is_object()) ours_name = j["recording"].value("file", "");
       } catch (...) {
       }
-      if (!ours) usage_error("--out " + a.out, rec.string() + " was not written by --out (a --record file?): move it or use another folder");
+    }
+    for (const char* name : {kOutRecording, "recording.db3"}) {  // (.db3: what --out wrote before MCAP)
+      const fs::path rec = dir / name;
+      if (!fs::exists(rec, ec)) continue;
+      if (ours_name != name) usage_error("--out " + a.out, rec.string() + " was not written by --out (a --record file?): move it or use another folder");
       if (!a.record.empty() && fs::equivalent(a.record, rec, ec)) usage_error("--record " + a.record, "is the --out folder's own recording");
       fs::remove(rec, ec);
     }
@@ -431,7 +457,7 @@ int run_graph(const Args& a, GraphDecl g, bool validate_only) {
     fs::remove(dir / "summary.json", ec);
   }
   if (report && a.record.empty()) {
-    opt.record = (fs::path(a.out) / "recording.db3").string();
+    opt.record = (fs::path(a.out) / kOutRecording).string();
     opt.record_skip_types = {"brickyard::msgs::PointCloud", "brickyard::msgs::ClusterList"};
   }
   RunSummary s;
@@ -445,7 +471,7 @@ int run_graph(const Args& a, GraphDecl g, bool validate_only) {
                s.sim_time_s, s.wall_time_s);
   // The folder's own recording is named relative to the folder: the summary of two identical
   // runs into two folders is the same.
-  if (report && a.record.empty() && s.json.contains("recording")) s.json["recording"]["file"] = "recording.db3";
+  if (report && a.record.empty() && s.json.contains("recording")) s.json["recording"]["file"] = kOutRecording;
   if (!a.out.empty()) {
     std::ofstream f(fs::path(a.out) / "summary.json");
     f << s.json.dump(2) << "\n";

@@ -26,6 +26,7 @@ struct RunOptions {
   double progress_s = -1;                // seconds of wall time between progress lines; 0: none;
                                          // < 0: 0.25 on a terminal (one updating line), 5 otherwise
   std::string record;                    // --record FILE: every wire's samples (docs/recording.md)
+  std::string record_compression = "zstd";  // --record-compression: an MCAP recording's chunks
   std::vector<std::string> record_only;  // --record-only: "node.port" patterns ('*' any); empty: all
   std::vector<std::string> record_skip_types;  // message types not recorded (the --out default skips clouds)
   int threads = 0;        // sim clock: threads that step nodes (0: the machine's cores, at most 4)

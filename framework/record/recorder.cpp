@@ -1,5 +1,7 @@
 #include "record/recorder.hpp"
 
+#include "mcap/mcap_writer.hpp"
+
 #include <brickyard/msgs/registry.hpp>
 
 #include <fastdds/dds/topic/TopicDataType.hpp>
@@ -11,6 +13,9 @@
 #include <chrono>
 #include <cstring>
 #include <filesystem>
+#include <map>
+#include <set>
+#include <sstream>
 #include <stdexcept>
 
 #include <fcntl.h>
@@ -41,6 +46,27 @@ const char* idl_text(const std::string& type) {
   return nullptr;
 }
 
+std::string omgidl_schema(const std::string& idl) {
+  // The text is a file then, depth first, what it includes (each ending "}; };"): reversed, every
+  // definition comes after what it uses. Foxglove's IDL parser takes no #include.
+  std::vector<std::string> blocks;
+  std::string block, line;
+  std::istringstream in(idl);
+  while (std::getline(in, line)) {
+    if (line.rfind("#include", 0) == 0) continue;
+    block += line + "\n";
+    if (line.find("}; };") != std::string::npos) blocks.push_back(std::move(block)), block.clear();
+  }
+  if (block.find_first_not_of(" \n") != std::string::npos) blocks.push_back(block);
+  std::string out;
+  std::set<std::string> seen;
+  for (auto it = blocks.rbegin(); it != blocks.rend(); ++it)
+    if (seen.insert(*it).second) out += *it;
+  return out;
+}
+
+bool is_sqlite_recording(const std::string& path) { return std::filesystem::path(path).extension() == ".db3"; }
+
 bool topic_selected(const std::string& topic, const std::vector<std::string>& patterns) {
   auto match = [](const char* p, const char* s, auto& self) -> bool {
     if (*p == '\0') return *s == '\0';
@@ -54,11 +80,19 @@ bool topic_selected(const std::string& topic, const std::vector<std::string>& pa
 
 struct Recorder::Topic {
   std::string name, type;
+  std::uint16_t channel = 0, schema = 0;  // MCAP
   std::unique_ptr<eprosima::fastdds::dds::TopicDataType> support;
   eprosima::fastrtps::rtps::SerializedPayload_t payload;
 };
 
-Recorder::Recorder(const std::string& path) : path_(path) {
+Recorder::Recorder(const std::string& path, const std::string& compression) : path_(path) {
+  if (!is_sqlite_recording(path)) {
+    mcap::WriterOptions o;
+    if (!mcap::parse_compression(compression, o.compression))
+      throw std::runtime_error(path + ": compression '" + compression + "' is none of zstd, lz4, none");
+    mcap_ = std::make_unique<mcap::Writer>(path, o);
+    return;
+  }
   // Created exclusively: two runs given the same FILE cannot both pass an exists() check.
   const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0644);
   if (fd < 0) {
@@ -118,6 +152,10 @@ void Recorder::exec(const char* sql) {
 
 void Recorder::set_metadata(const std::string& key, const std::string& value) {
   std::lock_guard<std::mutex> l(m_);
+  if (mcap_) {
+    metadata_.emplace_back(key, value);
+    return;
+  }
   sqlite3_stmt* st = nullptr;
   sqlite3_prepare_v2(db_, "INSERT OR REPLACE INTO metadata(key, value) VALUES(?, ?)", -1, &st, nullptr);
   sqlite3_bind_text(st, 1, key.c_str(), -1, SQLITE_TRANSIENT);
@@ -136,6 +174,20 @@ int Recorder::add_topic(const std::string& name, const std::string& type) {
   t->name = name;
   t->type = type;
   t->support.reset(entry->make());
+  if (mcap_) {
+    if (!metadata_.empty()) {  // the run's, once: set before any topic
+      mcap_->add_metadata("brickyard", {metadata_.begin(), metadata_.end()});
+      metadata_.clear();
+    }
+    std::uint16_t schema = 0;
+    for (const auto& other : topics_)
+      if (other->type == type) schema = other->schema;
+    if (schema == 0) schema = mcap_->add_schema(type, "omgidl", omgidl_schema(idl));
+    t->schema = schema;
+    t->channel = mcap_->add_channel(schema, name, "cdr", {{"type_hash", entry->hash}});
+    topics_.push_back(std::move(t));
+    return static_cast<int>(topics_.size());
+  }
   sqlite3_stmt* st = nullptr;
   sqlite3_prepare_v2(db_, "INSERT INTO topics(id, name, type, type_hash, serialization_format, idl) VALUES(?, ?, ?, ?, 'cdr', ?)", -1,
                      &st, nullptr);
@@ -154,7 +206,8 @@ int Recorder::add_topic(const std::string& name, const std::string& type) {
 
 void Recorder::write(int topic, std::int64_t stamp_ns, const void* message) {
   std::lock_guard<std::mutex> l(m_);
-  if (!db_ || topic < 1 || topic > static_cast<int>(topics_.size())) return;
+  if (topic < 1 || topic > static_cast<int>(topics_.size())) return;
+  if (!db_ && !mcap_) return;
   Topic& t = *topics_[topic - 1];
   void* data = const_cast<void*>(message);  // serialize() reads only; its signature predates const
   const std::uint32_t size = t.support->getSerializedSizeProvider(data)();
@@ -163,6 +216,21 @@ void Recorder::write(int topic, std::int64_t stamp_ns, const void* message) {
   t.payload.pos = 0;
   if (failed_) return;  // after a failed write: the run is stopping, nothing more is written
   if (!t.support->serialize(data, &t.payload)) fail("serializing a sample of " + t.name);
+  if (mcap_) {
+    if (in_transaction_ == 0) batch_wall_ = std::chrono::steady_clock::now(), batch_stamp_ = stamp_ns;
+    const auto when = static_cast<std::uint64_t>(std::max<std::int64_t>(stamp_ns, 0));
+    try {
+      mcap_->write(t.channel, when, when, t.payload.data, t.payload.length);
+    } catch (const std::exception& e) {  // (a full disk) what was written stays, up to the last whole chunk
+      failed_ = true;
+      throw std::runtime_error(std::string(e.what()) + " (a sample of " + t.name + ")");
+    }
+    ++messages_;
+    bytes_ += t.payload.length;
+    ++in_transaction_;
+    flush_batch(stamp_ns);
+    return;
+  }
   if (in_transaction_ == 0) {
     exec("BEGIN");
     batch_wall_ = std::chrono::steady_clock::now();
@@ -182,15 +250,34 @@ void Recorder::write(int topic, std::int64_t stamp_ns, const void* message) {
   }
   ++messages_;
   bytes_ += t.payload.length;
-  if (++in_transaction_ >= kBatch || stamp_ns - batch_stamp_ >= kBatchNs ||
-      std::chrono::steady_clock::now() - batch_wall_ >= std::chrono::nanoseconds(kBatchNs)) {
-    exec("COMMIT");
-    in_transaction_ = 0;
+  ++in_transaction_;
+  flush_batch(stamp_ns);
+}
+
+void Recorder::flush_batch(std::int64_t stamp_ns) {
+  // MCAP: a chunk is written once a second on the wall clock, or once it holds chunk_size bytes
+  // (the writer): a sim run faster than real time fills its chunks, and a chunk holding seconds
+  // of the run compresses what repeats (the track map, each second) to nothing.
+  const bool young = std::chrono::steady_clock::now() - batch_wall_ < std::chrono::nanoseconds(kBatchNs);
+  if (mcap_ ? young : in_transaction_ < kBatch && stamp_ns - batch_stamp_ < kBatchNs && young) return;
+  in_transaction_ = 0;
+  if (!mcap_) return exec("COMMIT");
+  try {
+    mcap_->flush();
+  } catch (...) {
+    failed_ = true;
+    throw;
   }
 }
 
 void Recorder::close() {
   std::lock_guard<std::mutex> l(m_);
+  if (mcap_) {
+    if (!metadata_.empty()) mcap_->add_metadata("brickyard", {metadata_.begin(), metadata_.end()}), metadata_.clear();
+    auto w = std::move(mcap_);
+    w->close();
+    return;
+  }
   if (!db_) return;
   // Finalized and closed whatever happens; the first error is reported after.
   std::string error;

@@ -1,7 +1,8 @@
 #pragma once
-// `brickyard run --record FILE`: every wire's samples (or those --record-only selects) in an
-// SQLite file, serialized as on the wire (CDR), with the run's clock at publication and each
-// type's IDL text, so a file explains itself. Schema in docs/recording.md (after rosbag2's .db3).
+// `brickyard run --record FILE`: every wire's samples (or those --record-only selects),
+// serialized as on the wire (CDR), with the run's clock at publication and each type's IDL text,
+// so a file explains itself. FILE.db3 is SQLite (after rosbag2's .db3); any other name is MCAP
+// (chunked, zstd or lz4, indexed: what Foxglove and rosbag2 open). Both in docs/recording.md.
 #include <chrono>
 #include <cstdint>
 #include <memory>
@@ -13,13 +14,15 @@ struct sqlite3;
 struct sqlite3_stmt;
 
 namespace eprosima::fastdds::dds { class TopicDataType; }
+namespace brickyard::mcap { class Writer; }
 
 namespace brickyard::fw {
 
 class Recorder {
  public:
   // Creates the file; throws std::runtime_error naming it (an existing file is not overwritten).
-  explicit Recorder(const std::string& path);
+  // compression: MCAP's chunks', "zstd", "lz4" or "none" (ignored for .db3).
+  explicit Recorder(const std::string& path, const std::string& compression = "zstd");
   ~Recorder();
   Recorder(const Recorder&) = delete;
   Recorder& operator=(const Recorder&) = delete;
@@ -39,10 +42,13 @@ class Recorder {
  private:
   struct Topic;
   void create_schema();
+  void flush_batch(std::int64_t stamp_ns);  // commits (SQLite) or writes the chunk (MCAP) once a second
   void exec(const char* sql);
   [[noreturn]] void fail(const std::string& what);
   std::string path_;
   sqlite3* db_ = nullptr;
+  std::unique_ptr<mcap::Writer> mcap_;
+  std::vector<std::pair<std::string, std::string>> metadata_;  // MCAP: written with the first topic
   sqlite3_stmt* insert_ = nullptr;
   std::vector<std::unique_ptr<Topic>> topics_;
   std::mutex m_;
@@ -54,6 +60,12 @@ class Recorder {
 
 // The IDL text of a message type (with what it includes), or null.
 const char* idl_text(const std::string& type);
+// The same as one self-contained OMG IDL text, as an MCAP schema ("omgidl") carries it: no
+// #include lines, each included definition once and before what uses it.
+std::string omgidl_schema(const std::string& idl);
+
+// Whether a recording at this path is SQLite (.db3) rather than MCAP.
+bool is_sqlite_recording(const std::string& path);
 
 // Whether "node.port" matches one of the patterns ('*' matches any run of characters).
 bool topic_selected(const std::string& topic, const std::vector<std::string>& patterns);

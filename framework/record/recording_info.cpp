@@ -1,8 +1,14 @@
 #include "record/recording_info.hpp"
 
+#include "mcap/mcap_format.hpp"
+#include "mcap/mcap_reader.hpp"
+
 #include <sqlite3.h>
 
+#include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <memory>
 #include <stdexcept>
 
 namespace brickyard::fw {
@@ -47,7 +53,44 @@ void open_recording(const std::string& path, Db& d) {
 
 }  // namespace
 
+bool is_mcap_file(const std::string& path) {
+  char head[sizeof mcap::kMagic] = {};
+  std::ifstream(path, std::ios::binary).read(head, sizeof head);
+  return std::memcmp(head, mcap::kMagic, sizeof head) == 0;
+}
+
+void read_mcap_recording(const std::string& path, RecordingInfo& info, std::vector<TopicStats>& topics) {
+  std::unique_ptr<mcap::Reader> r;
+  try {
+    r = std::make_unique<mcap::Reader>(path);
+  } catch (const mcap::ReadError& e) {
+    const std::string what = e.what();
+    throw std::runtime_error(what.rfind(path + ": ", 0) == 0 ? what.substr(path.size() + 2) : what);
+  }
+  const auto m = r->metadata().find("brickyard");
+  if (m == r->metadata().end() || !m->second.count("clock"))
+    throw std::runtime_error("an MCAP file, but not a brickyard recording (no 'brickyard' metadata with its clock)");
+  info = {};
+  info.clock = m->second.at("clock");
+  topics.clear();
+  for (const auto& [id, c] : r->channels()) {
+    const auto sc = r->schemas().find(c.schema);
+    const std::string type = sc == r->schemas().end() ? "" : sc->second.name;
+    info.topics.emplace_back(c.topic, type);
+    topics.push_back({c.topic, type, c.messages, c.bytes, static_cast<std::int64_t>(c.first), static_cast<std::int64_t>(c.last)});
+    info.messages += c.messages;
+    if (c.messages) info.last_ns = std::max(info.last_ns, static_cast<std::int64_t>(c.last));
+  }
+  if (const mcap::Damage* d = r->damage()) info.damage = "damaged at byte " + std::to_string(d->offset) + ": " + d->what;
+}
+
 RecordingInfo read_recording_info(const std::string& path) {
+  if (is_mcap_file(path)) {
+    RecordingInfo info;
+    std::vector<TopicStats> topics;
+    read_mcap_recording(path, info, topics);
+    return info;
+  }
   Db d;
   open_recording(path, d);
   RecordingInfo info;
@@ -63,6 +106,12 @@ RecordingInfo read_recording_info(const std::string& path) {
 }
 
 std::vector<TopicStats> read_topic_stats(const std::string& path) {
+  if (is_mcap_file(path)) {
+    RecordingInfo info;
+    std::vector<TopicStats> topics;
+    read_mcap_recording(path, info, topics);
+    return topics;
+  }
   Db d;
   open_recording(path, d);
   std::vector<TopicStats> out;

@@ -14,10 +14,12 @@ struct RecordingInfo {
   std::uint64_t messages = 0;                              // the last sample's id: how many were written
   std::int64_t last_ns = 0;                                // the last sample's time, the run's clock
   std::vector<std::pair<std::string, std::string>> topics;  // name, type
+  std::string damage;  // MCAP: where the reading stopped short and why ("byte N: ..."); empty: whole
 };
 
-// Throws std::runtime_error saying what is wrong: not there, not an SQLite file, not a recording
-// (the tables are not ours), unreadable (truncated, corrupt).
+// An MCAP file (told by its first bytes) or an SQLite one. Throws std::runtime_error saying what
+// is wrong: not there, neither, not a recording (the tables are not ours), unreadable. A damaged
+// MCAP file (truncated, a bad chunk) is read up to the damage, which `damage` then names.
 RecordingInfo read_recording_info(const std::string& path);
 
 // Per topic: its samples (reads every sample's row, not its data: seconds for gigabytes).
@@ -28,5 +30,8 @@ struct TopicStats {
 };
 // In the recording's topic order; topics without samples included (count 0). Throws as above.
 std::vector<TopicStats> read_topic_stats(const std::string& path);
+// Both from one reading of an MCAP file (its chunks are decompressed once).
+void read_mcap_recording(const std::string& path, RecordingInfo& info, std::vector<TopicStats>& topics);
+bool is_mcap_file(const std::string& path);
 
 }  // namespace brickyard::fw

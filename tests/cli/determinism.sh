@@ -13,7 +13,7 @@ if ! diff <(strip "$out/a/summary.json") <(strip "$out/b/summary.json"); then
   echo "FAIL: same seed, different summaries"; exit 1
 fi
 # And every recorded sample (--out records the run): the same bytes at the same times.
-python3 "$(dirname "$0")/same_recordings.py" "$out/a/recording.db3" "$out/b/recording.db3" || { echo "FAIL: same seed, different recordings"; exit 1; }
+python3 "$(dirname "$0")/same_recordings.py" "$out/a/recording.mcap" "$out/b/recording.mcap" || { echo "FAIL: same seed, different recordings"; exit 1; }
 digest() { grep -o '"digest": "[0-9a-f]*"' "$1"; }
 da=$(digest "$out/a/summary.json"); dc=$(digest "$out/c/summary.json")
 echo "seed 7: $da   seed 8: $dc"

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # A run killed mid-way (SIGKILL: no handler, no close) keeps its recording up to its last second:
 # samples are committed at least once a second, not only every 2000 (a slow run killed at 4 s
-# had committed none of its 150 samples).
+# had committed none of its 150 samples). SQLite (.db3) and MCAP both.
 set -u
 by=$1; graphs=$2; domain=$3; out=$4
 rm -rf "$out"; mkdir -p "$out"
@@ -19,5 +19,25 @@ n, last = sqlite3.connect(rec).execute("SELECT count(*), max(timestamp) FROM mes
 lost = (killed - (last or 0)) / 1e9
 print(f"killed after 4 s: {n} samples kept, the last {lost:.2f} s before the kill")
 sys.exit(0 if n >= 100 and lost <= 1.5 else 1)
+PY
+# The same as MCAP: a chunk is written at least once a second; the file has no footer, so bag info
+# reads it up to there, says the recording was not closed, and exits 2.
+rec="$out/killed.mcap"
+"$by" run "$graphs/real_clock.json" --domain "$domain" --quiet --progress 0 --duration 60 --record "$rec" > "$out/run.log" 2>&1 &
+pid=$!
+sleep 4
+kill -9 "$pid"
+killed_ns=$(date +%s%N)
+wait "$pid" 2> /dev/null
+"$by" bag info "$rec" --json > "$out/info.json" 2> "$out/info.err"; rc=$?
+[ $rc -eq 2 ] || { cat "$out/info.err"; echo "FAIL: bag info on a killed run's MCAP: exit $rc, expected 2"; exit 1; }
+grep -q "killed.mcap: damaged at byte [0-9]*: the file ends without its data section's end and footer: the recording was not closed" "$out/info.err" \
+  || { cat "$out/info.err"; echo "FAIL: bag info did not say the recording was not closed"; exit 1; }
+python3 - "$out/info.json" "$killed_ns" <<'PY' || exit 1
+import json, sys
+info, killed = json.load(open(sys.argv[1])), int(sys.argv[2])
+lost = (killed - info["end_s"] * 1e9) / 1e9
+print(f"MCAP, killed after 4 s: {info['messages']} samples kept, the last {lost:.2f} s before the kill")
+sys.exit(0 if info["messages"] >= 100 and lost <= 1.5 else 1)
 PY
 echo "recording_crash: ok"

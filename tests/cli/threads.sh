@@ -20,5 +20,5 @@ if ! diff <(strip "$out/t1/summary.json") <(strip "$out/t4/summary.json"); then
 fi
 diff <(tail -n 1 "$out/t1.log" | sed 's/, wall [0-9.]* s//') <(tail -n 1 "$out/t4.log" | sed 's/, wall [0-9.]* s//') \
   || { echo "FAIL: different verdicts"; exit 1; }
-python3 "$(dirname "$0")/same_recordings.py" "$out/t1/recording.db3" "$out/t4/recording.db3" || { echo "FAIL: one thread and four, different recordings"; exit 1; }
+python3 "$(dirname "$0")/same_recordings.py" "$out/t1/recording.mcap" "$out/t4/recording.mcap" || { echo "FAIL: one thread and four, different recordings"; exit 1; }
 echo "the same run on one thread and on four (exit ${rc[1]})"

@@ -1,14 +1,37 @@
 #include "recording.hpp"
 
+#include "mcap/mcap_format.hpp"
+#include "mcap/mcap_reader.hpp"
+
 #include <sqlite3.h>
 
+#include <cstring>
 #include <filesystem>
+#include <fstream>
 
 namespace brickyard::replay {
 
 Recording::Recording(const std::string& path) : path_(path) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) throw RecordingError(path + ": no such recording");
+  char head[sizeof mcap::kMagic] = {};
+  std::ifstream(path, std::ios::binary).read(head, sizeof head);
+  if (std::memcmp(head, mcap::kMagic, sizeof head) == 0) {
+    try {
+      mcap_ = std::make_unique<mcap::Reader>(path);
+    } catch (const mcap::ReadError& e) {
+      throw RecordingError(e.what());
+    }
+    if (const mcap::Damage* d = mcap_->damage())
+      throw RecordingError(path + ": damaged at byte " + std::to_string(d->offset) + ": " + d->what);
+    for (const auto& [id, c] : mcap_->channels()) {
+      const auto sc = mcap_->schemas().find(c.schema);
+      const auto hash = c.metadata.find("type_hash");
+      topics_.push_back({id, c.topic, sc == mcap_->schemas().end() ? "" : sc->second.name,
+                         hash == c.metadata.end() ? "" : hash->second, sc == mcap_->schemas().end() ? "" : sc->second.data});
+    }
+    return;
+  }
   if (sqlite3_open_v2(path.c_str(), &db_, SQLITE_OPEN_READONLY, nullptr) != SQLITE_OK) fail("cannot open");
   sqlite3_stmt* st = nullptr;
   if (sqlite3_prepare_v2(db_, "SELECT id, name, type, type_hash, idl FROM topics ORDER BY id", -1, &st, nullptr) != SQLITE_OK)
@@ -39,6 +62,12 @@ const RecordedTopic* Recording::topic(const std::string& name) const {
 }
 
 std::string Recording::metadata(const std::string& key) const {
+  if (mcap_) {
+    const auto m = mcap_->metadata().find("brickyard");
+    if (m == mcap_->metadata().end()) return {};
+    const auto v = m->second.find(key);
+    return v == m->second.end() ? std::string() : v->second;
+  }
   sqlite3_stmt* st = nullptr;
   std::string v;
   if (sqlite3_prepare_v2(db_, "SELECT value FROM metadata WHERE key = ?", -1, &st, nullptr) == SQLITE_OK) {
@@ -51,6 +80,19 @@ std::string Recording::metadata(const std::string& key) const {
 }
 
 std::vector<RecordedSample> Recording::samples(const RecordedTopic& t) const {
+  if (mcap_) {
+    std::vector<RecordedSample> out;
+    const std::set<std::uint16_t> only{static_cast<std::uint16_t>(t.id)};
+    mcap_->read(
+        [&](const mcap::MessageView& m) {
+          RecordedSample s;
+          s.stamp_ns = static_cast<std::int64_t>(m.log_time);
+          s.data.assign(m.data, m.data + m.size);
+          out.push_back(std::move(s));
+        },
+        &only);
+    return out;
+  }
   sqlite3_stmt* st = nullptr;
   if (sqlite3_prepare_v2(db_, "SELECT timestamp, data FROM messages WHERE topic_id = ? ORDER BY id", -1, &st, nullptr) != SQLITE_OK)
     fail("not a brickyard recording (no messages table)");

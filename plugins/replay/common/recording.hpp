@@ -1,12 +1,15 @@
 #pragma once
 // Reading a recording (`brickyard run --record`, docs/recording.md), framework-free: its topics
-// and one topic's samples in order. Used by the replay plugins and the report.
+// and one topic's samples in order, from an MCAP file or an SQLite one (told by their first
+// bytes). Used by the replay plugins and the report.
 #include <cstdint>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 struct sqlite3;
+namespace brickyard::mcap { class Reader; }
 
 namespace brickyard::replay {
 
@@ -28,7 +31,9 @@ class RecordingError : public std::runtime_error {
 
 class Recording {
  public:
-  explicit Recording(const std::string& path);  // read-only; throws RecordingError
+  // Read-only; throws RecordingError, also for an MCAP file that is damaged (truncated, a chunk
+  // that does not decompress): its what() names the file, the byte offset and why.
+  explicit Recording(const std::string& path);
   ~Recording();
   Recording(const Recording&) = delete;
   Recording& operator=(const Recording&) = delete;
@@ -44,6 +49,7 @@ class Recording {
   [[noreturn]] void fail(const std::string& what) const;
   std::string path_;
   sqlite3* db_ = nullptr;
+  std::unique_ptr<mcap::Reader> mcap_;
   std::vector<RecordedTopic> topics_;
 };
 
