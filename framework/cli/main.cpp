@@ -1,5 +1,8 @@
 // brickyard — the host executive.
+#include "cli/bag_play.hpp"
 #include "cli/commands.hpp"
+#include "cli/topic_command.hpp"
+#include "exec/crash_guard.hpp"
 #include "exec/executive.hpp"
 #include "graph/diagnostics.hpp"
 #include "record/recording_info.hpp"
@@ -19,6 +22,7 @@ extern char** environ;
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <fstream>
 #include <iostream>
 
@@ -39,9 +43,15 @@ usage:
   brickyard report RUN_DIR                 write RUN_DIR/report.html from a run's recording
   brickyard bag info RECORDING [--json]    a recording's clock, span and topics (types, counts, rates,
                                            bytes)
+  brickyard bag play RECORDING             republish its topics over DDS at the recorded times
+                                           (--rate X, --only NODE.PORT,..., --domain N)
   brickyard map build RECORDING --out DIR  a track file and a point map from a recorded drive:
                                            DIR/track.csv, DIR/map.pcd, DIR/summary.json
                                            (configs/map_build.json; docs/mapping.md)
+  brickyard topic list [--domain N]        the wires of graphs running on domain N, over DDS (listens
+                                           --duration S, 2 s by default)
+  brickyard topic echo NODE.PORT           its samples as JSON lines (--count N, --duration S)
+  brickyard topic hz NODE.PORT             its rate, a line a second (--count N, --duration S)
   brickyard new-plugin NAME --dir DIR      scaffold a plugin project from the SDK template
   brickyard --version
 
@@ -65,6 +75,11 @@ options:
                        .db3 (docs/recording.md)
   --record-compression zstd|lz4|none   the MCAP chunks' (default zstd)
   --record-only P,...  record only the topics NODE.PORT matching these patterns ('*' any)
+  --live PORT          serve the run to Foxglove (WebSocket, foxglove.websocket.v1) on
+                       127.0.0.1:PORT: every wire as a channel (docs/live.md)
+  --live-address A     bind the live server to address A instead (opt-in: 0.0.0.0 is every
+                       interface)
+  --pace X             sim clock: run at most X times real time, so a person can watch
   --threads N          sim clock: step nodes that cannot see each other on N threads (default:
                        the machine's cores, at most 4); the run is the same on any number
   --profile            time each node's steps on the wall clock: a table at the end, sorted by
@@ -80,7 +95,13 @@ struct Args {
   std::vector<std::string> sets, args, plugin_paths;
   std::optional<double> duration;
   std::optional<int> domain;
-  double progress = -1;
+  double progress = -1, pace = 0;
+  std::optional<int> live_port;
+  std::optional<long> count;
+  double rate = 1.0;
+  std::vector<std::string> only;
+  std::string live_address = "127.0.0.1";
+  bool live_address_set = false;
   int threads = 0;
   std::uint64_t seed = 0;
   bool json = false, dot = false, quiet = false, no_report = false, profile = false;
@@ -98,6 +119,18 @@ double parse_number(const std::string& flag, const std::string& v) {
   } catch (...) {
   }
   usage_error(flag + " " + v, "expected a number");
+}
+
+// NODE.PORT patterns, comma-separated (--record-only, --only).
+std::vector<std::string> patterns(const std::string& flag, const std::string& list) {
+  std::vector<std::string> out;
+  for (std::size_t at = 0; at <= list.size();) {
+    const std::size_t comma = std::min(list.find(',', at), list.size());
+    if (comma > at) out.push_back(list.substr(at, comma - at));
+    at = comma + 1;
+  }
+  if (out.empty()) usage_error(flag, "expected NODE.PORT patterns, comma-separated");
+  return out;
 }
 
 Args parse_args(int argc, char** argv) {
@@ -135,6 +168,16 @@ Args parse_args(int argc, char** argv) {
       if (a.record_compression != "zstd" && a.record_compression != "lz4" && a.record_compression != "none")
         usage_error("--record-compression " + a.record_compression, "expected zstd, lz4 or none");
     }
+    else if (f == "--live") {
+      const std::string v = value();
+      if (v.empty() || v.size() > 5 || v.find_first_not_of("0123456789") != std::string::npos || std::stoi(v) > 65535)
+        usage_error("--live " + v, "expected a port from 0 to 65535 (0: any free one)");
+      a.live_port = std::stoi(v);
+    } else if (f == "--live-address") a.live_address = value(), a.live_address_set = true;
+    else if (f == "--pace") {
+      a.pace = parse_number(f, value());
+      if (!(a.pace > 0)) usage_error("--pace", "expected a factor of real time, more than 0");
+    }
     else if (f == "--no-report") a.no_report = true;
     else if (f == "--profile") a.profile = true;
     else if (f == "--threads") {
@@ -147,21 +190,23 @@ Args parse_args(int argc, char** argv) {
       a.progress = parse_number(f, value());
       if (!(a.progress >= 0)) usage_error("--progress", "expected seconds, 0 or more");
     }
-    else if (f == "--record-only") {
-      std::string list = value();
-      for (std::size_t at = 0; at <= list.size();) {
-        const std::size_t comma = std::min(list.find(',', at), list.size());
-        if (comma > at) a.record_only.push_back(list.substr(at, comma - at));
-        at = comma + 1;
-      }
-      if (a.record_only.empty()) usage_error("--record-only", "expected NODE.PORT patterns, comma-separated");
+    else if (f == "--record-only") a.record_only = patterns(f, value());
+    else if (f == "--rate") {
+      a.rate = parse_number(f, value());
+      if (!(a.rate > 0)) usage_error("--rate", "expected a factor of the recorded speed, more than 0");
+    } else if (f == "--only") a.only = patterns(f, value());
+    else if (f == "--count") {
+      const std::string v = value();
+      if (v.empty() || v.size() > 9 || v.find_first_not_of("0123456789") != std::string::npos || std::stol(v) < 1)
+        usage_error("--count " + v, "expected a whole number of samples, 1 or more");
+      a.count = std::stol(v);
     }
     else if (f == "--json") a.json = true;
     else if (f == "--dot") a.dot = true;
     else if (f == "--quiet" || f == "-q") a.quiet = true;
     else if (f.rfind("--", 0) == 0) usage_error(f, "unknown option (see brickyard --help)");
     else if (a.target.empty()) a.target = f;
-    else if (a.command == "map" || a.command == "bag") a.more.push_back(f);
+    else if (a.command == "map" || a.command == "bag" || a.command == "topic") a.more.push_back(f);
     else usage_error(f, "unexpected argument");
   }
   return a;
@@ -177,7 +222,10 @@ Registry load_registry(const Args& a, const GraphDecl* g) {
   return reg;
 }
 
-void on_signal(int) { g_interrupt = true; }
+void on_signal(int) {
+  g_interrupt = true;
+  crash_guard::interrupted();  // the run has 2 s from here; a second signal ends it at once
+}
 
 // brickyard-report, installed beside this executable, on a run folder; its exit code. Started
 // with an argument vector, no shell: a folder's name is never parsed.
@@ -341,9 +389,18 @@ int cmd_map(const Args& a) {
 
 // `brickyard bag info RECORDING`: what a recording holds, without decoding a sample.
 int cmd_bag(const Args& a) {
+  if (a.target == "play") {
+    if (a.more.size() != 1) usage_error("bag play", "needs one recording (brickyard bag play RECORDING)");
+    BagPlayOptions o;
+    o.file = a.more[0];
+    o.domain = a.domain.value_or(0);
+    o.rate = a.rate;
+    o.only = a.only;
+    return bag_play(o);
+  }
   if (a.target != "info")
-    usage_error(a.target.empty() ? "bag" : "bag " + a.target, a.target.empty() ? "needs a command (brickyard bag info RECORDING)"
-                                                                             : "unknown bag command (brickyard bag info RECORDING)");
+    usage_error(a.target.empty() ? "bag" : "bag " + a.target, a.target.empty() ? "needs a command (brickyard bag info | play RECORDING)"
+                                                                             : "unknown bag command (brickyard bag info | play RECORDING)");
   if (a.more.size() != 1) usage_error("bag info", "needs one recording (brickyard run GRAPH --record FILE)");
   const std::string& file = a.more[0];
   RecordingInfo info;
@@ -425,6 +482,10 @@ int run_graph(const Args& a, GraphDecl g, bool validate_only) {
   opt.record_compression = a.record_compression;
   opt.profile = a.profile;
   opt.threads = a.threads;
+  opt.live_port = a.live_port ? a.live_port : g.live.port;  // the flag, else the graph's "live"
+  opt.live_address = a.live_address_set ? a.live_address : g.live.address;
+  opt.pace = a.pace;
+  if (a.pace > 0 && !g.clock.sim) usage_error("--pace", "the graph runs on the real clock, which needs no pacing");
   if (!a.record_only.empty() && a.record.empty()) usage_error("--record-only", "needs --record FILE");
   // --out keeps the run: its summary, a recording of everything but the point clouds (those
   // are large; --record takes them) and the report drawn from it. The folder's own recording
@@ -461,10 +522,12 @@ int run_graph(const Args& a, GraphDecl g, bool validate_only) {
     opt.record_skip_types = {"brickyard::msgs::PointCloud", "brickyard::msgs::ClusterList"};
   }
   RunSummary s;
+  crash_guard::install(a.out.empty() ? std::string() : (fs::path(a.out) / "summary.json").string());
   {
     Executive ex(rg, opt);
     s = ex.run();
   }
+  crash_guard::run_ended();
   if (!a.quiet) std::fputs(summary_table(s.json).c_str(), stderr);
   if (a.profile) std::fputs(profile_table(s.json).c_str(), stderr);
   std::fprintf(stderr, "[brickyard] %s: %s (sim %.3f s, wall %.3f s)\n", to_string(s.result), s.reason.c_str(),
@@ -551,7 +614,17 @@ int main(int argc, char** argv) {
     if (a.command == "new-plugin") return cmd_new_plugin(a);
     if (a.command == "map") return cmd_map(a);
     if (a.command == "bag") return cmd_bag(a);
-    usage_error(a.command, "unknown command (commands: run, validate, plugins, graph, report, map, bag, new-plugin)");
+    if (a.command == "topic") {
+      if (a.more.size() > 1) usage_error(a.more[1], "unexpected argument");
+      TopicOptions o;
+      o.verb = a.target;
+      o.topic = a.more.empty() ? "" : a.more[0];
+      o.domain = a.domain.value_or(0);
+      o.duration = a.duration;
+      o.count = a.count;
+      return topic_command(o);
+    }
+    usage_error(a.command, "unknown command (commands: run, validate, plugins, graph, report, map, bag, topic, new-plugin)");
   } catch (const InvalidInput& e) {
     std::cerr << format_diagnostics(e.diagnostics());
     return 2;

@@ -2,12 +2,14 @@
 // by the clock's scheduler, deactivated (every activated node, even after a failure), and the
 // summary. Also what the executive serves NodeContext: the clock, logs, end requests.
 #include "exec/executive.hpp"
+#include "exec/crash_guard.hpp"
 #include "exec/file_search.hpp"
 #include "exec/node_runtime.hpp"
 #include "exec/recording.hpp"
 #include "exec/summary.hpp"
 
 #include <chrono>
+#include <thread>
 #include <cstdio>
 
 namespace brickyard::fw {
@@ -58,6 +60,15 @@ void Executive::set_status(const std::string& node, std::string_view field, std:
   console_.set_status(node, field, value);
 }
 
+void Executive::pace(std::int64_t sim_ns) {
+  // The host's own use of the wall clock, for a person watching (--live): never seen by a node.
+  const auto now = std::chrono::steady_clock::now();
+  if (!pace_start_) pace_start_ = now;
+  const auto due = *pace_start_ + std::chrono::nanoseconds(static_cast<std::int64_t>(static_cast<double>(sim_ns) / opt_.pace));
+  while (!g_interrupt && !stop_ && std::chrono::steady_clock::now() < due)
+    std::this_thread::sleep_until(std::min(due, std::chrono::steady_clock::now() + std::chrono::milliseconds(50)));
+}
+
 void Executive::progress(bool last) { console_.progress(last, sim(), sim_now_ns_); }
 
 void Executive::log(const NodeRuntime& n, LogLevel level, std::string_view msg) {
@@ -90,6 +101,7 @@ void Executive::request_stop(RunResult r, std::string reason) {
 
 bool Executive::call(NodeRuntime& n, const char* phase, const std::function<void()>& f) {
   try {
+    const crash_guard::Running running(n.name.c_str(), phase);  // named if the plugin takes the process down
     f();
     return true;
   } catch (const BadInput& e) {
@@ -135,6 +147,18 @@ RunSummary Executive::run() {
       request_stop(RunResult::invalid_input, std::string("--record ") + e.what());
     }
   }
+  if (!stop_ && opt_.live_port) {
+    LiveOptions lo;
+    lo.address = opt_.live_address;
+    lo.port = static_cast<std::uint16_t>(*opt_.live_port);
+    lo.sim_clock = sim();
+    lo.name = "brickyard: " + g.name;
+    try {
+      live_ = std::make_unique<LiveServer>(lo);
+    } catch (const std::exception& e) {
+      request_stop(RunResult::invalid_input, e.what());
+    }
+  }
   if (!stop_) {
     try {
       build();
@@ -142,6 +166,10 @@ RunSummary Executive::run() {
     } catch (const std::exception& e) {
       request_stop(RunResult::failed, std::string("transport: ") + e.what());
     }
+  }
+  if (live_ && built) {
+    live_->start();
+    host_log("live: ws://" + opt_.live_address + ":" + std::to_string(live_->port()) + " (Foxglove: Open connection, Foxglove WebSocket)");
   }
   if (built) {
     for (auto& n : nodes_)
@@ -164,6 +192,7 @@ RunSummary Executive::run() {
   }
   if (!stop_) {
     host_log("running");
+    crash_guard::note_shared_memory();  // removed if a plugin takes the process down
     if (sim()) run_sim();
     else run_real();
     progress(true);
@@ -178,6 +207,14 @@ RunSummary Executive::run() {
   for (auto it = active.rbegin(); it != active.rend(); ++it)
     call(**it, "deactivate", [&] { (*it)->instance->deactivate(*(*it)->ctx); });
 
+  nlohmann::json live;
+  if (live_) {
+    const LiveStats st = live_->stats();
+    live = {{"port", live_->port()}, {"clients", st.clients}, {"sent", st.sent}, {"dropped", st.dropped},
+            {"refused_requests", st.refused_requests}, {"disconnected", st.disconnected}};
+    scene_.reset();
+    live_.reset();  // closes its clients
+  }
   nlohmann::json recording;
   if (recorder_) {
     try {
@@ -193,6 +230,7 @@ RunSummary Executive::run() {
   s.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   if (!sim()) s.sim_time_s = s.wall_time_s;
   s.json = summary_json(s, g, opt_, sim(), recording, nodes_);
+  if (!live.is_null()) s.json["live"] = live;
   return s;
 }
 

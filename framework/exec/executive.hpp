@@ -6,6 +6,8 @@
 #include "exec/channels.hpp"
 #include "exec/console.hpp"
 #include "graph/resolve.hpp"
+#include "live/live_server.hpp"
+#include "live/scene.hpp"
 #include "record/recorder.hpp"
 
 #include <nlohmann/json.hpp>
@@ -29,6 +31,9 @@ struct RunOptions {
   std::string record_compression = "zstd";  // --record-compression: an MCAP recording's chunks
   std::vector<std::string> record_only;  // --record-only: "node.port" patterns ('*' any); empty: all
   std::vector<std::string> record_skip_types;  // message types not recorded (the --out default skips clouds)
+  std::optional<int> live_port;          // --live PORT: the Foxglove WebSocket server (docs/live.md)
+  std::string live_address = "127.0.0.1";  // --live-address: loopback unless said otherwise
+  double pace = 0;                       // --pace X: sim clock at most X times real time (0: as fast as it goes)
   int threads = 0;        // sim clock: threads that step nodes (0: the machine's cores, at most 4)
   bool profile = false;  // --profile: each node's wall time in step, in the summary ("step_wall_s")
 };
@@ -72,11 +77,14 @@ class Executive {
   bool step_body(NodeRuntime& n, Trigger t);  // step without counting it: whether it returned
   void host_log(const std::string& msg);
   void progress(bool last = false);  // prints the progress line when it is due (or last)
+  void pace(std::int64_t sim_ns);    // --pace: waits until the wall clock has caught up with sim_ns / pace
 
   const ResolvedGraph& graph_;
   RunOptions opt_;
   std::unique_ptr<DdsTransport> transport_;
   std::unique_ptr<Recorder> recorder_;
+  std::unique_ptr<LiveServer> live_;
+  std::unique_ptr<LiveScene> scene_;  // the scene in Foxglove's schemas, beside the wires (--live)
   std::vector<std::unique_ptr<NodeRuntime>> nodes_;
 
   std::atomic<bool> stop_{false};
@@ -86,6 +94,7 @@ class Executive {
 
   std::int64_t sim_now_ns_ = 0;
   std::int64_t real_start_ns_ = 0;
+  std::optional<std::chrono::steady_clock::time_point> pace_start_;
   Console console_;  // log lines and the progress line
 };
 

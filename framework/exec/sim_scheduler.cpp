@@ -248,6 +248,8 @@ void Executive::run_sim() {
       break;
     }
     sim_now_ns_ = t;
+    if (live_) live_->time(static_cast<std::uint64_t>(t));
+    if (opt_.pace > 0) pace(t);
     due.clear();
     next_due = 0;
     while (!timers.empty() && timers.top().first == t) {

@@ -1,12 +1,14 @@
-// Executive::build: this process's nodes with their ports — a DDS writer per output, a recording
-// tap per recorded output — then the wires: same-process inputs by pointer, inputs whose writer
+// Executive::build: this process's nodes with their ports — a DDS writer per output, a tap per
+// output that is recorded or served live (--live) — then the wires: same-process inputs by pointer, inputs whose writer
 // runs in another process through a DDS reader.
 #include "exec/executive.hpp"
 #include "exec/node_runtime.hpp"
 #include "exec/seeding.hpp"
+#include "record/sample_serializer.hpp"
 
 #include <algorithm>
 #include <map>
+#include <mutex>
 #include <set>
 
 namespace brickyard::fw {
@@ -18,6 +20,7 @@ void Executive::build() {
   ds.interfaces = g.transport.interfaces;
   ds.peers = g.transport.peers;
   transport_ = std::make_unique<DdsTransport>(ds);
+  if (live_) scene_ = std::make_unique<LiveScene>(*live_);
 
   std::map<std::string, NodeRuntime*> here;
   for (const auto& rn : graph_.nodes) {
@@ -36,12 +39,33 @@ void Executive::build() {
         n->outputs.back()->writer = transport_->make_writer(topic_name(n->name, p.name), p.type_name);
         const std::string topic = n->name + "." + p.name;
         const bool skip = std::find(opt_.record_skip_types.begin(), opt_.record_skip_types.end(), p.type_name) != opt_.record_skip_types.end();
-        if (recorder_ && !skip && (opt_.record_only.empty() || topic_selected(topic, opt_.record_only))) {
-          const int id = recorder_->add_topic(topic, p.type_name);
-          // A failed write stops the run; it must not unwind through the publishing plugin.
-          n->outputs.back()->tap = [this, id](const void* m) {
+        const int rec = recorder_ && !skip && (opt_.record_only.empty() || topic_selected(topic, opt_.record_only))
+                            ? recorder_->add_topic(topic, p.type_name)
+                            : 0;
+        const long live = live_ ? static_cast<long>(live_->add_channel(topic, "cdr", p.type_name, "omgidl",
+                                                                         omgidl_schema(idl_text(p.type_name) ? idl_text(p.type_name) : "")))
+                                : -1;
+        auto scene = scene_ ? scene_->handler(topic, p.type_name) : std::function<void(const void*, std::uint64_t)>();
+        if (rec || live >= 0) {
+          // Serialized once for both; live only while a client is subscribed. A failed write
+          // stops the run; it must not unwind through the publishing plugin.
+          struct Tap {
+            explicit Tap(const std::string& type) : serializer(type) {}
+            SampleSerializer serializer;
+            std::mutex m;
+          };
+          auto tap = std::make_shared<Tap>(p.type_name);
+          n->outputs.back()->tap = [this, rec, live, tap, scene](const void* m) {
+            const bool to_live = live >= 0 && live_->wanted(static_cast<std::uint32_t>(live));
+            if (!rec && !to_live && !scene) return;
             try {
-              recorder_->write(id, now_ns(), m);
+              if (scene) scene(m, static_cast<std::uint64_t>(std::max<std::int64_t>(now_ns(), 0)));
+              if (!rec && !to_live) return;
+              std::lock_guard<std::mutex> l(tap->m);
+              const auto b = tap->serializer.serialize(m);
+              const std::int64_t now = now_ns();
+              if (rec) recorder_->write(rec, now, b.data, b.size);
+              if (to_live) live_->publish(static_cast<std::uint32_t>(live), static_cast<std::uint64_t>(std::max<std::int64_t>(now, 0)), b.data, b.size);
             } catch (const std::exception& e) {
               request_stop(RunResult::failed, e.what());
             }

@@ -107,6 +107,17 @@ void parse_transport(const json& j, GraphDecl& g, Ctx& c) {
   if (j.contains("peers")) parse_string_list(j["peers"], g.transport.peers, "/transport/peers", c);
 }
 
+void parse_live(const json& j, GraphDecl& g, Ctx& c) {
+  if (!c.expect(j, json::value_t::object, "object", "/live")) return;
+  c.only_keys(j, {"port", "address"}, "/live");
+  if (j.contains("port") && c.expect(j["port"], json::value_t::number_integer, "integer", "/live/port")) {
+    if (!j["port"].is_number_integer() || j["port"].get<long long>() < 0 || j["port"].get<long long>() > 65535)
+      c.err("/live/port", "expected a port from 0 to 65535, found " + j["port"].dump());
+    else g.live.port = j["port"].get<int>();
+  }
+  if (j.contains("address") && c.expect(j["address"], json::value_t::string, "string", "/live/address")) g.live.address = j["address"].get<std::string>();
+}
+
 void apply_sets(json& root, const std::vector<std::string>& sets, Diagnostics& d,
                 std::map<std::string, std::map<std::string, std::string>>& origin) {
   static const std::regex kSet("([A-Za-z_][A-Za-z0-9_]*)\\.([A-Za-z_][A-Za-z0-9_]*)=(.*)");
@@ -177,7 +188,7 @@ GraphDecl parse_graph_text(const std::string& text, const std::string& file, con
   std::map<std::string, std::map<std::string, std::string>> origin;
   apply_sets(root, sets, d, origin);
 
-  c.only_keys(root, {"name", "description", "nodes", "wires", "clock", "transport", "plugin_path"}, "");
+  c.only_keys(root, {"name", "description", "nodes", "wires", "clock", "transport", "live", "plugin_path"}, "");
   if (root.contains("name") && c.expect(root["name"], json::value_t::string, "string", "/name"))
     g.name = root["name"].get<std::string>();
   if (root.contains("description") && c.expect(root["description"], json::value_t::string, "string", "/description"))
@@ -237,6 +248,7 @@ GraphDecl parse_graph_text(const std::string& text, const std::string& file, con
   }
   if (root.contains("clock")) parse_clock(root["clock"], g, c);
   if (root.contains("transport")) parse_transport(root["transport"], g, c);
+  if (root.contains("live")) parse_live(root["live"], g, c);
   if (root.contains("plugin_path")) {
     parse_string_list(root["plugin_path"], g.plugin_path, "/plugin_path", c);
     auto base = std::filesystem::path(file).parent_path();

@@ -41,6 +41,12 @@ struct TransportDecl {
   std::vector<std::string> peers{"127.0.0.1"};       // unicast discovery peers
 };
 
+// "live": serve the run to Foxglove (docs/live.md), as `--live PORT` does; the flags win.
+struct LiveDecl {
+  std::optional<int> port;
+  std::string address = "127.0.0.1";  // loopback unless the graph says otherwise
+};
+
 struct GraphDecl {
   std::string file;          // path as given
   std::string name;
@@ -49,6 +55,7 @@ struct GraphDecl {
   std::vector<WireDecl> wires;
   ClockDecl clock;
   TransportDecl transport;
+  LiveDecl live;
   std::vector<std::string> plugin_path;  // resolved against the graph file's folder
 };
 

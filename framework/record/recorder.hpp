@@ -13,7 +13,6 @@
 struct sqlite3;
 struct sqlite3_stmt;
 
-namespace eprosima::fastdds::dds { class TopicDataType; }
 namespace brickyard::mcap { class Writer; }
 
 namespace brickyard::fw {
@@ -30,8 +29,8 @@ class Recorder {
   void set_metadata(const std::string& key, const std::string& value);
   // A topic ("node.port") of a message type; returns its id for write().
   int add_topic(const std::string& name, const std::string& type);
-  // One sample (the message object of the topic's type) at the run's clock. Thread-safe.
-  void write(int topic, std::int64_t stamp_ns, const void* message);
+  // One sample, serialized as on the wire (SampleSerializer), at the run's clock. Thread-safe.
+  void write(int topic, std::int64_t stamp_ns, const unsigned char* cdr, std::size_t size);
   // Commits and closes; the file is complete only after this.
   void close();
 

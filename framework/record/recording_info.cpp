@@ -8,6 +8,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <memory>
 #include <stdexcept>
 
@@ -82,6 +83,38 @@ void read_mcap_recording(const std::string& path, RecordingInfo& info, std::vect
     if (c.messages) info.last_ns = std::max(info.last_ns, static_cast<std::int64_t>(c.last));
   }
   if (const mcap::Damage* d = r->damage()) info.damage = "damaged at byte " + std::to_string(d->offset) + ": " + d->what;
+}
+
+void for_each_sample(const std::string& path, const std::function<void(const std::string& topic, const std::string& type, std::int64_t stamp_ns,
+                                                                     const unsigned char* data, std::size_t size)>& f) {
+  if (is_mcap_file(path)) {
+    std::unique_ptr<mcap::Reader> r;
+    try {
+      r = std::make_unique<mcap::Reader>(path);
+    } catch (const mcap::ReadError& e) {
+      throw std::runtime_error(e.what());
+    }
+    std::map<std::uint16_t, std::pair<std::string, std::string>> names;
+    for (const auto& [id, c] : r->channels()) {
+      const auto sc = r->schemas().find(c.schema);
+      names[id] = {c.topic, sc == r->schemas().end() ? "" : sc->second.name};
+    }
+    r->read([&](const mcap::MessageView& m) {
+      const auto& [topic, type] = names[m.channel];
+      f(topic, type, static_cast<std::int64_t>(m.log_time), m.data, m.size);
+    });
+    if (const mcap::Damage* d = r->damage()) throw std::runtime_error("damaged at byte " + std::to_string(d->offset) + ": " + d->what);
+    return;
+  }
+  Db d;
+  open_recording(path, d);
+  std::map<std::int64_t, std::pair<std::string, std::string>> names;
+  query(d.db, "SELECT id, name, type FROM topics", [&](sqlite3_stmt* st) { names[sqlite3_column_int64(st, 0)] = {text(st, 1), text(st, 2)}; });
+  query(d.db, "SELECT topic_id, timestamp, data FROM messages ORDER BY id", [&](sqlite3_stmt* st) {
+    const auto& [topic, type] = names[sqlite3_column_int64(st, 0)];
+    f(topic, type, sqlite3_column_int64(st, 1), static_cast<const unsigned char*>(sqlite3_column_blob(st, 2)),
+      static_cast<std::size_t>(sqlite3_column_bytes(st, 2)));
+  });
 }
 
 RecordingInfo read_recording_info(const std::string& path) {

@@ -3,6 +3,7 @@
 // samples: its clock, how many samples and until when, its topics. For commands that run a graph
 // on a recording (`brickyard map build`) and must say what is wrong with the file first.
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -30,6 +31,11 @@ struct TopicStats {
 };
 // In the recording's topic order; topics without samples included (count 0). Throws as above.
 std::vector<TopicStats> read_topic_stats(const std::string& path);
+// Every sample, in the order it was published: its topic, type, the run's clock and its CDR
+// bytes (`brickyard bag play`). Throws as above; a damaged MCAP file after the samples before the
+// damage were given.
+void for_each_sample(const std::string& path, const std::function<void(const std::string& topic, const std::string& type, std::int64_t stamp_ns,
+                                                                     const unsigned char* data, std::size_t size)>& f);
 // Both from one reading of an MCAP file (its chunks are decompressed once).
 void read_mcap_recording(const std::string& path, RecordingInfo& info, std::vector<TopicStats>& topics);
 bool is_mcap_file(const std::string& path);

@@ -4,6 +4,7 @@
 
 #include <fastdds/dds/domain/DomainParticipant.hpp>
 #include <fastdds/dds/domain/DomainParticipantFactory.hpp>
+#include <fastdds/dds/domain/DomainParticipantListener.hpp>
 #include <fastdds/dds/publisher/DataWriter.hpp>
 #include <fastdds/dds/publisher/DataWriterListener.hpp>
 #include <fastdds/dds/publisher/Publisher.hpp>
@@ -55,6 +56,14 @@ struct ReaderListener : DataReaderListener {
   }
 };
 
+struct DiscoveryListener : DomainParticipantListener {
+  std::function<void(const std::string&, const std::string&)> on_writer;
+  void on_publisher_discovery(DomainParticipant*, eprosima::fastrtps::rtps::WriterDiscoveryInfo&& info) override {
+    if (info.status == eprosima::fastrtps::rtps::WriterDiscoveryInfo::DISCOVERED_WRITER)
+      on_writer(info.info.topicName().to_string(), info.info.typeName().to_string());
+  }
+};
+
 bool DdsWriter::write(const void* sample) { return writer_->write(const_cast<void*>(sample)); }
 
 DdsTransport::DdsTransport(const DdsSettings& s) {
@@ -82,7 +91,11 @@ DdsTransport::DdsTransport(const DdsSettings& s) {
   }
   // No explicit unicast locators: Fast DDS then offers shared memory to peers on this host and
   // UDP only on the whitelisted interfaces (setting a UDP locator here would turn SHM off).
-  participant_ = factory->create_participant(s.domain, q);
+  if (s.on_writer) {
+    discovery_ = std::make_unique<DiscoveryListener>();
+    discovery_->on_writer = s.on_writer;
+  }
+  participant_ = factory->create_participant(s.domain, q, discovery_.get(), StatusMask::none());
   if (!participant_) throw std::runtime_error("Fast DDS could not create a participant on domain " + std::to_string(s.domain));
   publisher_ = participant_->create_publisher(PUBLISHER_QOS_DEFAULT);
   subscriber_ = participant_->create_subscriber(SUBSCRIBER_QOS_DEFAULT);

@@ -50,6 +50,9 @@ struct DdsSettings {
   std::vector<std::string> interfaces{"127.0.0.1"};
   std::vector<std::string> peers{"127.0.0.1"};
   std::uint32_t shm_segment_bytes = 16u << 20;  // 2 MiB samples between processes need >= 4 MiB
+  // Called on a DDS thread for each writer another participant announces (`brickyard topic`):
+  // its DDS topic and type names.
+  std::function<void(const std::string& topic, const std::string& type)> on_writer;
 };
 
 class DdsTransport {
@@ -69,6 +72,7 @@ class DdsTransport {
  private:
   eprosima::fastdds::dds::Topic* topic(const std::string& name, const std::string& type_name);
   eprosima::fastdds::dds::DomainParticipant* participant_ = nullptr;
+  std::unique_ptr<struct DiscoveryListener> discovery_;
   eprosima::fastdds::dds::Publisher* publisher_ = nullptr;
   eprosima::fastdds::dds::Subscriber* subscriber_ = nullptr;
   std::vector<std::unique_ptr<DdsWriter>> writers_;

@@ -5,13 +5,16 @@
 set -u
 by=$1; graphs=$2; domain=$3; out=$4
 rm -rf "$out"; mkdir -p "$out"
+record_and_kill() {  # FILE: a real-clock run recording into it, killed after 4 s; sets killed_ns
+  "$by" run "$graphs/real_clock.json" --domain "$domain" --quiet --progress 0 --duration 60 --record "$1" > "$out/run.log" 2>&1 &
+  local pid=$!
+  sleep 4
+  kill -9 "$pid"
+  killed_ns=$(date +%s%N)
+  wait "$pid" 2> /dev/null
+}
 rec="$out/killed.db3"
-"$by" run "$graphs/real_clock.json" --domain "$domain" --quiet --progress 0 --duration 60 --record "$rec" > "$out/run.log" 2>&1 &
-pid=$!
-sleep 4
-kill -9 "$pid"
-killed_ns=$(date +%s%N)
-wait "$pid" 2> /dev/null
+record_and_kill "$rec"
 python3 - "$rec" "$killed_ns" <<'PY' || exit 1
 import sqlite3, sys
 rec, killed = sys.argv[1], int(sys.argv[2])
@@ -23,12 +26,7 @@ PY
 # The same as MCAP: a chunk is written at least once a second; the file has no footer, so bag info
 # reads it up to there, says the recording was not closed, and exits 2.
 rec="$out/killed.mcap"
-"$by" run "$graphs/real_clock.json" --domain "$domain" --quiet --progress 0 --duration 60 --record "$rec" > "$out/run.log" 2>&1 &
-pid=$!
-sleep 4
-kill -9 "$pid"
-killed_ns=$(date +%s%N)
-wait "$pid" 2> /dev/null
+record_and_kill "$rec"
 "$by" bag info "$rec" --json > "$out/info.json" 2> "$out/info.err"; rc=$?
 [ $rc -eq 2 ] || { cat "$out/info.err"; echo "FAIL: bag info on a killed run's MCAP: exit $rc, expected 2"; exit 1; }
 grep -q "killed.mcap: damaged at byte [0-9]*: the file ends without its data section's end and footer: the recording was not closed" "$out/info.err" \

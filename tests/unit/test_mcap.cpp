@@ -1,10 +1,16 @@
 // The MCAP container (libs/mcap): what the writer writes the reader reads back, in every
 // compression; damage of every kind is found, named by its byte offset, and what came before it
-// is kept. (Foxglove's own reader judges the files in evidence.mcap_recording.)
+// is kept. (Foxglove's own reader judges the files in evidence.mcap_recording.) And a sample's
+// CDR read back as JSON by its IDL (record/cdr_json.hpp), as `topic echo` prints it.
 #include "mcap/mcap_reader.hpp"
 #include "mcap/mcap_writer.hpp"
+#include "record/cdr_json.hpp"
 #include "record/recorder.hpp"
+#include "record/sample_serializer.hpp"
 
+#include <brickyard/msgs/LocalizationEstimate.h>
+#include <brickyard/msgs/Path.h>
+#include <brickyard/msgs/TrackWorld.h>
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -158,4 +164,84 @@ TEST(Mcap, ASchemaWithTwoIncludesDefinesBothBeforeItsType) {
   ASSERT_NE(path, std::string::npos);
   EXPECT_LT(idl.find("struct Header"), path);
   EXPECT_LT(idl.find("struct Pose2D"), path);
+}
+
+// ---- a sample's CDR as JSON, by its IDL (record/cdr_json.hpp: topic echo) ----
+
+namespace {
+nlohmann::json round_trip(const std::string& type, const void* message) {
+  brickyard::fw::SampleSerializer s(type);
+  const auto b = s.serialize(message);
+  return brickyard::fw::CdrJson(brickyard::fw::omgidl_schema(brickyard::fw::idl_text(type))).decode(type, b.data, b.size);
+}
+}  // namespace
+
+TEST(CdrJson, EveryFieldOfAMessageReadsBackByItsIdl) {
+  brickyard::msgs::LocalizationEstimate e;
+  e.header().stamp_ns(1234567890123);
+  e.header().seq(7);
+  e.header().frame_id("map");
+  e.x(1.5), e.y(-2.25), e.yaw(0.125), e.status(2), e.update_case(3);
+  e.covariance()[4] = 9.5;
+  e.delta({0.1, 0.2});
+  const auto j = round_trip("brickyard::msgs::LocalizationEstimate", &e);
+  EXPECT_EQ(j["header"]["stamp_ns"], 1234567890123);
+  EXPECT_EQ(j["header"]["seq"], 7);
+  EXPECT_EQ(j["header"]["frame_id"], "map");
+  EXPECT_EQ(j["x"], 1.5);
+  EXPECT_EQ(j["y"], -2.25);
+  EXPECT_EQ(j["status"], 2);
+  EXPECT_EQ(j["update_case"], 3);
+  ASSERT_EQ(j["covariance"].size(), 9u);
+  EXPECT_EQ(j["covariance"][4], 9.5);
+  EXPECT_EQ(j["delta"], nlohmann::json({0.1, 0.2}));
+}
+
+TEST(CdrJson, SequencesOfStructsAndStringsBetweenDoubles) {
+  brickyard::msgs::Path p;
+  for (int i = 0; i < 3; ++i) {
+    brickyard::msgs::Pose2D q;
+    q.x(i), q.y(2.0 * i), q.yaw(0.5);
+    p.poses().push_back(q);
+  }
+  p.speed({10, 20, 30});
+  const auto j = round_trip("brickyard::msgs::Path", &p);
+  ASSERT_EQ(j["poses"].size(), 3u);
+  EXPECT_EQ(j["poses"][2]["y"], 4.0);
+  EXPECT_EQ(j["speed"][1], 20.0);
+  brickyard::msgs::TrackWorld w;
+  w.name("IMS");  // a string, then doubles: alignment after an odd length
+  w.source("x.csv");
+  w.x({1, 2});
+  w.wall_left(true);
+  w.wall_left_offset_m(1.25);
+  brickyard::msgs::Pylon py;
+  py.radius(0.2);
+  w.pylons().push_back(py);
+  const auto k = round_trip("brickyard::msgs::TrackWorld", &w);
+  EXPECT_EQ(k["name"], "IMS");
+  EXPECT_EQ(k["x"][1], 2.0);
+  EXPECT_EQ(k["wall_left"], true);
+  EXPECT_EQ(k["wall_left_offset_m"], 1.25);
+  EXPECT_EQ(k["pylons"][0]["radius"], 0.2);
+}
+
+TEST(CdrJson, BytesThatDoNotFitAndIdlItCannotReadAreNamed) {
+  brickyard::msgs::Path p;
+  p.speed({1, 2, 3});
+  brickyard::fw::SampleSerializer s("brickyard::msgs::Path");
+  const auto b = s.serialize(&p);
+  const brickyard::fw::CdrJson d(brickyard::fw::omgidl_schema(brickyard::fw::idl_text("brickyard::msgs::Path")));
+  try {
+    d.decode("brickyard::msgs::Path", b.data, b.size - 5);
+    FAIL() << "a cut sample decoded";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("at byte"), std::string::npos) << e.what();
+  }
+  try {
+    brickyard::fw::CdrJson("module m {\n struct A {\n  double x;\n  Unknown y;\n };\n};\n");
+    FAIL() << "an unknown type was taken";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("IDL line 4: unknown type 'Unknown'"), std::string::npos) << e.what();
+  }
 }

@@ -1,0 +1,110 @@
+#include "cli/bag_play.hpp"
+
+#include "exec/executive.hpp"  // g_interrupt
+#include "record/recorder.hpp"
+#include "record/recording_info.hpp"
+#include "transport/dds.hpp"
+
+#include <brickyard/msgs/registry.hpp>
+
+#include <fastdds/dds/topic/TopicDataType.hpp>
+#include <fastdds/rtps/common/SerializedPayload.h>
+
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <cstring>
+#include <map>
+#include <memory>
+#include <thread>
+
+namespace brickyard::fw {
+
+namespace {
+void on_signal(int) { g_interrupt = true; }
+
+// One recorded topic's writer and a message object to deserialize its samples into.
+struct Played {
+  DdsWriter* writer = nullptr;
+  std::unique_ptr<eprosima::fastdds::dds::TopicDataType> support;
+  void* sample = nullptr;
+  eprosima::fastrtps::rtps::SerializedPayload_t payload;
+  std::uint64_t count = 0;
+  ~Played() {
+    if (sample) support->deleteData(sample);
+  }
+};
+}  // namespace
+
+int bag_play(const BagPlayOptions& o) {
+  RecordingInfo info;
+  try {
+    info = read_recording_info(o.file);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "error: %s: %s\n", o.file.c_str(), e.what());
+    return 2;
+  }
+  // A damaged file is refused: what it lacks is unknown (bag info reads up to the damage).
+  if (!info.damage.empty()) return std::fprintf(stderr, "error: %s: %s\n", o.file.c_str(), info.damage.c_str()), 2;
+  if (info.messages == 0) return std::fprintf(stderr, "error: %s: the recording holds no samples\n", o.file.c_str()), 2;
+  std::signal(SIGINT, on_signal);
+  std::signal(SIGTERM, on_signal);
+  DdsSettings ds;
+  ds.domain = o.domain;
+  DdsTransport dds(ds);
+  std::map<std::string, std::unique_ptr<Played>> topics;
+  for (const auto& [name, type] : info.topics) {
+    if (!o.only.empty() && !topic_selected(name, o.only)) continue;
+    const auto* entry = msgs::find_type(type.c_str());
+    const auto dot = name.find('.');
+    if (!entry || dot == std::string::npos) {
+      std::fprintf(stderr, "error: %s: topic %s holds %s, which this build does not know\n", o.file.c_str(), name.c_str(), type.c_str());
+      return 2;
+    }
+    auto p = std::make_unique<Played>();
+    p->support.reset(entry->make());
+    p->sample = p->support->createData();
+    p->writer = dds.make_writer(topic_name(name.substr(0, dot), name.substr(dot + 1)), type);
+    topics[name] = std::move(p);
+  }
+  if (topics.empty()) return std::fprintf(stderr, "error: %s: no recorded topic matches --only\n", o.file.c_str()), 2;
+  // Readers elsewhere need a moment to match the new writers before the first sample.
+  std::this_thread::sleep_for(std::chrono::duration<double>(o.preroll_s));
+  using Clock = std::chrono::steady_clock;
+  const auto start = Clock::now();
+  std::int64_t first = -1;
+  std::uint64_t played = 0;
+  std::string error;
+  try {
+    for_each_sample(o.file, [&](const std::string& topic, const std::string&, std::int64_t stamp, const unsigned char* data, std::size_t size) {
+      if (g_interrupt || !error.empty()) return;
+      auto it = topics.find(topic);
+      if (it == topics.end()) return;
+      Played& p = *it->second;
+      if (first < 0) first = stamp;
+      // At the recorded time, `rate` times as fast.
+      const auto due = start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(static_cast<double>(stamp - first) * 1e-9 / o.rate));
+      while (!g_interrupt && Clock::now() < due) std::this_thread::sleep_until(std::min(due, Clock::now() + std::chrono::milliseconds(50)));
+      if (p.payload.max_size < size) p.payload.reserve(static_cast<std::uint32_t>(size));
+      std::memcpy(p.payload.data, data, size);
+      p.payload.length = static_cast<std::uint32_t>(size);
+      p.payload.pos = 0;
+      if (!p.support->deserialize(&p.payload, p.sample)) {
+        error = "sample " + std::to_string(p.count) + " of " + topic + " does not decode as " + p.support->getName();
+        return;
+      }
+      p.writer->write(p.sample);
+      ++p.count;
+      ++played;
+    });
+  } catch (const std::exception& e) {
+    error = e.what();
+  }
+  if (!error.empty()) return std::fprintf(stderr, "error: %s: %s\n", o.file.c_str(), error.c_str()), 2;
+  const double wall = std::chrono::duration<double>(Clock::now() - start).count();
+  std::fprintf(stderr, "bag play: %llu samples of %zu topics in %.2f s%s\n", static_cast<unsigned long long>(played), topics.size(), wall,
+               g_interrupt ? " (interrupted)" : "");
+  return g_interrupt ? 1 : 0;
+}
+
+}  // namespace brickyard::fw

@@ -1,0 +1,23 @@
+#pragma once
+// `brickyard bag play RECORDING`: republishes a recording's topics over DDS, under their own
+// names (NODE.PORT) and types, at the recorded times (`--rate X`: X times as fast), for another
+// process to subscribe: a graph run with `--process`, `brickyard topic echo`, any DDS reader.
+// (Into a graph of the same process, the replay plugins do it: docs/recording.md.)
+#include <string>
+#include <vector>
+
+namespace brickyard::fw {
+
+struct BagPlayOptions {
+  std::string file;
+  int domain = 0;
+  double rate = 1.0;
+  std::vector<std::string> only;  // NODE.PORT patterns ('*' any); empty: every topic
+  double preroll_s = 1.0;         // for readers elsewhere to match the new writers
+};
+
+// 0 played through; 1 interrupted; 2 the file is not a recording, is damaged, or holds a type
+// this build does not know (named).
+int bag_play(const BagPlayOptions& o);
+
+}  // namespace brickyard::fw

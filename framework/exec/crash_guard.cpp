@@ -1,0 +1,207 @@
+#include "exec/crash_guard.hpp"
+
+#include <atomic>
+#include <csignal>
+#include <cstdlib>
+#include <cstring>
+#include <ctime>
+#include <thread>
+
+#include <cstdio>
+
+#include <fcntl.h>
+#include <unistd.h>
+
+namespace brickyard::fw::crash_guard {
+
+namespace {
+
+// Everything the handlers touch is fixed-size and set up before the run: no allocation, no
+// locks, nothing but write(2), open(2), unlink(2) and _exit(2) once a signal has come.
+constexpr int kSlots = 64;  // threads running a plugin at once
+struct Slot {
+  std::atomic<const char*> node{nullptr}, phase{nullptr};
+};
+Slot g_slots[kSlots];
+std::atomic<int> g_next_slot{0};
+thread_local int t_slot = -1;
+thread_local const char* t_node = nullptr;
+thread_local const char* t_phase = nullptr;
+
+char g_summary[4096] = {0};
+constexpr int kShm = 64;
+char g_shm[kShm][256];
+int g_shm_n = 0;
+std::atomic<bool> g_armed{false};
+std::atomic<int> g_signals{0};
+std::atomic<long long> g_first_signal_ms{0};
+
+long long monotonic_ms() {
+  timespec ts{};
+  clock_gettime(CLOCK_MONOTONIC, &ts);  // async-signal-safe
+  return static_cast<long long>(ts.tv_sec) * 1000 + ts.tv_nsec / 1000000;
+}
+
+// A message built in a fixed buffer.
+struct Text {
+  char b[1024];
+  std::size_t n = 0;
+  Text& operator<<(const char* s) {
+    for (; s && *s && n + 1 < sizeof b; ++s) b[n++] = *s;
+    b[n] = '\0';
+    return *this;
+  }
+};
+
+const char* signal_name(int sig) {
+  switch (sig) {
+    case SIGSEGV: return "SIGSEGV (a segmentation fault)";
+    case SIGBUS: return "SIGBUS (a bus error)";
+    case SIGFPE: return "SIGFPE (an arithmetic fault)";
+    case SIGILL: return "SIGILL (an illegal instruction)";
+    case SIGABRT: return "SIGABRT (abort)";
+    default: return "a fatal signal";
+  }
+}
+
+// The reason on stderr and in the summary, the shared memory gone, then the exit.
+[[noreturn]] void die(const Text& reason, int code) {
+  Text line;
+  line << "[brickyard] " << (code == 130 ? "interrupted" : "failed") << ": " << reason.b << "\n";
+  (void)!write(2, line.b, line.n);
+  if (g_summary[0]) {
+    const int fd = open(g_summary, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (fd >= 0) {
+      Text j;
+      j << "{\"result\": \"" << (code == 130 ? "interrupted" : "failed") << "\", \"reason\": \"" << reason.b
+        << "\", \"summary\": \"written by the crash handler: the run could not finish its own\"}\n";
+      (void)!write(fd, j.b, j.n);
+      close(fd);
+    }
+  }
+  for (int i = 0; i < g_shm_n; ++i) unlink(g_shm[i]);
+  _exit(code);
+}
+
+void on_fatal(int sig) {
+  Text r;
+  if (t_node) r << "node '" << t_node << "' crashed with " << signal_name(sig) << " in its " << (t_phase ? t_phase : "call");
+  else r << "the process crashed with " << signal_name(sig) << " outside any node";
+  r << "; the process ends here";
+  die(r, 1);
+}
+
+void on_exit_called() {
+  if (!g_armed.load()) return;
+  Text r;
+  if (t_node) r << "node '" << t_node << "' called exit() in its " << (t_phase ? t_phase : "call") << "; the run did not finish";
+  else r << "exit() was called during the run; the run did not finish";
+  die(r, 1);
+}
+
+// The nodes running a step right now, for a run that does not stop.
+void name_running(Text& r) {
+  bool any = false;
+  for (auto& s : g_slots) {
+    const char* node = s.node.load();
+    if (!node) continue;
+    r << (any ? ", " : "node '") << (any ? "'" : "") << node << "' (in its " << s.phase.load() << ")";
+    any = true;
+  }
+  if (!any) r << "no node was running";
+}
+
+void watchdog() {
+  for (;;) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    const long long first = g_first_signal_ms.load();
+    if (!g_armed.load() || first == 0 || monotonic_ms() - first < 2000) continue;
+    Text r;
+    r << "the run did not stop within 2 s of the signal: ";
+    name_running(r);
+    r << "; forced exit";
+    die(r, 130);
+  }
+}
+
+}  // namespace
+
+void install(const std::string& summary_path) {
+  static bool once = false;
+  std::snprintf(g_summary, sizeof g_summary, "%s", summary_path.c_str());
+  g_armed = true;
+  if (once) return;
+  once = true;
+  struct sigaction sa {};
+  sa.sa_handler = on_fatal;
+  sigemptyset(&sa.sa_mask);
+  sa.sa_flags = SA_RESETHAND;  // a fault inside the handler ends the process the default way
+  for (int sig : {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT}) sigaction(sig, &sa, nullptr);
+  std::atexit(on_exit_called);
+  std::thread(watchdog).detach();
+}
+
+void note_shared_memory() {
+  // The files under /dev/shm this process has mapped (Fast DDS's segments, port files and their
+  // semaphores: it closes their descriptors once mapped, so /proc/self/maps, not fd/).
+  g_shm_n = 0;
+  FILE* f = std::fopen("/proc/self/maps", "r");
+  if (!f) return;
+  char line[512];
+  while (std::fgets(line, sizeof line, f)) {
+    const char* path = std::strstr(line, "/dev/shm/");
+    if (!path || g_shm_n >= kShm) continue;
+    char target[256];
+    std::snprintf(target, sizeof target, "%s", path);
+    target[std::strcspn(target, "\n")] = '\0';
+    const char* deleted = std::strstr(target, " (deleted)");
+    if (deleted) continue;
+    // Beside each Fast DDS file: its lock file (NAME_el), and for a port its semaphore.
+    char el[256], sem[256];
+    std::snprintf(el, sizeof el, "%s_el", target);
+    const char* name = target + 9;
+    sem[0] = '\0';
+    if (std::strncmp(name, "fastrtps_port", 13) == 0) std::snprintf(sem, sizeof sem, "/dev/shm/sem.%s_mutex", name);
+    for (const char* file : {static_cast<const char*>(target), static_cast<const char*>(el), static_cast<const char*>(sem)}) {
+      if (!file[0] || g_shm_n >= kShm) continue;
+      bool seen = false;
+      for (int i = 0; i < g_shm_n; ++i) seen = seen || std::strcmp(g_shm[i], file) == 0;
+      if (!seen) std::snprintf(g_shm[g_shm_n++], sizeof g_shm[0], "%s", file);
+    }
+  }
+  std::fclose(f);
+}
+
+void run_ended() { g_armed = false; }
+
+void interrupted() {
+  // Called from the signal handler: atomics and the exit path only.
+  if (g_signals.fetch_add(1) == 0) {
+    g_first_signal_ms = monotonic_ms();
+    return;
+  }
+  if (!g_armed.load()) _exit(130);
+  Text r;
+  r << "a second signal: ";
+  name_running(r);
+  r << "; forced exit";
+  die(r, 130);
+}
+
+Running::Running(const char* node, const char* phase) : node_(t_node), phase_(t_phase) {
+  if (t_slot < 0) t_slot = g_next_slot.fetch_add(1) % kSlots;
+  slot_ = t_slot;
+  t_node = node;
+  t_phase = phase;
+  g_slots[slot_].phase = phase;
+  g_slots[slot_].node = node;
+}
+
+Running::~Running() {
+  t_node = node_;
+  t_phase = phase_;
+  g_slots[slot_].node = node_;
+  g_slots[slot_].phase = phase_;
+}
+
+}  // namespace brickyard::fw::crash_guard

@@ -1,0 +1,40 @@
+#pragma once
+// What a run says and leaves when a plugin takes its process down (issue 19, docs/reliability.md):
+// a segmentation fault, abort(), a bus or arithmetic fault, or exit() from a step. The process
+// cannot go on, but it does not die mute: a signal handler (async-signal-safe: write(2) and
+// preformatted text only) prints which node was running and in which phase, writes a minimal
+// summary.json when the run has an --out folder, removes the process's Fast DDS shared-memory
+// files (a process killed by a signal leaves its segment in /dev/shm), and ends with exit code 1.
+// The recording keeps what it wrote up to the last second (docs/recording.md).
+//
+// The same for a run that does not stop: after SIGINT or SIGTERM the run has 2 s to end; a node
+// stuck in a step past that, or a second signal, forces the exit (code 130), naming the node.
+#include <string>
+
+namespace brickyard::fw::crash_guard {
+
+// Installs the handlers (once per process). summary_path: where a dead run's summary goes, or empty.
+void install(const std::string& summary_path);
+// After the transport is up: the /dev/shm files this process holds open, to remove on a crash.
+void note_shared_memory();
+// Disarms the exit() trap and the interrupt watchdog: the run has ended normally.
+void run_ended();
+// The first SIGINT/SIGTERM: from now on the run has 2 s; a second one forces the exit at once.
+void interrupted();
+
+// Which node this thread is running, and in which phase (construction, configure, step, ...):
+// set around every call into a plugin.
+class Running {
+ public:
+  Running(const char* node, const char* phase);
+  ~Running();
+  Running(const Running&) = delete;
+  Running& operator=(const Running&) = delete;
+
+ private:
+  const char* node_;
+  const char* phase_;
+  int slot_;
+};
+
+}  // namespace brickyard::fw::crash_guard

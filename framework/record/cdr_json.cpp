@@ -1,0 +1,236 @@
+#include "record/cdr_json.hpp"
+
+#include <cctype>
+#include <cstring>
+#include <functional>
+#include <memory>
+#include <stdexcept>
+
+namespace brickyard::fw {
+
+// A member's type: a primitive, a string, a struct (by name), or a sequence of / array of one.
+struct CdrJson::Type {
+  enum Kind { Primitive, String, Struct, Sequence, Array } kind = Primitive;
+  std::string name;          // primitive or struct name
+  std::size_t size = 0;      // primitive: bytes; array: length
+  std::shared_ptr<Type> of;  // sequence, array: the element
+};
+struct CdrJson::Member {
+  std::string name;
+  Type type;
+};
+
+namespace {
+
+struct Token {
+  std::string text;
+  int line;
+};
+
+std::vector<Token> tokenize(const std::string& idl) {
+  std::vector<Token> out;
+  int line = 1;
+  for (std::size_t i = 0; i < idl.size();) {
+    const char c = idl[i];
+    if (c == '\n') ++line, ++i;
+    else if (std::isspace(static_cast<unsigned char>(c))) ++i;
+    else if (c == '#' || (c == '/' && i + 1 < idl.size() && idl[i + 1] == '/')) {  // a directive or a comment: to the line's end
+      while (i < idl.size() && idl[i] != '\n') ++i;
+    } else if (c == '/' && i + 1 < idl.size() && idl[i + 1] == '*') {
+      const std::size_t end = idl.find("*/", i + 2);
+      for (std::size_t k = i; k < std::min(end, idl.size()); ++k) line += idl[k] == '\n';
+      i = end == std::string::npos ? idl.size() : end + 2;
+    } else if (std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == ':') {
+      std::size_t j = i;
+      while (j < idl.size() && (std::isalnum(static_cast<unsigned char>(idl[j])) || idl[j] == '_' || idl[j] == ':')) ++j;
+      out.push_back({idl.substr(i, j - i), line});
+      i = j;
+    } else {
+      out.push_back({std::string(1, c), line});
+      ++i;
+    }
+  }
+  return out;
+}
+
+std::size_t primitive_size(const std::string& t) {
+  static const std::map<std::string, std::size_t> sizes = {
+      {"boolean", 1}, {"octet", 1}, {"char", 1}, {"int8", 1}, {"uint8", 1}, {"int16", 2}, {"uint16", 2}, {"short", 2},
+      {"int32", 4}, {"uint32", 4}, {"long", 4}, {"float", 4}, {"int64", 8}, {"uint64", 8}, {"double", 8}};
+  const auto it = sizes.find(t);
+  return it == sizes.end() ? 0 : it->second;
+}
+
+std::string bare(const std::string& name) {
+  const auto at = name.rfind("::");
+  return at == std::string::npos ? name : name.substr(at + 2);
+}
+
+// Reading CDR: alignment from the first byte after the encapsulation header.
+struct Reader {
+  const unsigned char* p;
+  std::size_t n, at = 4;
+  bool little = true;
+  [[noreturn]] void fail(const std::string& what) const {
+    throw std::runtime_error(what + " at byte " + std::to_string(at) + " of " + std::to_string(n));
+  }
+  void align(std::size_t k) {
+    const std::size_t off = (at - 4) % k;
+    if (off) at += k - off;
+  }
+  const unsigned char* take(std::size_t k) {
+    if (at > n || n - at < k) fail("the sample ends early");
+    const unsigned char* q = p + at;
+    at += k;
+    return q;
+  }
+  template <typename T>
+  T num() {
+    align(sizeof(T));
+    const unsigned char* q = take(sizeof(T));
+    unsigned char b[sizeof(T)];
+    for (std::size_t i = 0; i < sizeof(T); ++i) b[i] = little ? q[i] : q[sizeof(T) - 1 - i];
+    T v;
+    std::memcpy(&v, b, sizeof(T));
+    return v;
+  }
+};
+
+}  // namespace
+
+CdrJson::CdrJson(const std::string& idl) {
+  const std::vector<Token> t = tokenize(idl);
+  std::size_t i = 0;
+  std::vector<std::string> scope;
+  auto fail = [&](const std::string& what) {
+    const int line = i < t.size() ? t[i].line : (t.empty() ? 1 : t.back().line);
+    throw std::invalid_argument("IDL line " + std::to_string(line) + ": " + what);
+  };
+  auto expect = [&](const std::string& s) {
+    if (i >= t.size() || t[i].text != s) fail("expected '" + s + "'" + (i < t.size() ? ", found '" + t[i].text + "'" : ""));
+    ++i;
+  };
+  auto number = [&]() -> std::size_t {
+    if (i >= t.size() || t[i].text.find_first_not_of("0123456789") != std::string::npos) fail("expected a number");
+    return static_cast<std::size_t>(std::stoul(t[i++].text));
+  };
+  std::function<Type()> type = [&]() -> Type {
+    if (i >= t.size()) fail("expected a type");
+    const std::string name = t[i++].text;
+    Type ty;
+    if (name == "sequence") {
+      expect("<");
+      ty.kind = Type::Sequence;
+      ty.of = std::make_shared<Type>(type());
+      if (i < t.size() && t[i].text == ",") ++i, number();  // a bound: not checked
+      expect(">");
+    } else if (name == "string") {
+      ty.kind = Type::String;
+      if (i < t.size() && t[i].text == "<") ++i, number(), expect(">");
+    } else if (const std::size_t k = primitive_size(name)) {
+      ty.kind = Type::Primitive, ty.name = name, ty.size = k;
+    } else {
+      if (!structs_.count(name) && !structs_.count(bare(name))) fail("unknown type '" + name + "' (defined after its use?)");
+      ty.kind = Type::Struct, ty.name = bare(name);
+    }
+    return ty;
+  };
+  while (i < t.size()) {
+    if (t[i].text == "module") {
+      ++i;
+      if (i >= t.size()) fail("expected a module name");
+      scope.push_back(t[i++].text);
+      expect("{");
+    } else if (t[i].text == "}" && !scope.empty()) {
+      ++i;
+      expect(";");
+      scope.pop_back();
+    } else if (t[i].text == "struct") {
+      ++i;
+      if (i >= t.size()) fail("expected a struct name");
+      const std::string name = t[i++].text;
+      expect("{");
+      std::vector<Member> members;
+      while (i < t.size() && t[i].text != "}") {
+        Member m;
+        m.type = type();
+        if (i >= t.size()) fail("expected a member name");
+        m.name = t[i++].text;
+        if (i < t.size() && t[i].text == "[") {
+          ++i;
+          auto el = std::make_shared<Type>(m.type);
+          m.type = Type{};
+          m.type.kind = Type::Array;
+          m.type.size = number();
+          m.type.of = el;
+          expect("]");
+        }
+        expect(";");
+        members.push_back(std::move(m));
+      }
+      expect("}");
+      expect(";");
+      std::string qualified;
+      for (const auto& s : scope) qualified += s + "::";
+      auto def = std::make_shared<std::vector<Member>>(std::move(members));
+      structs_[qualified + name] = def;
+      structs_[name] = def;
+    } else {
+      fail("expected module, struct or the end of a module, found '" + t[i].text + "'");
+    }
+  }
+  if (!scope.empty()) fail("module '" + scope.back() + "' is not closed");
+}
+
+nlohmann::json CdrJson::decode(const std::string& type, const unsigned char* data, std::size_t size) const {
+  Reader r{data, size};
+  if (size < 4) r.fail("no encapsulation header");
+  if (data[0] != 0 || data[1] > 1) r.fail("not plain CDR (encapsulation " + std::to_string(data[0]) + " " + std::to_string(data[1]) + ")");
+  r.little = data[1] == 1;
+  std::function<nlohmann::json(const Type&)> value;
+  std::function<nlohmann::json(const std::string&)> object = [&](const std::string& name) {
+    const auto it = structs_.find(name);
+    if (it == structs_.end()) throw std::runtime_error("no struct '" + name + "' in the IDL");
+    nlohmann::json o = nlohmann::json::object();
+    for (const Member& m : *it->second) o[m.name] = value(m.type);
+    return o;
+  };
+  value = [&](const Type& ty) -> nlohmann::json {
+    switch (ty.kind) {
+      case Type::Primitive: {
+        const std::string& n = ty.name;
+        if (n == "double") return r.num<double>();
+        if (n == "float") return r.num<float>();
+        if (n == "boolean") return r.num<std::uint8_t>() != 0;
+        if (n == "int8") return r.num<std::int8_t>();
+        if (n == "uint8" || n == "octet" || n == "char") return r.num<std::uint8_t>();
+        if (n == "int16" || n == "short") return r.num<std::int16_t>();
+        if (n == "uint16") return r.num<std::uint16_t>();
+        if (n == "int32" || n == "long") return r.num<std::int32_t>();
+        if (n == "uint32") return r.num<std::uint32_t>();
+        if (n == "int64") return r.num<std::int64_t>();
+        return r.num<std::uint64_t>();
+      }
+      case Type::String: {
+        const std::uint32_t len = r.num<std::uint32_t>();
+        const unsigned char* q = r.take(len);
+        return std::string(reinterpret_cast<const char*>(q), len > 0 && q[len - 1] == '\0' ? len - 1 : len);
+      }
+      case Type::Struct:
+        return object(ty.name);
+      case Type::Sequence:
+      case Type::Array: {
+        const std::size_t count = ty.kind == Type::Array ? ty.size : r.num<std::uint32_t>();
+        // Each element takes at least a byte: a count past what is left is damage, not an allocation.
+        if (count > r.n - std::min(r.at, r.n)) r.fail("a sequence of " + std::to_string(count) + " elements");
+        nlohmann::json a = nlohmann::json::array();
+        for (std::size_t k = 0; k < count; ++k) a.push_back(value(*ty.of));
+        return a;
+      }
+    }
+    return nullptr;
+  };
+  return object(bare(type));
+}
+
+}  // namespace brickyard::fw

@@ -1,0 +1,32 @@
+#pragma once
+// A sample's CDR bytes as JSON, read by its type's IDL text (the text a recording and the live
+// server carry): `brickyard topic echo` and `brickyard bag echo` print what they read without
+// knowing the types at compile time. The IDL is the subset the message definitions use: modules,
+// structs, the primitive types, string, sequence<T> and fixed arrays; CDR as Fast DDS writes it
+// (XCDR1, either byte order, each primitive aligned to its size from the end of the 4-byte
+// encapsulation header).
+#include <nlohmann/json.hpp>
+
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace brickyard::fw {
+
+class CdrJson {
+ public:
+  // Parses the IDL; throws std::invalid_argument naming the line of what it cannot read.
+  explicit CdrJson(const std::string& idl);
+  // Decodes one sample of `type` ("brickyard::msgs::Imu", or the bare name); throws
+  // std::runtime_error naming the byte offset when the bytes do not fit the type.
+  nlohmann::json decode(const std::string& type, const unsigned char* data, std::size_t size) const;
+
+  struct Type;
+  struct Member;
+
+ private:
+  std::map<std::string, std::shared_ptr<std::vector<Member>>> structs_;  // by name, qualified and bare
+};
+
+}  // namespace brickyard::fw

@@ -1,0 +1,83 @@
+// testing.fault: a node that fails the way a real plugin can, at a chosen step, so the host's
+// answer to each is testable from a graph (docs/reliability.md): it publishes a Scalar counter
+// each step until step `at_step`, then throws, segfaults, aborts, calls exit(0), hangs in its
+// step, or goes silent.
+#include <brickyard/msgs/Scalar.h>
+#include <brickyard/plugin.hpp>
+
+#include <chrono>
+#include <csignal>
+#include <cstdlib>
+#include <stdexcept>
+#include <thread>
+
+namespace {
+
+using namespace brickyard;
+
+enum class Mode { none, throw_, segfault, abort_, exit_, hang, silent };
+
+struct Settings {
+  double rate_hz = 50;
+  Mode mode = Mode::none;
+  std::int64_t at_step = 10;
+};
+
+ParamBinding<Settings> bindings() {
+  ParamBinding<Settings> b;
+  b.bind("rate_hz", &Settings::rate_hz).in_unit("Hz").range(1e-3, 1e4);
+  b.bind_choice("mode",
+                {{"none", Mode::none}, {"throw", Mode::throw_}, {"segfault", Mode::segfault}, {"abort", Mode::abort_}, {"exit", Mode::exit_},
+                 {"hang", Mode::hang}, {"silent", Mode::silent}},
+                &Settings::mode)
+      .doc("what happens in step at_step: throw an exception, a segmentation fault (SIGSEGV), abort(), exit(0), never return, "
+           "or publish nothing from then on");
+  b.bind("at_step", &Settings::at_step).at_least(0).doc("the step (from 0) the fault happens in");
+  return b;
+}
+
+class Fault : public Plugin {
+ public:
+  static Manifest manifest() {
+    return Manifest("testing.fault", "1.0.0")
+        .describe("Publishes a counter each step, then fails as told at a chosen step (fault injection)")
+        .output<msgs::Scalar>("out", "the step count, until the fault")
+        .parameters(bindings())
+        .periodic("rate_hz");
+  }
+  void configure(Context& ctx) override {
+    s_ = bindings().read(ctx.params());
+    out_ = ctx.output<msgs::Scalar>("out");
+  }
+  void step(Context& ctx) override {
+    if (steps_ == s_.at_step) {
+      switch (s_.mode) {
+        case Mode::throw_: throw std::runtime_error("fault injected: throw at step " + std::to_string(steps_));
+        case Mode::segfault: std::raise(SIGSEGV); break;
+        case Mode::abort_: std::abort();
+        case Mode::exit_: std::exit(0);
+        case Mode::hang:
+          for (;;) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+        case Mode::silent:
+        case Mode::none: break;
+      }
+    }
+    const bool quiet = s_.mode == Mode::silent && steps_ >= s_.at_step;
+    ++steps_;
+    if (quiet) return;
+    msgs::Scalar m;
+    m.header().stamp_ns(ctx.now_ns());
+    m.header().seq(static_cast<std::uint32_t>(steps_));
+    m.value(static_cast<double>(steps_));
+    out_.publish(std::move(m));
+  }
+
+ private:
+  Settings s_;
+  std::int64_t steps_ = 0;
+  Output<msgs::Scalar> out_;
+};
+
+}  // namespace
+
+BRICKYARD_PLUGINS(Fault)

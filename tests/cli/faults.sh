@@ -1,0 +1,69 @@
+#!/usr/bin/env bash
+# A plugin that takes its process down (docs/reliability.md): for each fault testing.fault can
+# inject at its step 120 — an exception, a segmentation fault, abort(), exit(0) — on the sim and
+# the real clock, the run ends with exit 1, stderr names the node, the phase and the fault,
+# summary.json is written with the reason, the recording keeps all but the last second before the
+# fault, and no shared memory is left in /dev/shm. A node that
+# hangs in its step: SIGINT ends the run within 2 s naming it (exit 130), and a second signal
+# ends it at once.
+set -u
+by=$1; graphs=$2; domain=$3; out=$4
+rm -rf "$out"; mkdir -p "$out"
+for clock in sim real; do
+  for mode in throw segfault abort exit; do
+    dir="$out/$clock-$mode"
+    graph="$graphs/fault.json"; [ $clock = real ] && graph="$graphs/fault_real.json"
+    "$by" run "$graph" --domain "$domain" --quiet --progress 0 --set fault.mode=$mode \
+      --out "$dir" --record "$out/$clock-$mode.mcap" > "$dir.log" 2>&1 &
+    pid=$!
+    wait $pid; rc=$?
+    case $mode in
+      throw) want="node 'fault' (testing.fault) failed in step: fault injected: throw at step 120" ;;
+      segfault) want="node 'fault' crashed with SIGSEGV (a segmentation fault) in its step" ;;
+      abort) want="node 'fault' crashed with SIGABRT (abort) in its step" ;;
+      exit) want="node 'fault' called exit() in its step" ;;
+    esac
+    [ $rc -eq 1 ] || { cat "$dir.log"; echo "FAIL: $clock/$mode: exit $rc, expected 1"; exit 1; }
+    grep -qF "$want" "$dir.log" || { cat "$dir.log"; echo "FAIL: $clock/$mode: stderr lacks: $want"; exit 1; }
+    grep -qF "$want" "$dir/summary.json" || { cat "$dir/summary.json"; echo "FAIL: $clock/$mode: the summary lacks the reason"; exit 1; }
+    # What was published up to a second before the fault is in the recording.
+    "$by" bag info "$out/$clock-$mode.mcap" --json > "$dir.info.json" 2> /dev/null
+    python3 - "$dir.info.json" "$clock" "$mode" <<'PY' || exit 1
+import json, sys
+info = json.load(open(sys.argv[1]))
+n = {t["name"]: t["count"] for t in info["topics"]}.get("fault.out", 0)
+print(f"{sys.argv[2]}/{sys.argv[3]}: exit 1, named; the recording kept {n} of the 120 samples before the fault")
+sys.exit(0 if n >= 70 else 1)  # all but the last second's 50, at most
+PY
+    # Its Fast DDS shared memory is gone: the participant's port files, named by this test's own
+    # domain (7400 + 250 x domain + 10 and 11), their lock files and semaphores.
+    left=$(ls /dev/shm | grep -E "fastrtps_port($((7400 + 250 * domain + 10))|$((7400 + 250 * domain + 11)))" || true)
+    [ -z "$left" ] || { echo "$left"; echo "FAIL: $clock/$mode: the process left its shared memory in /dev/shm"; exit 1; }
+  done
+done
+# A node stuck in its step: SIGINT, and the run ends within 2 s (the watchdog), named.
+"$by" run "$graphs/fault.json" --domain "$domain" --quiet --progress 0 --set fault.mode=hang --duration 600 --out "$out/hang" \
+  > "$out/hang.log" 2>&1 &
+pid=$!
+sleep 1.5
+start=$(date +%s%N)
+kill -INT $pid
+wait $pid; rc=$?
+took=$(( ($(date +%s%N) - start) / 1000000 ))
+echo "hang: SIGINT, exit $rc after $took ms"
+[ $rc -eq 130 ] && [ $took -lt 3000 ] || { cat "$out/hang.log"; echo "FAIL: a hung node kept the run past 2 s of SIGINT"; exit 1; }
+grep -qF "the run did not stop within 2 s of the signal: node 'fault' (in its step); forced exit" "$out/hang.log" \
+  || { cat "$out/hang.log"; echo "FAIL: the hung node was not named"; exit 1; }
+grep -q '"result": "interrupted"' "$out/hang/summary.json" || { cat "$out/hang/summary.json"; echo "FAIL: no summary"; exit 1; }
+# A second signal: at once.
+"$by" run "$graphs/fault.json" --domain "$domain" --quiet --progress 0 --set fault.mode=hang --duration 600 > "$out/hang2.log" 2>&1 &
+pid=$!
+sleep 1.5
+start=$(date +%s%N)
+kill -INT $pid; sleep 0.2; kill -TERM $pid
+wait $pid; rc=$?
+took=$(( ($(date +%s%N) - start) / 1000000 ))
+echo "hang: two signals, exit $rc after $took ms"
+[ $rc -eq 130 ] && [ $took -lt 1000 ] && grep -qF "a second signal: node 'fault' (in its step); forced exit" "$out/hang2.log" \
+  || { cat "$out/hang2.log"; echo "FAIL: a second signal did not force the exit"; exit 1; }
+echo "faults: ok"
