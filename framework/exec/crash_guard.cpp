@@ -1,5 +1,6 @@
 #include "exec/crash_guard.hpp"
 
+#include <algorithm>
 #include <atomic>
 #include <csignal>
 #include <cstdlib>
@@ -21,6 +22,7 @@ namespace {
 constexpr int kSlots = 64;  // threads running a plugin at once
 struct Slot {
   std::atomic<const char*> node{nullptr}, phase{nullptr};
+  std::atomic<long long> since_ms{0}, limit_ms{0};  // a step with a deadline: when it began, when to give up on it
 };
 Slot g_slots[kSlots];
 std::atomic<int> g_next_slot{0};
@@ -114,6 +116,16 @@ void name_running(Text& r) {
 void watchdog() {
   for (;;) {
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    for (auto& slot : g_slots) {
+      const long long limit = slot.limit_ms.load(), since = slot.since_ms.load();
+      const char* node = slot.node.load();
+      if (!g_armed.load() || limit <= 0 || !node || monotonic_ms() - since < limit) continue;
+      char secs[32];
+      std::snprintf(secs, sizeof secs, "%.1f", static_cast<double>(monotonic_ms() - since) / 1000.0);
+      Text r;
+      r << "node '" << node << "' has been in its step for " << secs << " s, far past its deadline (deadline_s); the process ends here";
+      die(r, 1);
+    }
     const long long first = g_first_signal_ms.load();
     if (!g_armed.load() || first == 0 || monotonic_ms() - first < 2000) continue;
     Text r;
@@ -188,20 +200,28 @@ void interrupted() {
   die(r, 130);
 }
 
-Running::Running(const char* node, const char* phase) : node_(t_node), phase_(t_phase) {
+Running::Running(const char* node, const char* phase, double deadline_s) : node_(t_node), phase_(t_phase) {
   if (t_slot < 0) t_slot = g_next_slot.fetch_add(1) % kSlots;
   slot_ = t_slot;
   t_node = node;
   t_phase = phase;
-  g_slots[slot_].phase = phase;
-  g_slots[slot_].node = node;
+  Slot& s = g_slots[slot_];
+  s.limit_ms = 0;
+  s.phase = phase;
+  s.node = node;
+  if (deadline_s > 0) {
+    s.since_ms = monotonic_ms();
+    s.limit_ms = static_cast<long long>(std::max(2 * deadline_s, deadline_s + 1.0) * 1000);
+  }
 }
 
 Running::~Running() {
   t_node = node_;
   t_phase = phase_;
-  g_slots[slot_].node = node_;
-  g_slots[slot_].phase = phase_;
+  Slot& s = g_slots[slot_];
+  s.limit_ms = 0;
+  s.node = node_;
+  s.phase = phase_;
 }
 
 }  // namespace brickyard::fw::crash_guard

@@ -23,10 +23,12 @@ void run_ended();
 void interrupted();
 
 // Which node this thread is running, and in which phase (construction, configure, step, ...):
-// set around every call into a plugin.
+// set around every call into a plugin. deadline_s > 0: a step still running at twice its
+// deadline (at least 1 s past it) cannot be waited for: the watchdog names it and ends the
+// process (exit 1); one that returns late fails the run the ordinary way (the executive).
 class Running {
  public:
-  Running(const char* node, const char* phase);
+  Running(const char* node, const char* phase, double deadline_s = 0);
   ~Running();
   Running(const Running&) = delete;
   Running& operator=(const Running&) = delete;

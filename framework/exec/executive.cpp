@@ -101,7 +101,9 @@ void Executive::request_stop(RunResult r, std::string reason) {
 
 bool Executive::call(NodeRuntime& n, const char* phase, const std::function<void()>& f) {
   try {
-    const crash_guard::Running running(n.name.c_str(), phase);  // named if the plugin takes the process down
+    // Named if the plugin takes the process down, or its step hangs far past its deadline.
+    const bool step = std::string_view(phase) == "step";
+    const crash_guard::Running running(n.name.c_str(), phase, step ? n.rn->decl->deadline_s : 0.0);
     f();
     return true;
   } catch (const BadInput& e) {
@@ -126,10 +128,20 @@ void Executive::step(NodeRuntime& n, Trigger t) {
 
 bool Executive::step_body(NodeRuntime& n, Trigger t) {
   n.trigger = std::move(t);
-  // The wall clock only with --profile: the host's own measurement, never seen by a node.
-  const auto t0 = opt_.profile ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point{};
+  // The wall clock only with --profile or a step deadline: the host's own measurement, never seen by a node.
+  const double deadline = n.rn->decl->deadline_s;
+  const auto t0 = opt_.profile || deadline > 0 ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point{};
   const bool ok = call(n, "step", [&] { n.instance->step(*n.ctx); });
-  if (opt_.profile) n.step_wall_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (opt_.profile || deadline > 0) {
+    const double took = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (opt_.profile) n.step_wall_s += took;
+    // The node's step deadline (wall time; docs/reliability.md): a step that took longer fails the run.
+    if (deadline > 0 && took > deadline) {
+      char msg[160];
+      std::snprintf(msg, sizeof msg, "'s step took %.3f s, past its deadline of %.3f s (deadline_s)", took, deadline);
+      request_stop(RunResult::failed, "node '" + n.name + "' (" + n.plugin_name() + ")" + msg);
+    }
+  }
   return ok;
 }
 

@@ -206,7 +206,7 @@ GraphDecl parse_graph_text(const std::string& text, const std::string& file, con
       }
       const json& n = it.value();
       if (!c.expect(n, json::value_t::object, "object", ptr)) continue;
-      c.only_keys(n, {"plugin", "params", "process", "description"}, ptr);
+      c.only_keys(n, {"plugin", "params", "process", "deadline_s", "description"}, ptr);
       NodeDecl nd;
       nd.name = it.key();
       if (!n.contains("plugin")) c.err(ptr, "missing key \"plugin\"");
@@ -216,6 +216,11 @@ GraphDecl parse_graph_text(const std::string& text, const std::string& file, con
       if (n.contains("process") && c.expect(n["process"], json::value_t::string, "string", ptr + "/process")) {
         nd.process = n["process"];
         if (!std::regex_match(nd.process, kIdent)) c.err(ptr + "/process", "process name \"" + nd.process + "\" must be an identifier");
+      }
+      if (n.contains("deadline_s") && c.expect(n["deadline_s"], json::value_t::number_float, "number", ptr + "/deadline_s")) {
+        if (!(n["deadline_s"].get<double>() > 0 && n["deadline_s"].get<double>() <= 3600))
+          c.err(ptr + "/deadline_s", "expected seconds, more than 0 and at most 3600, found " + n["deadline_s"].dump());
+        else nd.deadline_s = n["deadline_s"].get<double>();
       }
       if (nd.process.empty()) nd.process = kDefaultProcess;
       nd.param_origin = origin[nd.name];

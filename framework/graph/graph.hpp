@@ -13,6 +13,7 @@ struct NodeDecl {
   std::string name;
   std::string plugin;
   std::string process;            // empty: the default process "main"
+  double deadline_s = 0;          // a step longer than this fails the run (wall time; 0: none; docs/reliability.md)
   nlohmann::json params = nlohmann::json::object();
   std::map<std::string, std::string> param_origin;  // param -> "--set ..." when overridden on the command line
 };

@@ -5,7 +5,8 @@
 # summary.json is written with the reason, the recording keeps all but the last second before the
 # fault, and no shared memory is left in /dev/shm. A node that
 # hangs in its step: SIGINT ends the run within 2 s naming it (exit 130), and a second signal
-# ends it at once.
+# ends it at once. A node's step deadline (deadline_s): a late step fails the run, a stuck one
+# ends it.
 set -u
 by=$1; graphs=$2; domain=$3; out=$4
 rm -rf "$out"; mkdir -p "$out"
@@ -66,4 +67,17 @@ took=$(( ($(date +%s%N) - start) / 1000000 ))
 echo "hang: two signals, exit $rc after $took ms"
 [ $rc -eq 130 ] && [ $took -lt 1000 ] && grep -qF "a second signal: node 'fault' (in its step); forced exit" "$out/hang2.log" \
   || { cat "$out/hang2.log"; echo "FAIL: a second signal did not force the exit"; exit 1; }
+# Step deadlines (deadline_s 0.3 s): a step that takes 0.8 s fails the run when it returns; one
+# that never returns is given up on at 1.3 s (twice the deadline, at least a second past it).
+"$by" run "$graphs/fault_deadline.json" --domain "$domain" --quiet --progress 0 --set fault.mode=slow --out "$out/slow" > "$out/slow.log" 2>&1
+rc=$?
+[ $rc -eq 1 ] && grep -q "node 'fault' (testing.fault)'s step took 0.8[0-9]* s, past its deadline of 0.300 s (deadline_s)" "$out/slow.log" \
+  && grep -q '"result": "failed"' "$out/slow/summary.json" || { cat "$out/slow.log"; echo "FAIL: a step past its deadline"; exit 1; }
+start=$(date +%s%N)
+"$by" run "$graphs/fault_deadline.json" --domain "$domain" --quiet --progress 0 --set fault.mode=hang --duration 600 > "$out/stuck.log" 2>&1
+rc=$?
+took=$(( ($(date +%s%N) - start) / 1000000 ))
+echo "deadline: a slow step failed the run; a stuck step ended it after $took ms, exit $rc"
+[ $rc -eq 1 ] && [ $took -lt 4000 ] && grep -q "node 'fault' has been in its step for 1.[0-9] s, far past its deadline (deadline_s)" "$out/stuck.log" \
+  || { cat "$out/stuck.log"; echo "FAIL: a step stuck past its deadline"; exit 1; }
 echo "faults: ok"

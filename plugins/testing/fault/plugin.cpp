@@ -1,7 +1,7 @@
 // testing.fault: a node that fails the way a real plugin can, at a chosen step, so the host's
 // answer to each is testable from a graph (docs/reliability.md): it publishes a Scalar counter
 // each step until step `at_step`, then throws, segfaults, aborts, calls exit(0), hangs in its
-// step, or goes silent.
+// step, takes `slow_s` of wall time in it, or goes silent.
 #include <brickyard/msgs/Scalar.h>
 #include <brickyard/plugin.hpp>
 
@@ -15,12 +15,13 @@ namespace {
 
 using namespace brickyard;
 
-enum class Mode { none, throw_, segfault, abort_, exit_, hang, silent };
+enum class Mode { none, throw_, segfault, abort_, exit_, hang, slow, silent };
 
 struct Settings {
   double rate_hz = 50;
   Mode mode = Mode::none;
   std::int64_t at_step = 10;
+  double slow_s = 0.8;
 };
 
 ParamBinding<Settings> bindings() {
@@ -28,11 +29,12 @@ ParamBinding<Settings> bindings() {
   b.bind("rate_hz", &Settings::rate_hz).in_unit("Hz").range(1e-3, 1e4);
   b.bind_choice("mode",
                 {{"none", Mode::none}, {"throw", Mode::throw_}, {"segfault", Mode::segfault}, {"abort", Mode::abort_}, {"exit", Mode::exit_},
-                 {"hang", Mode::hang}, {"silent", Mode::silent}},
+                 {"hang", Mode::hang}, {"slow", Mode::slow}, {"silent", Mode::silent}},
                 &Settings::mode)
       .doc("what happens in step at_step: throw an exception, a segmentation fault (SIGSEGV), abort(), exit(0), never return, "
-           "or publish nothing from then on");
+           "take slow_s of wall time and go on, or publish nothing from then on");
   b.bind("at_step", &Settings::at_step).at_least(0).doc("the step (from 0) the fault happens in");
+  b.bind("slow_s", &Settings::slow_s).in_unit("s").range(0, 60).doc("mode slow: the wall time that step takes");
   return b;
 }
 
@@ -58,6 +60,7 @@ class Fault : public Plugin {
         case Mode::exit_: std::exit(0);
         case Mode::hang:
           for (;;) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+        case Mode::slow: std::this_thread::sleep_for(std::chrono::duration<double>(s_.slow_s)); break;
         case Mode::silent:
         case Mode::none: break;
       }
