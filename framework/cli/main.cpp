@@ -342,11 +342,17 @@ int cmd_map(const Args& a) {
   }
   if (!info.damage.empty()) usage_error(rec, info.damage);
   if (info.messages == 0) usage_error(rec, "the recording holds no samples");
-  if (info.clock != "sim")
-    usage_error(rec, "recorded on the " + (info.clock.empty() ? std::string("unknown") : info.clock) +
-                         " clock: map build replays a sim-clock recording (a real drive's, re-timed: not yet; docs/mapping.md)");
+  if (info.clock != "sim" && info.clock != "real")
+    usage_error(rec, "recorded on the " + (info.clock.empty() ? std::string("unknown") : info.clock) + " clock: neither sim nor real");
+  // A real drive's recording (Unix times) is re-timed onto the sim clock from its first sample.
+  std::int64_t first_ns = 0;
+  if (info.clock == "real") {
+    bool any = false;
+    for (const auto& t : read_topic_stats(rec))
+      if (t.count) first_ns = any ? std::min(first_ns, t.first_ns) : t.first_ns, any = true;
+  }
   for (const auto& arg : a.args)
-    for (const char* ours : {"recording=", "map_file=", "track_file=", "duration="})
+    for (const char* ours : {"recording=", "map_file=", "track_file=", "duration=", "retime_from_ns="})
       if (arg.rfind(ours, 0) == 0) usage_error("--arg " + arg, "map build sets this one itself");
   std::error_code ec;
   fs::create_directories(a.out, ec);
@@ -363,8 +369,9 @@ int cmd_map(const Args& a) {
   args.push_back("map_file=" + map.string());
   args.push_back("track_file=" + track.string());
   char duration[64];
-  std::snprintf(duration, sizeof duration, "duration=%.3f", static_cast<double>(info.last_ns) * 1e-9 + 0.1);
+  std::snprintf(duration, sizeof duration, "duration=%.3f", static_cast<double>(info.last_ns - first_ns) * 1e-9 + 0.1);
   args.push_back(duration);
+  if (info.clock == "real") args.push_back("retime_from_ns=" + std::to_string(first_ns));
   Args run = a;
   run.no_report = true;  // DIR gets the summary; the recording is the input, not recorded again
   const int rc = run_graph(run, parse_graph_text(kMapBuildGraph, "configs/map_build.json (built into brickyard)", a.sets, args), false);

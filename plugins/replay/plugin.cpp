@@ -34,6 +34,7 @@ using namespace brickyard;
 struct Settings {
   std::string file, topic;
   double rate_hz = 1000;
+  std::int64_t retime_from_ns = -1;
 };
 
 ParamBinding<Settings> bindings() {
@@ -41,6 +42,11 @@ ParamBinding<Settings> bindings() {
   b.bind("file", &Settings::file).doc("the recording (brickyard run --record FILE)");
   b.bind("topic", &Settings::topic).doc("the recorded topic, NODE.PORT as in the recording");
   b.bind("rate_hz", &Settings::rate_hz).in_unit("Hz").at_least(1).doc("how often due samples are sent");
+  b.bind("retime_from_ns", &Settings::retime_from_ns)
+      .in_unit("ns")
+      .at_least(-1)
+      .doc("a real-clock recording on the sim clock: every sample's time and header stamp less this (the recording's "
+           "first time, brickyard map build gives it), so the drive starts at 0; -1: off");
   return b;
 }
 
@@ -56,7 +62,8 @@ class Replay : public Plugin {
   }
 
   void configure(Context& ctx) override {
-    const Settings s = bindings().read(ctx.params());
+    s_ = bindings().read(ctx.params());
+    const Settings& s = s_;
     const std::string& topic = s.topic;
     if (s.file.empty()) throw BadInput("parameter 'file': the recording to replay is required");
     if (topic.empty()) throw BadInput("parameter 'topic': the recorded topic (NODE.PORT) is required");
@@ -65,7 +72,11 @@ class Replay : public Plugin {
       replay::Recording rec(file);
       // Stamps are the recording run's clock: sim time from 0, or the epoch on the real clock.
       const std::string clock = rec.metadata("clock");
-      if (clock != (ctx.sim_clock() ? "sim" : "real"))
+      const bool retime = s.retime_from_ns >= 0;
+      if (retime && !(clock == "real" && ctx.sim_clock()))
+        throw BadInput("parameter 'retime_from_ns': re-times a real-clock recording onto the sim clock; " + file + " was made on the " +
+                       (clock.empty() ? "unknown" : clock) + " clock and this run is on the " + (ctx.sim_clock() ? "sim" : "real") + " clock");
+      if (!retime && clock != (ctx.sim_clock() ? "sim" : "real"))
         throw BadInput("recording " + file + " was made on the " + (clock.empty() ? "unknown" : clock) + " clock, this run is on the " +
                        (ctx.sim_clock() ? "sim" : "real") + " clock: its samples' times would not line up");
       const replay::RecordedTopic* t = rec.topic(topic);
@@ -89,7 +100,13 @@ class Replay : public Plugin {
         if (!type_.deserialize(&payload, m.get()))
           throw BadInput("recording " + file + ": sample " + std::to_string(samples_.size()) + " of '" + topic + "' does not decode as " +
                          message_traits<T>::name);
-        samples_.push_back({s.stamp_ns, std::move(m)});
+        std::int64_t stamp = s.stamp_ns;
+        if (retime) {  // the drive from 0: the sample's time and its measurement's stamp alike
+          if (stamp < s_.retime_from_ns) continue;
+          stamp -= s_.retime_from_ns;
+          m->header().stamp_ns(m->header().stamp_ns() - s_.retime_from_ns);
+        }
+        samples_.push_back({stamp, std::move(m)});
       }
     } catch (const replay::RecordingError& e) {
       throw BadInput(std::string("parameter 'file': ") + e.what());
@@ -113,6 +130,7 @@ class Replay : public Plugin {
     std::int64_t stamp_ns;
     std::shared_ptr<const T> message;
   };
+  Settings s_;
   std::vector<Sample> samples_;
   std::size_t next_ = 0;
   PubSub type_;
