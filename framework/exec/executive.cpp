@@ -8,6 +8,7 @@
 #include "exec/recording.hpp"
 #include "exec/summary.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <thread>
 #include <cstdio>
@@ -83,6 +84,18 @@ void Executive::log(const NodeRuntime& n, LogLevel level, std::string_view msg) 
     std::fprintf(stderr, "[%9.3f] %s %s: %.*s\n", t, names[static_cast<int>(level)], n.name.c_str(),
                  static_cast<int>(msg.size()), msg.data());
   });
+}
+
+void Executive::peer_lost(std::string what) {
+  {
+    std::lock_guard<std::mutex> l(stop_m_);
+    if (std::find(lost_peers_.begin(), lost_peers_.end(), what) != lost_peers_.end()) return;
+    lost_peers_.push_back(what);
+  }
+  char at[48];
+  std::snprintf(at, sizeof at, " at t = %.2f s", sim() ? sim_now_ns_ * 1e-9 : (wall_ns() - real_start_ns_) * 1e-9);
+  const std::string line = "warning: " + what + at + "; the run goes on, and fails at its end";
+  console_.line([&] { std::fprintf(stderr, "[brickyard] %s\n", line.c_str()); });  // even with --quiet
 }
 
 void Executive::request_stop(RunResult r, std::string reason) {
@@ -238,11 +251,19 @@ RunSummary Executive::run() {
   RunSummary s;
   s.result = stop_result_.value_or(RunResult::success);
   s.reason = stop_result_ ? stop_reason_ : (sim() ? "sim clock reached the end" : "duration reached");
+  {
+    std::lock_guard<std::mutex> l(stop_m_);
+    if (!lost_peers_.empty() && s.result != RunResult::failed && s.result != RunResult::invalid_input) {
+      s.result = RunResult::failed;
+      s.reason = lost_peers_.front() + (lost_peers_.size() > 1 ? " (and " + std::to_string(lost_peers_.size() - 1) + " more)" : "");
+    }
+  }
   s.sim_time_s = sim() ? static_cast<double>(sim_now_ns_) / 1e9 : 0.0;
   s.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   if (!sim()) s.sim_time_s = s.wall_time_s;
   s.json = summary_json(s, g, opt_, sim(), recording, nodes_);
   if (!live.is_null()) s.json["live"] = live;
+  if (!lost_peers_.empty()) s.json["lost_peers"] = lost_peers_;
   return s;
 }
 

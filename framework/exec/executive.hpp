@@ -66,6 +66,9 @@ class Executive {
   std::uint64_t seed() const { return opt_.seed; }
   void log(const NodeRuntime& n, LogLevel level, std::string_view msg);
   void request_stop(RunResult r, std::string reason);
+  // An input's writer in another process went silent (its liveliness lapsed): said now, and the
+  // run fails at its end; it goes on meanwhile (a car interface keeps braking the car).
+  void peer_lost(std::string what);
   void set_status(const std::string& node, std::string_view field, std::string_view value);
 
  private:
@@ -88,6 +91,7 @@ class Executive {
   std::vector<std::unique_ptr<NodeRuntime>> nodes_;
 
   std::atomic<bool> stop_{false};
+  std::vector<std::string> lost_peers_;  // under stop_m_
   std::mutex stop_m_;
   std::optional<RunResult> stop_result_;
   std::string stop_reason_;

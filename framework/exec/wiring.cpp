@@ -87,8 +87,14 @@ void Executive::build() {
       from->second->output(w.from.port)->local.push_back(in);
     } else {
       const PortSpec* ps = to->second->rn->plugin->manifest.port(w.to.port);
+      // A writer in another process that dies is noticed within the liveliness lease (0.5 s), said
+      // at once, and the run fails at its end naming the input and its writer.
+      const std::string what = "input " + w.to.node + "." + w.to.port + ": its writer " + w.from.node + "." + w.from.port +
+                               " (process '" + graph_.decl->nodes.at(w.from.node).process +
+                               "') went silent: no liveliness for 0.5 s (did the process die?)";
       transport_->make_reader(topic_name(w.from.node, w.from.port), ps->type_name, ps->depth,
-                              [in](std::shared_ptr<const void> s) { in->push(std::move(s)); });
+                              [in](std::shared_ptr<const void> s) { in->push(std::move(s)); },
+                              [this, what] { peer_lost(what); });
     }
   }
 }

@@ -28,6 +28,10 @@ using eprosima::fastrtps::rtps::Locator_t;
 
 std::string topic_name(const std::string& node, const std::string& port) { return "brickyard/" + node + "/" + port; }
 
+namespace {
+const eprosima::fastrtps::Duration_t kLease(0.5);  // a writer silent this long (its process gone) is lost
+}
+
 struct WriterListener : DataWriterListener {
   std::atomic<int>* matched;
   void on_publication_matched(DataWriter*, const PublicationMatchedStatus& s) override {
@@ -38,6 +42,11 @@ struct WriterListener : DataWriterListener {
 struct ReaderListener : DataReaderListener {
   TypeSupport type;
   std::function<void(std::shared_ptr<const void>)> deliver;
+  std::function<void()> lost;
+  // A writer whose liveliness lapsed (its process died or hangs), not one that left cleanly.
+  void on_liveliness_changed(DataReader*, const LivelinessChangedStatus& s) override {
+    if (s.not_alive_count_change > 0 && lost) lost();
+  }
   void on_data_available(DataReader* r) override {
     for (;;) {
       void* data = type->createData();
@@ -137,6 +146,11 @@ Topic* DdsTransport::topic(const std::string& name, const std::string& type_name
 DdsWriter* DdsTransport::make_writer(const std::string& topic_n, const std::string& type_name) {
   Topic* t = topic(topic_n, type_name);
   DataWriterQos q = DATAWRITER_QOS_DEFAULT;
+  // Liveliness asserted for it every 0.1 s: a reader in another process knows within the lease
+  // (kLease) that this process has died.
+  q.liveliness().kind = AUTOMATIC_LIVELINESS_QOS;
+  q.liveliness().lease_duration = kLease;
+  q.liveliness().announcement_period = eprosima::fastrtps::Duration_t(0.1);
   q.reliability().kind = RELIABLE_RELIABILITY_QOS;
   q.history().kind = KEEP_LAST_HISTORY_QOS;
   q.history().depth = 8;
@@ -152,9 +166,11 @@ DdsWriter* DdsTransport::make_writer(const std::string& topic_n, const std::stri
 }
 
 DdsReader* DdsTransport::make_reader(const std::string& topic_n, const std::string& type_name, std::uint32_t depth,
-                                     std::function<void(std::shared_ptr<const void>)> deliver) {
+                                     std::function<void(std::shared_ptr<const void>)> deliver, std::function<void()> lost) {
   Topic* t = topic(topic_n, type_name);
   DataReaderQos q = DATAREADER_QOS_DEFAULT;
+  q.liveliness().kind = AUTOMATIC_LIVELINESS_QOS;
+  q.liveliness().lease_duration = kLease;
   q.reliability().kind = RELIABLE_RELIABILITY_QOS;
   q.history().kind = KEEP_LAST_HISTORY_QOS;
   q.history().depth = static_cast<int32_t>(depth);
@@ -164,6 +180,7 @@ DdsReader* DdsTransport::make_reader(const std::string& topic_n, const std::stri
   r->listener_ = std::make_unique<ReaderListener>();
   r->listener_->type = TypeSupport(msgs::find_type(type_name.c_str())->make());
   r->listener_->deliver = std::move(deliver);
+  r->listener_->lost = std::move(lost);
   r->reader_ = subscriber_->create_datareader(t, q, r->listener_.get());
   if (!r->reader_) throw std::runtime_error("cannot create a reader on " + topic_n);
   readers_.push_back(std::move(r));

@@ -63,9 +63,10 @@ class DdsTransport {
   DdsTransport& operator=(const DdsTransport&) = delete;
 
   DdsWriter* make_writer(const std::string& topic, const std::string& type_name);
-  // `deliver` runs on a DDS thread with each received sample.
+  // `deliver` runs on a DDS thread with each received sample; `lost` (when set) when a writer's
+  // liveliness lapses: its process died or stopped for more than 0.5 s (not a clean exit).
   DdsReader* make_reader(const std::string& topic, const std::string& type_name, std::uint32_t depth,
-                         std::function<void(std::shared_ptr<const void>)> deliver);
+                         std::function<void(std::shared_ptr<const void>)> deliver, std::function<void()> lost = {});
   // Stop deliveries before the objects they feed go away.
   void close_readers();
 

@@ -1,0 +1,29 @@
+#!/usr/bin/env bash
+# A process of a split run killed (SIGKILL: no goodbye on the wire): the other process notices
+# within the writers' liveliness lease (0.5 s) and says so at once, naming the input, the silent
+# writer and its process; it runs on (a car interface keeps braking the car) and its run fails at
+# its end with that reason, in the summary too (docs/reliability.md). Before, it ended "success".
+set -u
+by=$1; graph=$2; domain=$3; out=$4
+rm -rf "$out"; mkdir -p "$out"
+"$by" run "$graph" --process b --domain "$domain" --duration 6 --set check.min_count=0 --set check.min_rate_hz=0 \
+  --out "$out/b" > "$out/b.log" 2>&1 &
+pid_b=$!
+"$by" run "$graph" --process a --domain "$domain" --duration 60 > "$out/a.log" 2>&1 &
+pid_a=$!
+sleep 3  # the two have met and samples flow
+kill -9 $pid_a
+killed=$(date +%s%N)
+# The warning, within a second of the kill.
+for i in $(seq 30); do grep -q "warning: input double.in" "$out/b.log" && break; sleep 0.05; done
+noticed=$(( ($(date +%s%N) - killed) / 1000000 ))
+wait $pid_b; rc_b=$?
+grep "warning\|failed" "$out/b.log" | head -3
+echo "b said so $noticed ms after a was killed, ran on to its end, exit $rc_b"
+[ $noticed -lt 1500 ] || { echo "FAIL: b took $noticed ms to notice"; exit 1; }
+grep -q "warning: input double.in: its writer src.out (process 'a') went silent: no liveliness for 0.5 s (did the process die?) at t = [0-9.]* s; the run goes on" "$out/b.log" \
+  || { echo "FAIL: the warning does not name the input and its writer"; exit 1; }
+[ $rc_b -eq 1 ] || { echo "FAIL: b did not fail when its peer died"; exit 1; }
+grep -q '"reason": "input double.in: its writer src.out' "$out/b/summary.json" && grep -q '"lost_peers"' "$out/b/summary.json" \
+  || { echo "FAIL: the summary lacks the reason"; exit 1; }
+echo "peer_lost: ok"
