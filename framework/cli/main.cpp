@@ -530,11 +530,14 @@ int run_graph(const Args& a, GraphDecl g, bool validate_only) {
   }
   RunSummary s;
   crash_guard::install(a.out.empty() ? std::string() : (fs::path(a.out) / "summary.json").string());
+  struct Disarm {  // however this scope is left: the run is over, exit() and a slow teardown are not a crash
+    ~Disarm() { crash_guard::run_ended(); }
+  } disarm;
   {
     Executive ex(rg, opt);
     s = ex.run();
+    crash_guard::run_ended();
   }
-  crash_guard::run_ended();
   if (!a.quiet) std::fputs(summary_table(s.json).c_str(), stderr);
   if (a.profile) std::fputs(profile_table(s.json).c_str(), stderr);
   std::fprintf(stderr, "[brickyard] %s: %s (sim %.3f s, wall %.3f s)\n", to_string(s.result), s.reason.c_str(),

@@ -9,7 +9,10 @@
 #include <thread>
 
 #include <cstdio>
+#include <set>
+#include <string>
 
+#include <dirent.h>
 #include <fcntl.h>
 #include <unistd.h>
 
@@ -31,6 +34,7 @@ thread_local const char* t_node = nullptr;
 thread_local const char* t_phase = nullptr;
 
 char g_summary[4096] = {0};
+std::set<std::string> g_before;  // /dev/shm before the transport (set and read outside any handler)
 constexpr int kShm = 64;
 char g_shm[kShm][256];
 int g_shm_n = 0;
@@ -46,7 +50,7 @@ long long monotonic_ms() {
 
 // A message built in a fixed buffer.
 struct Text {
-  char b[1024];
+  char b[4096];
   std::size_t n = 0;
   Text& operator<<(const char* s) {
     for (; s && *s && n + 1 < sizeof b; ++s) b[n++] = *s;
@@ -153,6 +157,14 @@ void install(const std::string& summary_path) {
   std::thread(watchdog).detach();
 }
 
+void snapshot_shared_memory() {
+  g_before.clear();
+  if (DIR* d = opendir("/dev/shm")) {
+    while (dirent* e = readdir(d)) g_before.insert(std::string("/dev/shm/") + e->d_name);
+    closedir(d);
+  }
+}
+
 void note_shared_memory() {
   // The files under /dev/shm this process has mapped (Fast DDS's segments, port files and their
   // semaphores: it closes their descriptors once mapped, so /proc/self/maps, not fd/).
@@ -167,7 +179,9 @@ void note_shared_memory() {
     std::snprintf(target, sizeof target, "%s", path);
     target[std::strcspn(target, "\n")] = '\0';
     const char* deleted = std::strstr(target, " (deleted)");
-    if (deleted) continue;
+    // Only what this process made (not there before its transport): a peer's segment it maps, or
+    // a file of the domain's, is not its to remove.
+    if (deleted || g_before.count(target)) continue;
     // Beside each Fast DDS file: its lock file (NAME_el), and for a port its semaphore.
     char el[256], sem[256];
     std::snprintf(el, sizeof el, "%s_el", target);

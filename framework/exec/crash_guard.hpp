@@ -15,7 +15,9 @@ namespace brickyard::fw::crash_guard {
 
 // Installs the handlers (once per process). summary_path: where a dead run's summary goes, or empty.
 void install(const std::string& summary_path);
-// After the transport is up: the /dev/shm files this process holds open, to remove on a crash.
+// Before the transport is made: what /dev/shm holds; right after: the files this process has
+// mapped that were not there, its own, to remove on a crash.
+void snapshot_shared_memory();
 void note_shared_memory();
 // Disarms the exit() trap and the interrupt watchdog: the run has ended normally.
 void run_ended();

@@ -217,7 +217,6 @@ RunSummary Executive::run() {
   }
   if (!stop_) {
     host_log("running");
-    crash_guard::note_shared_memory();  // removed if a plugin takes the process down
     if (sim()) run_sim();
     else run_real();
     progress(true);
@@ -237,8 +236,8 @@ RunSummary Executive::run() {
     const LiveStats st = live_->stats();
     live = {{"port", live_->port()}, {"clients", st.clients}, {"sent", st.sent}, {"dropped", st.dropped},
             {"refused_requests", st.refused_requests}, {"disconnected", st.disconnected}};
-    scene_.reset();
-    live_.reset();  // closes its clients
+    // The server and the scene stay until the executive goes (taps may publish until the plugins
+    // are destroyed); its clients are closed then.
   }
   nlohmann::json recording;
   if (recorder_) {

@@ -1,6 +1,7 @@
 // Executive::build: this process's nodes with their ports — a DDS writer per output, a tap per
 // output that is recorded or served live (--live) — then the wires: same-process inputs by pointer, inputs whose writer
 // runs in another process through a DDS reader.
+#include "exec/crash_guard.hpp"
 #include "exec/executive.hpp"
 #include "exec/node_runtime.hpp"
 #include "exec/seeding.hpp"
@@ -19,7 +20,9 @@ void Executive::build() {
   ds.domain = opt_.domain.value_or(g.transport.domain);
   ds.interfaces = g.transport.interfaces;
   ds.peers = g.transport.peers;
+  crash_guard::snapshot_shared_memory();
   transport_ = std::make_unique<DdsTransport>(ds);
+  crash_guard::note_shared_memory();  // the participant's own segment and port files, made just now
   if (live_) scene_ = std::make_unique<LiveScene>(*live_);
 
   std::map<std::string, NodeRuntime*> here;
@@ -59,7 +62,12 @@ void Executive::build() {
             const bool to_live = live >= 0 && live_->wanted(static_cast<std::uint32_t>(live));
             if (!rec && !to_live && !scene) return;
             try {
-              if (scene) scene(m, static_cast<std::uint64_t>(std::max<std::int64_t>(now_ns(), 0)));
+              if (scene) {
+                try {
+                  scene(m, static_cast<std::uint64_t>(std::max<std::int64_t>(now_ns(), 0)));
+                } catch (const std::exception&) {  // the viewer's picture of a sample: never the run's failure
+                }
+              }
               if (!rec && !to_live) return;
               std::lock_guard<std::mutex> l(tap->m);
               const auto b = tap->serializer.serialize(m);

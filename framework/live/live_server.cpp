@@ -203,7 +203,7 @@ struct LiveServer::Impl {
     } else if (op == "unsubscribe") {
       if (!j.contains("subscriptionIds") || !j["subscriptionIds"].is_array()) return status(h, 2, "unsubscribe: no \"subscriptionIds\" array");
       for (const auto& s : j["subscriptionIds"]) {
-        if (!s.is_number_unsigned()) continue;
+        if (!s.is_number_unsigned() || s.get<std::uint64_t>() > 0xffffffffu) continue;
         std::lock_guard<std::mutex> l(c->m);
         auto it = c->subs.find(s.get<std::uint32_t>());
         if (it == c->subs.end()) continue;

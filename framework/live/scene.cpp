@@ -44,12 +44,14 @@ json colour(double r, double g, double b, double a = 1.0) { return {{"r", r}, {"
 struct Points {
   std::string text = "[";
   void add(double x, double y, double z) {
-    char b[96];
+    char b[160];
     char* p = b;
     if (text.size() > 1) *p++ = ',';
-    for (const auto& [key, v] : {std::pair<const char*, double>{"{\"x\":", x}, {",\"y\":", y}, {",\"z\":", z}}) {
+    for (const auto& [key, value] : {std::pair<const char*, double>{"{\"x\":", x}, {",\"y\":", y}, {",\"z\":", z}}) {
+      // JSON has no NaN or infinity, and a diverging fit is no place to draw: 0 there.
+      const double v = std::isfinite(value) && std::fabs(value) < 1e9 ? value : 0.0;
       for (const char* k = key; *k;) *p++ = *k++;
-      p = std::to_chars(p, b + sizeof b - 2, v, std::chars_format::fixed, 3).ptr;
+      p = std::to_chars(p, b + sizeof b - 2, v, std::chars_format::fixed, 3).ptr;  // |v| < 1e9: at most 14 characters
     }
     *p++ = '}';
     text.append(b, p);

@@ -111,7 +111,8 @@ CdrJson::CdrJson(const std::string& idl) {
     ++i;
   };
   auto number = [&]() -> std::size_t {
-    if (i >= t.size() || t[i].text.find_first_not_of("0123456789") != std::string::npos) fail("expected a number");
+    if (i >= t.size() || t[i].text.empty() || t[i].text.size() > 9 || t[i].text.find_first_not_of("0123456789") != std::string::npos)
+      fail("expected a number (at most 9 digits)");
     return static_cast<std::size_t>(std::stoul(t[i++].text));
   };
   std::function<Type()> type = [&]() -> Type {
@@ -172,6 +173,10 @@ CdrJson::CdrJson(const std::string& idl) {
       expect(";");
       std::string qualified;
       for (const auto& s : scope) qualified += s + "::";
+      // An IDL is untrusted input (a recording's schema): a struct defined twice could make a
+      // cycle, one with no members an endless count of nothing.
+      if (structs_.count(qualified + name)) fail("struct '" + qualified + name + "' is defined twice");
+      if (members.empty()) fail("struct '" + name + "' has no members");
       auto def = std::make_shared<std::vector<Member>>(std::move(members));
       structs_[qualified + name] = def;
       structs_[name] = def;
@@ -188,11 +193,14 @@ nlohmann::json CdrJson::decode(const std::string& type, const unsigned char* dat
   if (data[0] != 0 || data[1] > 1) r.fail("not plain CDR (encapsulation " + std::to_string(data[0]) + " " + std::to_string(data[1]) + ")");
   r.little = data[1] == 1;
   std::function<nlohmann::json(const Type&)> value;
+  int depth = 0;
   std::function<nlohmann::json(const std::string&)> object = [&](const std::string& name) {
+    if (++depth > 64) r.fail("structs nested more than 64 deep");
     const auto it = structs_.find(name);
     if (it == structs_.end()) throw std::runtime_error("no struct '" + name + "' in the IDL");
     nlohmann::json o = nlohmann::json::object();
     for (const Member& m : *it->second) o[m.name] = value(m.type);
+    --depth;
     return o;
   };
   value = [&](const Type& ty) -> nlohmann::json {

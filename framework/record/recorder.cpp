@@ -251,7 +251,16 @@ void Recorder::flush_batch(std::int64_t stamp_ns) {
   const bool young = std::chrono::steady_clock::now() - batch_wall_ < std::chrono::nanoseconds(kBatchNs);
   if ((mcap_ || in_transaction_ < kBatch) && stamp_ns - batch_stamp_ < kBatchNs && young) return;
   in_transaction_ = 0;
-  if (!mcap_) return exec("COMMIT");
+  if (!mcap_) {
+    try {
+      exec("COMMIT");
+    } catch (...) {  // what was committed before stays; this batch is rolled back, and no more written
+      sqlite3_exec(db_, "ROLLBACK", nullptr, nullptr, nullptr);
+      failed_ = true;
+      throw;
+    }
+    return;
+  }
   try {
     mcap_->flush();
   } catch (...) {

@@ -245,3 +245,11 @@ TEST(CdrJson, BytesThatDoNotFitAndIdlItCannotReadAreNamed) {
     EXPECT_NE(std::string(e.what()).find("IDL line 4: unknown type 'Unknown'"), std::string::npos) << e.what();
   }
 }
+
+// A recording's schema is untrusted: a struct defined twice (which could close a cycle A -> B ->
+// A and recurse without reading a byte) and a struct with no members are refused, named.
+TEST(CdrJson, AnIdlThatCouldRecurseForeverIsRefused) {
+  EXPECT_THROW(brickyard::fw::CdrJson("struct A { int32 x; };\nstruct B { A a; };\nstruct A { B b; };\n"), std::invalid_argument);
+  EXPECT_THROW(brickyard::fw::CdrJson("struct E { };\n"), std::invalid_argument);
+  EXPECT_THROW(brickyard::fw::CdrJson("struct A { double x[123456789012345678901234567890]; };\n"), std::invalid_argument);
+}
