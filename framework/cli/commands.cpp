@@ -68,6 +68,7 @@ nlohmann::json manifest_to_json(const PluginEntry& p) {
   for (const auto& t : m.triggers) {
     if (t.kind == TriggerSpec::Kind::periodic) j["triggers"].push_back({{"kind", "periodic"}, {"rate_param", t.ref}});
     else if (t.kind == TriggerSpec::Kind::latency) j["triggers"].push_back({{"kind", "latency"}, {"seconds_param", t.ref}});
+    else if (t.kind == TriggerSpec::Kind::deadline) j["triggers"].push_back({{"kind", "deadline"}, {"seconds_param", t.ref}});
     else j["triggers"].push_back({{"kind", "on_input"}, {"port", t.ref}});
   }
   return j;
@@ -100,6 +101,7 @@ std::string plugins_text(const Registry& reg) {
     for (const auto& t : m.triggers)
       o << "  " << (t.kind == TriggerSpec::Kind::periodic ? "trigger periodic at param "
                     : t.kind == TriggerSpec::Kind::latency ? "outputs delivered after param "
+                    : t.kind == TriggerSpec::Kind::deadline ? "step deadline at param "
                                                            : "trigger on input ")
         << t.ref << "\n";
     o << "\n";

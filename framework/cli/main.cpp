@@ -1,6 +1,7 @@
 // brickyard — the host executive.
 #include "cli/bag_play.hpp"
 #include "cli/commands.hpp"
+#include "cli/supervisor.hpp"
 #include "cli/topic_command.hpp"
 #include "exec/crash_guard.hpp"
 #include "exec/executive.hpp"
@@ -24,6 +25,7 @@ extern char** environ;
 #include <filesystem>
 #include <optional>
 #include <fstream>
+#include <set>
 #include <iostream>
 
 using namespace brickyard::fw;
@@ -61,7 +63,11 @@ options:
   --arg NAME=V         give one of the graph's named arguments ("args", used as ${NAME}) a value;
                        repeatable
   --seed N             seed of every random source (default 0)
-  --process NAME       run only the nodes of process NAME; other processes meet over DDS
+  --process NAME       run only the nodes of process NAME; other processes meet over DDS.
+                       Without it, a real-clock graph whose nodes name several processes is
+                       supervised: each process a child, watched, restarted by the graph's
+                       "processes" policies (docs/reliability.md)
+  --one-process        run every node of such a graph in this one process instead
   --domain N           DDS domain id; overrides transport.domain
   --plugin-path DIR    search DIR for plugin libraries first (its plugins override those of
                        the same name found later); repeatable
@@ -104,7 +110,8 @@ struct Args {
   bool live_address_set = false;
   int threads = 0;
   std::uint64_t seed = 0;
-  bool json = false, dot = false, quiet = false, no_report = false, profile = false;
+  bool json = false, dot = false, quiet = false, no_report = false, profile = false, one_process = false;
+  std::vector<std::string> child_flags;  // what a supervised run's children are given as they are
 };
 
 [[noreturn]] void usage_error(const std::string& where, const std::string& msg) {
@@ -144,6 +151,10 @@ Args parse_args(int argc, char** argv) {
       if (i + 1 >= v.size()) usage_error(f, "needs a value");
       return v[++i];
     };
+    // Flags every process of a supervised run is given as they are.
+    static const std::set<std::string> kForwarded = {"--set", "--arg", "--seed", "--plugin-path", "--threads", "--progress"};
+    if (kForwarded.count(f) && i + 1 < v.size()) a.child_flags.insert(a.child_flags.end(), {f, v[i + 1]});
+    if (f == "--quiet" || f == "-q" || f == "--profile" || f == "--no-report") a.child_flags.push_back(f);
     if (f == "--duration") {
       double d = parse_number(f, value());
       if (!(d > 0)) usage_error("--duration", "expected a positive number of seconds");
@@ -179,6 +190,7 @@ Args parse_args(int argc, char** argv) {
       if (!(a.pace > 0)) usage_error("--pace", "expected a factor of real time, more than 0");
     }
     else if (f == "--no-report") a.no_report = true;
+    else if (f == "--one-process") a.one_process = true;
     else if (f == "--profile") a.profile = true;
     else if (f == "--threads") {
       const std::string s = value();
@@ -475,6 +487,21 @@ int run_graph(const Args& a, GraphDecl g, bool validate_only) {
     fs::create_directories(a.out, ec);
     if (ec) usage_error("--out " + a.out, "cannot create the folder: " + ec.message());
   }
+  if (a.one_process && !a.process.empty()) usage_error("--one-process", "cannot go with --process");
+  if (a.process.empty() && !a.one_process && rg.processes.size() > 1 && !g.clock.sim) {
+    // A split graph on the real clock: each process a child of this one (cli/supervisor.hpp).
+    if (!a.record.empty()) usage_error("--record", "a supervised run records each process into --out DIR/PROCESS/recording.mcap; use --out (or --process, or --one-process)");
+    if (a.live_port || g.live.port) usage_error("--live", "a supervised run serves nothing live itself; use --process NAME --live PORT for the process to watch (or --one-process)");
+    if (a.pace > 0) usage_error("--pace", "the graph runs on the real clock, which needs no pacing");
+    SuperviseOptions so;
+    so.graph_file = a.target;
+    so.child_flags = a.child_flags;
+    so.duration_s = a.duration ? a.duration : g.clock.duration_s;
+    so.domain = a.domain.value_or(g.transport.domain);
+    so.out = a.out;
+    so.quiet = a.quiet;
+    return supervise(g, so);
+  }
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
   RunOptions opt;
@@ -497,8 +524,10 @@ int run_graph(const Args& a, GraphDecl g, bool validate_only) {
   // --out keeps the run: its summary, a recording of everything but the point clouds (those
   // are large; --record takes them) and the report drawn from it. The folder's own recording
   // is the run's output, replaced by the next run into it (a --record FILE never is).
-  // (Not for one process of a multi-process graph: the others would write the same folder.)
-  const bool report = !a.out.empty() && !a.no_report && a.process.empty();
+  // One process of a multi-process graph records its own wires into its folder (a supervisor
+  // gives each its own), and draws no report: the report needs the whole run.
+  const bool record_out = !a.out.empty() && !a.no_report;
+  const bool report = record_out && a.process.empty();
   if (!a.out.empty()) {
     // What an earlier run left in the folder goes — its report, and its recording when the
     // folder's own (its summary says so) — so nothing stale is drawn; a recording made there
@@ -524,7 +553,7 @@ int run_graph(const Args& a, GraphDecl g, bool validate_only) {
     fs::remove(dir / "report.html", ec);
     fs::remove(dir / "summary.json", ec);
   }
-  if (report && a.record.empty()) {
+  if (record_out && a.record.empty()) {
     opt.record = (fs::path(a.out) / kOutRecording).string();
     opt.record_skip_types = {"brickyard::msgs::PointCloud", "brickyard::msgs::ClusterList"};
   }
@@ -544,7 +573,7 @@ int run_graph(const Args& a, GraphDecl g, bool validate_only) {
                s.sim_time_s, s.wall_time_s);
   // The folder's own recording is named relative to the folder: the summary of two identical
   // runs into two folders is the same.
-  if (report && a.record.empty() && s.json.contains("recording")) s.json["recording"]["file"] = kOutRecording;
+  if (record_out && a.record.empty() && s.json.contains("recording")) s.json["recording"]["file"] = kOutRecording;
   if (!a.out.empty()) {
     std::ofstream f(fs::path(a.out) / "summary.json");
     f << s.json.dump(2) << "\n";

@@ -127,7 +127,7 @@ void watchdog() {
       char secs[32];
       std::snprintf(secs, sizeof secs, "%.1f", static_cast<double>(monotonic_ms() - since) / 1000.0);
       Text r;
-      r << "node '" << node << "' has been in its step for " << secs << " s, far past its deadline (deadline_s); the process ends here";
+      r << "node '" << node << "' has been in its step for " << secs << " s, far past its step deadline; the process ends here";
       die(r, 1);
     }
     const long long first = g_first_signal_ms.load();
@@ -196,6 +196,23 @@ void note_shared_memory() {
     }
   }
   std::fclose(f);
+  // Under a supervisor, the list goes to the file it named: a process killed by SIGKILL cannot
+  // remove its own files, its supervisor can (written whole, then renamed).
+  if (const char* list = std::getenv("BRICKYARD_SHM_LIST"); list && *list) {
+    const std::string part = std::string(list) + ".part";
+    if (FILE* out = std::fopen(part.c_str(), "w")) {
+      for (int i = 0; i < g_shm_n; ++i) std::fprintf(out, "%s\n", g_shm[i]);
+      if (std::fclose(out) == 0) std::rename(part.c_str(), list);
+    }
+    // Its port files stay when it crashes: a peer still has them mapped and sends to them, and
+    // the process restarted in its place opens the same ports; were they unlinked, the peer would
+    // write into a file no one reads any more (a restarted process that never hears its peers).
+    // The supervisor removes them once every process has ended.
+    int kept = 0;
+    for (int i = 0; i < g_shm_n; ++i)
+      if (!std::strstr(g_shm[i], "fastrtps_port")) std::memmove(g_shm[kept++], g_shm[i], sizeof g_shm[0]);
+    g_shm_n = kept;
+  }
 }
 
 void run_ended() { g_armed = false; }

@@ -86,16 +86,64 @@ void Executive::log(const NodeRuntime& n, LogLevel level, std::string_view msg) 
   });
 }
 
-void Executive::peer_lost(std::string what) {
+void Executive::peer_liveliness(RemoteInput& in, bool alive) {
+  const std::int64_t now = wall_ns();
+  const double t = sim() ? sim_now_ns_ * 1e-9 : (now - real_start_ns_) * 1e-9;
+  const bool may_die = process_policy(*graph_.decl, in.process).may_die;
+  const std::string who = "input " + in.input + ": its writer " + in.writer + " (process '" + in.process + "')";
+  std::string line;
   {
     std::lock_guard<std::mutex> l(stop_m_);
-    if (std::find(lost_peers_.begin(), lost_peers_.end(), what) != lost_peers_.end()) return;
-    lost_peers_.push_back(what);
+    if (!alive && !in.lost) {
+      in.lost = true;
+      in.lost_at_ns = now;
+      const std::string what = who + " went silent: no liveliness for 0.5 s (did the process die?)";
+      peer_events_.push_back({{"input", in.input}, {"writer", in.writer}, {"process", in.process}, {"event", "lost"}, {"t_s", t}});
+      if (!may_die && std::find(lost_peers_.begin(), lost_peers_.end(), what) == lost_peers_.end()) lost_peers_.push_back(what);
+      char at[48];
+      std::snprintf(at, sizeof at, " at t = %.2f s", t);
+      line = "warning: " + what + at + (may_die ? "; the graph lets process '" + in.process + "' die: the run goes on"
+                                                : std::string("; the run goes on, and fails at its end"));
+    } else if (alive && in.lost) {
+      in.lost = false;
+      const double gone = static_cast<double>(now - in.lost_at_ns) * 1e-9;
+      peer_events_.push_back({{"input", in.input}, {"writer", in.writer}, {"process", in.process}, {"event", "back"}, {"t_s", t},
+                              {"gone_s", gone}});
+      char msg[96];
+      std::snprintf(msg, sizeof msg, " is back, %.2f s after it went silent, at t = %.2f s", gone, t);
+      line = who + msg;
+    }
   }
-  char at[48];
-  std::snprintf(at, sizeof at, " at t = %.2f s", sim() ? sim_now_ns_ * 1e-9 : (wall_ns() - real_start_ns_) * 1e-9);
-  const std::string line = "warning: " + what + at + "; the run goes on, and fails at its end";
-  console_.line([&] { std::fprintf(stderr, "[brickyard] %s\n", line.c_str()); });  // even with --quiet
+  if (!line.empty()) console_.line([&] { std::fprintf(stderr, "[brickyard] %s\n", line.c_str()); });  // even with --quiet
+}
+
+// A split run's start-up: each input whose writer runs in another process waits until that writer
+// has matched (its process is up, its ports made), at most transport.startup_timeout_s, before
+// the clock starts — the planner no longer gets the world seconds late. A first sample is not
+// awaited: processes feed each other in a loop (the car's state out, its commands back), and
+// neither could send first. A writer that never appears fails the run, named.
+bool Executive::await_peers() {
+  if (remote_inputs_.empty()) return true;
+  const double limit = graph_.decl->transport.startup_timeout_s;
+  const auto t0 = std::chrono::steady_clock::now();
+  for (;;) {
+    std::vector<const RemoteInput*> missing;
+    for (const auto& r : remote_inputs_)
+      if (r->reader->matched() == 0) missing.push_back(r.get());
+    if (missing.empty()) return true;
+    if (g_interrupt || stop_) return false;
+    if (std::chrono::steady_clock::now() - t0 > std::chrono::duration<double>(limit)) {
+      char secs[32];
+      std::snprintf(secs, sizeof secs, "%.3g s", limit);
+      std::string why = "start-up: no writer appeared within " + std::string(secs) + " (transport.startup_timeout_s) for input " +
+                        missing.front()->input + " (writer " + missing.front()->writer + ", process '" + missing.front()->process +
+                        "'; did it start?)";
+      if (missing.size() > 1) why += " and " + std::to_string(missing.size() - 1) + " more input(s)";
+      request_stop(RunResult::failed, why);
+      return false;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
 }
 
 void Executive::request_stop(RunResult r, std::string reason) {
@@ -116,7 +164,7 @@ bool Executive::call(NodeRuntime& n, const char* phase, const std::function<void
   try {
     // Named if the plugin takes the process down, or its step hangs far past its deadline.
     const bool step = std::string_view(phase) == "step";
-    const crash_guard::Running running(n.name.c_str(), phase, step ? n.rn->decl->deadline_s : 0.0);
+    const crash_guard::Running running(n.name.c_str(), phase, step ? n.rn->deadline_s : 0.0);
     f();
     return true;
   } catch (const BadInput& e) {
@@ -142,7 +190,7 @@ void Executive::step(NodeRuntime& n, Trigger t) {
 bool Executive::step_body(NodeRuntime& n, Trigger t) {
   n.trigger = std::move(t);
   // The wall clock only with --profile or a step deadline: the host's own measurement, never seen by a node.
-  const double deadline = n.rn->decl->deadline_s;
+  const double deadline = n.rn->deadline_s;
   const auto t0 = opt_.profile || deadline > 0 ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point{};
   const bool ok = call(n, "step", [&] { n.instance->step(*n.ctx); });
   if (opt_.profile || deadline > 0) {
@@ -151,7 +199,7 @@ bool Executive::step_body(NodeRuntime& n, Trigger t) {
     // The node's step deadline (wall time; docs/reliability.md): a step that took longer fails the run.
     if (deadline > 0 && took > deadline) {
       char msg[160];
-      std::snprintf(msg, sizeof msg, "'s step took %.3f s, past its deadline of %.3f s (deadline_s)", took, deadline);
+      std::snprintf(msg, sizeof msg, "'s step took %.3f s, past its deadline of %.3f s", took, deadline);
       request_stop(RunResult::failed, "node '" + n.name + "' (" + n.plugin_name() + ")" + msg);
     }
   }
@@ -215,6 +263,7 @@ RunSummary Executive::run() {
       active.push_back(n);
     }
   }
+  if (!stop_ && !sim() && !await_peers() && g_interrupt) request_stop(RunResult::interrupted, "interrupted");
   if (!stop_) {
     host_log("running");
     if (sim()) run_sim();
@@ -262,7 +311,11 @@ RunSummary Executive::run() {
   if (!sim()) s.sim_time_s = s.wall_time_s;
   s.json = summary_json(s, g, opt_, sim(), recording, nodes_);
   if (!live.is_null()) s.json["live"] = live;
-  if (!lost_peers_.empty()) s.json["lost_peers"] = lost_peers_;
+  {
+    std::lock_guard<std::mutex> l(stop_m_);
+    if (!lost_peers_.empty()) s.json["lost_peers"] = lost_peers_;
+    if (!peer_events_.empty()) s.json["peer_events"] = peer_events_;
+  }
   return s;
 }
 

@@ -66,9 +66,17 @@ class Executive {
   std::uint64_t seed() const { return opt_.seed; }
   void log(const NodeRuntime& n, LogLevel level, std::string_view msg);
   void request_stop(RunResult r, std::string reason);
-  // An input's writer in another process went silent (its liveliness lapsed): said now, and the
-  // run fails at its end; it goes on meanwhile (a car interface keeps braking the car).
-  void peer_lost(std::string what);
+  // An input whose writer runs in another process (a split run).
+  struct RemoteInput {
+    std::string input, writer, process;  // "node.port", "node.port", the writer's process
+    DdsReader* reader = nullptr;
+    bool lost = false;                   // under stop_m_
+    std::int64_t lost_at_ns = 0;         // wall time of the lapse
+  };
+  // Its writer went silent (its liveliness lapsed): said now, and the run fails at its end unless
+  // the graph lets the writer's process die; it goes on meanwhile (a car interface keeps braking
+  // the car). Or its writer is alive: when it had lapsed, how long it was gone is said and kept.
+  void peer_liveliness(RemoteInput& in, bool alive);
   void set_status(const std::string& node, std::string_view field, std::string_view value);
 
  private:
@@ -81,6 +89,7 @@ class Executive {
   void host_log(const std::string& msg);
   void progress(bool last = false);  // prints the progress line when it is due (or last)
   void pace(std::int64_t sim_ns);    // --pace: waits until the wall clock has caught up with sim_ns / pace
+  bool await_peers();                // a split run's start-up: its inputs' writers matched, or the run fails
 
   const ResolvedGraph& graph_;
   RunOptions opt_;
@@ -91,7 +100,9 @@ class Executive {
   std::vector<std::unique_ptr<NodeRuntime>> nodes_;
 
   std::atomic<bool> stop_{false};
-  std::vector<std::string> lost_peers_;  // under stop_m_
+  std::vector<std::unique_ptr<RemoteInput>> remote_inputs_;
+  std::vector<std::string> lost_peers_;  // under stop_m_: writers lost that fail the run
+  nlohmann::json peer_events_ = nlohmann::json::array();  // under stop_m_: every lapse and return
   std::mutex stop_m_;
   std::optional<RunResult> stop_result_;
   std::string stop_reason_;

@@ -96,13 +96,17 @@ void Executive::build() {
     } else {
       const PortSpec* ps = to->second->rn->plugin->manifest.port(w.to.port);
       // A writer in another process that dies is noticed within the liveliness lease (0.5 s), said
-      // at once, and the run fails at its end naming the input and its writer.
-      const std::string what = "input " + w.to.node + "." + w.to.port + ": its writer " + w.from.node + "." + w.from.port +
-                               " (process '" + graph_.decl->nodes.at(w.from.node).process +
-                               "') went silent: no liveliness for 0.5 s (did the process die?)";
-      transport_->make_reader(topic_name(w.from.node, w.from.port), ps->type_name, ps->depth,
-                              [in](std::shared_ptr<const void> s) { in->push(std::move(s)); },
-                              [this, what] { peer_lost(what); });
+      // at once, and the run fails at its end naming the input and its writer (unless its process
+      // may die); one that comes back (restarted) is said too.
+      auto ri = std::make_unique<RemoteInput>();
+      ri->input = w.to.text();
+      ri->writer = w.from.text();
+      ri->process = graph_.decl->nodes.at(w.from.node).process;
+      RemoteInput* r = ri.get();
+      remote_inputs_.push_back(std::move(ri));
+      r->reader = transport_->make_reader(topic_name(w.from.node, w.from.port), ps->type_name, ps->depth,
+                                          [in](std::shared_ptr<const void> s) { in->push(std::move(s)); },
+                                          [this, r](bool alive) { peer_liveliness(*r, alive); });
     }
   }
 }

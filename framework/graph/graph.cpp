@@ -96,7 +96,12 @@ void parse_string_list(const json& j, std::vector<std::string>& out, const std::
 
 void parse_transport(const json& j, GraphDecl& g, Ctx& c) {
   if (!c.expect(j, json::value_t::object, "object", "/transport")) return;
-  c.only_keys(j, {"domain", "interfaces", "peers"}, "/transport");
+  c.only_keys(j, {"domain", "interfaces", "peers", "startup_timeout_s"}, "/transport");
+  if (j.contains("startup_timeout_s") && c.expect(j["startup_timeout_s"], json::value_t::number_float, "number", "/transport/startup_timeout_s")) {
+    const double t = j["startup_timeout_s"].get<double>();
+    if (!(t > 0 && t <= 600)) c.err("/transport/startup_timeout_s", "expected seconds, more than 0 and at most 600, found " + j["startup_timeout_s"].dump());
+    else g.transport.startup_timeout_s = t;
+  }
   if (j.contains("domain") && c.expect(j["domain"], json::value_t::number_integer, "integer", "/transport/domain")) {
     if (!j["domain"].is_number_integer()) c.err("/transport/domain", "expected integer, found " + j["domain"].dump());
     else if (j["domain"].get<long long>() < 0 || j["domain"].get<long long>() > 232)
@@ -116,6 +121,41 @@ void parse_live(const json& j, GraphDecl& g, Ctx& c) {
     else g.live.port = j["port"].get<int>();
   }
   if (j.contains("address") && c.expect(j["address"], json::value_t::string, "string", "/live/address")) g.live.address = j["address"].get<std::string>();
+}
+
+// "processes": {"NAME": {"restart": "never" | "on-failure", "max_restarts", "backoff_s", "may_die"}};
+// every NAME must be a process some node runs in (checked after the nodes).
+void parse_processes(const json& j, GraphDecl& g, Ctx& c) {
+  if (!c.expect(j, json::value_t::object, "object", "/processes")) return;
+  for (auto it = j.begin(); it != j.end(); ++it) {
+    const std::string ptr = "/processes/" + pointer_escape(it.key());
+    const json& p = it.value();
+    if (!c.expect(p, json::value_t::object, "object", ptr)) continue;
+    c.only_keys(p, {"restart", "max_restarts", "backoff_s", "may_die", "description"}, ptr);
+    ProcessDecl pd;
+    if (p.contains("restart") && c.expect(p["restart"], json::value_t::string, "string", ptr + "/restart")) {
+      const std::string r = p["restart"];
+      if (r == "never") pd.restart = ProcessDecl::Restart::never;
+      else if (r == "on-failure") pd.restart = ProcessDecl::Restart::on_failure;
+      else c.err(ptr + "/restart", "expected \"never\" or \"on-failure\", found \"" + r + "\"");
+    }
+    if (p.contains("max_restarts") && c.expect(p["max_restarts"], json::value_t::number_integer, "integer", ptr + "/max_restarts")) {
+      if (!p["max_restarts"].is_number_integer() || p["max_restarts"].get<long long>() < 0 || p["max_restarts"].get<long long>() > 1000)
+        c.err(ptr + "/max_restarts", "expected an integer from 0 to 1000, found " + p["max_restarts"].dump());
+      else pd.max_restarts = p["max_restarts"].get<int>();
+    }
+    if (p.contains("backoff_s") && c.expect(p["backoff_s"], json::value_t::number_float, "number", ptr + "/backoff_s")) {
+      const double b = p["backoff_s"].get<double>();
+      if (!(b >= 0 && b <= 60)) c.err(ptr + "/backoff_s", "expected seconds from 0 to 60, found " + p["backoff_s"].dump());
+      else pd.backoff_s = b;
+    }
+    if (p.contains("may_die") && c.expect(p["may_die"], json::value_t::boolean, "boolean", ptr + "/may_die")) pd.may_die = p["may_die"];
+    if (p.contains("description")) c.expect(p["description"], json::value_t::string, "string", ptr + "/description");
+    bool used = false;
+    for (const auto& [_, n] : g.nodes) used = used || n.process == it.key();
+    if (!used) c.err(ptr, "no node runs in process \"" + it.key() + "\"");
+    g.processes[it.key()] = pd;
+  }
 }
 
 void apply_sets(json& root, const std::vector<std::string>& sets, Diagnostics& d,
@@ -188,7 +228,7 @@ GraphDecl parse_graph_text(const std::string& text, const std::string& file, con
   std::map<std::string, std::map<std::string, std::string>> origin;
   apply_sets(root, sets, d, origin);
 
-  c.only_keys(root, {"name", "description", "nodes", "wires", "clock", "transport", "live", "plugin_path"}, "");
+  c.only_keys(root, {"name", "description", "nodes", "wires", "clock", "transport", "live", "processes", "plugin_path"}, "");
   if (root.contains("name") && c.expect(root["name"], json::value_t::string, "string", "/name"))
     g.name = root["name"].get<std::string>();
   if (root.contains("description") && c.expect(root["description"], json::value_t::string, "string", "/description"))
@@ -254,6 +294,7 @@ GraphDecl parse_graph_text(const std::string& text, const std::string& file, con
   if (root.contains("clock")) parse_clock(root["clock"], g, c);
   if (root.contains("transport")) parse_transport(root["transport"], g, c);
   if (root.contains("live")) parse_live(root["live"], g, c);
+  if (root.contains("processes")) parse_processes(root["processes"], g, c);
   if (root.contains("plugin_path")) {
     parse_string_list(root["plugin_path"], g.plugin_path, "/plugin_path", c);
     auto base = std::filesystem::path(file).parent_path();
@@ -262,6 +303,12 @@ GraphDecl parse_graph_text(const std::string& text, const std::string& file, con
   }
   d.raise_if_any();
   return g;
+}
+
+const ProcessDecl& process_policy(const GraphDecl& g, const std::string& process) {
+  static const ProcessDecl kDefault;
+  auto it = g.processes.find(process);
+  return it == g.processes.end() ? kDefault : it->second;
 }
 
 GraphDecl load_graph_file(const std::string& path, const std::vector<std::string>& sets, const std::vector<std::string>& args) {

@@ -40,6 +40,16 @@ struct TransportDecl {
   int domain = 0;
   std::vector<std::string> interfaces{"127.0.0.1"};  // UDP interfaces allowed; loopback only by default
   std::vector<std::string> peers{"127.0.0.1"};       // unicast discovery peers
+  double startup_timeout_s = 10;  // a split run waits this long for its inputs' writers in other processes
+};
+
+// "processes": what the supervisor does when a process of a split run dies (docs/reliability.md).
+struct ProcessDecl {
+  enum class Restart { never, on_failure };
+  Restart restart = Restart::never;
+  int max_restarts = 3;    // on-failure: restarts at most this many times, then the run fails
+  double backoff_s = 0.1;  // on-failure: the first restart's delay, doubled for each next (at most 5 s)
+  bool may_die = false;    // its death does not fail the run (nor does its peers' losing it)
 };
 
 // "live": serve the run to Foxglove (docs/live.md), as `--live PORT` does; the flags win.
@@ -57,10 +67,14 @@ struct GraphDecl {
   ClockDecl clock;
   TransportDecl transport;
   LiveDecl live;
+  std::map<std::string, ProcessDecl> processes;  // only those the graph's "processes" names
   std::vector<std::string> plugin_path;  // resolved against the graph file's folder
 };
 
 inline const std::string kDefaultProcess = "main";
+
+// The process's policy: the graph's, or the defaults (never restarted, may not die).
+const ProcessDecl& process_policy(const GraphDecl& g, const std::string& process);
 
 // "<file>#<pointer>" — how every post-parse error names its place.
 std::string at(const std::string& file, const std::string& pointer);

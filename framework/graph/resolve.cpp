@@ -189,6 +189,14 @@ ResolvedGraph resolve_graph(const GraphDecl& g, const Registry& reg, const std::
       else
         rn.latency_ns = ns;
     }
+    // The step deadline: the plugin's parameter (manifest default, graph params), unless the node's deadline_s says.
+    rn.deadline_s = nd.deadline_s;
+    for (const auto& t : m.triggers) {
+      if (t.kind != TriggerSpec::Kind::deadline || !rn.params.has(t.ref) || nd.deadline_s > 0) continue;
+      const double s = rn.params.number(t.ref);
+      if (!(s >= 0 && s <= 3600)) err(ptr + "/params/" + pointer_escape(t.ref), "a step deadline must be 0 (none) to 3600 seconds, found " + fmt_num(s));
+      else rn.deadline_s = s;
+    }
     by_name.emplace(name, std::move(rn));
   }
 

@@ -15,6 +15,7 @@ struct ResolvedNode {
   std::int64_t period_ns = 0;             // 0: no periodic trigger
   std::set<std::string> trigger_inputs;   // inputs whose arrival steps the node
   std::int64_t latency_ns = 0;            // sim clock: a step's outputs delivered this long after it
+  double deadline_s = 0;                  // the step deadline: the graph node's deadline_s, else the manifest's parameter (0: none)
   std::size_t order = 0;                  // position in the deterministic schedule order
 };
 

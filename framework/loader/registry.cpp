@@ -83,8 +83,8 @@ std::vector<std::string> check_manifest(const Manifest& m) {
     if (auto e = c.violation(defaults); !e.empty()) p.push_back(who + ": its defaults break its own constraint: " + e);
   }
   for (const auto& t : m.triggers) {
-    if (t.kind == TriggerSpec::Kind::periodic || t.kind == TriggerSpec::Kind::latency) {
-      const char* what = t.kind == TriggerSpec::Kind::periodic ? "periodic trigger" : "latency";
+    if (t.kind == TriggerSpec::Kind::periodic || t.kind == TriggerSpec::Kind::latency || t.kind == TriggerSpec::Kind::deadline) {
+      const char* what = t.kind == TriggerSpec::Kind::periodic ? "periodic trigger" : t.kind == TriggerSpec::Kind::latency ? "latency" : "step deadline";
       const ParamSpec* ps = m.param_spec(t.ref);
       if (!ps || (ps->type != ParamType::number && ps->type != ParamType::integer))
         p.push_back(who + ": " + what + " names '" + t.ref + "', which is not a number param");

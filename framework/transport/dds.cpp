@@ -42,11 +42,16 @@ struct WriterListener : DataWriterListener {
 struct ReaderListener : DataReaderListener {
   TypeSupport type;
   std::function<void(std::shared_ptr<const void>)> deliver;
-  std::function<void()> lost;
-  // A writer whose liveliness lapsed (its process died or hangs), not one that left cleanly.
+  std::function<void(bool)> liveliness;
+  std::atomic<int>* matched = nullptr;
+  // A writer whose liveliness lapsed (its process died or hangs), not one that left cleanly; or
+  // one alive (new, or back).
   void on_liveliness_changed(DataReader*, const LivelinessChangedStatus& s) override {
-    if (s.not_alive_count_change > 0 && lost) lost();
+    if (!liveliness) return;
+    if (s.not_alive_count_change > 0) liveliness(false);
+    if (s.alive_count_change > 0) liveliness(true);
   }
+  void on_subscription_matched(DataReader*, const SubscriptionMatchedStatus& s) override { matched->store(s.current_count); }
   void on_data_available(DataReader* r) override {
     for (;;) {
       void* data = type->createData();
@@ -166,7 +171,7 @@ DdsWriter* DdsTransport::make_writer(const std::string& topic_n, const std::stri
 }
 
 DdsReader* DdsTransport::make_reader(const std::string& topic_n, const std::string& type_name, std::uint32_t depth,
-                                     std::function<void(std::shared_ptr<const void>)> deliver, std::function<void()> lost) {
+                                     std::function<void(std::shared_ptr<const void>)> deliver, std::function<void(bool)> liveliness) {
   Topic* t = topic(topic_n, type_name);
   DataReaderQos q = DATAREADER_QOS_DEFAULT;
   q.liveliness().kind = AUTOMATIC_LIVELINESS_QOS;
@@ -180,7 +185,8 @@ DdsReader* DdsTransport::make_reader(const std::string& topic_n, const std::stri
   r->listener_ = std::make_unique<ReaderListener>();
   r->listener_->type = TypeSupport(msgs::find_type(type_name.c_str())->make());
   r->listener_->deliver = std::move(deliver);
-  r->listener_->lost = std::move(lost);
+  r->listener_->liveliness = std::move(liveliness);
+  r->listener_->matched = &r->matched_;
   r->reader_ = subscriber_->create_datareader(t, q, r->listener_.get());
   if (!r->reader_) throw std::runtime_error("cannot create a reader on " + topic_n);
   readers_.push_back(std::move(r));

@@ -39,8 +39,13 @@ class DdsWriter {
 };
 
 class DdsReader {
+ public:
+  // Writers in other participants matched with this reader now (a split run's start-up waits for them).
+  int matched() const { return matched_.load(); }
+
  private:
   friend class DdsTransport;
+  std::atomic<int> matched_{0};
   eprosima::fastdds::dds::DataReader* reader_ = nullptr;
   std::unique_ptr<struct ReaderListener> listener_;
 };
@@ -63,10 +68,11 @@ class DdsTransport {
   DdsTransport& operator=(const DdsTransport&) = delete;
 
   DdsWriter* make_writer(const std::string& topic, const std::string& type_name);
-  // `deliver` runs on a DDS thread with each received sample; `lost` (when set) when a writer's
-  // liveliness lapses: its process died or stopped for more than 0.5 s (not a clean exit).
+  // `deliver` runs on a DDS thread with each received sample; `liveliness` (when set) with false
+  // when a writer's liveliness lapses (its process died or stopped for more than 0.5 s, not a
+  // clean exit) and with true when a writer becomes alive (matched first, or back after a lapse).
   DdsReader* make_reader(const std::string& topic, const std::string& type_name, std::uint32_t depth,
-                         std::function<void(std::shared_ptr<const void>)> deliver, std::function<void()> lost = {});
+                         std::function<void(std::shared_ptr<const void>)> deliver, std::function<void(bool)> liveliness = {});
   // Stop deliveries before the objects they feed go away.
   void close_readers();
 

@@ -71,13 +71,19 @@ echo "hang: two signals, exit $rc after $took ms"
 # that never returns is given up on at 1.3 s (twice the deadline, at least a second past it).
 "$by" run "$graphs/fault_deadline.json" --domain "$domain" --quiet --progress 0 --set fault.mode=slow --out "$out/slow" > "$out/slow.log" 2>&1
 rc=$?
-[ $rc -eq 1 ] && grep -q "node 'fault' (testing.fault)'s step took 0.8[0-9]* s, past its deadline of 0.300 s (deadline_s)" "$out/slow.log" \
+[ $rc -eq 1 ] && grep -q "node 'fault' (testing.fault)'s step took 0.8[0-9]* s, past its deadline of 0.300 s" "$out/slow.log" \
   && grep -q '"result": "failed"' "$out/slow/summary.json" || { cat "$out/slow.log"; echo "FAIL: a step past its deadline"; exit 1; }
 start=$(date +%s%N)
 "$by" run "$graphs/fault_deadline.json" --domain "$domain" --quiet --progress 0 --set fault.mode=hang --duration 600 > "$out/stuck.log" 2>&1
 rc=$?
 took=$(( ($(date +%s%N) - start) / 1000000 ))
 echo "deadline: a slow step failed the run; a stuck step ended it after $took ms, exit $rc"
-[ $rc -eq 1 ] && [ $took -lt 4000 ] && grep -q "node 'fault' has been in its step for 1.[0-9] s, far past its deadline (deadline_s)" "$out/stuck.log" \
+[ $rc -eq 1 ] && [ $took -lt 4000 ] && grep -q "node 'fault' has been in its step for 1.[0-9] s, far past its step deadline" "$out/stuck.log" \
   || { cat "$out/stuck.log"; echo "FAIL: a step stuck past its deadline"; exit 1; }
+# The deadline as the plugin's parameter (Manifest::step_deadline), no deadline_s in the graph.
+"$by" run "$graphs/fault.json" --domain "$domain" --quiet --progress 0 --set fault.mode=slow --set fault.step_deadline_s=0.3 > "$out/param.log" 2>&1
+rc=$?
+[ $rc -eq 1 ] && grep -q "node 'fault' (testing.fault)'s step took 0.8[0-9]* s, past its deadline of 0.300 s" "$out/param.log" \
+  || { cat "$out/param.log"; echo "FAIL: the manifest's step deadline"; exit 1; }
+echo "deadline: the plugin's own step_deadline_s parameter holds too"
 echo "faults: ok"

@@ -4,7 +4,7 @@
 set -u
 by=$1; graph=$2; domain=$3; out=$4
 rm -rf "$out"
-"$by" run "$graph" --domain "$domain" --out "$out" --set check.min_count=0 &
+"$by" run "$graph" --one-process --domain "$domain" --out "$out" --set check.min_count=0 &
 pid=$!
 sleep 1.5
 kill -INT $pid

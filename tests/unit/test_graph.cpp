@@ -89,6 +89,28 @@ TEST(GraphParse, AllErrorsReportedTogether) {
   }
 }
 
+TEST(GraphParse, ProcessPolicies) {
+  const char* text = R"({"nodes": {"a": {"plugin": "x.y", "process": "stack"}, "b": {"plugin": "x.y", "process": "sim"}},
+    "processes": {"stack": {"restart": "on-failure", "max_restarts": 5, "backoff_s": 0.25, "may_die": true}},
+    "transport": {"startup_timeout_s": 3}})";
+  auto g = parse_graph_text(text, "g.json");
+  const ProcessDecl& stack = process_policy(g, "stack");
+  EXPECT_EQ(stack.restart, ProcessDecl::Restart::on_failure);
+  EXPECT_EQ(stack.max_restarts, 5);
+  EXPECT_DOUBLE_EQ(stack.backoff_s, 0.25);
+  EXPECT_TRUE(stack.may_die);
+  // A process the section does not name: never restarted, may not die.
+  EXPECT_EQ(process_policy(g, "sim").restart, ProcessDecl::Restart::never);
+  EXPECT_FALSE(process_policy(g, "sim").may_die);
+  EXPECT_DOUBLE_EQ(g.transport.startup_timeout_s, 3);
+  EXPECT_EQ(first_error(R"({"nodes": {"a": {"plugin": "x.y"}}, "processes": {"main": {"max_restarts": -1}}})"),
+            "g.json#/processes/main/max_restarts: expected an integer from 0 to 1000, found -1");
+  EXPECT_EQ(first_error(R"({"nodes": {"a": {"plugin": "x.y"}}, "processes": {"main": {"may_die": "yes"}}})"),
+            "g.json#/processes/main/may_die: expected boolean, found string");
+  EXPECT_EQ(first_error(R"({"nodes": {"a": {"plugin": "x.y"}}, "processes": {"other": {}}})"),
+            "g.json#/processes/other: no node runs in process \"other\"");
+}
+
 TEST(GraphParse, SetOverridesParams) {
   auto g = parse_graph_text(kMinimal, "g.json", {"a.rate_hz=25", "a.values=[1,2]", "a.mode=fast"});
   const auto& p = g.nodes.at("a").params;

@@ -638,10 +638,12 @@ TEST(CommandWatchdog, BrakesToAStopWhenCommandsStopAndHandsBackWhenTheyCome) {
   EXPECT_DOUBLE_EQ(c.throttle, 0);
   EXPECT_DOUBLE_EQ(c.brake, CommandWatchdogParams{}.brake);
   EXPECT_DOUBLE_EQ(c.steer, 0.05);
+  const double silent_since = t - 0.24 - 0.05;
   c = w.apply(t, true, drive);
   EXPECT_FALSE(w.stopping());
   EXPECT_DOUBLE_EQ(c.throttle, 0.8);
   EXPECT_EQ(w.trips(), 1);
+  EXPECT_NEAR(w.longest_gap(), t - silent_since, 0.011) << "the gap the stack was gone for";
   CommandWatchdog never;
   EXPECT_FALSE(never.stopping());
   for (t = 10; t < 11.9; t += 0.01) EXPECT_DOUBLE_EQ(never.apply(t, false, Command{}).brake, 0.0);

@@ -17,6 +17,7 @@ using namespace brickyard::control;
 
 struct Settings {
   double rate_hz = 100;
+  double step_deadline_s = 0.5;
   ManagerParams manager;
 };
 
@@ -24,6 +25,11 @@ ParamBinding<Settings> bindings() {
   using M = ManagerParams;
   ParamBinding<Settings> b;
   b.bind("rate_hz", &Settings::rate_hz).in_unit("Hz").at_least(1);
+  // The last node before the car: a step of it that takes this long (wall time) fails the run,
+  // and one stuck at twice it ends the process, for its supervisor to restart (docs/reliability.md).
+  // Its steps take microseconds; the car brakes on its own after 0.25 s without a command.
+  b.bind("step_deadline_s", &Settings::step_deadline_s).in_unit("s").range(0, 3600)
+      .doc("the node's step deadline, wall time (0: none)");
   b.bind("recover_after_s", &Settings::manager, &M::recover_after_s).in_unit("s").at_least(0)
       .doc("NORMAL this long before the path tracker drives again");
   b.bind("wall_timeout_s", &Settings::manager, &M::wall_timeout_s).in_unit("s").at_least(0).doc("no valid wall this long: safe stop");
@@ -51,7 +57,8 @@ class SystemManagerNode : public Plugin {
         .output<msgs::ControlCommand>("command", "to the car")
         .output<msgs::ModeStatus>("mode", "PATH / WALL_FOLLOW / SAFE_STOP, on change and every step")
         .parameters(bindings())
-        .periodic("rate_hz");
+        .periodic("rate_hz")
+        .step_deadline("step_deadline_s");
   }
 
   void configure(Context& ctx) override {

@@ -7,6 +7,8 @@
 // link mid-lap otherwise leaves the car at full throttle on its last command. Framework-free.
 #include "vehicle_model.hpp"
 
+#include <algorithm>
+
 namespace brickyard::sim {
 
 struct CommandWatchdogParams {
@@ -23,7 +25,10 @@ class CommandWatchdog {
   // newest command (the default when none ever came). Returns the command to apply.
   Command apply(double now, bool fresh, const Command& newest) {
     if (start_ < 0) start_ = now;
-    if (fresh) heard_ = now, any_ = true;
+    if (fresh) {
+      if (any_) longest_gap_ = std::max(longest_gap_, now - heard_);
+      heard_ = now, any_ = true;
+    }
     const bool stale = any_ ? now - heard_ > p_.timeout_s : now - start_ > p_.first_timeout_s;
     if (stale && !stopping_) ++trips_;
     stopping_ = stale;
@@ -37,10 +42,12 @@ class CommandWatchdog {
   // Since when it has heard nothing: the last command, or the car's first step before any.
   double quiet_since() const { return any_ ? heard_ : start_; }
   int trips() const { return trips_; }  // times the commands went stale
+  // The longest time between two commands: how long a stack that died and was restarted was gone.
+  double longest_gap() const { return longest_gap_; }
 
  private:
   CommandWatchdogParams p_;
-  double start_ = -1, heard_ = 0;
+  double start_ = -1, heard_ = 0, longest_gap_ = 0;
   bool any_ = false, stopping_ = false;
   int trips_ = 0;
 };

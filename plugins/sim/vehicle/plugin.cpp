@@ -95,6 +95,8 @@ class Vehicle : public Plugin {
       c = watchdog_.apply(ctx.now_s(), !fresh.empty(), c);
       if (watchdog_.stopping() && !was)
         ctx.log(LogLevel::warn, "no command for " + std::to_string(ctx.now_s() - watchdog_.quiet_since()) + " s: throttle off, braking to a stop");
+      if (was && !watchdog_.stopping())
+        ctx.log(LogLevel::warn, "commands again: the stack drives (the longest gap between two so far: " + std::to_string(watchdog_.longest_gap()) + " s)");
     }
     const auto& s = model_->state();
     Frenet f = track_->project(s.x, s.y, hint_);
@@ -105,6 +107,7 @@ class Vehicle : public Plugin {
 
   void deactivate(Context& ctx) override {
     ctx.metric("command_watchdog_trips", static_cast<double>(watchdog_.trips()));
+    ctx.metric("longest_command_gap_s", watchdog_.longest_gap());
     if (model_) ctx.metric("final_speed_mps", model_->state().vx);
   }
 

@@ -22,6 +22,7 @@ struct Settings {
   Mode mode = Mode::none;
   std::int64_t at_step = 10;
   double slow_s = 0.8;
+  double step_deadline_s = 0;
 };
 
 ParamBinding<Settings> bindings() {
@@ -35,6 +36,8 @@ ParamBinding<Settings> bindings() {
            "take slow_s of wall time and go on, or publish nothing from then on");
   b.bind("at_step", &Settings::at_step).at_least(0).doc("the step (from 0) the fault happens in");
   b.bind("slow_s", &Settings::slow_s).in_unit("s").range(0, 60).doc("mode slow: the wall time that step takes");
+  b.bind("step_deadline_s", &Settings::step_deadline_s).in_unit("s").range(0, 3600)
+      .doc("the node's step deadline (the manifest's, Manifest::step_deadline; 0: none); a graph node's deadline_s has the last word");
   return b;
 }
 
@@ -45,7 +48,8 @@ class Fault : public Plugin {
         .describe("Publishes a counter each step, then fails as told at a chosen step (fault injection)")
         .output<msgs::Scalar>("out", "the step count, until the fault")
         .parameters(bindings())
-        .periodic("rate_hz");
+        .periodic("rate_hz")
+        .step_deadline("step_deadline_s");
   }
   void configure(Context& ctx) override {
     s_ = bindings().read(ctx.params());

@@ -95,10 +95,11 @@ struct ParamConstraint {
 
 // When a node steps, and (latency, ABI 2.1) when what a step publishes is delivered.
 struct TriggerSpec {
-  enum class Kind { periodic, on_input, latency };
+  enum class Kind { periodic, on_input, latency, deadline };
   Kind kind = Kind::periodic;
   // periodic: name of the number parameter that holds the rate in Hz; on_input: the input port;
-  // latency: name of the number parameter that holds the latency in seconds.
+  // latency: name of the number parameter that holds the latency in seconds; deadline: name of
+  // the number parameter that holds the step deadline in seconds (0: none).
   std::string ref;
 };
 
@@ -148,6 +149,15 @@ struct Manifest {
   // a step's outputs go when it returns: its latency is the real one. (ABI 2.1)
   Manifest& delivered_after(std::string seconds_param) {
     triggers.push_back({TriggerSpec::Kind::latency, std::move(seconds_param)});
+    return *this;
+  }
+
+  // The node's step deadline, wall time, is the named number parameter (seconds; 0: none): its
+  // default is the plugin's, a graph changes it like any parameter, and a graph node's
+  // "deadline_s" has the last word. A step longer than it fails the run; one stuck at twice it
+  // ends the process, which a supervisor may restart (docs/reliability.md). (ABI 2.2)
+  Manifest& step_deadline(std::string seconds_param) {
+    triggers.push_back({TriggerSpec::Kind::deadline, std::move(seconds_param)});
     return *this;
   }
 

@@ -1,0 +1,398 @@
+#include "cli/supervisor.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <fcntl.h>
+#include <poll.h>
+#include <sys/prctl.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
+
+extern char** environ;
+
+namespace brickyard::fw {
+namespace {
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+volatile sig_atomic_t g_signals = 0;
+void on_signal(int) { g_signals = g_signals + 1; }
+
+// Children are stopped with SIGINT and have 2 s to end (their own watchdog); past this they are killed.
+constexpr double kStopGrace_s = 5.0;
+constexpr double kMaxBackoff_s = 5.0;
+// A restart with less of the run left than this is not worth making.
+constexpr double kLeastRun_s = 0.5;
+
+std::string signal_name(int sig) {
+  const char* abbrev = sigabbrev_np(sig);
+  return abbrev ? std::string("SIG") + abbrev : "signal " + std::to_string(sig);
+}
+
+std::string join(const std::vector<std::string>& v) {
+  std::string s;
+  for (const auto& x : v) s += (s.empty() ? "" : ", ") + x;
+  return s;
+}
+
+struct Child {
+  std::string name;
+  std::vector<std::string> nodes;
+  ProcessDecl policy;
+  enum class State { waiting, running, done } state = State::waiting;
+  pid_t pid = -1;
+  int out_fd = -1;
+  std::string partial;  // output not yet ended by a newline
+  Clock::time_point start_at;
+  double started_s = 0;
+  int restarts = 0;
+  bool stopped = false;  // asked by the supervisor to end
+  std::string dir;       // this run's --out folder
+  std::string shm_list;  // where it lists its shared-memory files (crash_guard)
+  nlohmann::json runs = nlohmann::json::array();
+};
+
+class Supervisor {
+ public:
+  Supervisor(const GraphDecl& g, const SuperviseOptions& o) : g_(g), o_(o), t0_(Clock::now()) {}
+  int run();
+
+ private:
+  double elapsed() const { return std::chrono::duration<double>(Clock::now() - t0_).count(); }
+  void say(const std::string& line, bool always = false) {
+    if (o_.quiet && !always) return;
+    std::fprintf(stderr, "[brickyard] %s\n", line.c_str());
+  }
+  void spawn(Child& c);
+  void relay(Child& c, bool to_end);
+  void ended(Child& c, int status);
+  void stop_all(int sig);
+  void fail(const std::string& why) {
+    if (!failed_) failed_ = why;
+  }
+  void write_summary(const std::string& result, const std::string& reason);
+
+  const GraphDecl& g_;
+  const SuperviseOptions& o_;
+  Clock::time_point t0_;
+  std::string self_, base_, tmp_;
+  std::vector<Child> children_;
+  std::vector<std::string> shm_files_;  // every child's shared-memory files, removed at the end
+  std::optional<std::string> failed_, invalid_, finished_by_;
+  bool stopping_ = false, interrupted_ = false;
+  Clock::time_point stop_deadline_;
+};
+
+void Supervisor::spawn(Child& c) {
+  c.dir = (fs::path(base_) / (c.restarts ? c.name + ".restart" + std::to_string(c.restarts) : c.name)).string();
+  c.shm_list = (fs::path(tmp_) / (c.name + "." + std::to_string(c.restarts) + ".shm")).string();
+  std::vector<std::string> argv = {self_, "run", o_.graph_file, "--process", c.name, "--domain", std::to_string(o_.domain), "--out", c.dir};
+  if (o_.duration_s) {
+    char d[32];
+    std::snprintf(d, sizeof d, "%.3f", std::max(*o_.duration_s - elapsed(), 0.001));
+    argv.insert(argv.end(), {"--duration", d});
+  }
+  argv.insert(argv.end(), o_.child_flags.begin(), o_.child_flags.end());
+  std::vector<std::string> env;
+  for (char** e = environ; *e; ++e)
+    if (std::strncmp(*e, "BRICKYARD_SHM_LIST=", 19) != 0) env.emplace_back(*e);
+  env.push_back("BRICKYARD_SHM_LIST=" + c.shm_list);
+  std::vector<char*> av, ev;
+  for (auto& s : argv) av.push_back(s.data());
+  for (auto& s : env) ev.push_back(s.data());
+  av.push_back(nullptr);
+  ev.push_back(nullptr);
+  int fds[2];
+  if (pipe2(fds, O_CLOEXEC) != 0) throw std::runtime_error(std::string("cannot make a pipe: ") + std::strerror(errno));
+  const pid_t parent = getpid();
+  const pid_t pid = fork();
+  if (pid < 0) throw std::runtime_error(std::string("cannot start a process: ") + std::strerror(errno));
+  if (pid == 0) {
+    // The child: its own process group (a Ctrl-C at the terminal reaches the supervisor, which
+    // stops the children in order), told to end when the supervisor dies, its output to the pipe.
+    setpgid(0, 0);
+    prctl(PR_SET_PDEATHSIG, SIGTERM);
+    if (getppid() != parent) _exit(130);
+    dup2(fds[1], 1);
+    dup2(fds[1], 2);
+    execve(av[0], av.data(), ev.data());
+    _exit(127);
+  }
+  close(fds[1]);
+  fcntl(fds[0], F_SETFL, fcntl(fds[0], F_GETFL) | O_NONBLOCK);
+  c.pid = pid;
+  c.out_fd = fds[0];
+  c.state = Child::State::running;
+  c.stopped = false;
+  c.started_s = elapsed();
+  char line[160];
+  std::snprintf(line, sizeof line, "process '%s' started (pid %d) at %.3f s%s", c.name.c_str(), static_cast<int>(pid), c.started_s,
+                c.restarts ? (", restart " + std::to_string(c.restarts)).c_str() : "");
+  say(line, c.restarts > 0);
+}
+
+// What a child writes goes out line by line under its name.
+void Supervisor::relay(Child& c, bool to_end) {
+  if (c.out_fd < 0) return;
+  char buf[8192];
+  for (;;) {
+    const ssize_t n = read(c.out_fd, buf, sizeof buf);
+    if (n > 0) {
+      c.partial.append(buf, static_cast<std::size_t>(n));
+      std::size_t at;
+      while ((at = c.partial.find('\n')) != std::string::npos) {
+        std::fprintf(stderr, "[%s] %s\n", c.name.c_str(), c.partial.substr(0, at).c_str());
+        c.partial.erase(0, at + 1);
+      }
+      continue;
+    }
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0 && errno == EAGAIN && !to_end) return;
+    if (n < 0 && errno == EAGAIN) {  // the child is gone; a grandchild may hold the pipe: wait a little
+      pollfd p{c.out_fd, POLLIN, 0};
+      if (poll(&p, 1, 200) > 0) continue;
+    }
+    break;  // end of file, or nothing more to wait for
+  }
+  if (!c.partial.empty()) std::fprintf(stderr, "[%s] %s\n", c.name.c_str(), c.partial.c_str());
+  c.partial.clear();
+  close(c.out_fd);
+  c.out_fd = -1;
+}
+
+void Supervisor::stop_all(int sig) {
+  if (!stopping_) stop_deadline_ = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(kStopGrace_s));
+  stopping_ = true;
+  for (auto& c : children_) {
+    if (c.state == Child::State::waiting) c.state = Child::State::done;  // a restart not made
+    if (c.state != Child::State::running) continue;
+    c.stopped = true;
+    kill(c.pid, sig);
+  }
+}
+
+// A child has ended: how, what it said of itself, what it leaves, and what happens next.
+void Supervisor::ended(Child& c, int status) {
+  relay(c, true);
+  c.state = Child::State::done;
+  const double at = elapsed();
+  int code = -1, sig = 0;
+  if (WIFEXITED(status)) code = WEXITSTATUS(status);
+  else if (WIFSIGNALED(status)) sig = WTERMSIG(status);
+  nlohmann::json own;  // the child's summary.json, when it wrote one
+  {
+    std::ifstream f(fs::path(c.dir) / "summary.json");
+    try {
+      if (f) own = nlohmann::json::parse(f);
+    } catch (...) {
+    }
+  }
+  const std::string reason = own.is_object() ? own.value("reason", "") : "";
+  const bool clean = code == 0 || (c.stopped && code == 130);
+  {
+    // What its participant made in /dev/shm (it listed the files). A dead one's segment goes now
+    // (a crash handler may have removed it already). Port files stay until every process has
+    // ended: a peer still has them mapped and sends to them, and a restarted process opens the
+    // same ports (were they unlinked now, it would never hear that peer). Then they all go, a clean
+    // process's too: a dead peer's reference keeps Fast DDS from removing them at its exit.
+    std::ifstream list(c.shm_list);
+    for (std::string file; std::getline(list, file);)
+      if (file.rfind("/dev/shm/", 0) == 0) {
+        std::error_code ec;
+        if (!clean && file.find("fastrtps_port") == std::string::npos) fs::remove(file, ec);
+        shm_files_.push_back(file);
+      }
+  }
+  std::string how = sig ? "was killed by " + signal_name(sig) : code == 127 ? "could not be started (exit 127)" : "exited with code " + std::to_string(code);
+  if (!own.is_object()) {
+    // It could not say anything (SIGKILL, or dead before its run began): the supervisor writes its summary.
+    nlohmann::json s = {{"graph", g_.name}, {"graph_file", g_.file}, {"process", c.name}, {"result", "failed"},
+                        {"reason", "process '" + c.name + "' " + how + " and left no summary (written by its supervisor)"},
+                        {"clock", g_.clock.sim ? "sim" : "real"}, {"wall_time_s", at - c.started_s}, {"nodes", nlohmann::json::object()}};
+    for (const auto& n : c.nodes) s["nodes"][n] = {{"plugin", g_.nodes.at(n).plugin}};
+    std::error_code ec;
+    fs::create_directories(c.dir, ec);
+    std::ofstream(fs::path(c.dir) / "summary.json") << s.dump(2) << "\n";
+  }
+  nlohmann::json run = {{"out", fs::path(c.dir).filename().string()}, {"pid", c.pid}, {"started_s", c.started_s}, {"ended_s", at},
+                        {"result", own.is_object() ? own.value("result", "") : "failed"}, {"reason", reason}};
+  if (sig) run["signal"] = signal_name(sig);
+  else run["exit_code"] = code;
+  if (c.stopped) run["stopped_by_supervisor"] = true;
+  c.runs.push_back(run);
+  c.pid = -1;
+
+  if (code == 2) {
+    invalid_ = "process '" + c.name + "': " + (reason.empty() ? "invalid input" : reason);
+    say("process '" + c.name + "' refused its input (exit 2): stopping the others", true);
+    stop_all(SIGINT);
+    return;
+  }
+  if (clean) {
+    say("process '" + c.name + "' ended" + (reason.empty() ? "" : ": " + reason));
+    // The first process to end on its own ends the run (its referee, its sink, its duration).
+    if (!c.stopped && !stopping_) {
+      finished_by_ = "process '" + c.name + "': " + reason;
+      if (std::any_of(children_.begin(), children_.end(), [](const Child& o) { return o.state != Child::State::done; }))
+        say("stopping the other processes");
+      stop_all(SIGINT);
+    }
+    return;
+  }
+  const std::string what = "process '" + c.name + "' (nodes " + join(c.nodes) + ") " + how + (reason.empty() ? "" : ": " + reason);
+  say(what, true);
+  if (!c.policy.may_die) fail(what);
+  if (c.stopped || stopping_) return;
+  // The others go on whatever died: a car interface among them keeps its car safe (it brakes on
+  // its command watchdog) rather than being stopped; the verdict is kept.
+  if (c.policy.restart != ProcessDecl::Restart::on_failure) {
+    say(c.policy.may_die ? "the graph lets process '" + c.name + "' die; the others go on"
+                         : "the others go on; the run has failed (process '" + c.name + "' may not die)",
+        true);
+    return;
+  }
+  if (c.restarts >= c.policy.max_restarts) {
+    say("process '" + c.name + "': no restart left (max_restarts " + std::to_string(c.policy.max_restarts) + ")", true);
+    if (!c.policy.may_die) fail(what + "; restarted " + std::to_string(c.restarts) + " times, no restart left");
+    return;
+  }
+  const double backoff = std::min(c.policy.backoff_s * static_cast<double>(1u << std::min(c.restarts, 16)), kMaxBackoff_s);
+  if (o_.duration_s && *o_.duration_s - at - backoff < kLeastRun_s) {
+    say("process '" + c.name + "' is not restarted: the run is nearly over", true);
+    return;
+  }
+  ++c.restarts;
+  c.state = Child::State::waiting;
+  c.start_at = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(backoff));
+  char line[160];
+  std::snprintf(line, sizeof line, "restarting process '%s' in %.2f s (restart %d of %d)", c.name.c_str(), backoff, c.restarts,
+                c.policy.max_restarts);
+  say(line, true);
+}
+
+void Supervisor::write_summary(const std::string& result, const std::string& reason) {
+  if (o_.out.empty()) return;
+  nlohmann::json j = {{"graph", g_.name}, {"graph_file", g_.file}, {"result", result}, {"reason", reason}, {"clock", "real"},
+                      {"process", "supervisor"}, {"wall_time_s", elapsed()}, {"processes", nlohmann::json::object()}};
+  for (const auto& c : children_)
+    j["processes"][c.name] = {{"nodes", c.nodes}, {"restart", c.policy.restart == ProcessDecl::Restart::on_failure ? "on-failure" : "never"},
+                              {"may_die", c.policy.may_die}, {"restarts", c.restarts}, {"runs", c.runs}};
+  const fs::path file = fs::path(o_.out) / "summary.json", part = file.string() + ".part";
+  {
+    std::ofstream f(part);
+    f << j.dump(2) << "\n";
+    if (!f) {
+      std::fprintf(stderr, "error: cannot write %s\n", file.c_str());
+      return;
+    }
+  }
+  std::error_code ec;
+  fs::rename(part, file, ec);
+}
+
+int Supervisor::run() {
+  std::error_code ec;
+  self_ = fs::read_symlink("/proc/self/exe", ec).string();
+  if (ec) throw std::runtime_error("cannot find this executable (/proc/self/exe)");
+  char tmpl[] = "/tmp/brickyard-supervisor-XXXXXX";
+  if (!mkdtemp(tmpl)) throw std::runtime_error(std::string("cannot make a temporary folder: ") + std::strerror(errno));
+  tmp_ = tmpl;
+  base_ = o_.out.empty() ? tmp_ : o_.out;
+  if (!o_.out.empty()) {
+    // What the folder's last supervised run made goes (its summary lists its processes' folders).
+    std::ifstream old(fs::path(o_.out) / "summary.json");
+    try {
+      const auto j = nlohmann::json::parse(old);
+      if (j.value("process", "") == "supervisor")
+        for (const auto& [_, p] : j.at("processes").items())
+          for (const auto& r : p.at("runs")) {
+            const std::string sub = r.value("out", "");
+            if (!sub.empty() && sub.find('/') == std::string::npos && sub != "." && sub != "..") fs::remove_all(fs::path(o_.out) / sub, ec);
+          }
+    } catch (...) {
+    }
+    fs::remove(fs::path(o_.out) / "summary.json", ec);
+  }
+  std::map<std::string, std::vector<std::string>> nodes;
+  for (const auto& [name, n] : g_.nodes) nodes[n.process].push_back(name);
+  for (const auto& [p, names] : nodes) {
+    Child c;
+    c.name = p;
+    c.nodes = names;
+    c.policy = process_policy(g_, p);
+    c.start_at = t0_;
+    children_.push_back(std::move(c));
+  }
+  struct sigaction sa {};
+  sa.sa_handler = on_signal;  // no SA_RESTART: poll returns at once
+  sigemptyset(&sa.sa_mask);
+  sigaction(SIGINT, &sa, nullptr);
+  sigaction(SIGTERM, &sa, nullptr);
+  std::string plan;
+  for (const auto& c : children_) plan += (plan.empty() ? "" : "; ") + c.name + " (" + join(c.nodes) + ")";
+  say("supervising " + std::to_string(children_.size()) + " processes: " + plan);
+
+  int signals_seen = 0;
+  for (;;) {
+    if (g_signals > signals_seen) {
+      signals_seen = g_signals;
+      interrupted_ = true;
+      // The first signal stops the children in order; a second tells them to end now.
+      if (signals_seen == 1) say("interrupted: stopping every process", true);
+      stop_all(signals_seen == 1 ? SIGINT : SIGTERM);
+    }
+    for (auto& c : children_)
+      if (c.state == Child::State::waiting && !stopping_ && Clock::now() >= c.start_at) spawn(c);
+    std::vector<pollfd> fds;
+    std::vector<Child*> who;
+    for (auto& c : children_)
+      if (c.out_fd >= 0) fds.push_back({c.out_fd, POLLIN, 0}), who.push_back(&c);
+    poll(fds.data(), fds.size(), 20);
+    for (std::size_t i = 0; i < fds.size(); ++i)
+      if (fds[i].revents) relay(*who[i], false);
+    for (auto& c : children_) {
+      if (c.state != Child::State::running) continue;
+      int status = 0;
+      if (waitpid(c.pid, &status, WNOHANG) == c.pid) ended(c, status);
+    }
+    if (stopping_ && Clock::now() > stop_deadline_) {
+      for (auto& c : children_)
+        if (c.state == Child::State::running) {
+          say("process '" + c.name + "' did not end within " + std::to_string(static_cast<int>(kStopGrace_s)) + " s of being stopped: killed", true);
+          kill(c.pid, SIGKILL);
+        }
+      stop_deadline_ = Clock::now() + std::chrono::hours(1);
+    }
+    if (std::all_of(children_.begin(), children_.end(), [](const Child& c) { return c.state == Child::State::done; })) break;
+  }
+  fs::remove_all(tmp_, ec);
+  for (const auto& file : shm_files_) fs::remove(file, ec);
+  // Every process is accounted for: the verdict.
+  for (const auto& c : children_)
+    if (!c.runs.empty() && c.runs.back().value("result", "") == "failed" && !c.policy.may_die)
+      fail("process '" + c.name + "': " + c.runs.back().value("reason", std::string("failed")));
+  std::string result = "success", reason = finished_by_.value_or("every process ended");
+  int rc = 0;
+  if (invalid_) result = "invalid_input", reason = *invalid_, rc = 2;
+  else if (failed_) result = "failed", reason = *failed_, rc = 1;
+  else if (interrupted_) result = "interrupted", reason = "interrupted";  // a clean stop on a signal, as one process ends
+  write_summary(result, reason);
+  std::fprintf(stderr, "[brickyard] %s: %s (supervised %zu processes, wall %.3f s)\n", result.c_str(), reason.c_str(), children_.size(), elapsed());
+  return rc;
+}
+
+}  // namespace
+
+int supervise(const GraphDecl& g, const SuperviseOptions& o) { return Supervisor(g, o).run(); }
+
+}  // namespace brickyard::fw
