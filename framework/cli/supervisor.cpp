@@ -5,6 +5,7 @@
 #include <fcntl.h>
 #include <poll.h>
 #include <sys/prctl.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -27,6 +28,7 @@ using Clock = std::chrono::steady_clock;
 
 volatile sig_atomic_t g_signals = 0;
 void on_signal(int) { g_signals = g_signals + 1; }
+void on_child(int) {}  // only to wake the poll below when a child ends
 
 // Children are stopped with SIGINT and have 2 s to end (their own watchdog); past this they are killed.
 constexpr double kStopGrace_s = 5.0;
@@ -87,6 +89,7 @@ class Supervisor {
   Clock::time_point t0_;
   std::string self_, base_, tmp_;
   std::vector<Child> children_;
+  int spawns_ = 0;
   std::vector<std::string> shm_files_;  // every child's shared-memory files, removed at the end
   std::optional<std::string> failed_, invalid_, finished_by_;
   bool stopping_ = false, interrupted_ = false;
@@ -105,8 +108,10 @@ void Supervisor::spawn(Child& c) {
   argv.insert(argv.end(), o_.child_flags.begin(), o_.child_flags.end());
   std::vector<std::string> env;
   for (char** e = environ; *e; ++e)
-    if (std::strncmp(*e, "BRICKYARD_SHM_LIST=", 19) != 0) env.emplace_back(*e);
+    if (std::strncmp(*e, "BRICKYARD_SHM_LIST=", 19) != 0 && std::strncmp(*e, "BRICKYARD_PARTICIPANT_ID=", 25) != 0) env.emplace_back(*e);
   env.push_back("BRICKYARD_SHM_LIST=" + c.shm_list);
+  // A participant id of its own, never a dead process's (transport/dds.cpp says why).
+  env.push_back("BRICKYARD_PARTICIPANT_ID=" + std::to_string(spawns_++ % 120));
   std::vector<char*> av, ev;
   for (auto& s : argv) av.push_back(s.data());
   for (auto& s : env) ev.push_back(s.data());
@@ -284,6 +289,13 @@ void Supervisor::write_summary(const std::string& result, const std::string& rea
   if (o_.out.empty()) return;
   nlohmann::json j = {{"graph", g_.name}, {"graph_file", g_.file}, {"result", result}, {"reason", reason}, {"clock", "real"},
                       {"process", "supervisor"}, {"wall_time_s", elapsed()}, {"processes", nlohmann::json::object()}};
+  // What watching cost: the supervisor's own CPU time beside its children's (docs/reliability.md).
+  auto cpu = [](int who) {
+    rusage u{};
+    getrusage(who, &u);
+    return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec) * 1e-6;
+  };
+  j["cpu_s"] = {{"supervisor", cpu(RUSAGE_SELF)}, {"processes", cpu(RUSAGE_CHILDREN)}};
   for (const auto& c : children_)
     j["processes"][c.name] = {{"nodes", c.nodes}, {"restart", c.policy.restart == ProcessDecl::Restart::on_failure ? "on-failure" : "never"},
                               {"may_die", c.policy.may_die}, {"restarts", c.restarts}, {"runs", c.runs}};
@@ -338,6 +350,8 @@ int Supervisor::run() {
   sigemptyset(&sa.sa_mask);
   sigaction(SIGINT, &sa, nullptr);
   sigaction(SIGTERM, &sa, nullptr);
+  sa.sa_handler = on_child;
+  sigaction(SIGCHLD, &sa, nullptr);
   std::string plan;
   for (const auto& c : children_) plan += (plan.empty() ? "" : "; ") + c.name + " (" + join(c.nodes) + ")";
   say("supervising " + std::to_string(children_.size()) + " processes: " + plan);
@@ -357,7 +371,14 @@ int Supervisor::run() {
     std::vector<Child*> who;
     for (auto& c : children_)
       if (c.out_fd >= 0) fds.push_back({c.out_fd, POLLIN, 0}), who.push_back(&c);
-    poll(fds.data(), fds.size(), 20);
+    // Asleep until a child speaks or ends (SIGCHLD), a signal comes, or a restart or a stop is due:
+    // watching costs next to nothing (cpu_s in the summary).
+    auto wake = Clock::now() + std::chrono::milliseconds(250);
+    for (const auto& c : children_)
+      if (c.state == Child::State::waiting) wake = std::min(wake, c.start_at);
+    if (stopping_) wake = std::min(wake, stop_deadline_);
+    const auto ms = std::chrono::duration_cast<std::chrono::milliseconds>(wake - Clock::now()).count();
+    poll(fds.data(), fds.size(), static_cast<int>(std::clamp<long long>(ms + 1, 0, 250)));
     for (std::size_t i = 0; i < fds.size(); ++i)
       if (fds[i].revents) relay(*who[i], false);
     for (auto& c : children_) {

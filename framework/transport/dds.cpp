@@ -1,5 +1,7 @@
 #include "transport/dds.hpp"
 
+#include <cstdlib>
+
 #include <brickyard/msgs/registry.hpp>
 
 #include <fastdds/dds/domain/DomainParticipant.hpp>
@@ -30,6 +32,7 @@ std::string topic_name(const std::string& node, const std::string& port) { retur
 
 namespace {
 const eprosima::fastrtps::Duration_t kLease(0.5);  // a writer silent this long (its process gone) is lost
+constexpr std::uint32_t kMaxParticipants = 120;     // participant ids on a domain's ports: 7410 + 2 id < 7400 + 250
 }
 
 struct WriterListener : DataWriterListener {
@@ -94,6 +97,14 @@ DdsTransport::DdsTransport(const DdsSettings& s) {
   for (const auto& i : s.interfaces) udp->interfaceWhiteList.push_back(i);
   q.transport().user_transports.push_back(udp);
   // Unicast discovery to the listed peers only: no multicast leaves the machine.
+  // Under a supervisor every process it starts has a participant id of its own, a restarted one
+  // too: the dead one's ports (files its peers still have mapped and send to) are never reused,
+  // which would leave the new process deaf to its peers. The discovery's range of initial peers
+  // spans them (Fast DDS's default is 4).
+  if (const char* id = std::getenv("BRICKYARD_PARTICIPANT_ID"); id && *id) {
+    q.wire_protocol().participant_id = std::atoi(id);
+    shm->maxInitialPeersRange = udp->maxInitialPeersRange = kMaxParticipants;
+  }
   auto& b = q.wire_protocol().builtin;
   b.initialPeersList.clear();
   b.metatrafficMulticastLocatorList.clear();
