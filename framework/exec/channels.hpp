@@ -6,6 +6,7 @@
 
 #include <brickyard/context.hpp>
 
+#include <algorithm>
 #include <deque>
 #include <functional>
 #include <mutex>
@@ -60,13 +61,41 @@ class InputQueue final : public detail::InputChannel {
   std::uint64_t received() const { std::lock_guard<std::mutex> l(m_); return received_; }
   std::uint64_t dropped() const { std::lock_guard<std::mutex> l(m_); return dropped_; }
 
+  // Staleness (the progress line, the summary): an input that has come at least three times is
+  // stale when nothing has come for ten times its usual interval, and at least kStaleFloorNs — a
+  // sensor gone quiet, a peer alive but silent. Its usual interval is learned (a running mean),
+  // so a wire published once (a map) is never stale. Times on the run's clock: on the sim clock
+  // reproducible, like the rest of the summary.
+  static constexpr std::int64_t kStaleFloorNs = 500'000'000;
+  struct Gaps {
+    std::uint64_t received = 0;
+    std::int64_t last_ns = 0, usual_ns = 0, max_gap_ns = 0;
+    std::uint64_t stale_episodes = 0;  // gaps past the stale line, the one still open counted
+    bool stale(std::int64_t now) const {
+      return received >= 3 && now - last_ns > std::max<std::int64_t>(kStaleFloorNs, 10 * usual_ns);
+    }
+  };
+  Gaps gaps() const { std::lock_guard<std::mutex> l(m_); return gaps_; }
+
   std::function<void(const std::string&)> on_arrival;  // set by the executive before the run
+  std::function<std::int64_t()> clock;                  // the run's clock, for arrivals' times
 
  private:
   std::string name_, type_;
   std::uint32_t depth_;
   bool connected_;
   void arrive(std::shared_ptr<const void> s) {  // m_ held
+    if (clock) {
+      const std::int64_t t = clock();
+      if (gaps_.received > 0) {
+        const std::int64_t gap = t - gaps_.last_ns;
+        if (gaps_.stale(t)) ++gaps_.stale_episodes;
+        gaps_.max_gap_ns = std::max(gaps_.max_gap_ns, gap);
+        gaps_.usual_ns = gaps_.received == 1 ? gap : gaps_.usual_ns + (gap - gaps_.usual_ns) / 8;
+      }
+      gaps_.last_ns = t;
+      ++gaps_.received;
+    }
     last_ = s;
     q_.push_back(std::move(s));
     ++received_;
@@ -82,6 +111,7 @@ class InputQueue final : public detail::InputChannel {
   std::deque<std::shared_ptr<const void>> q_;
   std::shared_ptr<const void> last_;
   std::uint64_t received_ = 0, dropped_ = 0;
+  Gaps gaps_;
 };
 
 class OutputPort final : public detail::OutputChannel {

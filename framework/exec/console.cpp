@@ -23,7 +23,7 @@ void Console::set_status(const std::string& node, std::string_view field, std::s
   }
 }
 
-void Console::progress(bool last, bool sim, std::int64_t sim_now_ns) {
+void Console::progress(bool last, bool sim, std::int64_t sim_now_ns, const std::function<std::string()>& extra) {
   if (progress_every_s_ <= 0) return;
   const auto now = std::chrono::steady_clock::now();
   if (!last && now - last_progress_ < std::chrono::duration<double>(progress_every_s_)) return;
@@ -39,6 +39,8 @@ void Console::progress(bool last, bool sim, std::int64_t sim_now_ns) {
     for (const auto& [node, fields] : status_)
       for (const auto& [f, v] : fields) line += " · " + f + " " + v;
   }
+  if (extra)
+    if (const std::string more = extra(); !more.empty()) line += " · " + more;
   std::lock_guard<std::mutex> l(log_m_);
   if (tty_) {
     std::fprintf(stderr, "\r\033[K%s%s", line.c_str(), last ? "\n" : "");

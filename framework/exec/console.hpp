@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cstdint>
 #include <cstdio>
+#include <functional>
 #include <mutex>
 #include <string>
 #include <string_view>
@@ -24,7 +25,8 @@ class Console {
   void set_status(const std::string& node, std::string_view field, std::string_view value);
   // Prints the progress line when it is due, or with last the final one (on a terminal only:
   // elsewhere the summary follows). sim_now_ns: the sim clock, when the run is on it.
-  void progress(bool last, bool sim, std::int64_t sim_now_ns);
+  // extra: what else the line says (stale inputs), asked only when the line is printed.
+  void progress(bool last, bool sim, std::int64_t sim_now_ns, const std::function<std::string()>& extra = {});
   // Calls print, which writes one line to stderr, under the lock, after erasing an open
   // progress line.
   template <class Print>

@@ -70,7 +70,12 @@ void Executive::pace(std::int64_t sim_ns) {
     std::this_thread::sleep_until(std::min(due, std::chrono::steady_clock::now() + std::chrono::milliseconds(50)));
 }
 
-void Executive::progress(bool last) { console_.progress(last, sim(), sim_now_ns_); }
+void Executive::progress(bool last) {
+  console_.progress(last, sim(), sim_now_ns_, [this] {
+    const std::string stale = stale_inputs_text(nodes_, now_ns());
+    return stale.empty() ? stale : "stale " + stale;
+  });
+}
 
 void Executive::log(const NodeRuntime& n, LogLevel level, std::string_view msg) {
   if (t_deferred) {
@@ -309,7 +314,7 @@ RunSummary Executive::run() {
   s.sim_time_s = sim() ? static_cast<double>(sim_now_ns_) / 1e9 : 0.0;
   s.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   if (!sim()) s.sim_time_s = s.wall_time_s;
-  s.json = summary_json(s, g, opt_, sim(), recording, nodes_);
+  s.json = summary_json(s, g, opt_, sim(), recording, nodes_, now_ns());
   if (!live.is_null()) s.json["live"] = live;
   {
     std::lock_guard<std::mutex> l(stop_m_);

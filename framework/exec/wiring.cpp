@@ -35,9 +35,10 @@ void Executive::build() {
     for (const auto& w : g.wires)
       if (w.to.node == n->name) wired.insert(w.to.port);
     for (const auto& p : rn.plugin->manifest.ports) {
-      if (p.direction == PortDirection::input)
+      if (p.direction == PortDirection::input) {
         n->inputs.push_back(std::make_unique<InputQueue>(p.name, p.type_name, p.depth, wired.count(p.name) > 0));
-      else {
+        n->inputs.back()->clock = [this] { return now_ns(); };
+      } else {
         n->outputs.push_back(std::make_unique<OutputPort>(p.name, p.type_name));
         n->outputs.back()->writer = transport_->make_writer(topic_name(n->name, p.name), p.type_name);
         const std::string topic = n->name + "." + p.name;

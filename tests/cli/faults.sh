@@ -86,4 +86,19 @@ rc=$?
 [ $rc -eq 1 ] && grep -q "node 'fault' (testing.fault)'s step took 0.8[0-9]* s, past its deadline of 0.300 s" "$out/param.log" \
   || { cat "$out/param.log"; echo "FAIL: the manifest's step deadline"; exit 1; }
 echo "deadline: the plugin's own step_deadline_s parameter holds too"
+# A writer alive but silent (mode silent at step 120): its reader's input is stale — in the
+# summary on the sim clock (1.62 s without a sample at the end, against its usual 0.02 s), and on
+# the real clock's progress line.
+"$by" run "$graphs/fault.json" --domain "$domain" --quiet --progress 0 --set fault.mode=silent --out "$out/silent" > "$out/silent.log" 2>&1
+python3 - "$out/silent/summary.json" <<'PY' || { cat "$out/silent.log"; echo "FAIL: a silent input is not stale in the summary"; exit 1; }
+import json, sys
+s = json.load(open(sys.argv[1]))
+st = s.get("stale_inputs", [])
+assert len(st) == 1 and st[0]["input"] == "check.in" and st[0]["stale_at_end"] and abs(st[0]["max_gap_s"] - 1.62) < 1e-9, st
+assert abs(st[0]["usual_interval_s"] - 0.02) < 1e-9, st
+PY
+"$by" run "$graphs/fault_real.json" --domain "$domain" --progress 0.5 --set fault.mode=silent > "$out/silent_real.log" 2>&1
+grep -qE "progress: t [0-9.]+ s .*stale check.in [0-9.]+ s" "$out/silent_real.log" \
+  || { cat "$out/silent_real.log"; echo "FAIL: a silent input is not stale on the progress line"; exit 1; }
+echo "silent: the input is stale in the summary (sim) and on the progress line (real)"
 echo "faults: ok"
