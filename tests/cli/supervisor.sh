@@ -8,6 +8,7 @@
 #     back; a may die, so the run passes.
 #  3. a segfaults at every start and may not die: restarted once (max_restarts 1), then no more;
 #     the run fails naming the process, its node and the crash.
+#     throw, abort and exit() likewise (no restart): each named.
 #  4. b alone, a never started: b's start-up waits transport.startup_timeout_s and fails naming
 #     the writer and its process.
 #  5. SIGINT to the supervisor: both processes end cleanly within the 2 s, result interrupted.
@@ -78,6 +79,22 @@ grep -qF "$want" "$out/crash.log" && grep -qF "no restart left (max_restarts 1)"
 grep -qF "$want" "$out/crash/summary.json" || { echo "FAIL: crash: the summary's reason"; exit 1; }
 no_shm_left crash
 echo "3. a crashed twice: named, restarted once, the run failed (exit 1)"
+
+# 3b. Every other way a plugin takes its process down, in a split run: named, the run fails.
+for mode in throw abort exit; do
+  "$by" run "$graph" --domain "$domain" --progress 0 --duration 4 --arg may_die=false --arg max_restarts=0 \
+    --set src.mode=$mode --set src.at_step=50 --out "$out/$mode" > "$out/$mode.log" 2>&1
+  rc=$?
+  case $mode in
+    throw) want="process 'a' (nodes src) exited with code 1: node 'src' (testing.fault) failed in step: fault injected: throw at step 50" ;;
+    abort) want="process 'a' (nodes src) exited with code 1: node 'src' crashed with SIGABRT (abort) in its step" ;;
+    exit) want="process 'a' (nodes src) exited with code 1: node 'src' called exit() in its step" ;;
+  esac
+  [ $rc -eq 1 ] && grep -qF "$want" "$out/$mode.log" && grep -qF "$want" "$out/$mode/summary.json" \
+    || { cat "$out/$mode.log"; echo "FAIL: $mode in a split run: exit $rc, or not named"; exit 1; }
+  no_shm_left $mode
+done
+echo "3b. throw, abort, exit() in a split run: each named, exit 1"
 
 # 4. A peer that never comes: b's start-up gives up after 1 s.
 "$by" run "$graph" --process b --domain "$domain" --progress 0 --arg startup_timeout_s=1 --out "$out/alone" > "$out/alone.log" 2>&1
