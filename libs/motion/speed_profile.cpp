@@ -11,7 +11,8 @@ namespace {
 double budget(const VehicleLimits& l, double v, double k) {
   if (!l.ellipse) return 1.0;
   const double use = v * v * std::abs(k) / l.a_lat;
-  return use >= 1 ? 0.0 : std::sqrt(1 - use * use);
+  if (use >= 1) return 0.0;
+  return l.ellipse_exponent == 2 ? std::sqrt(1 - use * use) : std::pow(1 - std::pow(use, l.ellipse_exponent), 1 / l.ellipse_exponent);
 }
 
 // A speed from a neighbour's and its slopes by that speed, the curvature and the step.
@@ -23,7 +24,9 @@ struct Link {
 void budget_slope(const VehicleLimits& l, double v, double k, double& b, double& dv, double& dk) {
   b = budget(l, v, k), dv = dk = 0;
   if (!l.ellipse || b <= 0) return;
-  const double use = v * v * std::abs(k) / l.a_lat, slope = -use / std::max(b, 0.05);
+  // d b / d use = −use^(p−1) · b^(1−p): −use / b on the ellipse (p = 2).
+  const double use = v * v * std::abs(k) / l.a_lat, p = l.ellipse_exponent;
+  const double slope = p == 2 ? -use / std::max(b, 0.05) : -std::pow(use, p - 1) * std::pow(std::max(b, 0.05), 1 - p);
   dv = slope * 2 * v * std::abs(k) / l.a_lat;
   dk = slope * v * v * (k < 0 ? -1 : 1) / l.a_lat;
 }

@@ -16,6 +16,10 @@ struct VehicleLimits {
   double drag = 0;            // 1/m: drag deceleration = drag · v² (ρ c_d A / 2m)
   double power = 0;           // m²/s³: engine power per mass; the push is at most power / v (0: none)
   bool ellipse = true;        // off: longitudinal and lateral budgets independent
+  // The ggv's shape between its pure-lateral and pure-longitudinal limits: (a_x/A_x)^p + (a_y/A_y)^p
+  // ≤ 1. 2 is the ellipse; below 2 the corners where the car brakes or pushes while it turns are
+  // cut (1 a diamond): a margin for combined grip a car does not deliver, its extremes unchanged.
+  double ellipse_exponent = 2;
 };
 
 // Speeds at the points of a line with curvature kappa[i] and ds[i] from point i to the next.

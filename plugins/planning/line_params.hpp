@@ -22,6 +22,7 @@ struct LineSettings {
   double a_lat = 18, a_accel = 8, a_decel = 12;  // graph limits, each on its own
   bool vehicle_limits = true;    // the vehicle file's envelope (ellipse, drag, power)
   double grip_use = 0.93;        // vehicle limits: the share of the lateral grip planned with
+  double ellipse_exponent = 2;   // vehicle limits: the ggv's shape the speeds are planned with (2: the ellipse)
   double curvature_smooth_m = 10;
   double edge_margin = 2.5;
 };
@@ -41,6 +42,8 @@ template <class S, class... M> void bind_line(ParamBinding<S>& b, M... path) {
       .doc("the speed profile's limits: vehicle (the vehicle file's envelope: the ellipse, drag, power) or graph (v_max, a_lat, a_accel, a_decel, each on its own)");
   b.bind("grip_use", path..., &L::grip_use).range(0.1, 1)
       .doc("profile_limits vehicle: the share of the file's lateral acceleration planned with (a margin for transients)");
+  b.bind("ellipse_exponent", path..., &L::ellipse_exponent).range(1, 2)
+      .doc("profile_limits vehicle: the speeds' ggv, (a_x/A_x)^p + (a_y/A_y)^p <= 1: 2 the ellipse, less cuts the corners where the car brakes or pushes while it turns");
   b.bind("curvature_smooth_m", path..., &L::curvature_smooth_m).in_unit("m").range(0, 200)
       .doc("the profile reads the line's curvature averaged over this");
   b.bind("edge_margin", path..., &L::edge_margin).in_unit("m").at_least(0)
@@ -66,6 +69,7 @@ inline LineSource load_line(Context& ctx, const LineSettings& s, const vehicle::
   if (s.vehicle_limits) {
     out.limits = out.plan_limits;
     out.limits.a_lat *= s.grip_use;
+    out.limits.ellipse_exponent = s.ellipse_exponent;
     if (s.v_max) out.limits.v_max = std::min(out.limits.v_max, *s.v_max);
   } else {
     out.limits = motion::independent_limits(s.v_max.value_or(80), s.a_lat, s.a_accel, s.a_decel);

@@ -303,6 +303,31 @@ TEST(SpeedProfile, CornerSpeedsDragAndTheEllipse) {
   EXPECT_GT(profile_time(dso, vo, false), 0);
 }
 
+// The ggv's exponent below 2 cuts only the combined corners: the corner's own speed (pure lateral)
+// and the straights' top speed stay; braking into the corner starts earlier (slower on the way in).
+TEST(SpeedProfile, AnExponentBelowTwoCutsOnlyTheCombinedCorners) {
+  std::vector<double> ds(600, 5.0), k(600, 0.0);
+  for (int i = 400; i < 450; ++i) k[i] = 0.01;
+  for (int i = 380; i < 400; ++i) k[i] = 0.01 * (i - 380) / 20.0;  // a clothoid entry: turning while braking
+  VehicleLimits l;
+  l.v_max = 60;
+  l.a_lat = 16;
+  const std::vector<double> ellipse = speed_profile(ds, k, l, true);
+  l.ellipse_exponent = 2;
+  EXPECT_EQ(speed_profile(ds, k, l, true), ellipse);
+  l.ellipse_exponent = 1.6;
+  const std::vector<double> cut = speed_profile(ds, k, l, true);
+  EXPECT_NEAR(cut[425], 40.0, 1e-9);          // the corner's limit
+  EXPECT_NEAR(cut[150], ellipse[150], 1e-9);  // the straight's top speed
+  bool slower = false;
+  for (std::size_t i = 0; i < cut.size(); ++i) {
+    EXPECT_LE(cut[i], ellipse[i] + 1e-9) << i;
+    slower = slower || cut[i] < ellipse[i] - 0.1;
+  }
+  EXPECT_TRUE(slower) << "braking while turning into the corner is planned with less grip";
+  for (int i = 385; i < 396; ++i) EXPECT_LT(cut[i], ellipse[i]) << i;
+}
+
 }  // namespace
 
 namespace {
