@@ -1,10 +1,10 @@
 #include "cli/commands.hpp"
+#include "graph/names.hpp"
 
 #include "graph/diagnostics.hpp"
 
 #include <filesystem>
 #include <fstream>
-#include <regex>
 #include <cmath>
 #include <sstream>
 
@@ -146,9 +146,8 @@ std::string find_template_dir() {
 }
 
 void scaffold_plugin(const std::string& name, const std::string& dir, const std::string& template_dir) {
-  static const std::regex kName("[a-z][a-z0-9_]*(\\.[a-z][a-z0-9_]*)?");
-  if (!std::regex_match(name, kName))
-    throw InvalidInput("new-plugin " + name, "expected a name like my_filter or area.my_filter (lower case, digits, _)");
+  if (!is_dotted_name(name, 1, 2))
+    throw InvalidInput("new-plugin " + quoted_name(name), "expected a name like my_filter or area.my_filter (lower case, digits, _)");
   if (template_dir.empty()) throw InvalidInput("new-plugin", "the SDK template folder was not found");
   std::error_code ec;
   if (fs::exists(dir, ec) && !fs::is_empty(dir, ec))

@@ -157,7 +157,7 @@ Args parse_args(int argc, char** argv) {
     if (f == "--quiet" || f == "-q" || f == "--profile" || f == "--no-report") a.child_flags.push_back(f);
     if (f == "--duration") {
       double d = parse_number(f, value());
-      if (!(d > 0)) usage_error("--duration", "expected a positive number of seconds");
+      if (!(d > 0 && d <= kMaxDuration_s)) usage_error("--duration", "expected a positive number of seconds, at most 1e7");
       a.duration = d;
     } else if (f == "--set") a.sets.push_back(value());
     else if (f == "--arg") a.args.push_back(value());

@@ -1,4 +1,5 @@
 #include "graph/graph.hpp"
+#include "graph/names.hpp"
 
 #include "graph/diagnostics.hpp"
 #include "graph/graph_args.hpp"
@@ -7,7 +8,6 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <regex>
 #include <set>
 #include <sstream>
 
@@ -51,15 +51,13 @@ struct Ctx {
   }
 };
 
-const std::regex kIdent("[A-Za-z_][A-Za-z0-9_]*");
-
 std::optional<Endpoint> parse_endpoint(const json& j, const std::string& ptr, Ctx& c) {
   if (!c.expect(j, json::value_t::string, "string \"node.port\"", ptr)) return std::nullopt;
   const std::string s = j.get<std::string>();
   auto dot = s.find('.');
   if (dot == std::string::npos || s.find('.', dot + 1) != std::string::npos ||
-      !std::regex_match(s.substr(0, dot), kIdent) || !std::regex_match(s.substr(dot + 1), kIdent)) {
-    c.err(ptr, "expected \"node.port\", found \"" + s + "\"");
+      !is_identifier(std::string_view(s).substr(0, dot)) || !is_identifier(std::string_view(s).substr(dot + 1))) {
+    c.err(ptr, "expected \"node.port\", found \"" + quoted_name(s) + "\"");
     return std::nullopt;
   }
   return Endpoint{s.substr(0, dot), s.substr(dot + 1)};
@@ -82,7 +80,8 @@ void parse_clock(const json& j, GraphDecl& g, Ctx& c) {
   if (j.contains("duration_s") &&
       c.expect(j["duration_s"], json::value_t::number_float, "number", "/clock/duration_s")) {
     double v = j["duration_s"].get<double>();
-    if (!(v > 0 && std::isfinite(v))) c.err("/clock/duration_s", "expected a positive duration, found " + j["duration_s"].dump());
+    if (!(v > 0 && v <= kMaxDuration_s))
+      c.err("/clock/duration_s", "expected a positive duration of at most 1e7 s, found " + j["duration_s"].dump());
     else g.clock.duration_s = v;
   }
 }
@@ -160,16 +159,17 @@ void parse_processes(const json& j, GraphDecl& g, Ctx& c) {
 
 void apply_sets(json& root, const std::vector<std::string>& sets, Diagnostics& d,
                 std::map<std::string, std::map<std::string, std::string>>& origin) {
-  static const std::regex kSet("([A-Za-z_][A-Za-z0-9_]*)\\.([A-Za-z_][A-Za-z0-9_]*)=(.*)");
   for (const auto& s : sets) {
-    std::smatch m;
-    if (!std::regex_match(s, m, kSet)) {
-      d.add("--set " + s, "expected node.param=value");
+    // NODE.PARAM=VALUE, the two names identifiers (checked in one pass: no regex on input).
+    const std::size_t eq = s.find('='), dot = s.find('.');
+    if (eq == std::string::npos || dot == std::string::npos || dot > eq || !is_identifier(std::string_view(s).substr(0, dot)) ||
+        !is_identifier(std::string_view(s).substr(dot + 1, eq - dot - 1))) {
+      d.add("--set " + quoted_name(s), "expected node.param=value");
       continue;
     }
-    const std::string node = m[1], param = m[2], text = m[3];
+    const std::string node = s.substr(0, dot), param = s.substr(dot + 1, eq - dot - 1), text = s.substr(eq + 1);
     if (!root.is_object() || !root.contains("nodes") || !root["nodes"].is_object() || !root["nodes"].contains(node)) {
-      d.add("--set " + s, "the graph has no node \"" + node + "\"");
+      d.add("--set " + quoted_name(s), "the graph has no node \"" + node + "\"");
       continue;
     }
     json& n = root["nodes"][node];
@@ -240,8 +240,9 @@ GraphDecl parse_graph_text(const std::string& text, const std::string& file, con
     if (root["nodes"].empty()) c.err("/nodes", "a graph needs at least one node");
     for (auto it = root["nodes"].begin(); it != root["nodes"].end(); ++it) {
       const std::string ptr = "/nodes/" + pointer_escape(it.key());
-      if (!std::regex_match(it.key(), kIdent)) {
-        c.err(ptr, "node name \"" + it.key() + "\" must be letters, digits and _ (not starting with a digit)");
+      if (!is_identifier(it.key())) {
+        c.err("/nodes/" + pointer_escape(quoted_name(it.key())), "node name \"" + quoted_name(it.key()) + "\" must be letters, digits and _ (not starting with a digit), at most " +
+                        std::to_string(kMaxNameLength) + " characters");
         continue;
       }
       const json& n = it.value();
@@ -255,7 +256,8 @@ GraphDecl parse_graph_text(const std::string& text, const std::string& file, con
         nd.params = n["params"];
       if (n.contains("process") && c.expect(n["process"], json::value_t::string, "string", ptr + "/process")) {
         nd.process = n["process"];
-        if (!std::regex_match(nd.process, kIdent)) c.err(ptr + "/process", "process name \"" + nd.process + "\" must be an identifier");
+        if (!is_identifier(nd.process))
+          c.err(ptr + "/process", "process name \"" + quoted_name(nd.process) + "\" must be an identifier of at most " + std::to_string(kMaxNameLength) + " characters");
       }
       if (n.contains("deadline_s") && c.expect(n["deadline_s"], json::value_t::number_float, "number", ptr + "/deadline_s")) {
         if (!(n["deadline_s"].get<double>() > 0 && n["deadline_s"].get<double>() <= 3600))

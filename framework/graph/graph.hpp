@@ -30,6 +30,10 @@ struct WireDecl {
   std::string to_ptr() const { return "/wires/" + std::to_string(index) + "/to" + to_item; }
 };
 
+// The longest run a clock can time: 10^7 s (116 days), far inside the int64 nanoseconds of the
+// clocks (292 years); a longer one would wrap to a negative time.
+inline constexpr double kMaxDuration_s = 1e7;
+
 struct ClockDecl {
   bool sim = true;
   double step_s = 0.001;

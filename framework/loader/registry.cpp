@@ -1,4 +1,5 @@
 #include "loader/registry.hpp"
+#include "graph/names.hpp"
 
 #include <brickyard/msgs/registry.hpp>
 
@@ -11,7 +12,6 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <regex>
 #include <set>
 
 namespace fs = std::filesystem;
@@ -41,16 +41,14 @@ bool value_matches(ParamType t, const ParamValue& v) {
 }  // namespace
 
 std::vector<std::string> check_manifest(const Manifest& m) {
-  static const std::regex kName("[a-z][a-z0-9_]*(\\.[a-z][a-z0-9_]*)+");
-  static const std::regex kIdent("[A-Za-z_][A-Za-z0-9_]*");
   std::vector<std::string> p;
   const std::string who = "plugin '" + m.name + "'";
-  if (!std::regex_match(m.name, kName))
+  if (!is_dotted_name(m.name, 2, 64))
     p.push_back(who + ": name must look like area.name (lower case, digits, _)");
   if (m.version.empty()) p.push_back(who + ": empty version");
   std::set<std::string> ports;
   for (const auto& port : m.ports) {
-    if (!std::regex_match(port.name, kIdent)) p.push_back(who + ": port name '" + port.name + "' is not an identifier");
+    if (!is_identifier(port.name)) p.push_back(who + ": port name '" + port.name + "' is not an identifier");
     if (!ports.insert(port.name).second) p.push_back(who + ": port '" + port.name + "' declared twice");
     const auto* t = msgs::find_type(port.type_name.c_str());
     if (!t) p.push_back(who + ": port '" + port.name + "' uses unknown message type " + port.type_name);
@@ -62,7 +60,7 @@ std::vector<std::string> check_manifest(const Manifest& m) {
   }
   std::set<std::string> params;
   for (const auto& ps : m.params) {
-    if (!std::regex_match(ps.name, kIdent)) p.push_back(who + ": param name '" + ps.name + "' is not an identifier");
+    if (!is_identifier(ps.name)) p.push_back(who + ": param name '" + ps.name + "' is not an identifier");
     if (!params.insert(ps.name).second) p.push_back(who + ": param '" + ps.name + "' declared twice");
     if (ps.default_value && !value_matches(ps.type, *ps.default_value))
       p.push_back(who + ": default of param '" + ps.name + "' is not a " + to_string(ps.type));

@@ -253,3 +253,22 @@ TEST(CdrJson, AnIdlThatCouldRecurseForeverIsRefused) {
   EXPECT_THROW(brickyard::fw::CdrJson("struct E { };\n"), std::invalid_argument);
   EXPECT_THROW(brickyard::fw::CdrJson("struct A { double x[123456789012345678901234567890]; };\n"), std::invalid_argument);
 }
+
+// --record-only patterns: '*' any run of characters; matched in at most |pattern| x |topic| steps
+// (issue 20: a recursive match took 73 s on 40 stars; this test would hang on it).
+TEST(RecordOnly, PatternsMatchInLinearSteps) {
+  using brickyard::fw::topic_selected;
+  EXPECT_TRUE(topic_selected("car.truth", {"car.truth"}));
+  EXPECT_FALSE(topic_selected("car.truth", {"car.trut"}));
+  EXPECT_TRUE(topic_selected("car.truth", {"car.*"}));
+  EXPECT_TRUE(topic_selected("lidar_front.cloud", {"*.cloud"}));
+  EXPECT_TRUE(topic_selected("lidar_front.cloud", {"l*_*.c*d"}));
+  EXPECT_FALSE(topic_selected("lidar_front.cloud", {"l*_*.c*x"}));
+  EXPECT_TRUE(topic_selected("anything", {"*"}));
+  EXPECT_TRUE(topic_selected("", {"*"}));
+  EXPECT_FALSE(topic_selected("car.truth", {}));
+  EXPECT_TRUE(topic_selected("car.truth", {"x.*", "*.truth"}));
+  const std::string stars(5000, '*'), topic(5000, 'a');
+  EXPECT_FALSE(topic_selected(topic, {stars + "b"}));
+  EXPECT_TRUE(topic_selected(topic + "b", {stars + "b"}));
+}
