@@ -31,6 +31,13 @@ std::vector<double> parse_row(const std::string& row, std::size_t want, std::siz
   return v;
 }
 
+// What a file of a real track can hold (issue 20: a point at x = 1e308 was read as a track "of
+// length inf", and the road graph on it allocated until bad_alloc). Bounds far beyond any circuit.
+constexpr double kMaxCoordinate_m = 1e6;  // 1000 km from the file's origin
+constexpr double kMaxWidth_m = 100;       // from the centre line to an edge
+constexpr double kMaxStep_m = 200;        // between two points of the file (and, for a track, round from the last to the first)
+constexpr std::size_t kMaxPoints = 1'000'000;
+
 CenterLine parse(std::istream& in, const std::string& name, std::size_t fields) {
   CenterLine c;
   c.source = name;
@@ -51,6 +58,15 @@ CenterLine parse(std::istream& in, const std::string& name, std::size_t fields) 
     }
     if (fields == 4 && (v[2] <= 0 || v[3] <= 0))
       throw TrackFileError(where + ": track widths must be positive");
+    if (fields == 4 && (v[2] > kMaxWidth_m || v[3] > kMaxWidth_m))
+      throw TrackFileError(where + ": a track width over " + std::to_string(static_cast<int>(kMaxWidth_m)) + " m");
+    if (std::abs(v[0]) > kMaxCoordinate_m || std::abs(v[1]) > kMaxCoordinate_m)
+      throw TrackFileError(where + ": a point more than 1000 km from the origin");
+    if (!c.x.empty() && std::hypot(v[0] - c.x.back(), v[1] - c.y.back()) > kMaxStep_m)
+      throw TrackFileError(where + ": " + std::to_string(static_cast<int>(std::hypot(v[0] - c.x.back(), v[1] - c.y.back()))) +
+                           " m from the point of line " + std::to_string(lines.back()) + " (points at most " +
+                           std::to_string(static_cast<int>(kMaxStep_m)) + " m apart)");
+    if (c.x.size() >= kMaxPoints) throw TrackFileError(where + ": more than " + std::to_string(kMaxPoints) + " points");
     if (!c.x.empty() && std::hypot(v[0] - c.x.back(), v[1] - c.y.back()) < 1e-6)
       throw TrackFileError(where + ": repeats the point of line " + std::to_string(lines.back()));
     c.x.push_back(v[0]);
@@ -65,6 +81,11 @@ CenterLine parse(std::istream& in, const std::string& name, std::size_t fields) 
     if (!c.bank_deg.empty()) c.bank_deg.pop_back();
   }
   if (c.x.size() < 4) throw TrackFileError(name + ": needs at least 4 points, has " + std::to_string(c.x.size()));
+  // A track is a loop: its last point leads back to its first.
+  if (fields == 4 && std::hypot(c.x.back() - c.x[0], c.y.back() - c.y[0]) > kMaxStep_m)
+    throw TrackFileError(name + ": not a closed loop: its last point (line " + std::to_string(lines.back()) + ") is " +
+                         std::to_string(static_cast<int>(std::hypot(c.x.back() - c.x[0], c.y.back() - c.y[0]))) +
+                         " m from its first (at most " + std::to_string(static_cast<int>(kMaxStep_m)) + " m)");
   return c;
 }
 

@@ -80,6 +80,26 @@ TEST(TrackFile, BadRowNamesFileAndLine) {
   EXPECT_THROW(parse_centerline_csv(neg, "n.csv"), TrackFileError);
 }
 
+// Values no circuit has are refused naming the line (issue 20: x = 1e308 made a track "of length inf").
+TEST(TrackFile, ValuesNoCircuitHasAreRefused) {
+  auto error = [](const std::string& text) {
+    std::istringstream in(text);
+    try {
+      parse_centerline_csv(in, "t.csv");
+    } catch (const TrackFileError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  const std::string square = "0,0,7,7\n50,0,7,7\n50,50,7,7\n0,50,7,7\n";
+  EXPECT_EQ(error(square), "");
+  EXPECT_EQ(error("0,0,7,7\n1e308,0,7,7\n50,50,7,7\n0,50,7,7\n"), "t.csv:2: a point more than 1000 km from the origin");
+  EXPECT_EQ(error("0,0,7,7\n50,0,700,7\n50,50,7,7\n0,50,7,7\n"), "t.csv:2: a track width over 100 m");
+  EXPECT_EQ(error("0,0,7,7\n500,0,7,7\n50,50,7,7\n0,50,7,7\n"), "t.csv:2: 500 m from the point of line 1 (points at most 200 m apart)");
+  EXPECT_EQ(error("0,0,7,7\n150,0,7,7\n300,0,7,7\n450,0,7,7\n"),
+            "t.csv: not a closed loop: its last point (line 4) is 450 m from its first (at most 200 m)");
+}
+
 TEST(TrackFile, ImsLoadsClosedCounterClockwise) {
   WorldSpec w;
   w.line = load_centerline_csv(ims_path());
