@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
+
 #include <cmath>
 
 using namespace brickyard::estimation;
@@ -206,6 +208,30 @@ TEST(Localizer, HeadingFromTravelThenRollFromTheImu) {
   const double roll = -0.16, w = 0.2;
   for (int i = 0; i < 2000; ++i) loc.imu(0.3 + 0.008 * i, w, 20 * w + 9.81 * std::sin(roll));  // 16 time constants
   EXPECT_NEAR(loc.filter().roll(), roll, 1e-6);
+}
+
+// A receiver that sends NaN (broken, or forged) costs nothing but its own fixes (issue 20: NaN
+// fixes made the fusion reject the healthy receiver too, EMERGENCY for 15 of 16 s).
+TEST(Localizer, AMalformedFixCostsOnlyItself) {
+  LocalizerParams p;
+  p.manager.receivers = 2;
+  Localizer loc(p);
+  loc.speed(20);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for (int k = 0; k < 200; ++k) {
+    const double t = 0.05 * k, s = 20 * t;
+    loc.imu(t, 0.0, 0.0);
+    loc.imu(t + 0.01, nan, 0.0);  // dropped, not a step to NaN
+    Fix good{0, {s, 0.0}, p.lever[0], 0.02}, bad{1, {nan, 0.0}, p.lever[1], 0.02};
+    loc.fixes(t, {good, bad});
+    loc.speed(nan);  // kept at 20
+  }
+  ASSERT_TRUE(loc.filter().initialized());
+  EXPECT_TRUE(loc.filter().state().allFinite());
+  EXPECT_NEAR(loc.filter().state()(PoseFilter::X), 20 * 0.05 * 199, 0.5);
+  EXPECT_EQ(loc.malformed(), 3u * 200u);
+  EXPECT_EQ(loc.rejected(), 0u) << "the good receiver is never rejected for the other's NaN";
+  EXPECT_NE(loc.status(0.05 * 199), Status::emergency);
 }
 
 // The rule of coming back: receivers that agree with each other and move as the prediction does

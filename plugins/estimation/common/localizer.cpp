@@ -61,6 +61,10 @@ bool Localizer::scan_pose(double stamp, const Eigen::Vector2d& xy, const Eigen::
 }
 
 void Localizer::imu(double t, double gyro_z, double accel_y) {
+  if (!std::isfinite(t) || !std::isfinite(gyro_z) || !std::isfinite(accel_y)) {
+    ++malformed_;
+    return;
+  }
   advance(t);
   yaw_rate_ = gyro_z;
   have_imu_ = true;
@@ -74,7 +78,15 @@ void Localizer::imu(double t, double gyro_z, double accel_y) {
   filter_.set_roll(std::asin(sin_roll_));
 }
 
-void Localizer::fixes(double t, const std::vector<Fix>& epoch) {
+void Localizer::fixes(double t, const std::vector<Fix>& epoch_in) {
+  if (epoch_in.empty()) return;
+  auto finite = [](const Fix& f) { return std::isfinite(f.antenna.x()) && std::isfinite(f.antenna.y()) && std::isfinite(f.sigma) && f.sigma >= 0; };
+  std::vector<Fix> epoch;
+  epoch.reserve(epoch_in.size());
+  for (const auto& f : epoch_in)
+    if (finite(f)) epoch.push_back(f);
+    else ++malformed_;
+  if (!std::isfinite(t)) malformed_ += epoch.size(), epoch.clear();
   if (epoch.empty()) return;
   advance(t);
   if (!filter_.initialized()) {

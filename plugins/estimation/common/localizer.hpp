@@ -6,6 +6,7 @@
 #include "reacquisition.hpp"
 #include "update_selection.hpp"
 
+#include <cmath>
 #include <optional>
 #include <vector>
 
@@ -36,9 +37,15 @@ class Localizer {
 
   // An IMU sample at time t: the filter moves to t, then takes its yaw rate; the roll for the
   // lever arm follows the lateral specific force.
+  // A sample with a value that is not finite (a broken or forged sender) is dropped and counted
+  // (malformed()), here and in speed(), fixes() and scan_pose(): one receiver's NaN must not cost
+  // the filter the other receiver's good fix, nor poison the state.
   void imu(double t, double gyro_z, double accel_y);
   // The rear axle's speed (mean of the rear wheels), used from the next prediction on.
-  void speed(double v) { speed_ = v; }
+  void speed(double v) {
+    if (std::isfinite(v)) speed_ = v;
+    else ++malformed_;
+  }
   // One epoch of fixes, all stamped t (receiver ids 0 .. receivers - 1).
   void fixes(double t, const std::vector<Fix>& epoch);
   // A pose of base_link from another estimator (the scan mapper), stamped `stamp` (earlier than
@@ -61,6 +68,7 @@ class Localizer {
   std::uint64_t reacquisitions() const { return reacquisitions_; }
   std::uint64_t scan_updates() const { return scan_updates_; }
   std::uint64_t scan_refused() const { return scan_refused_; }
+  std::uint64_t malformed() const { return malformed_; }
 
  private:
   void advance(double t);
@@ -75,6 +83,7 @@ class Localizer {
   bool have_imu_ = false;
   UpdateCase last_case_ = UpdateCase::predict_only;
   std::vector<double> last_delta_;
+  std::uint64_t malformed_ = 0;
   std::uint64_t epochs_ = 0, rejected_ = 0, cases_[5] = {0, 0, 0, 0, 0}, reacquisitions_ = 0;
   Reacquisition reacquisition_;
   // The filter's pose after each prediction, for a late pose's stamp (about 1.5 s).

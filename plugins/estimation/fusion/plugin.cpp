@@ -189,6 +189,7 @@ template <Policy P> class Estimator : public Plugin {
   void deactivate(Context& ctx) override {
     ctx.metric("epochs", static_cast<double>(loc_->epochs()));
     ctx.metric("fixes_rejected", static_cast<double>(loc_->rejected()));
+    ctx.metric("malformed_samples", static_cast<double>(loc_->malformed()));
     ctx.metric("epochs_single", static_cast<double>(loc_->epochs_of(UpdateCase::single)));
     ctx.metric("epochs_weighted", static_cast<double>(loc_->epochs_of(UpdateCase::weighted)));
     ctx.metric("epochs_partial", static_cast<double>(loc_->epochs_of(UpdateCase::partial)));
