@@ -331,6 +331,31 @@ std::string profile_table(const nlohmann::json& j) {
 
 int run_graph(const Args& a, GraphDecl g, bool validate_only);
 
+// A run replaces what an earlier run wrote into its --out folder, and nothing else: a
+// summary.json that is not a run's (it names its result, and its graph or its writer) or a
+// report.html that is not brickyard-report's is the user's, and the run refuses (issue 20).
+void refuse_foreign_files(const std::string& out) {
+  const fs::path dir(out);
+  std::error_code ec;
+  if (fs::exists(dir / "summary.json", ec)) {
+    bool ours = false;
+    std::ifstream old(dir / "summary.json");
+    try {
+      const auto j = nlohmann::json::parse(old);
+      ours = j.is_object() && j.contains("result") && (j.contains("graph") || j.contains("summary"));
+    } catch (...) {
+    }
+    if (!ours) usage_error("--out " + out, (dir / "summary.json").string() + " was not written by brickyard: move it or use another folder");
+  }
+  if (fs::exists(dir / "report.html", ec)) {
+    std::ifstream old(dir / "report.html");
+    std::string head(300, '\0');
+    old.read(head.data(), static_cast<std::streamsize>(head.size()));
+    if (head.find("<title>Brickyard run: ") == std::string::npos)
+      usage_error("--out " + out, (dir / "report.html").string() + " was not written by brickyard-report: move it or use another folder");
+  }
+}
+
 int cmd_run(const Args& a, bool validate_only) {
   if (a.target.empty()) usage_error(a.command, "needs a graph file");
   return run_graph(a, load_graph_file(a.target, a.sets, a.args), validate_only);
@@ -487,6 +512,7 @@ int run_graph(const Args& a, GraphDecl g, bool validate_only) {
     fs::create_directories(a.out, ec);
     if (ec) usage_error("--out " + a.out, "cannot create the folder: " + ec.message());
   }
+  if (!a.out.empty()) refuse_foreign_files(a.out);
   if (a.one_process && !a.process.empty()) usage_error("--one-process", "cannot go with --process");
   if (a.process.empty() && !a.one_process && rg.processes.size() > 1 && !g.clock.sim) {
     // A split graph on the real clock: each process a child of this one (cli/supervisor.hpp).
@@ -575,10 +601,20 @@ int run_graph(const Args& a, GraphDecl g, bool validate_only) {
   // runs into two folders is the same.
   if (record_out && a.record.empty() && s.json.contains("recording")) s.json["recording"]["file"] = kOutRecording;
   if (!a.out.empty()) {
-    std::ofstream f(fs::path(a.out) / "summary.json");
-    f << s.json.dump(2) << "\n";
-    if (!f) {
-      std::fprintf(stderr, "error: cannot write %s/summary.json\n", a.out.c_str());
+    // Written whole under another name, then renamed: a full disk leaves no half a summary.
+    const fs::path file = fs::path(a.out) / "summary.json", part = file.string() + ".part";
+    bool written = false;
+    {
+      std::ofstream f(part);
+      f << s.json.dump(2) << "\n";
+      f.flush();
+      written = static_cast<bool>(f);
+    }
+    std::error_code ec;
+    if (written) fs::rename(part, file, ec);
+    if (!written || ec) {
+      fs::remove(part, ec);
+      std::fprintf(stderr, "error: cannot write %s (a full disk?); the run's result was: %s\n", file.c_str(), to_string(s.result));
       return 1;
     }
   }

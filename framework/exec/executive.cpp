@@ -122,6 +122,19 @@ void Executive::peer_liveliness(RemoteInput& in, bool alive) {
   if (!line.empty()) console_.line([&] { std::fprintf(stderr, "[brickyard] %s\n", line.c_str()); });  // even with --quiet
 }
 
+void Executive::foreign_writer(RemoteInput& in, const std::string& participant, const std::string& writer) {
+  const bool accepted = graph_.decl->transport.accept_foreign_writers;
+  const double t = sim() ? sim_now_ns_ * 1e-9 : (wall_ns() - real_start_ns_) * 1e-9;
+  {
+    std::lock_guard<std::mutex> l(stop_m_);
+    foreign_writers_.push_back({{"input", in.input}, {"participant", participant}, {"writer", writer}, {"t_s", t}, {"accepted", accepted}});
+  }
+  const std::string line = "warning: input " + in.input + ": a writer the graph does not name sent to it (participant '" + participant +
+                           "', writer " + writer + "; the graph's is " + in.writer + " of process '" + in.process + "'): " +
+                           (accepted ? "its samples are used (transport.foreign_writers accept)" : "its samples are dropped");
+  console_.line([&] { std::fprintf(stderr, "[brickyard] %s\n", line.c_str()); });  // even with --quiet
+}
+
 // A split run's start-up: each input whose writer runs in another process waits until that writer
 // has matched (its process is up, its ports made), at most transport.startup_timeout_s, before
 // the clock starts — the planner no longer gets the world seconds late. A first sample is not
@@ -320,6 +333,7 @@ RunSummary Executive::run() {
     std::lock_guard<std::mutex> l(stop_m_);
     if (!lost_peers_.empty()) s.json["lost_peers"] = lost_peers_;
     if (!peer_events_.empty()) s.json["peer_events"] = peer_events_;
+    if (!foreign_writers_.empty()) s.json["foreign_writers"] = foreign_writers_;
   }
   return s;
 }

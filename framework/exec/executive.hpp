@@ -77,6 +77,8 @@ class Executive {
   // the graph lets the writer's process die; it goes on meanwhile (a car interface keeps braking
   // the car). Or its writer is alive: when it had lapsed, how long it was gone is said and kept.
   void peer_liveliness(RemoteInput& in, bool alive);
+  // A writer the graph does not name sent to the input (a participant not the writer's process).
+  void foreign_writer(RemoteInput& in, const std::string& participant, const std::string& writer);
   void set_status(const std::string& node, std::string_view field, std::string_view value);
 
  private:
@@ -103,6 +105,7 @@ class Executive {
   std::vector<std::unique_ptr<RemoteInput>> remote_inputs_;
   std::vector<std::string> lost_peers_;  // under stop_m_: writers lost that fail the run
   nlohmann::json peer_events_ = nlohmann::json::array();  // under stop_m_: every lapse and return
+  nlohmann::json foreign_writers_ = nlohmann::json::array();  // under stop_m_
   std::mutex stop_m_;
   std::optional<RunResult> stop_result_;
   std::string stop_reason_;

@@ -20,6 +20,7 @@ void Executive::build() {
   ds.domain = opt_.domain.value_or(g.transport.domain);
   ds.interfaces = g.transport.interfaces;
   ds.peers = g.transport.peers;
+  ds.name = participant_name(opt_.process.empty() ? "all" : opt_.process);
   crash_guard::snapshot_shared_memory();
   transport_ = std::make_unique<DdsTransport>(ds);
   crash_guard::note_shared_memory();  // the participant's own segment and port files, made just now
@@ -105,9 +106,17 @@ void Executive::build() {
       ri->process = graph_.decl->nodes.at(w.from.node).process;
       RemoteInput* r = ri.get();
       remote_inputs_.push_back(std::move(ri));
+      // Only the writer the graph names feeds the input: a sample from any other participant (a
+      // second writer on the topic: a forged command) is dropped and said, unless the graph
+      // accepts them (transport.foreign_writers). Without DDS security this tells a stray or
+      // naive writer, not one that lies about its name (docs/security.md).
+      WriterCheck check;
+      check.expected = participant_name(r->process);
+      check.accept_others = g.transport.accept_foreign_writers;
+      check.other = [this, r](const std::string& participant, const std::string& writer) { foreign_writer(*r, participant, writer); };
       r->reader = transport_->make_reader(topic_name(w.from.node, w.from.port), ps->type_name, ps->depth,
                                           [in](std::shared_ptr<const void> s) { in->push(std::move(s)); },
-                                          [this, r](bool alive) { peer_liveliness(*r, alive); });
+                                          [this, r](bool alive) { peer_liveliness(*r, alive); }, std::move(check));
     }
   }
 }

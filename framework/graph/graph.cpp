@@ -95,7 +95,12 @@ void parse_string_list(const json& j, std::vector<std::string>& out, const std::
 
 void parse_transport(const json& j, GraphDecl& g, Ctx& c) {
   if (!c.expect(j, json::value_t::object, "object", "/transport")) return;
-  c.only_keys(j, {"domain", "interfaces", "peers", "startup_timeout_s"}, "/transport");
+  c.only_keys(j, {"domain", "interfaces", "peers", "startup_timeout_s", "foreign_writers"}, "/transport");
+  if (j.contains("foreign_writers") && c.expect(j["foreign_writers"], json::value_t::string, "string", "/transport/foreign_writers")) {
+    const std::string v = j["foreign_writers"];
+    if (v == "ignore" || v == "accept") g.transport.accept_foreign_writers = v == "accept";
+    else c.err("/transport/foreign_writers", "expected \"ignore\" or \"accept\", found \"" + v + "\"");
+  }
   if (j.contains("startup_timeout_s") && c.expect(j["startup_timeout_s"], json::value_t::number_float, "number", "/transport/startup_timeout_s")) {
     const double t = j["startup_timeout_s"].get<double>();
     if (!(t > 0 && t <= 600)) c.err("/transport/startup_timeout_s", "expected seconds, more than 0 and at most 600, found " + j["startup_timeout_s"].dump());
@@ -215,6 +220,9 @@ GraphDecl parse_graph_text(const std::string& text, const std::string& file, con
     // nlohmann's text starts with "[json.exception.parse_error.101] parse error at line 1, column 2: "
     auto colon = msg.find(": ", msg.find("parse error"));
     located(e.byte > 0 ? e.byte - 1 : 0, "invalid JSON: " + (colon == std::string::npos ? msg : msg.substr(colon + 2)));
+  } catch (const json::out_of_range& e) {  // a number no double holds: the parser does not say where
+    if (auto f = find_number_overflow(text)) located(f->offset, f->message);
+    located(0, std::string("invalid JSON: ") + e.what());
   }
   if (auto f = find_duplicate_key(text)) located(f->offset, f->message);
 

@@ -45,6 +45,7 @@ struct TransportDecl {
   std::vector<std::string> interfaces{"127.0.0.1"};  // UDP interfaces allowed; loopback only by default
   std::vector<std::string> peers{"127.0.0.1"};       // unicast discovery peers
   double startup_timeout_s = 10;  // a split run waits this long for its inputs' writers in other processes
+  bool accept_foreign_writers = false;  // "foreign_writers": "accept": samples from writers the graph does not name are used (warned of either way)
 };
 
 // "processes": what the supervisor does when a process of a split run dies (docs/reliability.md).

@@ -1,5 +1,8 @@
 #include "graph/json_scan.hpp"
 
+#include <cctype>
+#include <cmath>
+#include <cstdlib>
 #include <set>
 #include <vector>
 
@@ -66,6 +69,29 @@ std::optional<ScanFinding> find_duplicate_key(const std::string& text) {
     else if (c == '[') stack.push_back({false, false, {}});
     else if ((c == '}' || c == ']') && !stack.empty()) stack.pop_back();
     else if (c == ',' && !stack.empty() && stack.back().object) stack.back().expect_key = true;
+    ++i;
+  }
+  return std::nullopt;
+}
+
+std::optional<ScanFinding> find_number_overflow(const std::string& text) {
+  for (std::size_t i = 0; i < text.size();) {
+    const char c = text[i];
+    if (c == '"') {
+      i = skip_string(text, i);
+      continue;
+    }
+    if (c == '-' || (c >= '0' && c <= '9')) {
+      std::size_t end = i + 1;
+      while (end < text.size() && (std::isdigit(static_cast<unsigned char>(text[end])) || text[end] == '.' || text[end] == 'e' ||
+                                   text[end] == 'E' || text[end] == '+' || text[end] == '-'))
+        ++end;
+      const std::string token = text.substr(i, end - i);
+      const double v = std::strtod(token.c_str(), nullptr);
+      if (std::isinf(v)) return ScanFinding{i, "number " + (token.size() > 40 ? token.substr(0, 40) + "…" : token) + " is beyond what a double holds"};
+      i = end;
+      continue;
+    }
     ++i;
   }
   return std::nullopt;

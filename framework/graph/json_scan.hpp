@@ -21,5 +21,7 @@ struct ScanFinding {
 std::optional<ScanFinding> find_excess_depth(const std::string& text, int max_depth);
 // First duplicate key in any object. Expects syntactically valid JSON.
 std::optional<ScanFinding> find_duplicate_key(const std::string& text);
+// First number no double holds (1e999): the parser says only "number overflow", not where.
+std::optional<ScanFinding> find_number_overflow(const std::string& text);
 
 }  // namespace brickyard::fw

@@ -1,6 +1,10 @@
 #include "transport/dds.hpp"
 
 #include <cstdlib>
+#include <map>
+#include <mutex>
+#include <set>
+#include <sstream>
 
 #include <brickyard/msgs/registry.hpp>
 
@@ -42,8 +46,35 @@ struct WriterListener : DataWriterListener {
   }
 };
 
+// The names of the participants discovered, by GUID prefix: who a sample's writer is.
+struct PeerNames {
+  std::mutex m;
+  std::map<eprosima::fastrtps::rtps::GuidPrefix_t, std::string> names;
+  std::string of(const eprosima::fastrtps::rtps::GuidPrefix_t& p) {
+    std::lock_guard<std::mutex> l(m);
+    auto it = names.find(p);
+    return it == names.end() ? std::string() : it->second;
+  }
+};
+
 struct ReaderListener : DataReaderListener {
   TypeSupport type;
+  std::shared_ptr<PeerNames> peers;
+  WriterCheck check;
+  std::set<eprosima::fastrtps::rtps::GUID_t> others;  // writers told of (one DDS thread per reader)
+  // Whether a sample of this writer is delivered: one of the graph's, or accepted.
+  bool from_ours(const InstanceHandle_t& h) {
+    if (check.expected.empty()) return true;
+    const auto guid = eprosima::fastrtps::rtps::iHandle2GUID(h);
+    const std::string name = peers->of(guid.guidPrefix);
+    if (name == check.expected) return true;
+    if (others.insert(guid).second && check.other) {
+      std::ostringstream g;
+      g << guid;
+      check.other(name.empty() ? "(unknown)" : name, g.str());
+    }
+    return check.accept_others;
+  }
   std::function<void(std::shared_ptr<const void>)> deliver;
   std::function<void(bool)> liveliness;
   std::atomic<int>* matched = nullptr;
@@ -63,7 +94,7 @@ struct ReaderListener : DataReaderListener {
         type->deleteData(data);
         return;
       }
-      if (!info.valid_data) {
+      if (!info.valid_data || !from_ours(info.publication_handle)) {
         type->deleteData(data);
         continue;
       }
@@ -75,8 +106,15 @@ struct ReaderListener : DataReaderListener {
 
 struct DiscoveryListener : DomainParticipantListener {
   std::function<void(const std::string&, const std::string&)> on_writer;
+  std::shared_ptr<PeerNames> peers;
+  void on_participant_discovery(DomainParticipant*, eprosima::fastrtps::rtps::ParticipantDiscoveryInfo&& info) override {
+    using S = eprosima::fastrtps::rtps::ParticipantDiscoveryInfo;
+    std::lock_guard<std::mutex> l(peers->m);
+    if (info.status == S::DISCOVERED_PARTICIPANT || info.status == S::CHANGED_QOS_PARTICIPANT)
+      peers->names[info.info.m_guid.guidPrefix] = info.info.m_participantName.to_string();
+  }
   void on_publisher_discovery(DomainParticipant*, eprosima::fastrtps::rtps::WriterDiscoveryInfo&& info) override {
-    if (info.status == eprosima::fastrtps::rtps::WriterDiscoveryInfo::DISCOVERED_WRITER)
+    if (on_writer && info.status == eprosima::fastrtps::rtps::WriterDiscoveryInfo::DISCOVERED_WRITER)
       on_writer(info.info.topicName().to_string(), info.info.typeName().to_string());
   }
 };
@@ -88,7 +126,7 @@ DdsTransport::DdsTransport(const DdsSettings& s) {
   // Profiles (FASTRTPS_DEFAULT_PROFILES_FILE) first, then read the defaults, then make them ours.
   factory->load_profiles();
   DomainParticipantQos q = factory->get_default_participant_qos();
-  q.name("brickyard");
+  q.name(s.name.c_str());
   q.transport().use_builtin_transports = false;
   auto shm = std::make_shared<eprosima::fastdds::rtps::SharedMemTransportDescriptor>();
   shm->segment_size(s.shm_segment_bytes);
@@ -116,10 +154,10 @@ DdsTransport::DdsTransport(const DdsSettings& s) {
   }
   // No explicit unicast locators: Fast DDS then offers shared memory to peers on this host and
   // UDP only on the whitelisted interfaces (setting a UDP locator here would turn SHM off).
-  if (s.on_writer) {
-    discovery_ = std::make_unique<DiscoveryListener>();
-    discovery_->on_writer = s.on_writer;
-  }
+  peers_ = std::make_shared<PeerNames>();
+  discovery_ = std::make_unique<DiscoveryListener>();
+  discovery_->on_writer = s.on_writer;
+  discovery_->peers = peers_;
   participant_ = factory->create_participant(s.domain, q, discovery_.get(), StatusMask::none());
   if (!participant_) throw std::runtime_error("Fast DDS could not create a participant on domain " + std::to_string(s.domain));
   publisher_ = participant_->create_publisher(PUBLISHER_QOS_DEFAULT);
@@ -182,7 +220,8 @@ DdsWriter* DdsTransport::make_writer(const std::string& topic_n, const std::stri
 }
 
 DdsReader* DdsTransport::make_reader(const std::string& topic_n, const std::string& type_name, std::uint32_t depth,
-                                     std::function<void(std::shared_ptr<const void>)> deliver, std::function<void(bool)> liveliness) {
+                                     std::function<void(std::shared_ptr<const void>)> deliver, std::function<void(bool)> liveliness,
+                                     WriterCheck check) {
   Topic* t = topic(topic_n, type_name);
   DataReaderQos q = DATAREADER_QOS_DEFAULT;
   q.liveliness().kind = AUTOMATIC_LIVELINESS_QOS;
@@ -197,6 +236,8 @@ DdsReader* DdsTransport::make_reader(const std::string& topic_n, const std::stri
   r->listener_->type = TypeSupport(msgs::find_type(type_name.c_str())->make());
   r->listener_->deliver = std::move(deliver);
   r->listener_->liveliness = std::move(liveliness);
+  r->listener_->peers = peers_;
+  r->listener_->check = std::move(check);
   r->listener_->matched = &r->matched_;
   r->reader_ = subscriber_->create_datareader(t, q, r->listener_.get());
   if (!r->reader_) throw std::runtime_error("cannot create a reader on " + topic_n);

@@ -55,9 +55,24 @@ struct DdsSettings {
   std::vector<std::string> interfaces{"127.0.0.1"};
   std::vector<std::string> peers{"127.0.0.1"};
   std::uint32_t shm_segment_bytes = 16u << 20;  // 2 MiB samples between processes need >= 4 MiB
+  // The participant's name, which its peers see: a graph's process is "brickyard:PROCESS", so a
+  // reader can tell its graph's writers from any other (participant_name()).
   // Called on a DDS thread for each writer another participant announces (`brickyard topic`):
   // its DDS topic and type names.
   std::function<void(const std::string& topic, const std::string& type)> on_writer;
+  std::string name = "brickyard";
+};
+
+// What a graph's process calls its DDS participant.
+inline std::string participant_name(const std::string& process) { return "brickyard:" + process; }
+
+// A reader's check of who writes to it: samples from a writer whose participant is not named
+// `expected` are dropped unless `accept_others`, and `other` is told once per such writer
+// (its participant's name, its GUID).
+struct WriterCheck {
+  std::string expected;
+  bool accept_others = false;
+  std::function<void(const std::string& participant, const std::string& writer)> other;
 };
 
 class DdsTransport {
@@ -72,7 +87,8 @@ class DdsTransport {
   // when a writer's liveliness lapses (its process died or stopped for more than 0.5 s, not a
   // clean exit) and with true when a writer becomes alive (matched first, or back after a lapse).
   DdsReader* make_reader(const std::string& topic, const std::string& type_name, std::uint32_t depth,
-                         std::function<void(std::shared_ptr<const void>)> deliver, std::function<void(bool)> liveliness = {});
+                         std::function<void(std::shared_ptr<const void>)> deliver, std::function<void(bool)> liveliness = {},
+                         WriterCheck check = {});
   // Stop deliveries before the objects they feed go away.
   void close_readers();
 
@@ -80,6 +96,7 @@ class DdsTransport {
   eprosima::fastdds::dds::Topic* topic(const std::string& name, const std::string& type_name);
   eprosima::fastdds::dds::DomainParticipant* participant_ = nullptr;
   std::unique_ptr<struct DiscoveryListener> discovery_;
+  std::shared_ptr<struct PeerNames> peers_;  // participants discovered: GUID prefix -> name
   eprosima::fastdds::dds::Publisher* publisher_ = nullptr;
   eprosima::fastdds::dds::Subscriber* subscriber_ = nullptr;
   std::vector<std::unique_ptr<DdsWriter>> writers_;

@@ -56,6 +56,11 @@ TEST(GraphParse, SyntaxErrorHasLineAndColumn) {
   EXPECT_EQ(first_error("{\n  \"nodes\": {,\n}").substr(0, 11), "g.json:2:13");
 }
 
+TEST(GraphParse, ANumberNoDoubleHoldsIsNamedWithItsPlace) {
+  EXPECT_EQ(first_error("{\"nodes\": {\"a\": {\"plugin\": \"x.y\",\n \"params\": {\"rate_hz\": 1e999}}}}"),
+            "g.json:2:24: number 1e999 is beyond what a double holds");
+}
+
 TEST(GraphParse, DuplicateNodeNamed) {
   auto e = first_error("{\"nodes\": {\"a\": {\"plugin\": \"x.y\"},\n \"a\": {\"plugin\": \"x.y\"}}}");
   EXPECT_NE(e.find("g.json:2:2"), std::string::npos) << e;
