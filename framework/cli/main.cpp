@@ -501,6 +501,8 @@ int cmd_bag(const Args& a) {
 int run_graph(const Args& a, GraphDecl g, bool validate_only) {
   Registry reg = load_registry(a, &g);
   ResolvedGraph rg = resolve_graph(g, reg, a.process);
+  if (!a.quiet)
+    for (const auto& n : rg.notices) std::fprintf(stderr, "notice: %s\n", n.c_str());
   if (validate_only) {
     std::size_t wires = g.wires.size();
     std::cout << a.target << ": valid — " << rg.nodes.size() << " nodes, " << wires << " wires, "

@@ -163,7 +163,7 @@ void parse_processes(const json& j, GraphDecl& g, Ctx& c) {
 }
 
 void apply_sets(json& root, const std::vector<std::string>& sets, Diagnostics& d,
-                std::map<std::string, std::map<std::string, std::string>>& origin) {
+                std::map<std::string, std::map<std::string, std::string>>& origin, std::map<std::string, std::string>& plugin_origin) {
   for (const auto& s : sets) {
     // NODE.PARAM=VALUE, the two names identifiers (checked in one pass: no regex on input).
     const std::size_t eq = s.find('='), dot = s.find('.');
@@ -179,6 +179,13 @@ void apply_sets(json& root, const std::vector<std::string>& sets, Diagnostics& d
     }
     json& n = root["nodes"][node];
     if (!n.is_object()) continue;  // reported by the structural check
+    // NODE.plugin=NAME swaps the node's plugin (a planner by name, issue 21), checked like the
+    // file's; the node's params stay and must suit the new plugin.
+    if (param == "plugin") {
+      n["plugin"] = text;
+      plugin_origin[node] = "--set " + quoted_name(s);
+      continue;
+    }
     if (!n.contains("params")) n["params"] = json::object();
     if (!n["params"].is_object()) continue;
     // A value that parses as JSON is taken as such (numbers, true, [1,2]); anything else is a string.
@@ -234,7 +241,8 @@ GraphDecl parse_graph_text(const std::string& text, const std::string& file, con
 
   apply_args(root, args, file, d);
   std::map<std::string, std::map<std::string, std::string>> origin;
-  apply_sets(root, sets, d, origin);
+  std::map<std::string, std::string> plugin_origin;
+  apply_sets(root, sets, d, origin, plugin_origin);
 
   c.only_keys(root, {"name", "description", "nodes", "wires", "clock", "transport", "live", "processes", "plugin_path"}, "");
   if (root.contains("name") && c.expect(root["name"], json::value_t::string, "string", "/name"))
@@ -274,6 +282,7 @@ GraphDecl parse_graph_text(const std::string& text, const std::string& file, con
       }
       if (nd.process.empty()) nd.process = kDefaultProcess;
       nd.param_origin = origin[nd.name];
+      if (plugin_origin.count(nd.name)) nd.plugin_origin = plugin_origin[nd.name];
       g.nodes.emplace(nd.name, std::move(nd));
     }
   }

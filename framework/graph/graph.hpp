@@ -16,6 +16,7 @@ struct NodeDecl {
   double deadline_s = 0;          // a step longer than this fails the run (wall time; 0: none; docs/reliability.md)
   nlohmann::json params = nlohmann::json::object();
   std::map<std::string, std::string> param_origin;  // param -> "--set ..." when overridden on the command line
+  std::string plugin_origin;                        // "--set NODE.plugin=..." when the plugin was swapped there
 };
 
 struct Endpoint {

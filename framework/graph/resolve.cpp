@@ -115,17 +115,24 @@ ResolvedGraph resolve_graph(const GraphDecl& g, const Registry& reg, const std::
     rn.decl = &nd;
     rn.plugin = reg.find(nd.plugin);
     if (!rn.plugin) {
-      err(ptr + "/plugin", "unknown plugin \"" + nd.plugin + "\" (known: " + join(known) + "; searched " +
-                               join(reg.directories()) + ")");
+      err(ptr + "/plugin", "unknown plugin \"" + nd.plugin + "\"" + (nd.plugin_origin.empty() ? "" : " (from " + nd.plugin_origin + ")") +
+                               " (known: " + join(known) + "; searched " + join(reg.directories()) + ")");
       continue;
     }
     const Manifest& m = rn.plugin->manifest;
-    // Params: unknown, wrong type, out of range, missing.
+    // Params: unknown, wrong type, out of range, missing. A node whose plugin --set swapped keeps
+    // the file's params the new plugin has, and leaves those it has not, said (the planner swap
+    // of a race graph is one flag); a param given by --set must be the new plugin's.
+    std::vector<std::string> left;
     for (auto it = nd.params.begin(); it != nd.params.end(); ++it) {
       std::string pptr = ptr + "/params/" + pointer_escape(it.key());
       auto o = nd.param_origin.find(it.key());
       std::string from = o == nd.param_origin.end() ? "" : " (from " + o->second + ")";
       const ParamSpec* spec = m.param_spec(it.key());
+      if (!spec && !nd.plugin_origin.empty() && o == nd.param_origin.end()) {
+        left.push_back(it.key());
+        continue;
+      }
       if (!spec) {
         std::vector<std::string> names;
         for (const auto& p : m.params) names.push_back(p.name);
@@ -136,6 +143,9 @@ ResolvedGraph resolve_graph(const GraphDecl& g, const Registry& reg, const std::
       if (auto e = convert_param(*spec, it.value(), v); !e.empty()) err(pptr, e + from);
       else rn.params.set(spec->name, std::move(v));
     }
+    if (!left.empty())
+      rg.notices.push_back("node '" + name + "' runs " + m.name + " (" + nd.plugin_origin + "): the file's " + join(left) +
+                           (left.size() > 1 ? " are not its parameters" : " is not its parameter") + ", left out");
     for (const auto& spec : m.params) {
       if (rn.params.has(spec.name)) continue;
       if (spec.default_value) rn.params.set(spec.name, *spec.default_value);

@@ -23,6 +23,7 @@ struct ResolvedGraph {
   const GraphDecl* decl = nullptr;
   std::vector<ResolvedNode> nodes;        // in schedule order: upstream first, then by name
   std::set<std::string> processes;
+  std::vector<std::string> notices;       // said before the run (not with --quiet): params a plugin swap left out
 
   const ResolvedNode* node(const std::string& name) const;
 };

@@ -116,6 +116,14 @@ TEST(GraphParse, ProcessPolicies) {
             "g.json#/processes/other: no node runs in process \"other\"");
 }
 
+TEST(GraphParse, SetSwapsAPlugin) {
+  auto g = parse_graph_text(kMinimal, "g.json", {"a.plugin=testing.blob_source", "a.rate_hz=5"});
+  EXPECT_EQ(g.nodes.at("a").plugin, "testing.blob_source");
+  EXPECT_EQ(g.nodes.at("a").plugin_origin, "--set a.plugin=testing.blob_source");
+  EXPECT_EQ(g.nodes.at("a").params.at("rate_hz"), 5);
+  EXPECT_FALSE(g.nodes.at("a").params.contains("plugin"));
+}
+
 TEST(GraphParse, SetOverridesParams) {
   auto g = parse_graph_text(kMinimal, "g.json", {"a.rate_hz=25", "a.values=[1,2]", "a.mode=fast"});
   const auto& p = g.nodes.at("a").params;
