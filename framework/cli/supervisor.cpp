@@ -1,4 +1,5 @@
 #include "cli/supervisor.hpp"
+#include "exec/crash_guard.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -61,6 +62,7 @@ struct Child {
   bool stopped = false;  // asked by the supervisor to end
   std::string dir;       // this run's --out folder
   std::string shm_list;  // where it lists its shared-memory files (crash_guard)
+  std::string black_box;  // where it keeps what each of its threads runs (crash_guard::BlackBox)
   nlohmann::json runs = nlohmann::json::array();
 };
 
@@ -108,8 +110,12 @@ void Supervisor::spawn(Child& c) {
   argv.insert(argv.end(), o_.child_flags.begin(), o_.child_flags.end());
   std::vector<std::string> env;
   for (char** e = environ; *e; ++e)
-    if (std::strncmp(*e, "BRICKYARD_SHM_LIST=", 19) != 0 && std::strncmp(*e, "BRICKYARD_PARTICIPANT_ID=", 25) != 0) env.emplace_back(*e);
+    if (std::strncmp(*e, "BRICKYARD_SHM_LIST=", 19) != 0 && std::strncmp(*e, "BRICKYARD_PARTICIPANT_ID=", 25) != 0 &&
+        std::strncmp(*e, "BRICKYARD_BLACKBOX=", 19) != 0)
+      env.emplace_back(*e);
   env.push_back("BRICKYARD_SHM_LIST=" + c.shm_list);
+  c.black_box = (fs::path(tmp_) / (c.name + "." + std::to_string(c.restarts) + ".box")).string();
+  env.push_back("BRICKYARD_BLACKBOX=" + c.black_box);
   // A participant id of its own, never a dead process's (transport/dds.cpp says why).
   env.push_back("BRICKYARD_PARTICIPANT_ID=" + std::to_string(spawns_++ % 120));
   std::vector<char*> av, ev;
@@ -219,6 +225,19 @@ void Supervisor::ended(Child& c, int status) {
       }
   }
   std::string how = sig ? "was killed by " + signal_name(sig) : code == 127 ? "could not be started (exit 127)" : "exited with code " + std::to_string(code);
+  if (sig) {
+    // What it was running when it died, from its black box (it could not say).
+    std::string running;
+    crash_guard::BlackBox box{};
+    std::ifstream f(c.black_box, std::ios::binary);
+    if (f.read(reinterpret_cast<char*>(&box), sizeof box)) {
+      for (auto& s : box.slots) {
+        s.node[sizeof s.node - 1] = s.phase[sizeof s.phase - 1] = '\0';
+        if (s.node[0]) running += std::string(running.empty() ? "" : ", ") + "node '" + s.node + "' was in its " + s.phase;
+      }
+      how += running.empty() ? " (no node was in a plugin call)" : " while " + running;
+    }
+  }
   if (!own.is_object()) {
     // It could not say anything (SIGKILL, or dead before its run began): the supervisor writes its summary.
     nlohmann::json s = {{"graph", g_.name}, {"graph_file", g_.file}, {"process", c.name}, {"result", "failed"},

@@ -14,6 +14,7 @@
 
 #include <dirent.h>
 #include <fcntl.h>
+#include <sys/mman.h>
 #include <unistd.h>
 
 namespace brickyard::fw::crash_guard {
@@ -28,6 +29,17 @@ struct Slot {
   std::atomic<long long> since_ms{0}, limit_ms{0};  // a step with a deadline: when it began, when to give up on it
 };
 Slot g_slots[kSlots];
+
+// Under a supervisor (BRICKYARD_BLACKBOX names a file), each slot's node and phase are also kept
+// as text in a file mapped shared: a process killed by SIGKILL cannot say what it was running,
+// its supervisor reads it there (docs/reliability.md). Laid out as BlackBox in crash_guard.hpp.
+BlackBox* g_box = nullptr;
+void box_write(int slot, const char* node, const char* phase) {
+  if (!g_box) return;
+  BlackBox::Slot& b = g_box->slots[slot];
+  std::snprintf(b.phase, sizeof b.phase, "%s", phase ? phase : "");
+  std::snprintf(b.node, sizeof b.node, "%s", node ? node : "");
+}
 std::atomic<int> g_next_slot{0};
 thread_local int t_slot = -1;
 thread_local const char* t_node = nullptr;
@@ -155,6 +167,14 @@ void install(const std::string& summary_path) {
   for (int sig : {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT}) sigaction(sig, &sa, nullptr);
   std::atexit(on_exit_called);
   std::thread(watchdog).detach();
+  if (const char* file = std::getenv("BRICKYARD_BLACKBOX"); file && *file) {
+    const int fd = ::open(file, O_RDWR | O_CREAT | O_TRUNC, 0600);
+    if (fd >= 0 && ftruncate(fd, sizeof(BlackBox)) == 0) {
+      void* p = mmap(nullptr, sizeof(BlackBox), PROT_READ | PROT_WRITE, MAP_SHARED, fd, 0);
+      if (p != MAP_FAILED) g_box = static_cast<BlackBox*>(p);
+    }
+    if (fd >= 0) ::close(fd);
+  }
 }
 
 void snapshot_shared_memory() {
@@ -240,6 +260,7 @@ Running::Running(const char* node, const char* phase, double deadline_s) : node_
   s.limit_ms = 0;
   s.phase = phase;
   s.node = node;
+  box_write(slot_, node, phase);
   if (deadline_s > 0) {
     s.since_ms = monotonic_ms();
     s.limit_ms = static_cast<long long>(std::max(2 * deadline_s, deadline_s + 1.0) * 1000);
@@ -253,6 +274,7 @@ Running::~Running() {
   s.limit_ms = 0;
   s.node = node_;
   s.phase = phase_;
+  box_write(slot_, node_, phase_);
 }
 
 }  // namespace brickyard::fw::crash_guard

@@ -13,6 +13,16 @@
 
 namespace brickyard::fw::crash_guard {
 
+// What each thread of a supervised process is running, as text in a file mapped shared
+// (BRICKYARD_BLACKBOX): read by the supervisor when the process died without a word (SIGKILL).
+struct BlackBox {
+  struct Slot {
+    char node[64];
+    char phase[16];
+  };
+  Slot slots[64];
+};
+
 // Installs the handlers (once per process). summary_path: where a dead run's summary goes, or empty.
 void install(const std::string& summary_path);
 // Before the transport is made: what /dev/shm holds; right after: the files this process has

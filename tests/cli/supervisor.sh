@@ -96,6 +96,22 @@ for mode in throw abort exit; do
 done
 echo "3b. throw, abort, exit() in a split run: each named, exit 1"
 
+# 3c. A node stuck in its step, its process killed with SIGKILL: the supervisor names the node
+#     from the process's black box (it could not say it itself).
+"$by" run "$graph" --domain "$domain" --progress 0 --duration 20 --arg max_restarts=0 --set src.mode=hang --set src.at_step=50 \
+  --set check.min_count=0 --out "$out/stuck" > "$out/stuck.log" 2>&1 &
+sup=$!
+sleep 2.5
+pid_a=$(pgrep -f -- "--process a --domain $domain --out $out/stuck/a" | head -1)
+kill -9 "$pid_a"
+sleep 1
+kill -INT $sup
+wait $sup
+grep -qF "process 'a' (nodes src) was killed by SIGKILL while node 'src' was in its step" "$out/stuck.log" \
+  || { cat "$out/stuck.log"; echo "FAIL: stuck: the node in its step not named"; exit 1; }
+no_shm_left stuck
+echo "3c. a process killed while its node hung in a step: the node named from its black box"
+
 # 4. A peer that never comes: b's start-up gives up after 1 s.
 "$by" run "$graph" --process b --domain "$domain" --progress 0 --arg startup_timeout_s=1 --out "$out/alone" > "$out/alone.log" 2>&1
 rc=$?
