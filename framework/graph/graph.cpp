@@ -5,6 +5,7 @@
 #include "graph/graph_args.hpp"
 #include "graph/json_scan.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -34,7 +35,8 @@ const char* type_word(const json& j) {
 struct Ctx {
   const std::string& file;
   Diagnostics& d;
-  void err(const std::string& ptr, const std::string& msg) { d.add(at(file, ptr), msg); }
+  const GraphDecl* g = nullptr;  // when set, a pointer is named in the file that declared its value
+  void err(const std::string& ptr, const std::string& msg) { d.add(g ? g->where(ptr) : at(file, ptr), msg); }
   bool expect(const json& j, json::value_t t, const char* word, const std::string& ptr) {
     bool ok = j.type() == t || (t == json::value_t::number_float && j.is_number()) ||
               (t == json::value_t::number_integer && j.is_number_integer());
@@ -95,7 +97,9 @@ void parse_string_list(const json& j, std::vector<std::string>& out, const std::
 
 void parse_transport(const json& j, GraphDecl& g, Ctx& c) {
   if (!c.expect(j, json::value_t::object, "object", "/transport")) return;
-  c.only_keys(j, {"domain", "interfaces", "peers", "startup_timeout_s", "foreign_writers"}, "/transport");
+  c.only_keys(j, {"domain", "interfaces", "peers", "startup_timeout_s", "foreign_writers", "shared_memory"}, "/transport");
+  if (j.contains("shared_memory") && c.expect(j["shared_memory"], json::value_t::boolean, "boolean", "/transport/shared_memory"))
+    g.transport.shared_memory = j["shared_memory"];
   if (j.contains("foreign_writers") && c.expect(j["foreign_writers"], json::value_t::string, "string", "/transport/foreign_writers")) {
     const std::string v = j["foreign_writers"];
     if (v == "ignore" || v == "accept") g.transport.accept_foreign_writers = v == "accept";
@@ -210,9 +214,11 @@ std::string pointer_escape(const std::string& token) {
 
 std::string at(const std::string& file, const std::string& pointer) { return file + "#" + pointer; }
 
-GraphDecl parse_graph_text(const std::string& text, const std::string& file, const std::vector<std::string>& sets,
-                           const std::vector<std::string>& args) {
-  Diagnostics d;
+namespace {
+
+// The text of one graph file as JSON, with the checks a DOM parser cannot make; errors at the
+// file's line and column.
+json parse_checked(const std::string& text, const std::string& file, Diagnostics& d) {
   auto located = [&](std::size_t off, const std::string& msg) {
     auto p = position_of(text, off);
     d.add(file + ":" + std::to_string(p.line) + ":" + std::to_string(p.column), msg);
@@ -232,11 +238,142 @@ GraphDecl parse_graph_text(const std::string& text, const std::string& file, con
     located(0, std::string("invalid JSON: ") + e.what());
   }
   if (auto f = find_duplicate_key(text)) located(f->offset, f->message);
+  return root;
+}
 
+// Graphs that include graphs (issue 21): "include": ["base.json", ...], each relative to the
+// including file, read first and in order; the including file then overrides what they declare,
+// object by object (a node's params one by one), and appends its wires to theirs. Every value
+// keeps the file and pointer that declared it (GraphDecl::where). A cycle is refused, named.
+using Provenance = std::map<std::string, std::pair<std::string, std::string>>;  // pointer -> file, pointer there
+
+// Where `src` says pointer q came from: its longest declared prefix, and the rest of q below it.
+std::pair<std::string, std::string> origin_of(const Provenance& src, const std::string& q) {
+  for (std::string p = q;;) {
+    if (auto it = src.find(p); it != src.end()) return {it->second.first, it->second.second + q.substr(p.size())};
+    if (p.empty()) return {"", q};
+    p = p.substr(0, p.rfind('/'));
+  }
+}
+
+// dst's pointer p now holds what src had at q: its origin, and those of everything below it.
+void copy_provenance(Provenance& dst, const std::string& p, const Provenance& src, const std::string& q) {
+  for (auto it = dst.lower_bound(p); it != dst.end() && it->first.compare(0, p.size(), p) == 0;)
+    it = (it->first.size() == p.size() || it->first[p.size()] == '/') ? dst.erase(it) : std::next(it);
+  dst[p] = origin_of(src, q);
+  for (auto it = src.lower_bound(q + "/"); it != src.end() && it->first.compare(0, q.size() + 1, q + "/") == 0; ++it)
+    dst[p + it->first.substr(q.size())] = it->second;
+}
+
+void fold(json& into, Provenance& into_prov, const json& over, const Provenance& over_prov, const std::string& ptr = "",
+          const std::string& over_ptr = "") {
+  for (auto it = over.begin(); it != over.end(); ++it) {
+    const std::string p = ptr + "/" + pointer_escape(it.key()), q = over_ptr + "/" + pointer_escape(it.key());
+    if (ptr.empty() && it.key() == "include") continue;
+    if (ptr.empty() && it.key() == "wires" && it->is_array() && into.contains("wires") && into["wires"].is_array()) {
+      for (std::size_t k = 0; k < it->size(); ++k) {
+        copy_provenance(into_prov, "/wires/" + std::to_string(into["wires"].size()), over_prov, q + "/" + std::to_string(k));
+        into["wires"].push_back((*it)[k]);
+      }
+      continue;
+    }
+    if (it->is_object() && into.contains(it.key()) && into[it.key()].is_object()) {
+      fold(into[it.key()], into_prov, *it, over_prov, p, q);
+      continue;
+    }
+    into[it.key()] = *it;
+    copy_provenance(into_prov, p, over_prov, q);
+  }
+}
+
+json compose(const std::string& text, const std::string& file, std::vector<std::string>& chain, Provenance& prov, Diagnostics& d) {
+  json root = parse_checked(text, file, d);
+  Provenance own = {{"", {file, ""}}};
+  if (!root.is_object() || !root.contains("include")) {
+    prov = own;
+    return root;
+  }
+  Ctx c{file, d};
+  const json& inc = root["include"];
+  std::vector<std::string> files;
+  if (inc.is_string()) files.push_back(inc.get<std::string>());
+  else if (c.expect(inc, json::value_t::array, "array of file names", "/include"))
+    for (std::size_t k = 0; k < inc.size(); ++k)
+      if (c.expect(inc[k], json::value_t::string, "string", "/include/" + std::to_string(k))) files.push_back(inc[k].get<std::string>());
+  d.raise_if_any();
+  json merged = json::object();
+  prov.clear();
+  const std::filesystem::path dir = std::filesystem::path(file).parent_path();
+  for (std::size_t k = 0; k < files.size(); ++k) {
+    const std::string where = at(file, "/include" + (inc.is_string() ? std::string() : "/" + std::to_string(k)));
+    const std::filesystem::path path = std::filesystem::path(files[k]).is_relative() ? dir / files[k] : std::filesystem::path(files[k]);
+    std::error_code ec;
+    const std::string canon = std::filesystem::weakly_canonical(path, ec).string();
+    if (std::find(chain.begin(), chain.end(), canon) != chain.end()) {
+      std::string loop;
+      for (const auto& f : chain) loop += f + " includes ";
+      d.add(where, "an include cycle: " + loop + canon);
+      d.raise_if_any();
+    }
+    if (chain.size() >= 16) {
+      d.add(where, "includes nest deeper than 16 files");
+      d.raise_if_any();
+    }
+    std::ifstream in(path, std::ios::binary);
+    if (!std::filesystem::is_regular_file(path, ec) || !in) {
+      d.add(where, "included file " + path.string() + (std::filesystem::exists(path, ec) ? " cannot be read" : " does not exist"));
+      d.raise_if_any();
+    }
+    std::ostringstream ss;
+    ss << in.rdbuf();
+    chain.push_back(canon);
+    Provenance part_prov;
+    json part = compose(ss.str(), path.string(), chain, part_prov, d);
+    chain.pop_back();
+    if (!part.is_object()) {
+      d.add(path.string() + "#", std::string("expected object, found ") + type_word(part));
+      d.raise_if_any();
+    }
+    // A plugin folder an included file names is relative to that file.
+    if (part.contains("plugin_path") && part["plugin_path"].is_array())
+      for (auto& p : part["plugin_path"])
+        if (p.is_string() && std::filesystem::path(p.get<std::string>()).is_relative())
+          p = (path.parent_path() / p.get<std::string>()).lexically_normal().string();
+    fold(merged, prov, part, part_prov);
+  }
+  fold(merged, prov, root, own);
+  prov.emplace("", std::make_pair(file, std::string()));
+  return merged;
+}
+
+}  // namespace
+
+std::string GraphDecl::where(const std::string& pointer) const {
+  // The longest prefix of the pointer some file declared.
+  for (std::string p = pointer;;) {
+    auto it = provenance.find(p);
+    if (it != provenance.end()) return at(it->second.first, it->second.second + pointer.substr(p.size()));
+    if (p.empty()) break;
+    p = p.substr(0, p.rfind('/'));
+  }
+  return at(file, pointer);
+}
+
+GraphDecl parse_graph_text(const std::string& text, const std::string& file, const std::vector<std::string>& sets,
+                           const std::vector<std::string>& args) {
+  Diagnostics d;
+  std::vector<std::string> chain;
+  {
+    std::error_code ec;
+    chain.push_back(std::filesystem::weakly_canonical(file, ec).string());
+  }
+  Provenance prov;
+  json root = compose(text, file, chain, prov, d);
   GraphDecl g;
   g.file = file;
   g.name = std::filesystem::path(file).stem().string();
-  Ctx c{file, d};
+  if (prov.size() > 1) g.provenance = prov;  // composed: errors name the file that declared the value
+  Ctx c{file, d, &g};
   if (!c.expect(root, json::value_t::object, "object", "")) d.raise_if_any();
 
   apply_args(root, args, file, d);

@@ -46,6 +46,7 @@ struct TransportDecl {
   std::vector<std::string> interfaces{"127.0.0.1"};  // UDP interfaces allowed; loopback only by default
   std::vector<std::string> peers{"127.0.0.1"};       // unicast discovery peers
   double startup_timeout_s = 10;  // a split run waits this long for its inputs' writers in other processes
+  bool shared_memory = true;  // "shared_memory": false: UDP only between processes (docs/reliability.md: a killed writer can lock a peer's port)
   bool accept_foreign_writers = false;  // "foreign_writers": "accept": samples from writers the graph does not name are used (warned of either way)
 };
 
@@ -75,6 +76,11 @@ struct GraphDecl {
   LiveDecl live;
   std::map<std::string, ProcessDecl> processes;  // only those the graph's "processes" names
   std::vector<std::string> plugin_path;  // resolved against the graph file's folder
+  // A composed graph (includes): JSON pointer -> the file that declared its value and its pointer
+  // there; empty for a graph of one file.
+  std::map<std::string, std::pair<std::string, std::string>> provenance;
+  // "FILE#POINTER" of the file that declared the value at `pointer` (the graph's file when one).
+  std::string where(const std::string& pointer) const;
 };
 
 inline const std::string kDefaultProcess = "main";

@@ -93,7 +93,7 @@ const ResolvedNode* ResolvedGraph::node(const std::string& name) const {
 
 ResolvedGraph resolve_graph(const GraphDecl& g, const Registry& reg, const std::string& process) {
   Diagnostics d;
-  auto err = [&](const std::string& ptr, const std::string& msg) { d.add(at(g.file, ptr), msg); };
+  auto err = [&](const std::string& ptr, const std::string& msg) { d.add(g.where(ptr), msg); };
   ResolvedGraph rg;
   rg.decl = &g;
 
@@ -305,7 +305,7 @@ ResolvedGraph resolve_graph(const GraphDecl& g, const Registry& reg, const std::
       std::vector<std::string> ps(rg.processes.begin(), rg.processes.end());
       d.add("--process " + process, "no node of the graph runs in process \"" + process + "\" (processes: " + join(ps) + ")");
     } else if (g.clock.sim && rg.processes.size() > 1) {
-      d.add(at(g.file, "/clock/mode"), "the sim clock runs a whole graph in one process; a split run (--process) needs \"real\"");
+      d.add(g.where("/clock/mode"), "the sim clock runs a whole graph in one process; a split run (--process) needs \"real\"");
     }
   }
   d.raise_if_any();

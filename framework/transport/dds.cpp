@@ -130,7 +130,7 @@ DdsTransport::DdsTransport(const DdsSettings& s) {
   q.transport().use_builtin_transports = false;
   auto shm = std::make_shared<eprosima::fastdds::rtps::SharedMemTransportDescriptor>();
   shm->segment_size(s.shm_segment_bytes);
-  q.transport().user_transports.push_back(shm);
+  if (s.shared_memory) q.transport().user_transports.push_back(shm);
   auto udp = std::make_shared<eprosima::fastdds::rtps::UDPv4TransportDescriptor>();
   for (const auto& i : s.interfaces) udp->interfaceWhiteList.push_back(i);
   q.transport().user_transports.push_back(udp);

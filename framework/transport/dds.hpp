@@ -55,6 +55,7 @@ struct DdsSettings {
   std::vector<std::string> interfaces{"127.0.0.1"};
   std::vector<std::string> peers{"127.0.0.1"};
   std::uint32_t shm_segment_bytes = 16u << 20;  // 2 MiB samples between processes need >= 4 MiB
+  bool shared_memory = true;  // off: UDP on the allowed interfaces only (transport.shared_memory)
   // The participant's name, which its peers see: a graph's process is "brickyard:PROCESS", so a
   // reader can tell its graph's writers from any other (participant_name()).
   // Called on a DDS thread for each writer another participant announces (`brickyard topic`):

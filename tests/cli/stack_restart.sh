@@ -8,7 +8,7 @@
 set -u
 by=$1; graph=$2; domain=$3; out=$4
 rm -rf "$out"; mkdir -p "$out"
-"$by" run "$graph" --domain "$domain" --progress 0 --arg stack_restart=on-failure --arg stack_may_die=true \
+"$by" run "$graph" --domain "$domain" --progress 0 --arg stack_restart=on-failure --arg stack_may_die=true --arg shared_memory=false \
   --set referee.laps=1 --duration 170 --out "$out/run" > "$out/run.log" 2>&1 &
 sup=$!
 sleep 15

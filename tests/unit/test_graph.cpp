@@ -3,6 +3,9 @@
 #include "graph/json_scan.hpp"
 
 #include <gtest/gtest.h>
+#include <cstdlib>
+#include <fstream>
+#include <filesystem>
 
 using namespace brickyard::fw;
 
@@ -182,4 +185,80 @@ TEST(GraphArgs, Errors) {
 TEST(GraphParse, PluginPathRelativeToGraphFile) {
   auto g = parse_graph_text(R"({"plugin_path": ["build", "/abs"], "nodes": {"a": {"plugin": "x.y"}}})", "/p/q/g.json");
   EXPECT_EQ(g.plugin_path, (std::vector<std::string>{"/p/q/build", "/abs"}));
+}
+
+namespace {
+// Files in a fresh temporary folder, for graphs that include graphs.
+struct TempGraphs {
+  std::filesystem::path dir;
+  TempGraphs() {
+    char t[] = "/tmp/by_compose_XXXXXX";
+    dir = mkdtemp(t);
+  }
+  ~TempGraphs() { std::filesystem::remove_all(dir); }
+  std::string put(const std::string& name, const std::string& text) {
+    std::ofstream(dir / name) << text;
+    return (dir / name).string();
+  }
+};
+std::string load_error(const std::string& path) {
+  try {
+    load_graph_file(path);
+  } catch (const InvalidInput& e) {
+    return e.diagnostics().front().where + ": " + e.diagnostics().front().message;
+  }
+  return "";
+}
+const char* kBase = R"({"nodes": {"src": {"plugin": "testing.scripted_source", "params": {"rate_hz": 50, "count": 10}},
+  "check": {"plugin": "testing.assert_sink", "params": {"min_count": 10}}},
+  "wires": [{"from": "src.out", "to": "check.in"}], "clock": {"mode": "sim", "duration_s": 1}})";
+}  // namespace
+
+// A graph includes another and overrides what it declares: a param one by one, a node added, a
+// wire appended; the clock's duration only.
+TEST(GraphCompose, IncludesAreFoldedInOrderAndOverridden) {
+  TempGraphs t;
+  t.put("base.json", kBase);
+  const std::string top = t.put("top.json", R"({"include": ["base.json"],
+    "nodes": {"src": {"params": {"rate_hz": 100}}, "more": {"plugin": "testing.assert_sink"}},
+    "wires": [{"from": "src.out", "to": "more.in"}], "clock": {"duration_s": 2}})");
+  const GraphDecl g = load_graph_file(top);
+  EXPECT_EQ(g.nodes.at("src").plugin, "testing.scripted_source");
+  EXPECT_EQ(g.nodes.at("src").params.at("rate_hz"), 100);
+  EXPECT_EQ(g.nodes.at("src").params.at("count"), 10);
+  EXPECT_EQ(g.nodes.size(), 3u);
+  ASSERT_EQ(g.wires.size(), 2u);
+  EXPECT_EQ(g.wires[1].to.node, "more");
+  EXPECT_TRUE(g.clock.sim);
+  EXPECT_DOUBLE_EQ(*g.clock.duration_s, 2);
+  // Each value named in the file that declared it, at its pointer there.
+  EXPECT_EQ(g.where("/nodes/src/params/rate_hz"), top + "#/nodes/src/params/rate_hz");
+  EXPECT_EQ(g.where("/nodes/src/params/count"), (t.dir / "base.json").string() + "#/nodes/src/params/count");
+  EXPECT_EQ(g.where("/wires/1/to"), top + "#/wires/0/to");
+  EXPECT_EQ(g.where("/wires/0/from"), (t.dir / "base.json").string() + "#/wires/0/from");
+}
+
+TEST(GraphCompose, ErrorsNameTheFileThatDeclaredTheValue) {
+  TempGraphs t;
+  t.put("base.json", kBase);
+  const std::string base = (t.dir / "base.json").string();
+  EXPECT_EQ(load_error(t.put("a.json", R"({"include": "base.json", "clock": {"mode": "fast"}})")),
+            (t.dir / "a.json").string() + "#/clock/mode: expected \"sim\" or \"real\", found \"fast\"");
+  t.put("bad_base.json", R"({"nodes": {"src": {"plugin": "testing.scripted_source", "parms": {}}}})");
+  EXPECT_EQ(load_error(t.put("b.json", R"({"include": ["bad_base.json"]})")).substr(0, (t.dir / "bad_base.json").string().size() + 21),
+            (t.dir / "bad_base.json").string() + "#/nodes/src/parms: un");
+  EXPECT_EQ(load_error(t.put("c.json", R"({"include": ["base.json"], "wires": [{"from": "src", "to": "check.in"}]})")),
+            (t.dir / "c.json").string() + "#/wires/0/from: expected \"node.port\", found \"src\"");
+  EXPECT_EQ(load_error(t.put("d.json", R"({"include": ["nope.json"]})")),
+            (t.dir / "d.json").string() + "#/include/0: included file " + (t.dir / "nope.json").string() + " does not exist");
+  (void)base;
+}
+
+TEST(GraphCompose, AnIncludeCycleIsRefusedNamed) {
+  TempGraphs t;
+  const std::string a = t.put("a.json", R"({"include": ["b.json"], "nodes": {"x": {"plugin": "testing.scripted_source"}}})");
+  t.put("b.json", R"({"include": ["a.json"]})");
+  const std::string e = load_error(a);
+  EXPECT_NE(e.find("b.json#/include/0: an include cycle: "), std::string::npos) << e;
+  EXPECT_NE(e.find("a.json includes " + (t.dir / "b.json").string() + " includes " + (t.dir / "a.json").string()), std::string::npos) << e;
 }
