@@ -61,14 +61,20 @@ struct ReaderListener : DataReaderListener {
   TypeSupport type;
   std::shared_ptr<PeerNames> peers;
   WriterCheck check;
-  std::set<eprosima::fastrtps::rtps::GUID_t> others;  // writers told of (one DDS thread per reader)
+  std::mutex others_m;  // the listener may be called from more than one transport's thread
+  std::set<eprosima::fastrtps::rtps::GUID_t> others;  // writers told of
   // Whether a sample of this writer is delivered: one of the graph's, or accepted.
   bool from_ours(const InstanceHandle_t& h) {
     if (check.expected.empty()) return true;
     const auto guid = eprosima::fastrtps::rtps::iHandle2GUID(h);
     const std::string name = peers->of(guid.guidPrefix);
     if (name == check.expected) return true;
-    if (others.insert(guid).second && check.other) {
+    bool first = false;
+    {
+      std::lock_guard<std::mutex> l(others_m);
+      first = others.insert(guid).second;
+    }
+    if (first && check.other) {
       std::ostringstream g;
       g << guid;
       check.other(name.empty() ? "(unknown)" : name, g.str());
