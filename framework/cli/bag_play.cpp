@@ -3,6 +3,8 @@
 #include "exec/executive.hpp"  // g_interrupt
 #include "record/recorder.hpp"
 #include "record/recording_info.hpp"
+#include "graph/diagnostics.hpp"
+#include "security/security_files.hpp"
 #include "transport/dds.hpp"
 
 #include <brickyard/msgs/registry.hpp>
@@ -51,6 +53,10 @@ int bag_play(const BagPlayOptions& o) {
   std::signal(SIGTERM, on_signal);
   DdsSettings ds;
   ds.domain = o.domain;
+  if (!o.security.empty()) {
+    if (o.identity.empty()) throw InvalidInput("--security " + o.security, "bag play writes topics: it needs --identity NAME, a process of the graph allowed to write them");
+    ds.security = security::security_identity(o.security, o.identity);
+  }
   DdsTransport dds(ds);
   std::map<std::string, std::unique_ptr<Played>> topics;
   for (const auto& [name, type] : info.topics) {

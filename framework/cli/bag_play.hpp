@@ -11,6 +11,7 @@ namespace brickyard::fw {
 struct BagPlayOptions {
   std::string file;
   int domain = 0;
+  std::string security, identity;  // --security DIR (--identity NAME): join a secured graph as that identity
   double rate = 1.0;
   std::vector<std::string> only;  // NODE.PORT patterns ('*' any); empty: every topic
   double preroll_s = 1.0;         // for readers elsewhere to match the new writers

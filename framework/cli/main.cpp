@@ -7,6 +7,7 @@
 #include "exec/executive.hpp"
 #include "graph/diagnostics.hpp"
 #include "record/recording_info.hpp"
+#include "security/security_files.hpp"
 
 #include "map_build_graph.hpp"
 
@@ -54,6 +55,10 @@ usage:
                                            --duration S, 2 s by default)
   brickyard topic echo NODE.PORT           its samples as JSON lines (--count N, --duration S)
   brickyard topic hz NODE.PORT             its rate, a line a second (--count N, --duration S)
+  brickyard security init GRAPH --out DIR  DDS security for the graph: a CA, an identity per process
+                                           and one to observe, signed governance and permissions from
+                                           its wires (--protect sign|encrypt, --days N; docs/security.md)
+                                           topic and bag play take --security DIR (bag play --identity P)
   brickyard new-plugin NAME --dir DIR      scaffold a plugin project from the SDK template
   brickyard --version
 
@@ -112,6 +117,8 @@ struct Args {
   std::uint64_t seed = 0;
   bool json = false, dot = false, quiet = false, no_report = false, profile = false, one_process = false;
   std::vector<std::string> child_flags;  // what a supervised run's children are given as they are
+  std::string security, identity, protect = "sign";  // security init; topic and bag play against a secured graph
+  int days = 365;
 };
 
 [[noreturn]] void usage_error(const std::string& where, const std::string& msg) {
@@ -213,12 +220,23 @@ Args parse_args(int argc, char** argv) {
         usage_error("--count " + v, "expected a whole number of samples, 1 or more");
       a.count = std::stol(v);
     }
+    else if (f == "--security") a.security = value();
+    else if (f == "--identity") a.identity = value();
+    else if (f == "--protect") {
+      a.protect = value();
+      if (a.protect != "sign" && a.protect != "encrypt") usage_error("--protect " + a.protect, "expected sign or encrypt");
+    } else if (f == "--days") {
+      const std::string v = value();
+      if (v.empty() || v.size() > 5 || v.find_first_not_of("0123456789") != std::string::npos || std::stoi(v) < 1 || std::stoi(v) > 3650)
+        usage_error("--days " + v, "expected a whole number of days from 1 to 3650");
+      a.days = std::stoi(v);
+    }
     else if (f == "--json") a.json = true;
     else if (f == "--dot") a.dot = true;
     else if (f == "--quiet" || f == "-q") a.quiet = true;
     else if (f.rfind("--", 0) == 0) usage_error(f, "unknown option (see brickyard --help)");
     else if (a.target.empty()) a.target = f;
-    else if (a.command == "map" || a.command == "bag" || a.command == "topic") a.more.push_back(f);
+    else if (a.command == "map" || a.command == "bag" || a.command == "topic" || a.command == "security") a.more.push_back(f);
     else usage_error(f, "unexpected argument");
   }
   return a;
@@ -431,6 +449,30 @@ int cmd_map(const Args& a) {
   return rc;
 }
 
+// `brickyard security init GRAPH --out DIR`: a CA, an identity per process and one to observe,
+// the signed governance and each identity's signed permissions from the graph's wires.
+int cmd_security(const Args& a) {
+  if (a.target != "init")
+    usage_error(a.target.empty() ? "security" : "security " + a.target, "expected: brickyard security init GRAPH --out DIR [--protect sign|encrypt] [--days N]");
+  if (a.more.size() != 1) usage_error("security init", "needs one graph file");
+  if (a.out.empty()) usage_error("security init", "needs --out DIR (the folder the graph's transport.security names)");
+  const GraphDecl g = load_graph_file(a.more[0], a.sets, a.args);
+  Registry reg = load_registry(a, &g);
+  const ResolvedGraph rg = resolve_graph(g, reg);
+  security::InitOptions o;
+  o.protection = a.protect == "encrypt" ? security::Protection::encrypt : security::Protection::sign;
+  o.days = a.days;
+  const auto r = security::init(rg, a.out, o);
+  std::printf("security init: %s for %s (%s, valid %d days)%s\n", a.out.c_str(), a.more[0].c_str(),
+              o.protection == security::Protection::encrypt ? "traffic encrypted" : "traffic signed", o.days,
+              r.reused_ca ? ", the folder's CA kept" : ", a new CA");
+  for (const auto& id : r.identities)
+    std::printf("  identity %-20s %s\n", id.c_str(), id == security::kObserver ? "reads every topic, writes none (brickyard topic --security DIR)" : "");
+  std::printf("the graph uses it with \"transport\": {\"security\": \"%s\"} (relative to the graph's folder); "
+              "ca_key.pem signs: keep it off the car\n", a.out.c_str());
+  return 0;
+}
+
 // `brickyard bag info RECORDING`: what a recording holds, without decoding a sample.
 int cmd_bag(const Args& a) {
   if (a.target == "play") {
@@ -440,6 +482,8 @@ int cmd_bag(const Args& a) {
     o.domain = a.domain.value_or(0);
     o.rate = a.rate;
     o.only = a.only;
+    o.security = a.security;
+    o.identity = a.identity;
     return bag_play(o);
   }
   if (a.target != "info")
@@ -503,6 +547,20 @@ int run_graph(const Args& a, GraphDecl g, bool validate_only) {
   ResolvedGraph rg = resolve_graph(g, reg, a.process);
   if (!a.quiet)
     for (const auto& n : rg.notices) std::fprintf(stderr, "notice: %s\n", n.c_str());
+  // DDS security: the identity this process runs as, its files checked before anything starts.
+  // Several processes in one participant would need one identity that writes for all of them,
+  // which would let a stolen key forge any topic: refused.
+  DdsSecurity security;
+  if (!g.transport.security.empty()) {
+    const bool many_here = a.process.empty() && rg.processes.size() > 1;
+    if (many_here && !validate_only && (a.one_process || g.clock.sim)) {
+      std::string names;
+      for (const auto& p : rg.processes) names += (names.empty() ? "" : ", ") + p;
+      usage_error(g.where("/transport/security"), "a run of processes " + names +
+                                                      " in one participant: each identity may write only its own process's topics; run each process (--process NAME, or supervised on the real clock)");
+    }
+    security = security::check_run(g, many_here ? std::string() : a.process.empty() ? *rg.processes.begin() : a.process, rg.processes);
+  }
   if (validate_only) {
     std::size_t wires = g.wires.size();
     std::cout << a.target << ": valid — " << rg.nodes.size() << " nodes, " << wires << " wires, "
@@ -544,6 +602,7 @@ int run_graph(const Args& a, GraphDecl g, bool validate_only) {
   opt.record_compression = a.record_compression;
   opt.profile = a.profile;
   opt.threads = a.threads;
+  opt.security = security;
   opt.live_port = a.live_port ? a.live_port : g.live.port;  // the flag, else the graph's "live"
   opt.live_address = a.live_address_set ? a.live_address : g.live.address;
   opt.pace = a.pace;
@@ -691,6 +750,7 @@ int main(int argc, char** argv) {
     if (a.command == "new-plugin") return cmd_new_plugin(a);
     if (a.command == "map") return cmd_map(a);
     if (a.command == "bag") return cmd_bag(a);
+    if (a.command == "security") return cmd_security(a);
     if (a.command == "topic") {
       if (a.more.size() > 1) usage_error(a.more[1], "unexpected argument");
       TopicOptions o;
@@ -699,9 +759,11 @@ int main(int argc, char** argv) {
       o.domain = a.domain.value_or(0);
       o.duration = a.duration;
       o.count = a.count;
+      o.security = a.security;
+      o.identity = a.identity;
       return topic_command(o);
     }
-    usage_error(a.command, "unknown command (commands: run, validate, plugins, graph, report, map, bag, topic, new-plugin)");
+    usage_error(a.command, "unknown command (commands: run, validate, plugins, graph, report, map, bag, topic, security, new-plugin)");
   } catch (const InvalidInput& e) {
     std::cerr << format_diagnostics(e.diagnostics());
     return 2;

@@ -4,6 +4,7 @@
 #include "record/cdr_json.hpp"
 #include "record/recorder.hpp"
 #include "record/sample_serializer.hpp"
+#include "security/security_files.hpp"
 #include "transport/dds.hpp"
 
 #include <brickyard/msgs/registry.hpp>
@@ -70,6 +71,7 @@ int topic_command(const TopicOptions& o) {
   Heard heard;
   DdsSettings ds;
   ds.domain = o.domain;
+  if (!o.security.empty()) ds.security = security::security_identity(o.security, o.identity.empty() ? security::kObserver : o.identity);
   ds.on_writer = [&heard](const std::string& topic, const std::string& type) {
     std::lock_guard<std::mutex> l(heard.m);
     heard.writers[ours(topic)] = type;
@@ -78,7 +80,8 @@ int topic_command(const TopicOptions& o) {
   DdsTransport dds(ds);
 
   if (o.verb == "list") {
-    const double listen = o.duration.value_or(2.0);
+    // An authenticated peer takes longer to be heard (the handshake first): 1.5 to 2 s here.
+    const double listen = o.duration.value_or(o.security.empty() ? 2.0 : 4.0);
     wait_for(heard, Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(listen)), [] { return false; });
     std::lock_guard<std::mutex> l(heard.m);
     if (heard.writers.empty()) {

@@ -11,6 +11,7 @@ struct TopicOptions {
   std::string verb;                 // list, echo, hz
   std::string topic;                // NODE.PORT (echo, hz)
   int domain = 0;
+  std::string security, identity;  // --security DIR (--identity NAME): join a secured graph as that identity
   std::optional<double> duration;  // seconds to listen (list: 2 by default; echo, hz: until --count or Ctrl-C)
   std::optional<long> count;       // echo, hz: stop after this many samples
   double wait = 5;                  // echo, hz: seconds to wait for the topic's writer

@@ -9,6 +9,7 @@
 #include "live/live_server.hpp"
 #include "live/scene.hpp"
 #include "record/recorder.hpp"
+#include "transport/dds.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -36,6 +37,7 @@ struct RunOptions {
   double pace = 0;                       // --pace X: sim clock at most X times real time (0: as fast as it goes)
   int threads = 0;        // sim clock: threads that step nodes (0: the machine's cores, at most 4)
   bool profile = false;  // --profile: each node's wall time in step, in the summary ("step_wall_s")
+  DdsSecurity security;  // transport.security: this process's identity's files (checked readable before the run)
 };
 
 enum class RunResult { success, failed, interrupted, invalid_input };

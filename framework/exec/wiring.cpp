@@ -21,6 +21,7 @@ void Executive::build() {
   ds.interfaces = g.transport.interfaces;
   ds.peers = g.transport.peers;
   ds.shared_memory = g.transport.shared_memory;
+  ds.security = opt_.security;
   ds.name = participant_name(opt_.process.empty() ? "all" : opt_.process);
   crash_guard::snapshot_shared_memory();
   transport_ = std::make_unique<DdsTransport>(ds);

@@ -97,7 +97,10 @@ void parse_string_list(const json& j, std::vector<std::string>& out, const std::
 
 void parse_transport(const json& j, GraphDecl& g, Ctx& c) {
   if (!c.expect(j, json::value_t::object, "object", "/transport")) return;
-  c.only_keys(j, {"domain", "interfaces", "peers", "startup_timeout_s", "foreign_writers", "shared_memory"}, "/transport");
+  c.only_keys(j, {"domain", "interfaces", "peers", "startup_timeout_s", "foreign_writers", "shared_memory", "security"}, "/transport");
+  if (j.contains("security") && c.expect(j["security"], json::value_t::string, "string", "/transport/security")) {
+    g.transport.security = j["security"];  // "": off (a graph argument's default, say)
+  }
   if (j.contains("shared_memory") && c.expect(j["shared_memory"], json::value_t::boolean, "boolean", "/transport/shared_memory"))
     g.transport.shared_memory = j["shared_memory"];
   if (j.contains("foreign_writers") && c.expect(j["foreign_writers"], json::value_t::string, "string", "/transport/foreign_writers")) {
@@ -451,6 +454,8 @@ GraphDecl parse_graph_text(const std::string& text, const std::string& file, con
   if (root.contains("transport")) parse_transport(root["transport"], g, c);
   if (root.contains("live")) parse_live(root["live"], g, c);
   if (root.contains("processes")) parse_processes(root["processes"], g, c);
+  if (!g.transport.security.empty() && std::filesystem::path(g.transport.security).is_relative())
+    g.transport.security = (std::filesystem::path(file).parent_path() / g.transport.security).lexically_normal().string();
   if (root.contains("plugin_path")) {
     parse_string_list(root["plugin_path"], g.plugin_path, "/plugin_path", c);
     auto base = std::filesystem::path(file).parent_path();

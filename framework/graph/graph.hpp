@@ -48,6 +48,9 @@ struct TransportDecl {
   double startup_timeout_s = 10;  // a split run waits this long for its inputs' writers in other processes
   bool shared_memory = true;  // "shared_memory": false: UDP only between processes (docs/reliability.md: a killed writer can lock a peer's port)
   bool accept_foreign_writers = false;  // "foreign_writers": "accept": samples from writers the graph does not name are used (warned of either way)
+  // "security": the folder `brickyard security init` made (resolved against the graph file's
+  // folder); empty: DDS security off (docs/security.md).
+  std::string security;
 };
 
 // "processes": what the supervisor does when a process of a split run dies (docs/reliability.md).

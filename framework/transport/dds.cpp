@@ -127,7 +127,7 @@ struct DiscoveryListener : DomainParticipantListener {
 
 bool DdsWriter::write(const void* sample) { return writer_->write(const_cast<void*>(sample)); }
 
-DdsTransport::DdsTransport(const DdsSettings& s) {
+DdsTransport::DdsTransport(const DdsSettings& s) : secured_(s.security.on()) {
   auto* factory = DomainParticipantFactory::get_instance();
   // Profiles (FASTRTPS_DEFAULT_PROFILES_FILE) first, then read the defaults, then make them ours.
   factory->load_profiles();
@@ -160,12 +160,30 @@ DdsTransport::DdsTransport(const DdsSettings& s) {
   }
   // No explicit unicast locators: Fast DDS then offers shared memory to peers on this host and
   // UDP only on the whitelisted interfaces (setting a UDP locator here would turn SHM off).
+  if (s.security.on()) {
+    // Fast DDS's builtin security plugins, configured by participant properties.
+    auto& props = q.properties().properties();
+    auto set = [&](const char* k, const std::string& v) { props.emplace_back(k, v); };
+    set("dds.sec.auth.plugin", "builtin.PKI-DH");
+    set("dds.sec.auth.builtin.PKI-DH.identity_ca", "file://" + s.security.identity_ca);
+    set("dds.sec.auth.builtin.PKI-DH.identity_certificate", "file://" + s.security.cert);
+    set("dds.sec.auth.builtin.PKI-DH.private_key", "file://" + s.security.key);
+    set("dds.sec.access.plugin", "builtin.Access-Permissions");
+    set("dds.sec.access.builtin.Access-Permissions.permissions_ca", "file://" + s.security.permissions_ca);
+    set("dds.sec.access.builtin.Access-Permissions.governance", "file://" + s.security.governance);
+    set("dds.sec.access.builtin.Access-Permissions.permissions", "file://" + s.security.permissions);
+    set("dds.sec.crypto.plugin", "builtin.AES-GCM-GMAC");
+  }
   peers_ = std::make_shared<PeerNames>();
   discovery_ = std::make_unique<DiscoveryListener>();
   discovery_->on_writer = s.on_writer;
   discovery_->peers = peers_;
   participant_ = factory->create_participant(s.domain, q, discovery_.get(), StatusMask::none());
-  if (!participant_) throw std::runtime_error("Fast DDS could not create a participant on domain " + std::to_string(s.domain));
+  if (!participant_)
+    throw std::runtime_error("Fast DDS could not create a participant on domain " + std::to_string(s.domain) +
+                             (s.security.on() ? " with the security files of " + s.security.cert +
+                                                    " (a certificate, key or signed document that does not verify against the CA, or out of its validity)"
+                                              : std::string()));
   publisher_ = participant_->create_publisher(PUBLISHER_QOS_DEFAULT);
   subscriber_ = participant_->create_subscriber(SUBSCRIBER_QOS_DEFAULT);
   if (!publisher_ || !subscriber_) throw std::runtime_error("Fast DDS could not create a publisher/subscriber");
@@ -199,7 +217,7 @@ Topic* DdsTransport::topic(const std::string& name, const std::string& type_name
       throw std::runtime_error("cannot register type " + type_name);
   }
   Topic* t = participant_->create_topic(name, type_name, TOPIC_QOS_DEFAULT);
-  if (!t) throw std::runtime_error("cannot create topic " + name);
+  if (!t) throw std::runtime_error("cannot create topic " + name + (secured_ ? " (its permissions name it neither to publish nor to subscribe)" : ""));
   return t;
 }
 
@@ -220,7 +238,8 @@ DdsWriter* DdsTransport::make_writer(const std::string& topic_n, const std::stri
   w->listener_ = std::make_unique<WriterListener>();
   w->listener_->matched = &w->matched_;
   w->writer_ = publisher_->create_datawriter(t, q, w->listener_.get());
-  if (!w->writer_) throw std::runtime_error("cannot create a writer on " + topic_n);
+  if (!w->writer_)
+    throw std::runtime_error("cannot create a writer on " + topic_n + (secured_ ? " (its permissions do not let this identity publish it)" : ""));
   writers_.push_back(std::move(w));
   return writers_.back().get();
 }
@@ -246,7 +265,8 @@ DdsReader* DdsTransport::make_reader(const std::string& topic_n, const std::stri
   r->listener_->check = std::move(check);
   r->listener_->matched = &r->matched_;
   r->reader_ = subscriber_->create_datareader(t, q, r->listener_.get());
-  if (!r->reader_) throw std::runtime_error("cannot create a reader on " + topic_n);
+  if (!r->reader_)
+    throw std::runtime_error("cannot create a reader on " + topic_n + (secured_ ? " (its permissions do not let this identity subscribe to it)" : ""));
   readers_.push_back(std::move(r));
   return readers_.back().get();
 }

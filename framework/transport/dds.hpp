@@ -50,6 +50,15 @@ class DdsReader {
   std::unique_ptr<struct ReaderListener> listener_;
 };
 
+// DDS security (OMG DDS Security 1.1 through Fast DDS's builtin plugins: PKI-DH authentication,
+// access control by signed permissions, AES-GCM-GMAC): the participant's files, absolute paths.
+// Empty identity_ca: security off.
+struct DdsSecurity {
+  std::string identity_ca, permissions_ca, governance;  // shared by every participant of the graph
+  std::string cert, key, permissions;                   // this participant's identity
+  bool on() const { return !identity_ca.empty(); }
+};
+
 struct DdsSettings {
   int domain = 0;
   std::vector<std::string> interfaces{"127.0.0.1"};
@@ -62,6 +71,7 @@ struct DdsSettings {
   // its DDS topic and type names.
   std::function<void(const std::string& topic, const std::string& type)> on_writer;
   std::string name = "brickyard";
+  DdsSecurity security;
 };
 
 // What a graph's process calls its DDS participant.
@@ -95,6 +105,7 @@ class DdsTransport {
 
  private:
   eprosima::fastdds::dds::Topic* topic(const std::string& name, const std::string& type_name);
+  bool secured_ = false;
   eprosima::fastdds::dds::DomainParticipant* participant_ = nullptr;
   std::unique_ptr<struct DiscoveryListener> discovery_;
   std::shared_ptr<struct PeerNames> peers_;  // participants discovered: GUID prefix -> name
