@@ -18,7 +18,7 @@ expect_bad() {  # file, pattern
   grep -q -- "$2" "$out/bad.log" || { cat "$out/bad.log"; echo "FAIL: $1: message lacks '$2'"; exit 1; }
 }
 head -c 100000 "$g" > "$out/cut.byrg"
-expect_bad "$out/cut.byrg" "cut.byrg: not a usable road graph (truncated"
+expect_bad "$out/cut.byrg" "cut.byrg: not a usable road graph (its digest does not match its bytes: damaged or cut short"
 "$plan" graph --track "$data/tracks/IMS.csv" --raceline "$data/racelines/IMS.csv" --edge-margin 2.0 --out "$out/other.byrg" > /dev/null
 expect_bad "$out/other.byrg" "other.byrg was built for another racing line"
 echo "road_graph_file: ok"
