@@ -1,6 +1,7 @@
 // Resolution against the real testing plugins, loaded the way the host loads them.
 #include "graph/diagnostics.hpp"
 #include "graph/resolve.hpp"
+#include "test_registry.hpp"
 
 #include <gtest/gtest.h>
 
@@ -8,14 +9,7 @@ using namespace brickyard::fw;
 
 namespace {
 
-const Registry& registry() {
-  static Registry r = [] {
-    Registry x;
-    x.add_directory(BRICKYARD_TEST_PLUGIN_DIR);
-    return x;
-  }();
-  return r;
-}
+const Registry& registry() { return test::testing_plugins(); }
 
 std::vector<Diagnostic> errors(const std::string& text, const std::vector<std::string>& sets = {}) {
   static std::vector<GraphDecl> keep;  // resolve keeps pointers into the declaration

@@ -2,6 +2,7 @@
 // writes, checked without DDS; tests/cli/security.sh runs a secured graph and attacks it.
 #include "graph/diagnostics.hpp"
 #include "graph/resolve.hpp"
+#include "test_registry.hpp"
 #include "security/documents.hpp"
 #include "security/pki.hpp"
 #include "security/security_files.hpp"
@@ -16,14 +17,7 @@ using namespace brickyard::fw;
 
 namespace {
 
-const Registry& registry() {
-  static Registry r = [] {
-    Registry x;
-    x.add_directory(BRICKYARD_TEST_PLUGIN_DIR);
-    return x;
-  }();
-  return r;
-}
+const Registry& registry() { return test::testing_plugins(); }
 
 // src (process a) feeds sink (process b) and local (process b); tap (process a) feeds nothing.
 const char* kSplit = R"({"clock": {"mode": "real"}, "nodes": {
