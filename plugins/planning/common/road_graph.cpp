@@ -1,5 +1,6 @@
 #include "road_graph.hpp"
 
+#include "io/whole_file.hpp"
 #include "math/fnv1a.hpp"
 
 #include <algorithm>
@@ -233,22 +234,7 @@ void RoadGraph::save(const std::string& path) const {
   std::string bytes = std::move(o).str();
   const std::uint64_t sum = math::fnv1a(bytes);
   bytes.append(reinterpret_cast<const char*>(&sum), sizeof sum);
-  // Whole or not at all: written beside, then renamed over the path.
-  const std::string part = path + ".part";
-  {
-    std::ofstream f(part, std::ios::binary | std::ios::trunc);
-    if (!f) throw std::runtime_error(path + ": cannot open for writing");
-    f.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-    f.flush();
-    if (!f) {
-      std::remove(part.c_str());
-      throw std::runtime_error(path + ": write failed (disk full?)");
-    }
-  }
-  if (std::rename(part.c_str(), path.c_str()) != 0) {
-    std::remove(part.c_str());
-    throw std::runtime_error(path + ": cannot be written (rename failed)");
-  }
+  io::write_whole_file(path, bytes);  // whole or not at all
 }
 
 RoadGraph RoadGraph::load(const std::string& path) {

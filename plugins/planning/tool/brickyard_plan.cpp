@@ -16,6 +16,7 @@
 #include "common/min_curvature.hpp"
 #include "common/min_time.hpp"
 #include "common/road_graph.hpp"
+#include "io/whole_file.hpp"
 #include "motion/racing_line.hpp"
 #include "motion/speed_profile.hpp"
 #include "motion/vehicle_limits.hpp"
@@ -30,6 +31,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -141,14 +143,14 @@ int line_cmd(std::map<std::string, std::string> o) {
     std::snprintf(slack, sizeof slack, "%g", mp.curvature_slack);
     what += ", refined for minimum time (curvature slack " + std::string(slack) + ")";
   }
-  std::ofstream f(out);
-  if (!f) throw std::runtime_error(out + ": cannot open for writing");
+  std::ostringstream f;
   f << "# " << what << " by brickyard-plan from " << track << ", margin " << p.margin << " m\n# x_m,y_m\n";
   char row[128];
   for (std::size_t i = 0; i < r.x.size(); ++i) {
     std::snprintf(row, sizeof row, "%.4f,%.4f\n", r.x[i], r.y[i]);
     f << row;
   }
+  io::write_whole_file(out, f.str());
   std::printf("%s: %zu points, sum k^2 ds %.5f 1/m, %d linearisations, %.0f ms\n", out.c_str(), r.x.size(),
               summed_squared_curvature(r.x, r.y), r.iterations, ms);
   std::fputs(refined, stdout);
@@ -158,8 +160,7 @@ int line_cmd(std::map<std::string, std::string> o) {
     const LapProfile lp = lap_profile(r.x, r.y, l, mp.averaged_over);
     const std::size_t n = r.x.size();
     const std::vector<double>& ds = lp.ds;
-    std::ofstream g(profile);
-    if (!g) throw std::runtime_error(profile + ": cannot open for writing");
+    std::ostringstream g;
     g << "# s_m,x_m,y_m,kappa_radpm,vx_mps\n";
     double s = 0;
     for (std::size_t i = 0; i < n; ++i) {
@@ -167,6 +168,7 @@ int line_cmd(std::map<std::string, std::string> o) {
       g << row;
       s += ds[i];
     }
+    io::write_whole_file(profile, g.str());
     std::printf("%s: lap time %.2f s\n", profile.c_str(), lp.time);
   }
   return 0;
@@ -231,6 +233,9 @@ int main(int argc, char** argv) {
     throw Usage(cmd.empty() ? "no command" : cmd + ": unknown command (line, graph, track)");
   } catch (const Usage& e) {
     std::fprintf(stderr, "brickyard-plan: %s\n%s", e.what(), kUsage);
+  } catch (const io::WriteError& e) {
+    std::fprintf(stderr, "brickyard-plan: %s\n", e.what());
+    return 1;  // not bad input: the output could not be written (a full disk)
   } catch (const std::exception& e) {
     std::fprintf(stderr, "brickyard-plan: %s\n", e.what());
   }
