@@ -6,6 +6,7 @@
 #include "exec/crash_guard.hpp"
 #include "exec/executive.hpp"
 #include "graph/diagnostics.hpp"
+#include "io/whole_file.hpp"
 #include "record/recording_info.hpp"
 #include "security/security_files.hpp"
 
@@ -662,20 +663,11 @@ int run_graph(const Args& a, GraphDecl g, bool validate_only) {
   // runs into two folders is the same.
   if (record_out && a.record.empty() && s.json.contains("recording")) s.json["recording"]["file"] = kOutRecording;
   if (!a.out.empty()) {
-    // Written whole under another name, then renamed: a full disk leaves no half a summary.
-    const fs::path file = fs::path(a.out) / "summary.json", part = file.string() + ".part";
-    bool written = false;
-    {
-      std::ofstream f(part);
-      f << s.json.dump(2) << "\n";
-      f.flush();
-      written = static_cast<bool>(f);
-    }
-    std::error_code ec;
-    if (written) fs::rename(part, file, ec);
-    if (!written || ec) {
-      fs::remove(part, ec);
-      std::fprintf(stderr, "error: cannot write %s (a full disk?); the run's result was: %s\n", file.c_str(), to_string(s.result));
+    // Whole or not at all: a full disk leaves no half a summary.
+    try {
+      brickyard::io::write_whole_file((fs::path(a.out) / "summary.json").string(), s.json.dump(2) + "\n");
+    } catch (const brickyard::io::WriteError& e) {
+      std::fprintf(stderr, "error: %s; the run's result was: %s\n", e.what(), to_string(s.result));
       return 1;
     }
   }

@@ -1,4 +1,5 @@
 #include "cli/supervisor.hpp"
+#include "io/whole_file.hpp"
 #include "exec/crash_guard.hpp"
 
 #include <nlohmann/json.hpp>
@@ -318,17 +319,11 @@ void Supervisor::write_summary(const std::string& result, const std::string& rea
   for (const auto& c : children_)
     j["processes"][c.name] = {{"nodes", c.nodes}, {"restart", c.policy.restart == ProcessDecl::Restart::on_failure ? "on-failure" : "never"},
                               {"may_die", c.policy.may_die}, {"restarts", c.restarts}, {"runs", c.runs}};
-  const fs::path file = fs::path(o_.out) / "summary.json", part = file.string() + ".part";
-  {
-    std::ofstream f(part);
-    f << j.dump(2) << "\n";
-    if (!f) {
-      std::fprintf(stderr, "error: cannot write %s\n", file.c_str());
-      return;
-    }
+  try {
+    io::write_whole_file((fs::path(o_.out) / "summary.json").string(), j.dump(2) + "\n");
+  } catch (const io::WriteError& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
   }
-  std::error_code ec;
-  fs::rename(part, file, ec);
 }
 
 int Supervisor::run() {

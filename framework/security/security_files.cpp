@@ -1,9 +1,9 @@
 #include "security/security_files.hpp"
 
 #include "graph/diagnostics.hpp"
+#include "io/whole_file.hpp"
 #include "security/pki.hpp"
 
-#include <fcntl.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -27,30 +27,10 @@ constexpr std::size_t kMaxCommonName = 64;
 
 std::string subject_for(const std::string& identity) { return std::string("CN=") + identity + ",O=" + kOrganisation; }
 
-// Written whole to PATH.part, then renamed: a reader never sees half a key or document. A key's
-// file is made 0600 before a byte of it is written.
+// Whole or not at all (a reader never sees half a key or document); a key 0600 before a byte of it
+// is written. A write that fails is io::WriteError (exit 1), not bad input.
 void write_file(const fs::path& path, const std::string& text, bool secret) {
-  const std::string part = path.string() + ".part";
-  ::unlink(part.c_str());
-  const int fd = ::open(part.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, secret ? 0600 : 0644);
-  if (fd < 0) refuse(path.string(), std::string("cannot be written: ") + std::strerror(errno));
-  std::size_t at = 0;
-  while (at < text.size()) {
-    const ssize_t n = ::write(fd, text.data() + at, text.size() - at);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) {
-      const int e = errno;
-      ::close(fd);
-      ::unlink(part.c_str());
-      refuse(path.string(), std::string("cannot be written: ") + std::strerror(e));
-    }
-    at += static_cast<std::size_t>(n);
-  }
-  if (::fsync(fd) != 0 || ::close(fd) != 0) {
-    ::unlink(part.c_str());
-    refuse(path.string(), std::string("cannot be written: ") + std::strerror(errno));
-  }
-  if (::rename(part.c_str(), path.c_str()) != 0) refuse(path.string(), std::string("cannot be written: ") + std::strerror(errno));
+  io::write_whole_file(path.string(), text, secret ? 0600 : 0644);
 }
 
 std::string read_text(const fs::path& p) {

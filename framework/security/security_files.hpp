@@ -51,7 +51,8 @@ struct InitResult {
 
 // Make (or remake, keeping an existing CA) the folder for `g` (resolved with every node). Every
 // file is written whole under a temporary name and renamed; keys are 0600. Throws InvalidInput
-// naming the culprit (a process name a certificate cannot carry, a folder that cannot be written).
+// naming the culprit (a process name a certificate cannot carry, a folder that cannot be made),
+// io::WriteError naming a file that cannot be written (a full disk).
 InitResult init(const ResolvedGraph& g, const std::string& dir, const InitOptions& o);
 
 }  // namespace brickyard::fw::security

@@ -1,9 +1,12 @@
 #include "centre_line.hpp"
 
+#include "io/whole_file.hpp"
+
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <sstream>
 
 namespace brickyard::track {
 namespace {
@@ -104,27 +107,19 @@ CenterLine load_xy_csv(const std::string& path) { return load(path, 2); }
 void write_centerline_csv(const std::string& path, const CenterLine& c) {
   const bool bank = !c.bank_deg.empty();
   if (bank && c.bank_deg.size() != c.x.size()) throw TrackFileError(path + ": one bank angle per point needed");
-  const std::string part = path + ".part";
-  {
-    std::ofstream f(part);
-    if (!f) throw TrackFileError(path + ": cannot write there (does its folder exist?)");
-    f << "# x_m,y_m,w_tr_right_m,w_tr_left_m" << (bank ? ",bank_deg" : "") << "\n";
-    char row[192];
-    for (std::size_t i = 0; i < c.x.size(); ++i) {
-      const int n = bank ? std::snprintf(row, sizeof row, "%.4f,%.4f,%.4f,%.4f,%.3f\n", c.x[i], c.y[i], c.width_right[i],
-                                         c.width_left[i], c.bank_deg[i])
-                         : std::snprintf(row, sizeof row, "%.4f,%.4f,%.4f,%.4f\n", c.x[i], c.y[i], c.width_right[i], c.width_left[i]);
-      f.write(row, n);
-    }
-    f.flush();
-    if (!f) {
-      std::remove(part.c_str());
-      throw TrackFileError(path + ": write failed (disk full?)");
-    }
+  std::ostringstream f;
+  f << "# x_m,y_m,w_tr_right_m,w_tr_left_m" << (bank ? ",bank_deg" : "") << "\n";
+  char row[192];
+  for (std::size_t i = 0; i < c.x.size(); ++i) {
+    const int n = bank ? std::snprintf(row, sizeof row, "%.4f,%.4f,%.4f,%.4f,%.3f\n", c.x[i], c.y[i], c.width_right[i],
+                                       c.width_left[i], c.bank_deg[i])
+                       : std::snprintf(row, sizeof row, "%.4f,%.4f,%.4f,%.4f\n", c.x[i], c.y[i], c.width_right[i], c.width_left[i]);
+    f.write(row, n);
   }
-  if (std::rename(part.c_str(), path.c_str()) != 0) {
-    std::remove(part.c_str());
-    throw TrackFileError(path + ": cannot rename " + part + " to it");
+  try {
+    io::write_whole_file(path, f.str());
+  } catch (const io::WriteError& e) {
+    throw TrackFileError(e.what());
   }
 }
 
