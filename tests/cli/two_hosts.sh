@@ -16,6 +16,8 @@ ip link set lo up || exit 77
 # Only in a namespace of our own (scripts/netns-run), never on the machine's own network.
 [ "$(ip -o link | wc -l)" -eq 1 ] || { echo "SKIP: not in a private network namespace"; exit 77; }
 ip link add by_a type veth peer name by_b 2> "$out/veth.err" || { cat "$out/veth.err"; echo "SKIP: no veth here"; exit 77; }
+# The identities first: host B starts as soon as its address is up.
+"$by" security init "$graph" --out "$out/keys" > "$out/init.log" 2>&1 || { cat "$out/init.log"; fail "security init"; }
 # Host B: a child in a network namespace of its own, started once its veth end is configured.
 unshare -n bash -c '
   ip link set lo up
@@ -31,7 +33,6 @@ sleep 0.3
 ip link set by_b netns "$host_b" || fail "moving by_b into host B's namespace"
 ip addr add 10.77.0.1/24 dev by_a && ip link set by_a up || fail "configuring by_a"
 nsenter -t "$host_b" -n sh -c 'ip addr add 10.77.0.2/24 dev by_b && ip link set by_b up' || fail "configuring by_b"
-"$by" security init "$graph" --out "$out/keys" > "$out/init.log" 2>&1 || { cat "$out/init.log"; fail "security init"; }
 cat /proc/net/dev > "$out/a_dev_before.txt"
 "$by" run "$graph" --process sim --domain "$domain" --progress 0 --quiet --set referee.laps=1 --duration 200 \
   --arg shared_memory=false --arg security="$out/keys" --arg 'interfaces=["10.77.0.1"]' --arg 'peers=["10.77.0.2"]' \
