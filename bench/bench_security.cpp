@@ -1,8 +1,8 @@
 // What DDS security costs (issue 20's target: at most 10 % of the split race's wall time), measured
 // in one run of this program: the main job split over two processes (tests/graphs/multiprocess/
 // ims_race_split.json, real clock, supervised) with `transport.security` on — every participant
-// authenticated, each wire access-controlled, every RTPS message signed, the command topic's data
-// signed (`brickyard security init`, --protect sign) — and with it encrypted (--protect encrypt),
+// authenticated, each wire access-controlled, every RTPS message signed (`brickyard security
+// init`, --protect sign) — and every RTPS message encrypted instead (--protect encrypt),
 // beside the same run without security, runs alternating. The real clock fixes the wall time, so
 // the cost is the processes' CPU time (cpu_s in the supervised run's summary) over it; and the
 // car's longest gap between commands (sim.vehicle's longest_command_gap_s), which security must not

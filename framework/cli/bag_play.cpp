@@ -1,6 +1,7 @@
 #include "cli/bag_play.hpp"
 
 #include "exec/executive.hpp"  // g_interrupt
+#include "record/cdr_json.hpp"
 #include "record/recorder.hpp"
 #include "record/recording_info.hpp"
 #include "graph/diagnostics.hpp"
@@ -36,6 +37,18 @@ struct Played {
     if (sample) support->deleteData(sample);
   }
 };
+// Where a sample stops fitting its type: the IDL decoder, which counts bytes, says (issue 20).
+std::string where_it_breaks(const std::string& type, const unsigned char* data, std::size_t size) {
+  const char* idl = idl_text(type);
+  if (!idl) return {};
+  try {
+    CdrJson(omgidl_schema(idl)).decode(type, data, size);
+  } catch (const std::exception& e) {
+    return std::string(": ") + e.what();
+  }
+  return {};
+}
+
 }  // namespace
 
 int bag_play(const BagPlayOptions& o) {
@@ -96,7 +109,8 @@ int bag_play(const BagPlayOptions& o) {
       p.payload.length = static_cast<std::uint32_t>(size);
       p.payload.pos = 0;
       if (!p.support->deserialize(&p.payload, p.sample)) {
-        error = "sample " + std::to_string(p.count) + " of " + topic + " does not decode as " + p.support->getName();
+        error = "sample " + std::to_string(p.count) + " of " + topic + " does not decode as " + p.support->getName() +
+                where_it_breaks(p.support->getName(), data, size);
         return;
       }
       p.writer->write(p.sample);

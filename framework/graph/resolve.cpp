@@ -18,12 +18,17 @@ std::string fmt_num(double v) {
   return s.str();
 }
 
+// A bound a plugin did not declare is the framework's: no parameter value beyond 1e9 in
+// magnitude (a graph or `--set` giving 1e308 to a "rate" or a "size" once made runs allocate
+// until bad_alloc; docs/graph-format.md). The project's own plugins declare both bounds of every
+// number (ParamBounds.EveryProjectPluginBoundsItsNumbers).
+constexpr double kDefaultBound = 1e9;
+
 std::string range_error(const ParamSpec& spec, double v) {
-  if ((spec.min && v < *spec.min) || (spec.max && v > *spec.max) || !std::isfinite(v)) {
-    std::string r = spec.min && spec.max ? "from " + fmt_num(*spec.min) + " to " + fmt_num(*spec.max)
-                    : spec.min           ? "at least " + fmt_num(*spec.min)
-                    : spec.max           ? "at most " + fmt_num(*spec.max)
-                                         : "finite";
+  const double lo = spec.min.value_or(-kDefaultBound), hi = spec.max.value_or(kDefaultBound);
+  if (v < lo || v > hi || !std::isfinite(v)) {
+    std::string r = "from " + fmt_num(lo) + " to " + fmt_num(hi);
+    if (!spec.min || !spec.max) r += " (the framework's bound where the plugin declares none)";
     return "expected a value " + r + (spec.unit.empty() ? "" : " " + spec.unit) + ", found " + fmt_num(v);
   }
   return {};

@@ -64,13 +64,17 @@ std::string governance_xml(Protection p) {
          "          <enable_liveliness_protection>true</enable_liveliness_protection>\n"
          "          <enable_read_access_control>true</enable_read_access_control>\n"
          "          <enable_write_access_control>true</enable_write_access_control>\n"
-         "          <metadata_protection_kind>"
-      << kind << "</metadata_protection_kind>\n          <data_protection_kind>" << data << "</data_protection_kind>\n        </topic_rule>\n";
+         "          <metadata_protection_kind>NONE</metadata_protection_kind>\n          <data_protection_kind>"
+      << data << "</data_protection_kind>\n        </topic_rule>\n";
   };
-  // Under `sign`, every RTPS message is signed (rtps_protection_kind), commands with the rest; a
-  // topic's data signed on its own as well (data_protection_kind SIGN) delivered no sample at all
-  // with Debian's Fast DDS 2.9 (the split main job's commands never reached the car).
-  rule("*", enc ? "ENCRYPT" : "NONE");
+  // Every RTPS message is signed, or encrypted, once, whole (rtps_protection_kind), commands with
+  // the rest: the protection is the sending participant's, whose identity and permissions were
+  // checked at discovery, and no authenticated process can write a topic its permissions deny.
+  // Protecting each submessage (metadata) and each payload (data) again on top passed over every
+  // LiDAR cloud two more times: encrypted, the split race cost 14.6 % more CPU (docs/security.md).
+  // A topic's data signed on its own (data_protection_kind SIGN) delivered no sample at all with
+  // Debian's Fast DDS 2.9 (the split main job's commands never reached the car).
+  rule("*", "NONE");
   o << "      </topic_access_rules>\n    </domain_rule>\n  </domain_access_rules>\n</dds>\n";
   return o.str();
 }

@@ -40,7 +40,9 @@ std::vector<double> bank_profile(const CenterLine& c, const BankSpec& spec) {
   }
   // Ramp in and out: a moving average over the transition length.
   double total = s[n - 1] + std::hypot(c.x[0] - c.x[n - 1], c.y[0] - c.y[n - 1]);
-  int half = std::max(0, static_cast<int>(std::round(spec.transition_m / (total / n) / 2)));
+  // At most once round the loop: a ramp longer than the track is the track's mean, and (i + j + n)
+  // stays a valid index.
+  const int half = static_cast<int>(std::clamp(std::round(spec.transition_m / (total / n) / 2), 0.0, static_cast<double>(n)));
   if (half == 0) return target;
   std::vector<double> out(n);
   for (int i = 0; i < n; ++i) {

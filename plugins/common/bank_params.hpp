@@ -34,9 +34,9 @@ template <class S, class... M> void bind_bank(ParamBinding<S>& b, M... path) {
       .doc("where the road is banked: nowhere, everywhere, in turns, in listed ranges of s, or as the track file's bank_deg column says");
   b.bind("bank_deg", path..., &B::degrees).in_unit("deg").range(-45, 45)
       .doc("bank angle raising the outside (IMS turns: 9 deg 12 min)");
-  b.bind("bank_curvature_threshold", path..., &B::curvature_threshold).in_unit("1/m").at_least(0)
+  b.bind("bank_curvature_threshold", path..., &B::curvature_threshold).in_unit("1/m").range(0, 1)
       .doc("curvature mode: a point is in a turn above this curvature");
-  b.bind("bank_transition_m", path..., &B::transition_m).in_unit("m").at_least(0).doc("length of the bank ramps");
+  b.bind("bank_transition_m", path..., &B::transition_m).in_unit("m").range(0, 1000).doc("length of the bank ramps");
   nlohmann::json segments = nlohmann::json::array();
   for (const auto& r : detail::member_at(b.defaults(), path...).segments) segments.push_back({r.s0, r.s1, r.degrees});
   b.bind_with(ParamSpec::json("bank_segments", segments.dump()).doc("segments mode: [[s0, s1, degrees], ...]"),

@@ -33,11 +33,11 @@ template <class S, class... M> void bind_line(ParamBinding<S>& b, M... path) {
   using L = LineSettings;
   b.bind("raceline", path..., &L::raceline)
       .doc("x_m,y_m file of the racing line, or plan: the line brickyard-plan line computes, planned for the map's track and the car at start");
-  b.bind("v_max", path..., &L::v_max).in_unit("m/s").at_least(1)
+  b.bind("v_max", path..., &L::v_max).in_unit("m/s").range(1, 200)
       .doc("top speed: profile_limits graph 80 when unset; vehicle a cap below the car's (unset: the car's)");
-  b.bind("a_lat", path..., &L::a_lat).in_unit("m/s^2").at_least(0.5).doc("profile_limits graph");
-  b.bind("a_accel", path..., &L::a_accel).in_unit("m/s^2").at_least(0.1).doc("profile_limits graph");
-  b.bind("a_decel", path..., &L::a_decel).in_unit("m/s^2").at_least(0.1).doc("profile_limits graph");
+  b.bind("a_lat", path..., &L::a_lat).in_unit("m/s^2").range(0.5, 100).doc("profile_limits graph");
+  b.bind("a_accel", path..., &L::a_accel).in_unit("m/s^2").range(0.1, 100).doc("profile_limits graph");
+  b.bind("a_decel", path..., &L::a_decel).in_unit("m/s^2").range(0.1, 100).doc("profile_limits graph");
   b.bind_choice("profile_limits", {{"graph", false}, {"vehicle", true}}, path..., &L::vehicle_limits)
       .doc("the speed profile's limits: vehicle (the vehicle file's envelope: the ellipse, drag, power) or graph (v_max, a_lat, a_accel, a_decel, each on its own)");
   b.bind("grip_use", path..., &L::grip_use).range(0.1, 1)
@@ -46,7 +46,7 @@ template <class S, class... M> void bind_line(ParamBinding<S>& b, M... path) {
       .doc("profile_limits vehicle: the speeds' ggv, (a_x/A_x)^p + (a_y/A_y)^p <= 1: 2 the ellipse, less cuts the corners where the car brakes or pushes while it turns");
   b.bind("curvature_smooth_m", path..., &L::curvature_smooth_m).in_unit("m").range(0, 200)
       .doc("the profile reads the line's curvature averaged over this");
-  b.bind("edge_margin", path..., &L::edge_margin).in_unit("m").at_least(0)
+  b.bind("edge_margin", path..., &L::edge_margin).in_unit("m").range(0, 100)
       .doc("closest the racing line may come to a track edge: the planned line's margin, or how far inside a file's points are kept");
 }
 

@@ -20,11 +20,14 @@
 #include <brickyard/msgs/WallEstimatePubSubTypes.h>
 #include <brickyard/msgs/WheelSpeedsPubSubTypes.h>
 
-#include <fastdds/rtps/common/SerializedPayload.h>
+#include <fastcdr/Cdr.h>
+#include <fastcdr/FastBuffer.h>
+#include <fastcdr/exceptions/Exception.h>
 
 #include "common/recording.hpp"
 
 #include <cstring>
+#include <vector>
 #include <memory>
 
 namespace {
@@ -41,13 +44,29 @@ ParamBinding<Settings> bindings() {
   ParamBinding<Settings> b;
   b.bind("file", &Settings::file).doc("the recording (brickyard run --record FILE)");
   b.bind("topic", &Settings::topic).doc("the recorded topic, NODE.PORT as in the recording");
-  b.bind("rate_hz", &Settings::rate_hz).in_unit("Hz").at_least(1).doc("how often due samples are sent");
+  b.bind("rate_hz", &Settings::rate_hz).in_unit("Hz").range(1, 10000).doc("how often due samples are sent");
   b.bind("retime_from_ns", &Settings::retime_from_ns)
       .in_unit("ns")
-      .at_least(-1)
+      .range(-1, 9e18)  // a real-clock recording's first time: Unix ns (int64 holds up to 9.2e18)
       .doc("a real-clock recording on the sim clock: every sample's time and header stamp less this (the recording's "
            "first time, brickyard map build gives it), so the drive starts at 0; -1: off");
   return b;
+}
+
+// Decodes one recorded sample as Fast DDS would; when the bytes do not fit the type, says how many
+// did (issue 20: a damaged sample was "Cdr::read_encapsulation", with no place).
+template <class T> std::string decode(const std::vector<unsigned char>& data, T& m) {
+  std::vector<char> bytes(data.begin(), data.end());  // fastcdr reads through a mutable buffer
+  eprosima::fastcdr::FastBuffer buffer(bytes.data(), bytes.size());
+  eprosima::fastcdr::Cdr cdr(buffer, eprosima::fastcdr::Cdr::DEFAULT_ENDIAN, eprosima::fastcdr::Cdr::DDS_CDR);
+  try {
+    cdr.read_encapsulation();
+    m.deserialize(cdr);
+  } catch (const eprosima::fastcdr::exception::Exception& e) {
+    return "its first " + std::to_string(cdr.getSerializedDataLength()) + " of " + std::to_string(data.size()) +
+           " bytes decode, the next do not (" + e.what() + ")";
+  }
+  return {};
 }
 
 template <class T, class PubSub, const char* Name>
@@ -93,13 +112,10 @@ class Replay : public Plugin {
                        " (IDL hash " + t->type_hash + ", this build " + message_traits<T>::hash + ")");
       // Every sample decoded now: a bad one is bad input, found before the run starts.
       for (auto& s : rec.samples(*t)) {
-        eprosima::fastrtps::rtps::SerializedPayload_t payload(static_cast<std::uint32_t>(s.data.size()));
-        std::memcpy(payload.data, s.data.data(), s.data.size());
-        payload.length = static_cast<std::uint32_t>(s.data.size());
         auto m = std::make_shared<T>();
-        if (!type_.deserialize(&payload, m.get()))
+        if (const std::string e = decode(s.data, *m); !e.empty())
           throw BadInput("recording " + file + ": sample " + std::to_string(samples_.size()) + " of '" + topic + "' does not decode as " +
-                         message_traits<T>::name);
+                         message_traits<T>::name + ": " + e);
         std::int64_t stamp = s.stamp_ns;
         if (retime) {  // the drive from 0: the sample's time and its measurement's stamp alike
           if (stamp < s_.retime_from_ns) continue;
@@ -133,7 +149,6 @@ class Replay : public Plugin {
   Settings s_;
   std::vector<Sample> samples_;
   std::size_t next_ = 0;
-  PubSub type_;
   Output<T> out_;
 };
 

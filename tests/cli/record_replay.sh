@@ -41,6 +41,20 @@ expect2 "was made on the real clock, this run is on the sim clock" \
 echo "not a database" > "$out/junk.db3"
 expect2 "junk.db3" "$by" run "$replay" --domain "$domain" $sets --set gnss_left.file="$out/junk.db3"
 expect2 "--record-only: needs --record FILE" "$by" run "$replay" --domain "$domain" $sets --record-only 'x.*'
+# A sample cut short (a damaged file whose rows still read): the replay and bag play name the
+# recording, the sample and how far into it the bytes still fit the type.
+cp "$a" "$out/cut.db3"
+python3 - "$out/cut.db3" <<'PY' || exit 1
+import sqlite3, sys
+c = sqlite3.connect(sys.argv[1])
+c.execute("UPDATE messages SET data = substr(data, 1, 30) WHERE id = (SELECT min(m.id) FROM messages m "
+          "JOIN topics t ON t.id = m.topic_id WHERE t.name = 'gnss_left.fix')")
+c.commit()
+PY
+expect2 "cut.db3: sample 0 of 'gnss_left.fix' does not decode as brickyard::msgs::GnssFix: its first [0-9]* of 30 bytes decode, the next do not" \
+  "$by" run "$replay" --domain "$domain" $sets --set gnss_left.file="$out/cut.db3"
+expect2 "cut.db3: sample 0 of gnss_left.fix does not decode as brickyard::msgs::GnssFix: .* at byte [0-9]* of 30" \
+  "$by" bag play "$out/cut.db3" --domain "$domain" --only 'gnss_left.*'
 # brickyard bag info: the recording's topics, types and counts as the file holds them.
 "$by" bag info "$a" --json > "$out/info.json" || { echo "FAIL: bag info"; exit 1; }
 python3 - "$a" "$out/info.json" <<'PY' || exit 1

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 using namespace brickyard::fw;
 
 namespace {
@@ -117,4 +119,34 @@ TEST(Resolve, ProcessSelection) {
   } catch (const InvalidInput& e) {
     EXPECT_EQ(e.diagnostics()[0].where, "--process c");
   }
+}
+
+// Issue 20: a value no car could use (1e308 for a rate, a size, a distance) is refused before
+// anything runs. Every project plugin declares both bounds of every number it takes...
+TEST(ParamBounds, EveryProjectPluginBoundsItsNumbers) {
+  std::vector<std::string> unbounded;
+  for (const auto& p : registry().plugins())
+    for (const auto& s : p.manifest.params)
+      if ((s.type == brickyard::ParamType::number || s.type == brickyard::ParamType::integer ||
+           s.type == brickyard::ParamType::number_array) &&
+          (!s.min || !s.max || !std::isfinite(*s.min) || !std::isfinite(*s.max)))
+        unbounded.push_back(p.manifest.name + "." + s.name);
+  EXPECT_GT(registry().plugins().size(), 10u);
+  EXPECT_TRUE(unbounded.empty()) << "numbers without both bounds: " << ::testing::PrintToString(unbounded);
+}
+
+// ...and where a plugin (a third party's) declares none, the framework's ±1e9 holds.
+TEST(ParamBounds, AnUndeclaredBoundIsTheFrameworks) {
+  brickyard::ParamValue out;
+  auto open = brickyard::ParamSpec::number("gain", 1).at_least(0);
+  EXPECT_EQ(convert_param(open, nlohmann::json(1e9), out), "");
+  EXPECT_NE(convert_param(open, nlohmann::json(1e308), out).find("from 0 to 1e+09 (the framework's bound"),
+            std::string::npos);
+  auto none = brickyard::ParamSpec::integer("count", 1);
+  EXPECT_NE(convert_param(none, nlohmann::json(-2000000000), out).find("from -1e+09 to 1e+09"), std::string::npos);
+  auto declared = brickyard::ParamSpec::number("big", 1).range(0, 1e12);
+  EXPECT_EQ(convert_param(declared, nlohmann::json(1e11), out), "");
+  EXPECT_NE(convert_param(brickyard::ParamSpec::numbers("xs", {}), nlohmann::json::parse("[1, 1e300]"), out)
+                .find("element 1"),
+            std::string::npos);
 }

@@ -57,7 +57,7 @@ TEST(Security, TheDocumentsSayWhatTheyGrant) {
   EXPECT_NE(gov_sign.find("<rtps_protection_kind>SIGN</rtps_protection_kind>"), std::string::npos);
   EXPECT_NE(gov_sign.find("<enable_write_access_control>true</enable_write_access_control>"), std::string::npos);
   const std::string gov_enc = security::governance_xml(security::Protection::encrypt);
-  EXPECT_NE(gov_enc.find("<data_protection_kind>ENCRYPT</data_protection_kind>"), std::string::npos);
+  EXPECT_NE(gov_enc.find("<rtps_protection_kind>ENCRYPT</rtps_protection_kind>"), std::string::npos);
   EXPECT_EQ(gov_enc.find(">SIGN<"), std::string::npos);
   security::Access acc;
   acc.publish = {"brickyard/x/out"};

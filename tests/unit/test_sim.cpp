@@ -10,9 +10,11 @@
 #include "common/vehicle_model.hpp"
 
 #include "av21.hpp"
+#include "track/band_overlap.hpp"
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <sstream>
 
@@ -98,6 +100,62 @@ TEST(TrackFile, ValuesNoCircuitHasAreRefused) {
   EXPECT_EQ(error("0,0,7,7\n500,0,7,7\n50,50,7,7\n0,50,7,7\n"), "t.csv:2: 500 m from the point of line 1 (points at most 200 m apart)");
   EXPECT_EQ(error("0,0,7,7\n150,0,7,7\n300,0,7,7\n450,0,7,7\n"),
             "t.csv: not a closed loop: its last point (line 4) is 450 m from its first (at most 200 m)");
+}
+
+// A track whose band runs over itself is refused naming two lines where it does (issue 20: figure
+// 8s and self-overlapping tracks were read, and every lateral coordinate was ambiguous there).
+TEST(TrackFile, ABandOverItselfIsRefused) {
+  auto error = [](const std::vector<std::array<double, 4>>& pts) {
+    std::ostringstream f;
+    for (const auto& p : pts) f << p[0] << "," << p[1] << "," << p[2] << "," << p[3] << "\n";
+    std::istringstream in(f.str());
+    try {
+      parse_centerline_csv(in, "t.csv");
+    } catch (const TrackFileError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  // A stadium: two 500 m straights joined by half circles of radius r, track 2w wide.
+  auto stadium = [](double r, double w) {
+    std::vector<std::array<double, 4>> p;
+    for (int i = 0; i < 100; ++i) p.push_back({i * 5.0, 0, w, w});
+    for (int i = 0; i < 40; ++i) {
+      const double t = -M_PI / 2 + M_PI * i / 40;
+      p.push_back({500 + r * std::cos(t), r + r * std::sin(t), w, w});
+    }
+    for (int i = 0; i < 100; ++i) p.push_back({500 - i * 5.0, 2 * r, w, w});
+    for (int i = 0; i < 40; ++i) {
+      const double t = M_PI / 2 + M_PI * i / 40;
+      p.push_back({r * std::cos(t), r + r * std::sin(t), w, w});
+    }
+    return p;
+  };
+  EXPECT_EQ(error(stadium(30, 7)), "");  // straights 60 m apart, 14 m of track facing: a circuit
+  EXPECT_EQ(error(stadium(5, 7)),
+            "t.csv: the track runs over itself: near lines 4 and 238 two stretches are 10.00 m apart centre to "
+            "centre, less than their facing widths together (14.00 m)");
+  // The widths that face each other count, not the far sides'.
+  auto lopsided = stadium(5, 7);
+  for (auto& q : lopsided) q[3] = 1, q[2] = 20;  // 1 m on the left (inside), 20 m on the right (outside)
+  EXPECT_EQ(error(lopsided), "");
+  // A figure 8 crosses itself.
+  std::vector<std::array<double, 4>> eight;
+  for (int i = 0; i < 200; ++i) {
+    const double t = 2 * M_PI * i / 200, d = 1 + std::sin(t) * std::sin(t);
+    eight.push_back({400 * std::cos(t) / d, 400 * std::sin(t) * std::cos(t) / d, 6, 6});
+  }
+  EXPECT_EQ(error(eight), "t.csv: its centre line crosses itself between lines 51 and 151");
+}
+
+// The real tracks pass with room to spare: still read with every width doubled.
+TEST(TrackFile, RealTracksAreFarFromOverlapping) {
+  for (const char* name : {"IMS", "Monza", "Spielberg", "Hockenheim"}) {
+    CenterLine c = load_centerline_csv(std::string(BRICKYARD_SOURCE_DIR) + "/data/tracks/" + name + ".csv");
+    for (auto& w : c.width_left) w *= 2;
+    for (auto& w : c.width_right) w *= 2;
+    EXPECT_FALSE(find_band_overlap(c).has_value()) << name;
+  }
 }
 
 TEST(TrackFile, ImsLoadsClosedCounterClockwise) {

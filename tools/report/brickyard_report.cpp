@@ -4,6 +4,7 @@
 // does at the end of a run. Exit 2 with a message naming the file when the run folder is not
 // usable or gnuplot is missing.
 #include "figures.hpp"
+#include "io/whole_file.hpp"
 #include "run_data.hpp"
 
 #include <nlohmann/json.hpp>
@@ -158,9 +159,8 @@ int run(const fs::path& dir) {
   }
   for (const auto& n : data.notes) h << "<p class=\"bad\">" << esc(n) << "</p>\n";
   h << "<p>Written by brickyard-report from " << esc(recording.string()) << " (docs/report.md).</p>\n</body></html>\n";
-  std::ofstream out(dir / "report.html");
-  out << h.str();
-  if (!out) throw std::runtime_error((dir / "report.html").string() + ": cannot write");
+  // Whole or not at all: a full disk leaves the old report, never half of a new one (issue 20).
+  brickyard::io::write_whole_file((dir / "report.html").string(), h.str());
   std::printf("%s: %zu figures\n", (dir / "report.html").string().c_str(), figs.size());
   return 0;
 }

@@ -29,7 +29,7 @@ ParamBinding<Settings> bindings() {
   plugins::bind_vehicle(b, &Settings::vehicle)
       .doc("the car's description file: wheelbase, steering, single-track model, powertrain and grip");
   plugins::bind_tracker(b, &Settings::tracker);
-  b.bind("max_steer", &Settings::max_steer).in_unit("rad").at_least(0.01).doc("steering limit; default: the vehicle file's");
+  b.bind("max_steer", &Settings::max_steer).in_unit("rad").range(0.01, 1.5).doc("steering limit; default: the vehicle file's");
   b.bind("closed", &Settings::tracker, &T::closed)
       .doc("the path may be a loop: it is one when its end lies within two of its longest steps of its start (a racing line); false: always open");
   return b;

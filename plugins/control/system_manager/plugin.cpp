@@ -24,22 +24,22 @@ struct Settings {
 ParamBinding<Settings> bindings() {
   using M = ManagerParams;
   ParamBinding<Settings> b;
-  b.bind("rate_hz", &Settings::rate_hz).in_unit("Hz").at_least(1);
+  b.bind("rate_hz", &Settings::rate_hz).in_unit("Hz").range(1, 1000);
   // The last node before the car: a step of it that takes this long (wall time) fails the run,
   // and one stuck at twice it ends the process, for its supervisor to restart (docs/reliability.md).
   // Its steps take microseconds; the car brakes on its own after 0.25 s without a command.
   b.bind("step_deadline_s", &Settings::step_deadline_s).in_unit("s").range(0, 3600)
       .doc("the node's step deadline, wall time (0: none)");
-  b.bind("recover_after_s", &Settings::manager, &M::recover_after_s).in_unit("s").at_least(0)
+  b.bind("recover_after_s", &Settings::manager, &M::recover_after_s).in_unit("s").range(0, 3600)
       .doc("NORMAL this long before the path tracker drives again");
-  b.bind("wall_timeout_s", &Settings::manager, &M::wall_timeout_s).in_unit("s").at_least(0).doc("no valid wall this long: safe stop");
-  b.bind("status_timeout_s", &Settings::manager, &M::status_timeout_s).in_unit("s").at_least(0)
+  b.bind("wall_timeout_s", &Settings::manager, &M::wall_timeout_s).in_unit("s").range(0, 3600).doc("no valid wall this long: safe stop");
+  b.bind("status_timeout_s", &Settings::manager, &M::status_timeout_s).in_unit("s").range(0, 3600)
       .doc("no localization status this long counts as EMERGENCY");
   b.bind_choice("wall_pedals", {{"wall_follower", false}, {"cautious", true}}, &Settings::manager, &M::cautious_pedals)
       .doc("while the wall follower steers: its pedals (the paper), or cautious: the pedals of whichever of it and the path tracker (on dead reckoning) aims lower");
-  b.bind("command_timeout_s", &Settings::manager, &M::command_timeout_s).in_unit("s").at_least(0)
+  b.bind("command_timeout_s", &Settings::manager, &M::command_timeout_s).in_unit("s").range(0, 3600)
       .doc("wall_pedals cautious: a path command older than this is not used");
-  b.bind("controller_timeout_s", &Settings::manager, &M::controller_timeout_s).in_unit("s").at_least(0.01)
+  b.bind("controller_timeout_s", &Settings::manager, &M::controller_timeout_s).in_unit("s").range(0.01, 3600)
       .doc("a controller whose commands have come and then not for this long is silent: not forwarded (to the wall follower, or SAFE_STOP)");
   return b;
 }

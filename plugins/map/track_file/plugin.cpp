@@ -51,7 +51,7 @@ ParamBinding<Settings> bindings() {
   b.bind("track", &Settings::track).doc("centre-line file: x_m,y_m,w_tr_right_m,w_tr_left_m");
   b.bind("name", &Settings::name).doc("track name; default: the file's stem");
   plugins::bind_bank(b, &Settings::bank);
-  b.bind("rate_hz", &Settings::rate_hz).in_unit("Hz").at_least(0.01);
+  b.bind("rate_hz", &Settings::rate_hz).in_unit("Hz").range(0.01, 1000);
   plugins::bind_vehicle(b, &Settings::vehicle).doc("the car the map is for: a track narrower than it is refused");
   return b;
 }

@@ -47,12 +47,12 @@ ParamBinding<Settings> bindings() {
       .doc("the map registered on first, from the estimate: reaches far");
   b.bind("fine_voxel", &Settings::mapper, &M::fine_voxel).in_unit("m").range(0.02, 10)
       .doc("then on this one, accurate near the answer; also the map written out");
-  b.bind("keyframe_distance", &Settings::mapper, &M::keyframe_distance).in_unit("m").at_least(0)
+  b.bind("keyframe_distance", &Settings::mapper, &M::keyframe_distance).in_unit("m").range(0, 1000)
       .doc("a frame joins the map once the car has moved this far since the last one");
-  b.bind("max_range", &Settings::mapper, &M::max_range).in_unit("m").at_least(1).doc("points farther from the car are left out");
-  b.bind("max_correction", &Settings::mapper, &M::max_correction).in_unit("m").at_least(0)
+  b.bind("max_range", &Settings::mapper, &M::max_range).in_unit("m").range(1, 1000).doc("points farther from the car are left out");
+  b.bind("max_correction", &Settings::mapper, &M::max_correction).in_unit("m").range(0, 100)
       .doc("a registration moving the estimate farther is not taken");
-  b.bind("max_turn", &Settings::mapper, &M::max_turn).in_unit("rad").at_least(0).doc("nor one turning it more");
+  b.bind("max_turn", &Settings::mapper, &M::max_turn).in_unit("rad").range(0, 3.14).doc("nor one turning it more");
   b.bind("face_neighbours", &Settings::mapper, &M::registration, &RegistrationParams::face_neighbours)
       .doc("each point matched to its voxel and the 6 sharing a face (VGICP's DIRECT7); off: its own (DIRECT1)");
   b.bind("map_file", &Settings::map_file).doc("the map written here at the end (PCD, binary x y z); empty: not written");
@@ -67,7 +67,7 @@ ParamBinding<Settings> bindings() {
       .doc("the road's edge: where the ground's reflectivity rises past this (asphalt below, grass above)");
   b.bind("station_step", &Settings::extraction, &TrackExtractionParams::station_step).in_unit("m").range(0.1, 50)
       .doc("the extracted track's points: this far apart along the drive");
-  b.bind("max_estimate_age", &Settings::max_estimate_age).in_unit("s").at_least(0)
+  b.bind("max_estimate_age", &Settings::max_estimate_age).in_unit("s").range(0, 60)
       .doc("a frame with no estimate within this of its stamp is left out");
   b.bind("level_on_ground", &Settings::level_on_ground)
       .doc("frames join the map with their ground's roll, pitch and height (the walls tilt the whole frame's registration) and, "

@@ -14,8 +14,8 @@ using namespace brickyard::perception;
 ParamBinding<ClusterParams> bindings() {
   ParamBinding<ClusterParams> b;
   b.bind("tolerance", &ClusterParams::tolerance).in_unit("m").range(0.01, 100).doc("points closer than this are connected");
-  b.bind("min_size", &ClusterParams::min_size).at_least(1).doc("smaller clusters are dropped");
-  b.bind("max_size", &ClusterParams::max_size).at_least(1).doc("larger clusters are dropped, not split (as PCL)");
+  b.bind("min_size", &ClusterParams::min_size).range(1, 1e7).doc("smaller clusters are dropped");
+  b.bind("max_size", &ClusterParams::max_size).range(1, 1e7).doc("larger clusters are dropped, not split (as PCL)");
   b.not_above("min_size", "max_size");
   return b;
 }

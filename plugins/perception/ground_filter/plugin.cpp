@@ -28,8 +28,8 @@ ParamBinding<Settings> bindings() {
   b.bind("leaf", &Settings::filter, &G::leaf).in_unit("m").range(0.01, 10).doc("voxel size");
   b.bind("cell", &Settings::filter, &G::cell).in_unit("m").range(0.01, 10).doc("2-D vote grid");
   b.bind("min_votes", &Settings::filter, &G::min_votes).range(1, 1000).doc("voxels in a cell for a vertical feature");
-  b.bind("min_height", &Settings::filter, &G::min_height).in_unit("m").at_least(0).doc("z extent of a vertical feature's voxels");
-  b.bind("ground_band", &Settings::filter, &G::ground_band).in_unit("m").at_least(0)
+  b.bind("min_height", &Settings::filter, &G::min_height).in_unit("m").range(0, 100).doc("z extent of a vertical feature's voxels");
+  b.bind("ground_band", &Settings::filter, &G::ground_band).in_unit("m").range(0, 100)
       .doc("in a vertical cell, voxels this close to the road it stands on are road");
   b.bind("sync_window_s", &Settings::sync_window_s).in_unit("s").range(0, 1)
       .doc("clouds stamped within this of the frame's first belong to one frame");

@@ -23,24 +23,25 @@ using WallPtr = std::shared_ptr<const msgs::WallEstimate>;
 ParamBinding<ObstacleParams> bindings() {
   using O = ObstacleParams;
   ParamBinding<O> b;
-  b.bind("max_lateral", &O::max_lateral).in_unit("m").at_least(0).doc("corridor half width when no wall is fitted");
-  b.bind("corridor_width", &O::corridor_width).in_unit("m").at_least(0)
+  b.bind("max_lateral", &O::max_lateral).in_unit("m").range(0, 1000).doc("corridor half width when no wall is fitted");
+  b.bind("corridor_width", &O::corridor_width).in_unit("m").range(0, 1000)
       .doc("corridor: this far inward of the fitted wall, following it round turns");
-  b.bind("max_range", &O::max_range).in_unit("m").at_least(0).doc("how far ahead");
-  b.bind("max_behind", &O::max_behind).in_unit("m").at_least(0).doc("how far behind");
-  b.bind("wall_margin", &O::wall_margin).in_unit("m").at_least(0).doc("a cluster this close to a fitted wall is wall");
-  b.bind("wall_reach", &O::wall_reach).in_unit("m").at_least(0)
+  b.bind("max_range", &O::max_range).in_unit("m").range(0, 1000).doc("how far ahead");
+  b.bind("max_behind", &O::max_behind).in_unit("m").range(0, 1000).doc("how far behind");
+  b.bind("wall_margin", &O::wall_margin).in_unit("m").range(0, 100)
+      .doc("a cluster this close to a fitted wall is wall");
+  b.bind("wall_reach", &O::wall_reach).in_unit("m").range(0, 1000)
       .doc("how far past the ends of a fitted wall's points it marks all that lies beyond it as wall");
-  b.bind("wall_depth", &O::wall_depth).in_unit("m").at_least(0)
+  b.bind("wall_depth", &O::wall_depth).in_unit("m").range(0, 100)
       .doc("further on (the wall's line extrapolated), only this deep beyond the line is wall");
-  b.bind("max_length", &O::max_length).in_unit("m").at_least(0).doc("longer clusters are structure, not obstacles");
-  b.bind("min_height", &O::min_height).in_unit("m").at_least(0).doc("less z extent: a scan row's streak, not an obstacle");
-  b.bind("flat_thickness", &O::flat_thickness).in_unit("m").at_least(0)
+  b.bind("max_length", &O::max_length).in_unit("m").range(0, 1000).doc("longer clusters are structure, not obstacles");
+  b.bind("min_height", &O::min_height).in_unit("m").range(0, 100).doc("less z extent: a scan row's streak, not an obstacle");
+  b.bind("flat_thickness", &O::flat_thickness).in_unit("m").range(0, 100)
       .doc("a cluster thinner than this across its best plane, lying within flat_tilt_deg of level, is ground");
   b.bind("flat_tilt_deg", &O::flat_tilt_deg).in_unit("deg").range(0, 90);
-  b.bind("stack_gap", &O::stack_gap).in_unit("m").at_least(0)
+  b.bind("stack_gap", &O::stack_gap).in_unit("m").range(0, 100)
       .doc("clusters whose footprints come this close are one object (a far pylon's row streaks)");
-  b.bind("min_points", &O::min_points).at_least(1);
+  b.bind("min_points", &O::min_points).range(1, 1e7);
   return b;
 }
 

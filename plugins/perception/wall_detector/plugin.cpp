@@ -18,16 +18,16 @@ ParamBinding<WallParams> bindings() {
   b.bind_choice("side", {{"right", -1}, {"left", 1}}, &W::side);
   b.bind("degree", &W::degree).range(1, 5).doc("of the polynomial y(x)");
   b.bind("lean", &W::lean).doc("also fit y = p(x) + k z: the wall's lean in a rolled car (banking)");
-  b.bind("lookahead", &W::lookahead).in_unit("m").at_least(0).doc("where heading and curvature are taken");
-  b.bind("min_points", &W::min_points).at_least(1).doc("fewer points: not valid");
-  b.bind("min_length", &W::min_length).in_unit("m").at_least(0).doc("shorter x extent: not valid");
-  b.bind("max_residual", &W::max_residual).in_unit("m").at_least(0).doc("larger RMS residual: not valid");
-  b.bind("join_gap", &W::join_gap).in_unit("m").at_least(0)
+  b.bind("lookahead", &W::lookahead).in_unit("m").range(0, 1000).doc("where heading and curvature are taken");
+  b.bind("min_points", &W::min_points).range(1, 1e7).doc("fewer points: not valid");
+  b.bind("min_length", &W::min_length).in_unit("m").range(0, 1000).doc("shorter x extent: not valid");
+  b.bind("max_residual", &W::max_residual).in_unit("m").range(0, 100).doc("larger RMS residual: not valid");
+  b.bind("join_gap", &W::join_gap).in_unit("m").range(0, 1000)
       .doc("a cluster starting this far past the wall's end may continue it (far stripes of a grazed wall)");
-  b.bind("join_margin", &W::join_margin).in_unit("m").at_least(0).doc("from the wall's extrapolated local fit...");
-  b.bind("join_slope", &W::join_slope).at_least(0).doc("...plus this per metre past the end");
-  b.bind("fit_range", &W::fit_range).in_unit("m").at_least(1).doc("the polynomial fits the wall's points with x <= this...");
-  b.bind("fit_behind", &W::fit_behind).in_unit("m").at_least(0)
+  b.bind("join_margin", &W::join_margin).in_unit("m").range(0, 100).doc("from the wall's extrapolated local fit...");
+  b.bind("join_slope", &W::join_slope).range(0, 100).doc("...plus this per metre past the end");
+  b.bind("fit_range", &W::fit_range).in_unit("m").range(1, 1000).doc("the polynomial fits the wall's points with x <= this...");
+  b.bind("fit_behind", &W::fit_behind).in_unit("m").range(0, 1000)
       .doc("...and x >= -fit_behind (a wall bending round a turn is fitted where the car goes)");
   return b;
 }

@@ -34,7 +34,7 @@ ParamBinding<Settings> bindings() {
   ParamBinding<Settings> b;
   plugins::bind_vehicle(b, &Settings::vehicle).doc("the car's description file: the envelope the line is planned and driven with");
   planning::bind_line(b, &Settings::line);
-  b.bind("rate_hz", &Settings::rate_hz).in_unit("Hz").at_least(0.01).doc("how often the path is sent again");
+  b.bind("rate_hz", &Settings::rate_hz).in_unit("Hz").range(0.01, 1000).doc("how often the path is sent again");
   return b;
 }
 

@@ -56,13 +56,13 @@ ParamBinding<Settings> bindings() {
   ParamBinding<Settings> b;
   plugins::bind_vehicle(b, &Settings::vehicle).doc("the car's description file: its width and length around base_link");
   bind_line(b, &Settings::line);
-  b.bind("rate_hz", &Settings::rate_hz).in_unit("Hz").at_least(0.1).doc("replanning rate");
+  b.bind("rate_hz", &Settings::rate_hz).in_unit("Hz").range(0.1, 1000).doc("replanning rate");
   b.bind("graph_file", &Settings::graph_file).doc("a graph written by `brickyard-plan graph`; empty: built from the map at start");
   b.bind("layer_spacing", graph, &G::layer_spacing).in_unit("m").range(1, 100);
   b.bind("layer_spacing_turn", graph, &G::layer_spacing_turn).in_unit("m").range(1, 100);
   b.bind("lateral_step", graph, &G::lateral_step).in_unit("m").range(0.1, 5);
   b.bind("half_width", &Settings::half_width).in_unit("m").range(0.1, 5).doc("half the car's width; default: the vehicle file's");
-  b.bind("graph_edge_margin", graph, &G::edge_margin).in_unit("m").at_least(0)
+  b.bind("graph_edge_margin", graph, &G::edge_margin).in_unit("m").range(0, 100)
       .doc("nodes keep this much beyond half the width from the track edges");
   b.bind("max_curvature", graph, &G::max_curvature).in_unit("1/m").range(0.001, 1).doc("sharper edges are dropped (curvature_limit constant)");
   b.bind_choice("curvature_limit", {{"constant", false}, {"car", true}}, &Settings::car_curvature)
@@ -71,22 +71,22 @@ ParamBinding<Settings> bindings() {
   b.bind("steer_margin", &Settings::steer_margin).range(0.1, 1).doc("curvature_limit car: the share of the steering limit an edge may ask");
   b.bind("max_edge_length", graph, &G::max_edge_length).in_unit("m").range(5, 500);
   b.bind("horizon", planner, search, &S::horizon).in_unit("m").range(20, 2000);
-  b.bind("clearance", planner, search, &S::clearance).in_unit("m").at_least(0).doc("least gap between the car's side and an obstacle");
-  b.bind("swerve_edge_margin", planner, &P::swerve_edge_margin).in_unit("m").at_least(0)
+  b.bind("clearance", planner, search, &S::clearance).in_unit("m").range(0, 100).doc("least gap between the car's side and an obstacle");
+  b.bind("swerve_edge_margin", planner, &P::swerve_edge_margin).in_unit("m").range(0, 100)
       .doc("with no route round an obstacle in the graph, an emergency swerve past it may keep the car's side this near the track's edge");
-  b.bind("keep_clearance", planner, &P::keep_clearance).in_unit("m").at_least(0)
+  b.bind("keep_clearance", planner, &P::keep_clearance).in_unit("m").range(0, 100)
       .doc("a plan already made is dropped only when an obstacle comes nearer than this (detections move by centimetres); "
            "with no way at clearance, the search tries this before the car stops (at most clearance)");
-  b.bind("soft_clearance", planner, search, &S::soft_clearance).in_unit("m").at_least(0);
-  b.bind("car_front", &Settings::car_front).in_unit("m").at_least(0).doc("car ahead of base_link; default: the vehicle file's");
-  b.bind("car_rear", &Settings::car_rear).in_unit("m").at_least(0).doc("car behind base_link; default: the vehicle file's");
-  b.bind("k_length", planner, search, &S::k_length).at_least(0);
-  b.bind("k_curvature", planner, search, &S::k_curvature).at_least(0);
-  b.bind("k_deviation", planner, search, &S::k_deviation).at_least(0);
-  b.bind("k_proximity", planner, search, &S::k_proximity).at_least(0);
-  b.bind("commit_time", planner, &P::commit_time).in_unit("s").at_least(0);
-  b.bind("commit_min", planner, &P::commit_min).in_unit("m").at_least(1);
-  b.bind("rejoin_reach", planner, &P::rejoin_reach).in_unit("m").at_least(0)
+  b.bind("soft_clearance", planner, search, &S::soft_clearance).in_unit("m").range(0, 100);
+  b.bind("car_front", &Settings::car_front).in_unit("m").range(0, 20).doc("car ahead of base_link; default: the vehicle file's");
+  b.bind("car_rear", &Settings::car_rear).in_unit("m").range(0, 20).doc("car behind base_link; default: the vehicle file's");
+  b.bind("k_length", planner, search, &S::k_length).range(0, 1e6);
+  b.bind("k_curvature", planner, search, &S::k_curvature).range(0, 1e8);
+  b.bind("k_deviation", planner, search, &S::k_deviation).range(0, 1e6);
+  b.bind("k_proximity", planner, search, &S::k_proximity).range(0, 1e6);
+  b.bind("commit_time", planner, &P::commit_time).in_unit("s").range(0, 10);
+  b.bind("commit_min", planner, &P::commit_min).in_unit("m").range(1, 1000);
+  b.bind("rejoin_reach", planner, &P::rejoin_reach).in_unit("m").range(0, 1000)
       .doc("with no route from the layer at the commitment distance, lead-ins this much farther are tried (a stopped car rejoins the band)");
   b.bind("obstacle_memory", planner, &P::obstacle_memory).in_unit("s").range(0, 3600);
   b.bind("obstacle_fusion", planner, &P::obstacle_fusion)

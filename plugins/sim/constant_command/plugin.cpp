@@ -13,11 +13,11 @@ struct Settings {
 
 ParamBinding<Settings> bindings() {
   ParamBinding<Settings> b;
-  b.bind("steer", &Settings::steer).in_unit("rad").doc("road-wheel angle, left positive");
+  b.bind("steer", &Settings::steer).in_unit("rad").range(-1.5, 1.5).doc("road-wheel angle, left positive");
   b.bind("throttle", &Settings::throttle).range(0, 1);
   b.bind("brake", &Settings::brake).range(0, 1);
-  b.bind("start_s", &Settings::start_s).in_unit("s").at_least(0);
-  b.declare(ParamSpec::number("rate_hz", 50).in_unit("Hz").at_least(0.1));  // the host's trigger only
+  b.bind("start_s", &Settings::start_s).in_unit("s").range(0, 1e7);
+  b.declare(ParamSpec::number("rate_hz", 50).in_unit("Hz").range(0.1, 1000));  // the host's trigger only
   return b;
 }
 

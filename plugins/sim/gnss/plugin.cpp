@@ -30,14 +30,15 @@ struct Settings {
 ParamBinding<Settings> bindings() {
   ParamBinding<Settings> b;
   b.bind("receiver_id", &Settings::receiver_id).range(0, 255);
-  b.declare(ParamSpec::number("rate_hz", 20).in_unit("Hz").at_least(0.1));  // the host's trigger only
+  b.declare(ParamSpec::number("rate_hz", 20).in_unit("Hz").range(0.1, 1000));  // the host's trigger only
   plugins::bind_vehicle(b, &Settings::vehicle).doc("the car's description file: where its antennas sit");
   b.bind("vehicle_mount", &Settings::vehicle_mount).doc("the antenna's mount in the vehicle file");
-  b.bind("antenna", &Settings::antenna)
+  b.bind("antenna", &Settings::antenna).in_unit("m").range(-100, 100)
       .doc("antenna position in base_link, m (x, y, z); empty: the vehicle file's vehicle_mount");
-  b.bind("sigma_m", &Settings::sigma_m).in_unit("m").at_least(0).doc("horizontal noise, 1 sigma (RTK fixed: 1-2 cm)");
-  b.bind("sigma_z_m", &Settings::sigma_z_m).in_unit("m").at_least(0);
-  b.bind("reported_sigma_m", &Settings::reported_sigma_m).in_unit("m").doc("sigma the receiver reports; < 0: sigma_m");
+  b.bind("sigma_m", &Settings::sigma_m).in_unit("m").range(0, 100).doc("horizontal noise, 1 sigma (RTK fixed: 1-2 cm)");
+  b.bind("sigma_z_m", &Settings::sigma_z_m).in_unit("m").range(0, 100);
+  b.bind("reported_sigma_m", &Settings::reported_sigma_m).in_unit("m").range(-100, 100)
+      .doc("sigma the receiver reports; < 0: sigma_m");
   b.bind("fix_type", &Settings::fix_type).range(0, 3).doc("0 none, 1 single, 2 float RTK, 3 fixed RTK");
   // The windows are parsed as the parameters are read: a bad one is refused naming its JSON pointer.
   b.bind_with(ParamSpec::json("faults", "[]")

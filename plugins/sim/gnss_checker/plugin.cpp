@@ -34,12 +34,12 @@ ParamBinding<Settings> bindings() {
   ParamBinding<Settings> b;
   plugins::bind_vehicle(b, &Settings::vehicle).doc("the car's description file: where its antennas sit");
   b.bind("vehicle_mount", &Settings::vehicle_mount).doc("the antenna's mount in the vehicle file");
-  b.bind("antenna", &Settings::antenna).doc("the receiver's antenna in base_link, m; empty: the vehicle file's vehicle_mount");
+  b.bind("antenna", &Settings::antenna).in_unit("m").range(-100, 100).doc("the receiver's antenna in base_link, m; empty: the vehicle file's vehicle_mount");
   // The windows are parsed as the parameters are read: a bad one is refused naming its JSON pointer.
   b.bind_with(ParamSpec::json("faults", "[]").doc("expected offsets: bias and drift windows as given to sim.gnss"),
               [](const Params& p, Settings& s) { s.faults = read_faults(p, 3, kFaultTypes); });
-  b.bind("tolerance_m", &Settings::tolerance_m).in_unit("m").at_least(0);
-  b.bind("min_checked", &Settings::min_checked).at_least(0);
+  b.bind("tolerance_m", &Settings::tolerance_m).in_unit("m").range(0, 100);
+  b.bind("min_checked", &Settings::min_checked).range(0, 1e9);
   return b;
 }
 

@@ -24,11 +24,11 @@ struct Settings {
 
 ParamBinding<Settings> bindings() {
   ParamBinding<Settings> b;
-  b.declare(ParamSpec::number("rate_hz", 125).in_unit("Hz").at_least(1));  // the host's trigger only
-  b.bind("accel_noise", &Settings::accel_noise).in_unit("m/s^2").at_least(0);
-  b.bind("gyro_noise", &Settings::gyro_noise).in_unit("rad/s").at_least(0);
-  b.bind("accel_bias", &Settings::accel_bias).doc("m/s^2, x y z");
-  b.bind("gyro_bias", &Settings::gyro_bias).doc("rad/s, x y z");
+  b.declare(ParamSpec::number("rate_hz", 125).in_unit("Hz").range(1, 10000));  // the host's trigger only
+  b.bind("accel_noise", &Settings::accel_noise).in_unit("m/s^2").range(0, 100);
+  b.bind("gyro_noise", &Settings::gyro_noise).in_unit("rad/s").range(0, 10);
+  b.bind("accel_bias", &Settings::accel_bias).in_unit("m/s^2").range(-100, 100).doc("m/s^2, x y z");
+  b.bind("gyro_bias", &Settings::gyro_bias).in_unit("rad/s").range(-10, 10).doc("rad/s, x y z");
   // The windows are parsed as the parameters are read: a bad one is refused naming its JSON pointer.
   b.bind_with(ParamSpec::json("faults", "[]")
                   .doc("windows over (ax, ay, az, gx, gy, gz): bias, drift, noise, freeze, dropout, spikes"),

@@ -38,15 +38,16 @@ ParamBinding<Settings> bindings() {
   using L = LidarSpec;
   ParamBinding<Settings> b;
   b.bind("sensor_id", &Settings::sensor_id).range(0, 255);
-  b.declare(ParamSpec::number("rate_hz", 20).in_unit("Hz").at_least(0.1));  // the host's trigger only
+  b.declare(ParamSpec::number("rate_hz", 20).in_unit("Hz").range(0.1, 1000));  // the host's trigger only
   // The host's too (Manifest::delivered_after): a frame is delivered once its sweep is over.
-  b.declare(ParamSpec::number("latency_s", 0.05).in_unit("s").at_least(0)
+  b.declare(ParamSpec::number("latency_s", 0.05).in_unit("s").range(0, 10)
                 .doc("a frame, stamped at its scan, is delivered this long after it (sim clock): a sweep, 1 / rate_hz, "
                      "as a spinning LiDAR's frame is ready when its sweep ends; at most 1 / rate_hz"));
   plugins::bind_vehicle(b, &Settings::vehicle).doc("the car's description file: where its LiDARs sit");
   b.bind("vehicle_mount", &Settings::vehicle_mount).doc("the sensor's mount in the vehicle file");
-  b.bind("mount", &Settings::mount).doc("sensor position in base_link, m (x, y, z); empty: vehicle_mount's");
-  b.bind("mount_rpy_deg", &Settings::mount_rpy_deg)
+  b.bind("mount", &Settings::mount).in_unit("m").range(-100, 100)
+      .doc("sensor position in base_link, m (x, y, z); empty: vehicle_mount's");
+  b.bind("mount_rpy_deg", &Settings::mount_rpy_deg).in_unit("deg").range(-360, 360)
       .doc("sensor roll, pitch, yaw in base_link, deg; empty: vehicle_mount's");
   b.bind("h_fov_deg", &Settings::h_fov_deg).in_unit("deg").range(1, 360);
   b.bind("columns", &Settings::spec, &L::columns).range(1, 100000);
@@ -55,11 +56,12 @@ ParamBinding<Settings> bindings() {
   b.bind("v_max_deg", &Settings::v_max_deg).in_unit("deg").range(-90, 90);
   b.bind("row_spacing", &Settings::row_spacing).one_of({"horizon", "uniform"})
       .doc("horizon: rows concentrated near 0 deg as on the Hydra; uniform: evenly spaced");
-  b.bind("horizon_exponent", &Settings::horizon_exponent).at_least(1).doc("horizon spacing: elevation ~ |u|^exponent");
-  b.bind("row_angles_deg", &Settings::row_angles_deg).doc("explicit row elevations, deg; overrides rows and spacing");
-  b.bind("min_range", &Settings::spec, &L::min_range).in_unit("m").at_least(0);
-  b.bind("max_range", &Settings::spec, &L::max_range).in_unit("m").at_least(1);
-  b.bind("range_noise", &Settings::spec, &L::range_noise).in_unit("m").at_least(0).doc("1 sigma");
+  b.bind("horizon_exponent", &Settings::horizon_exponent).range(1, 10).doc("horizon spacing: elevation ~ |u|^exponent");
+  b.bind("row_angles_deg", &Settings::row_angles_deg).in_unit("deg").range(-90, 90)
+      .doc("explicit row elevations, deg; overrides rows and spacing");
+  b.bind("min_range", &Settings::spec, &L::min_range).in_unit("m").range(0, 1000);
+  b.bind("max_range", &Settings::spec, &L::max_range).in_unit("m").range(1, 1000);
+  b.bind("range_noise", &Settings::spec, &L::range_noise).in_unit("m").range(0, 100).doc("1 sigma");
   b.bind("dropout", &Settings::spec, &L::dropout).range(0, 1).doc("probability that a return is lost");
   b.bind("threads", &Settings::spec, &L::threads).range(1, 2)
       .doc("threads the columns are marched on (the AVX2 path); the frame is the same bit for bit");

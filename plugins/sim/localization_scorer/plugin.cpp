@@ -40,14 +40,14 @@ ParamBinding<Settings> bindings() {
   ParamBinding<Settings> b;
   b.bind_with(ParamSpec::json("windows", "[]").doc("fault windows [[start_s, end_s], ...]"),
               [](const Params& p, Settings& s) { s.score.windows = parse_windows(p.json("windows")); });
-  b.bind("warmup_s", &Settings::score, &ScoreParams::warmup_s).in_unit("s").at_least(0).doc("nothing counts before this");
-  b.bind("grace_s", &Settings::score, &ScoreParams::grace_s).in_unit("s").at_least(0)
+  b.bind("warmup_s", &Settings::score, &ScoreParams::warmup_s).in_unit("s").range(0, 1e7).doc("nothing counts before this");
+  b.bind("grace_s", &Settings::score, &ScoreParams::grace_s).in_unit("s").range(0, 3600)
       .doc("after a window: recovery, not a false alarm");
-  b.bind("require_max_error_m", &Settings::require_max_error_m).in_unit("m")
+  b.bind("require_max_error_m", &Settings::require_max_error_m).in_unit("m").range(-1000, 1000)
       .doc("fail the run above this max error; < 0: off");
-  b.bind("require_emergency_within_s", &Settings::require_emergency_within_s).in_unit("s")
+  b.bind("require_emergency_within_s", &Settings::require_emergency_within_s).in_unit("s").range(-3600, 3600)
       .doc("fail unless EMERGENCY within this of the first window; < 0: off");
-  b.bind("require_normal_error_below_m", &Settings::require_normal_error_below_m).in_unit("m")
+  b.bind("require_normal_error_below_m", &Settings::require_normal_error_below_m).in_unit("m").range(-1000, 1000)
       .doc("fail if NORMAL while the error exceeds this; < 0: off");
   return b;
 }

@@ -29,14 +29,15 @@ ParamBinding<Settings> bindings() {
   using P = PerceptionScoreParams;
   ParamBinding<Settings> b;
   b.bind_choice("wall_side", {{"right", -1}, {"left", 1}}, &Settings::score, &P::wall_side);
-  b.bind("match_radius_m", &Settings::score, &P::match_radius).in_unit("m").at_least(0)
+  b.bind("match_radius_m", &Settings::score, &P::match_radius).in_unit("m").range(0, 100)
       .doc("an obstacle this close to a pylon is that pylon");
-  b.bind("require_wall_p95_m", &Settings::require_wall_p95_m).in_unit("m")
+  b.bind("require_wall_p95_m", &Settings::require_wall_p95_m).in_unit("m").range(-100, 100)
       .doc("fail above this p95 of |d_w error|; < 0: off");
-  b.bind("require_wall_valid_fraction", &Settings::require_wall_valid_fraction)
+  b.bind("require_wall_valid_fraction", &Settings::require_wall_valid_fraction).range(-1, 1)
       .doc("fail if fewer frames carry a valid fit; < 0: off");
-  b.bind("require_max_false_obstacles", &Settings::require_max_false_obstacles).doc("fail above this many; < 0: off");
-  b.bind("require_pylon_range_m", &Settings::require_pylon_range_m).in_unit("m")
+  b.bind("require_max_false_obstacles", &Settings::require_max_false_obstacles).range(-1e6, 1e6)
+      .doc("fail above this many; < 0: off");
+  b.bind("require_pylon_range_m", &Settings::require_pylon_range_m).in_unit("m").range(-1000, 1000)
       .doc("fail if a pylon in view is not reliably detected from this far; < 0: off");
   return b;
 }

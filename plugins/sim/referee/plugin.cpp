@@ -31,16 +31,16 @@ ParamBinding<Settings> bindings() {
   ParamBinding<Settings> b;
   plugins::bind_vehicle(b, &Settings::vehicle).doc("the car's description file: its rectangle around base_link");
   b.bind("crash_ends_run", &Settings::crash_ends_run).doc("a wall contact fails the run (exit 1)");
-  b.bind("obstacle_clearance_required", &Settings::obstacle_clearance_required).in_unit("m")
+  b.bind("obstacle_clearance_required", &Settings::obstacle_clearance_required).in_unit("m").range(-100, 100)
       .doc("passing an obstacle nearer than this (its surface to the car's) fails the run (exit 1); negative: off (hits are counted only)");
-  b.bind("laps", &Settings::laps).at_least(0)
+  b.bind("laps", &Settings::laps).range(0, 1000)
       .doc("a race of this many laps: finished when they are done, failed (did not finish) when the run ends before; 0: no race");
-  b.bind("stopped_timeout_s", &Settings::stopped_timeout_s).in_unit("s").at_least(0)
+  b.bind("stopped_timeout_s", &Settings::stopped_timeout_s).in_unit("s").range(0, 3600)
       .doc("in a race, a car standing this long short of its laps fails the run at once (did not finish); 0: only at the end");
-  b.bind("car_front", &Settings::car_front).in_unit("m").at_least(0)
+  b.bind("car_front", &Settings::car_front).in_unit("m").range(0, 20)
       .doc("car ahead of base_link (the rear axle); default: the vehicle file's");
-  b.bind("car_rear", &Settings::car_rear).in_unit("m").at_least(0).doc("car behind base_link; default: the vehicle file's");
-  b.bind("car_half_width", &Settings::car_half_width).in_unit("m").at_least(0)
+  b.bind("car_rear", &Settings::car_rear).in_unit("m").range(0, 20).doc("car behind base_link; default: the vehicle file's");
+  b.bind("car_half_width", &Settings::car_half_width).in_unit("m").range(0, 10)
       .doc("half the car's width; default: the vehicle file's");
   return b;
 }

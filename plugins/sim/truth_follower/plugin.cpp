@@ -41,18 +41,18 @@ ParamBinding<Settings> bindings() {
   using L = motion::VehicleLimits;
   ParamBinding<Settings> b;
   b.bind("raceline", &Settings::raceline).doc("x_m,y_m file of the line to follow");
-  b.declare(ParamSpec::number("rate_hz", 100).in_unit("Hz").at_least(1));  // the host's trigger only
-  b.bind("v_max", &Settings::limits, &L::v_max).in_unit("m/s").at_least(1);
-  b.bind("a_lat", &Settings::limits, &L::a_lat).in_unit("m/s^2").at_least(0.5);
-  b.bind("a_accel", &Settings::limits, &L::a_accel).in_unit("m/s^2").at_least(0.1);
-  b.bind("a_decel", &Settings::limits, &L::a_decel).in_unit("m/s^2").at_least(0.1);
+  b.declare(ParamSpec::number("rate_hz", 100).in_unit("Hz").range(1, 1000));  // the host's trigger only
+  b.bind("v_max", &Settings::limits, &L::v_max).in_unit("m/s").range(1, 200);
+  b.bind("a_lat", &Settings::limits, &L::a_lat).in_unit("m/s^2").range(0.5, 100);
+  b.bind("a_accel", &Settings::limits, &L::a_accel).in_unit("m/s^2").range(0.1, 100);
+  b.bind("a_decel", &Settings::limits, &L::a_decel).in_unit("m/s^2").range(0.1, 100);
   b.bind_choice("profile_limits", {{"graph", false}, {"vehicle", true}}, &Settings::vehicle_limits)
       .doc("the speed profile's limits: graph (v_max, a_lat, a_accel, a_decel, each on its own) or vehicle (the vehicle file's: the ellipse, drag and power)");
   b.bind("grip_use", &Settings::grip_use).range(0.1, 1)
       .doc("profile_limits vehicle: the share of the file's lateral acceleration planned with (a margin for transients)");
   b.bind("curvature_smooth_m", &Settings::curvature_smooth_m).in_unit("m").range(0, 200)
       .doc("the profile reads the line's curvature averaged over this (30: as the planners; less for chicanes)");
-  b.bind("edge_margin", &Settings::edge_margin).in_unit("m").at_least(0)
+  b.bind("edge_margin", &Settings::edge_margin).in_unit("m").range(0, 100)
       .doc("closest the line's points may come to a track edge (needs the world input)");
   plugins::bind_tracker(b, &Settings::tracker);
   plugins::bind_vehicle(b, &Settings::vehicle);

@@ -25,15 +25,15 @@ struct Settings {
 
 ParamBinding<Settings> bindings() {
   ParamBinding<Settings> b;
-  b.bind("rate_hz", &Settings::rate_hz).in_unit("Hz").at_least(100).doc("integration rate");
-  b.bind("start_s", &Settings::start_s).in_unit("m").doc("start position along the centre line");
-  b.bind("start_d", &Settings::start_d).in_unit("m").doc("start lateral offset, left positive");
-  b.bind("start_speed", &Settings::start_speed).in_unit("m/s").at_least(0);
+  b.bind("rate_hz", &Settings::rate_hz).in_unit("Hz").range(100, 10000).doc("integration rate");
+  b.bind("start_s", &Settings::start_s).in_unit("m").range(-1e5, 1e5).doc("start position along the centre line");
+  b.bind("start_d", &Settings::start_d).in_unit("m").range(-100, 100).doc("start lateral offset, left positive");
+  b.bind("start_speed", &Settings::start_speed).in_unit("m/s").range(0, 200);
   plugins::bind_vehicle(b, &Settings::vehicle);
   using W = CommandWatchdogParams;
-  b.bind("command_timeout", &Settings::watchdog, &W::timeout_s).in_unit("s").at_least(0.01)
+  b.bind("command_timeout", &Settings::watchdog, &W::timeout_s).in_unit("s").range(0.01, 3600)
       .doc("commands stale this long (once they have come): throttle off, brake to a stop (the command watchdog)");
-  b.bind("first_command_timeout", &Settings::watchdog, &W::first_timeout_s).in_unit("s").at_least(0.01)
+  b.bind("first_command_timeout", &Settings::watchdog, &W::first_timeout_s).in_unit("s").range(0.01, 3600)
       .doc("no command this long after the car exists: the same");
   b.bind("watchdog_brake", &Settings::watchdog, &W::brake).range(0, 1).doc("the brake pedal while the watchdog stops the car");
   return b;

@@ -27,9 +27,9 @@ struct Settings {
 
 ParamBinding<Settings> bindings() {
   ParamBinding<Settings> b;
-  b.declare(ParamSpec::number("rate_hz", 100).in_unit("Hz").at_least(1));  // the host's trigger only
-  b.bind("noise", &Settings::noise).in_unit("m/s").at_least(0);
-  b.bind("scale", &Settings::scale).at_least(0.5).doc("tyre radius error as a factor");
+  b.declare(ParamSpec::number("rate_hz", 100).in_unit("Hz").range(1, 10000));  // the host's trigger only
+  b.bind("noise", &Settings::noise).in_unit("m/s").range(0, 100);
+  b.bind("scale", &Settings::scale).range(0.5, 2).doc("tyre radius error as a factor");
   plugins::bind_vehicle(b, &Settings::vehicle).doc("the car's description file: wheelbase and track width");
   // The windows are parsed as the parameters are read: a bad one is refused naming its JSON pointer.
   b.bind_with(ParamSpec::json("faults", "[]")

@@ -67,12 +67,12 @@ ParamBinding<Settings> bindings() {
   b.bind("outer_side", &Settings::outer_side).one_of({"auto", "left", "right"})
       .doc("side of the outer wall; auto: the outside of the loop");
   b.bind("outer_wall", &Settings::outer_wall);
-  b.bind("outer_wall_offset_m", &Settings::outer_wall_offset_m).in_unit("m").at_least(0).doc("beyond the track edge");
+  b.bind("outer_wall_offset_m", &Settings::outer_wall_offset_m).in_unit("m").range(0, 100).doc("beyond the track edge");
   b.bind("inner_wall", &Settings::inner_wall);
-  b.bind("inner_wall_offset_m", &Settings::inner_wall_offset_m).in_unit("m").at_least(0);
-  b.bind("wall_height_m", &Settings::wall_height_m).in_unit("m").at_least(0.1);
+  b.bind("inner_wall_offset_m", &Settings::inner_wall_offset_m).in_unit("m").range(0, 100);
+  b.bind("wall_height_m", &Settings::wall_height_m).in_unit("m").range(0.1, 100);
   b.bind_json("pylons", &Settings::pylons).doc("[{\"s\": m, \"d\": m, \"radius\": 0.2, \"height\": 0.7}, ...]");
-  b.declare(ParamSpec::number("rate_hz", 1.0).in_unit("Hz").at_least(0.01));  // the host's trigger only
+  b.declare(ParamSpec::number("rate_hz", 1.0).in_unit("Hz").range(0.01, 1000));  // the host's trigger only
   return b;
 }
 

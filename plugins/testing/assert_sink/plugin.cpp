@@ -22,18 +22,21 @@ struct Settings {
 ParamBinding<Settings> bindings() {
   using E = testing::StreamExpectations;
   ParamBinding<Settings> b;
-  b.bind("min_count", &Settings::expect, &E::min_count).at_least(0);
-  b.bind("max_count", &Settings::expect, &E::max_count).at_least(-1).doc("-1: no limit");
-  b.bind("min_value", &Settings::expect, &E::min_value).doc("NaN: no check");
-  b.bind("max_value", &Settings::expect, &E::max_value).doc("NaN: no check");
+  b.bind("min_count", &Settings::expect, &E::min_count).range(0, 1e9);
+  b.bind("max_count", &Settings::expect, &E::max_count).range(-1, 1e9).doc("-1: no limit");
+  b.bind("min_value", &Settings::expect, &E::min_value).range(-1e6, 1e6).doc("NaN: no check");
+  b.bind("max_value", &Settings::expect, &E::max_value).range(-1e6, 1e6).doc("NaN: no check");
   b.bind("ordering", &Settings::expect, &E::ordering).one_of({"none", "increasing", "nondecreasing", "decreasing"});
-  b.bind("min_rate_hz", &Settings::expect, &E::min_rate_hz).in_unit("Hz").doc("over sample stamps; NaN: no check");
-  b.bind("max_rate_hz", &Settings::expect, &E::max_rate_hz).in_unit("Hz").doc("over sample stamps; NaN: no check");
-  b.bind("expect_values", &Settings::expect, &E::expect_values).doc("the first samples must equal these");
-  b.bind("finish_after", &Settings::finish_after).at_least(0)
+  b.bind("min_rate_hz", &Settings::expect, &E::min_rate_hz).in_unit("Hz").range(0, 1e6)
+      .doc("over sample stamps; NaN: no check");
+  b.bind("max_rate_hz", &Settings::expect, &E::max_rate_hz).in_unit("Hz").range(0, 1e6)
+      .doc("over sample stamps; NaN: no check");
+  b.bind("expect_values", &Settings::expect, &E::expect_values).range(-1e6, 1e6)
+      .doc("the first samples must equal these");
+  b.bind("finish_after", &Settings::finish_after).range(0, 1e9)
       .doc("end the run successfully after this many samples; 0: never");
-  b.bind("min_age_s", &Settings::min_age_s).in_unit("s").doc("each sample at least this old when it arrives (now - stamp); NaN: no check");
-  b.bind("max_age_s", &Settings::max_age_s).in_unit("s").doc("each sample at most this old when it arrives; NaN: no check");
+  b.bind("min_age_s", &Settings::min_age_s).in_unit("s").range(-3600, 3600).doc("each sample at least this old when it arrives (now - stamp); NaN: no check");
+  b.bind("max_age_s", &Settings::max_age_s).in_unit("s").range(-3600, 3600).doc("each sample at most this old when it arrives; NaN: no check");
   b.not_above("min_value", "max_value");
   b.not_above("min_age_s", "max_age_s");
   b.not_above("min_rate_hz", "max_rate_hz");

@@ -25,7 +25,7 @@ struct SinkSettings {
 
 ParamBinding<SinkSettings> sink_bindings() {
   ParamBinding<SinkSettings> b;
-  b.bind("min_count", &SinkSettings::min_count).at_least(0);
+  b.bind("min_count", &SinkSettings::min_count).range(0, 1e9);
   return b;
 }
 

@@ -23,14 +23,14 @@ struct Settings {
 ParamBinding<Settings> bindings() {
   ParamBinding<Settings> b;
   b.bind("rate_hz", &Settings::rate_hz).in_unit("Hz").range(1e-3, 1e6).doc("publish rate");
-  b.bind("values", &Settings::values).doc("values to play in order; empty: use the ramp");
+  b.bind("values", &Settings::values).range(-1e6, 1e6).doc("values to play in order; empty: use the ramp");
   b.bind("loop", &Settings::loop).doc("repeat the values list");
-  b.bind("start", &Settings::start).doc("first ramp value");
-  b.bind("step", &Settings::step).doc("ramp increment per sample");
-  b.bind("count", &Settings::count).at_least(-1).doc("samples to publish; -1: unlimited");
-  b.bind("noise_std", &Settings::noise_std).at_least(0).doc("Gaussian noise added to each value, seeded by --seed");
+  b.bind("start", &Settings::start).range(-1e6, 1e6).doc("first ramp value");
+  b.bind("step", &Settings::step).range(-1e6, 1e6).doc("ramp increment per sample");
+  b.bind("count", &Settings::count).range(-1, 1e9).doc("samples to publish; -1: unlimited");
+  b.bind("noise_std", &Settings::noise_std).range(0, 1e6).doc("Gaussian noise added to each value, seeded by --seed");
   // The host's (Manifest::delivered_after): a source that models a sensor's latency.
-  b.declare(ParamSpec::number("latency_s", 0).in_unit("s").at_least(0)
+  b.declare(ParamSpec::number("latency_s", 0).in_unit("s").range(0, 3600)
                 .doc("sim clock: each sample, stamped when it is made, is delivered this long after; at most 1 / rate_hz"));
   return b;
 }

@@ -19,11 +19,11 @@ struct Settings {
 
 ParamBinding<Settings> bindings() {
   ParamBinding<Settings> b;
-  b.bind("gain", &Settings::gain);
-  b.bind("offset", &Settings::offset);
+  b.bind("gain", &Settings::gain).range(-1e6, 1e6);
+  b.bind("offset", &Settings::offset).range(-1e6, 1e6);
   b.bind_choice("fault", {{"none", Fault::none}, {"configure", Fault::configure}, {"step", Fault::step}}, &Settings::fault)
       .doc("throw in configure, or in the step that handles sample number fault_at");
-  b.bind("fault_at", &Settings::fault_at).at_least(0);
+  b.bind("fault_at", &Settings::fault_at).range(0, 1e9);
   return b;
 }
 

@@ -9,8 +9,8 @@
 //   static ParamBinding<ClusterParams> bindings() {
 //     ParamBinding<ClusterParams> b;
 //     b.bind("tolerance", &ClusterParams::tolerance).in_unit("m").range(0.01, 100);
-//     b.bind("min_size", &ClusterParams::min_size).at_least(1);
-//     b.bind("max_size", &ClusterParams::max_size).at_least(1);
+//     b.bind("min_size", &ClusterParams::min_size).range(1, 1e7);
+//     b.bind("max_size", &ClusterParams::max_size).range(1, 1e7);
 //     b.not_above("min_size", "max_size");   // checked by `brickyard validate`
 //     return b;
 //   }
