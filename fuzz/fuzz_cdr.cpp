@@ -1,7 +1,7 @@
 // libFuzzer harness: CDR bytes decoded as each message type by its IDL (framework/record/
 // cdr_json), as `topic echo` and the recording tools decode samples (the IDL ordered as they order it). The first byte picks the
 // type. Bytes that do not fit must end in a runtime_error naming the offset.
-#include "record/cdr_json.hpp"
+#include "cdr/cdr_json.hpp"
 #include "record/recorder.hpp"
 
 #include <cstdint>
@@ -22,8 +22,8 @@ constexpr std::size_t kTypes = sizeof kIdl / sizeof kIdl[0];
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   static const auto decoders = [] {
-    std::vector<std::unique_ptr<brickyard::fw::CdrJson>> v;
-    for (const auto& t : kIdl) v.push_back(std::make_unique<brickyard::fw::CdrJson>(brickyard::fw::omgidl_schema(t.text)));
+    std::vector<std::unique_ptr<brickyard::cdr::CdrJson>> v;
+    for (const auto& t : kIdl) v.push_back(std::make_unique<brickyard::cdr::CdrJson>(brickyard::fw::omgidl_schema(t.text)));
     return v;
   }();
   if (size == 0) return 0;

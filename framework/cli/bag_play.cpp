@@ -1,7 +1,7 @@
 #include "cli/bag_play.hpp"
 
 #include "exec/executive.hpp"  // g_interrupt
-#include "record/cdr_json.hpp"
+#include "cdr/cdr_json.hpp"
 #include "record/recorder.hpp"
 #include "record/recording_info.hpp"
 #include "graph/diagnostics.hpp"
@@ -42,7 +42,7 @@ std::string where_it_breaks(const std::string& type, const unsigned char* data, 
   const char* idl = idl_text(type);
   if (!idl) return {};
   try {
-    CdrJson(omgidl_schema(idl)).decode(type, data, size);
+    cdr::CdrJson(omgidl_schema(idl)).decode(type, data, size);
   } catch (const std::exception& e) {
     return std::string(": ") + e.what();
   }

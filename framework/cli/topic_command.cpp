@@ -1,7 +1,7 @@
 #include "cli/topic_command.hpp"
 
 #include "exec/executive.hpp"  // g_interrupt
-#include "record/cdr_json.hpp"
+#include "cdr/cdr_json.hpp"
 #include "record/recorder.hpp"
 #include "record/sample_serializer.hpp"
 #include "security/security_files.hpp"
@@ -108,7 +108,7 @@ int topic_command(const TopicOptions& o) {
   const char* idl = idl_text(type);
   if (!msgs::find_type(type.c_str()) || !idl) return bad(o.topic + ": type " + type + " is not one this build knows");
   SampleSerializer serializer(type);
-  const CdrJson decoder(omgidl_schema(idl));
+  const cdr::CdrJson decoder(omgidl_schema(idl));
   std::mutex out_m;
   long samples = 0;
   std::vector<double> arrivals;  // hz: seconds since the first

@@ -23,8 +23,19 @@ class InputQueue final : public detail::InputChannel {
   const std::string& type_name() const override { return type_; }
   bool connected() const override { return connected_; }
 
+  // An input of any type (Manifest::input_any): the type its wire carries, that type's IDL, and
+  // what turns a sample of it into a SerializedSample (set by the executive).
+  const std::string& wire_type() const override { return wire_type_.empty() ? type_ : wire_type_; }
+  const char* wire_idl() const override { return wire_idl_.empty() ? nullptr : wire_idl_.c_str(); }
+  void take_any(std::string type, std::string idl, std::function<std::shared_ptr<const void>(const void*)> serialize) {
+    wire_type_ = std::move(type);
+    wire_idl_ = std::move(idl);
+    serialize_ = std::move(serialize);
+  }
+
   // Thread-safe; the oldest sample is dropped (and counted) when the queue is full.
   void push(std::shared_ptr<const void> s) {
+    if (serialize_) s = serialize_(s.get());
     {
       std::lock_guard<std::mutex> l(m_);
       if (held_) {
@@ -84,6 +95,8 @@ class InputQueue final : public detail::InputChannel {
   std::string name_, type_;
   std::uint32_t depth_;
   bool connected_;
+  std::string wire_type_, wire_idl_;
+  std::function<std::shared_ptr<const void>(const void*)> serialize_;
   void arrive(std::shared_ptr<const void> s) {  // m_ held
     if (clock) {
       const std::int64_t t = clock();

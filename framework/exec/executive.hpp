@@ -85,6 +85,7 @@ class Executive {
 
  private:
   void build();
+  std::string with_param_place(const std::string& node, const std::string& what) const;
   bool call(NodeRuntime& n, const char* phase, const std::function<void()>& f);
   void run_sim();
   void run_real();

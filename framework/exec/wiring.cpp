@@ -5,12 +5,15 @@
 #include "exec/executive.hpp"
 #include "exec/node_runtime.hpp"
 #include "exec/seeding.hpp"
+#include "record/recorder.hpp"
 #include "record/sample_serializer.hpp"
 
 #include <algorithm>
 #include <map>
 #include <mutex>
 #include <set>
+#include <tuple>
+#include <utility>
 
 namespace brickyard::fw {
 
@@ -94,6 +97,20 @@ void Executive::build() {
     auto to = here.find(w.to.node);
     if (to == here.end()) continue;  // its reader lives in another process
     InputQueue* in = to->second->input(w.to.port);
+    // The writer's type: what an input of any type takes (its samples serialized for it).
+    const std::string& wire_type = graph_.wire_types.at(w.to.text());
+    if (in->type_name() == kAnyMessageType) {
+      auto serializer = std::make_shared<std::pair<SampleSerializer, std::mutex>>(std::piecewise_construct, std::forward_as_tuple(wire_type),
+                                                                                std::forward_as_tuple());
+      const char* idl = idl_text(wire_type);
+      in->take_any(wire_type, idl ? omgidl_schema(idl) : std::string(), [serializer](const void* m) -> std::shared_ptr<const void> {
+        std::lock_guard<std::mutex> l(serializer->second);
+        const auto b = serializer->first.serialize(m);
+        auto s = std::make_shared<SerializedSample>();
+        s->cdr.assign(b.data, b.data + b.size);
+        return s;
+      });
+    }
     auto from = here.find(w.from.node);
     if (from != here.end()) {
       from->second->output(w.from.port)->local.push_back(in);
@@ -116,7 +133,7 @@ void Executive::build() {
       check.expected = participant_name(r->process);
       check.accept_others = g.transport.accept_foreign_writers;
       check.other = [this, r](const std::string& participant, const std::string& writer) { foreign_writer(*r, participant, writer); };
-      r->reader = transport_->make_reader(topic_name(w.from.node, w.from.port), ps->type_name, ps->depth,
+      r->reader = transport_->make_reader(topic_name(w.from.node, w.from.port), wire_type, ps->depth,
                                           [in](std::shared_ptr<const void> s) { in->push(std::move(s)); },
                                           [this, r](bool alive) { peer_liveliness(*r, alive); }, std::move(check));
     }

@@ -254,7 +254,8 @@ ResolvedGraph resolve_graph(const GraphDecl& g, const Registry& reg, const std::
       ok = false;
     }
     if (!ok) continue;
-    if (ports[0]->type_name != ports[1]->type_name || ports[0]->type_hash != ports[1]->type_hash) {
+    const bool any = ports[1]->type_name == kAnyMessageType;  // an input that takes the wire's type
+    if (!any && (ports[0]->type_name != ports[1]->type_name || ports[0]->type_hash != ports[1]->type_hash)) {
       err(w.to_item.empty() ? ptr : w.to_ptr(), "type mismatch: " + w.from.text() + " carries " + ports[0]->type_name + ", " + w.to.text() +
                    " takes " + ports[1]->type_name);
       continue;
@@ -264,6 +265,7 @@ ResolvedGraph resolve_graph(const GraphDecl& g, const Registry& reg, const std::
       err(w.to_ptr(), "input \"" + w.to.text() + "\" already has a writer (" + it->second + "); an input takes one wire");
       continue;
     }
+    rg.wire_types[w.to.text()] = ports[0]->type_name;
     downstream[w.from.node].insert(w.to.node);
     if (by_name.at(w.to.node).trigger_inputs.count(w.to.port))
       downstream_zero_delay[w.from.node].insert(w.to.node);

@@ -4,6 +4,7 @@
 #include "graph/graph.hpp"
 #include "loader/registry.hpp"
 
+#include <map>
 #include <set>
 
 namespace brickyard::fw {
@@ -24,6 +25,7 @@ struct ResolvedGraph {
   std::vector<ResolvedNode> nodes;        // in schedule order: upstream first, then by name
   std::set<std::string> processes;
   std::vector<std::string> notices;       // said before the run (not with --quiet): params a plugin swap left out
+  std::map<std::string, std::string> wire_types;  // "node.input" -> the type its writer sends, every process's
 
   const ResolvedNode* node(const std::string& name) const;
 };

@@ -1,7 +1,7 @@
 #include "live/scene.hpp"
 
 #include "live/live_server.hpp"
-#include "record/cdr_json.hpp"
+#include "cdr/cdr_json.hpp"
 #include "record/recorder.hpp"
 #include "record/sample_serializer.hpp"
 
@@ -215,7 +215,7 @@ std::function<void(const void*, std::uint64_t)> LiveScene::handler(const std::st
     struct World {
       explicit World(const std::string& t) : serializer(t), idl(omgidl_schema(idl_text(t) ? idl_text(t) : "")) {}
       SampleSerializer serializer;
-      CdrJson idl;
+      cdr::CdrJson idl;
       std::mutex m;
     };
     auto w = std::make_shared<World>(type);

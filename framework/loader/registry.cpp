@@ -50,8 +50,11 @@ std::vector<std::string> check_manifest(const Manifest& m) {
   for (const auto& port : m.ports) {
     if (!is_identifier(port.name)) p.push_back(who + ": port name '" + port.name + "' is not an identifier");
     if (!ports.insert(port.name).second) p.push_back(who + ": port '" + port.name + "' declared twice");
-    const auto* t = msgs::find_type(port.type_name.c_str());
-    if (!t) p.push_back(who + ": port '" + port.name + "' uses unknown message type " + port.type_name);
+    const bool any = port.type_name == kAnyMessageType;  // an input of any type (Manifest::input_any)
+    if (any && port.direction != PortDirection::input) p.push_back(who + ": output '" + port.name + "' of any type: an output has one");
+    const auto* t = any ? nullptr : msgs::find_type(port.type_name.c_str());
+    if (any) {
+    } else if (!t) p.push_back(who + ": port '" + port.name + "' uses unknown message type " + port.type_name);
     else if (port.type_hash != t->hash)
       p.push_back(who + ": port '" + port.name + "' was built against another definition of " + port.type_name +
                   " (hash " + port.type_hash + ", host has " + t->hash + ")");

@@ -4,7 +4,7 @@
 // CDR read back as JSON by its IDL (record/cdr_json.hpp), as `topic echo` prints it.
 #include "mcap/mcap_reader.hpp"
 #include "mcap/mcap_writer.hpp"
-#include "record/cdr_json.hpp"
+#include "cdr/cdr_json.hpp"
 #include "record/recorder.hpp"
 #include "record/sample_serializer.hpp"
 
@@ -172,7 +172,7 @@ namespace {
 nlohmann::json round_trip(const std::string& type, const void* message) {
   brickyard::fw::SampleSerializer s(type);
   const auto b = s.serialize(message);
-  return brickyard::fw::CdrJson(brickyard::fw::omgidl_schema(brickyard::fw::idl_text(type))).decode(type, b.data, b.size);
+  return brickyard::cdr::CdrJson(brickyard::fw::omgidl_schema(brickyard::fw::idl_text(type))).decode(type, b.data, b.size);
 }
 }  // namespace
 
@@ -231,7 +231,7 @@ TEST(CdrJson, BytesThatDoNotFitAndIdlItCannotReadAreNamed) {
   p.speed({1, 2, 3});
   brickyard::fw::SampleSerializer s("brickyard::msgs::Path");
   const auto b = s.serialize(&p);
-  const brickyard::fw::CdrJson d(brickyard::fw::omgidl_schema(brickyard::fw::idl_text("brickyard::msgs::Path")));
+  const brickyard::cdr::CdrJson d(brickyard::fw::omgidl_schema(brickyard::fw::idl_text("brickyard::msgs::Path")));
   try {
     d.decode("brickyard::msgs::Path", b.data, b.size - 5);
     FAIL() << "a cut sample decoded";
@@ -239,7 +239,7 @@ TEST(CdrJson, BytesThatDoNotFitAndIdlItCannotReadAreNamed) {
     EXPECT_NE(std::string(e.what()).find("at byte"), std::string::npos) << e.what();
   }
   try {
-    brickyard::fw::CdrJson("module m {\n struct A {\n  double x;\n  Unknown y;\n };\n};\n");
+    brickyard::cdr::CdrJson("module m {\n struct A {\n  double x;\n  Unknown y;\n };\n};\n");
     FAIL() << "an unknown type was taken";
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("IDL line 4: unknown type 'Unknown'"), std::string::npos) << e.what();
@@ -249,9 +249,9 @@ TEST(CdrJson, BytesThatDoNotFitAndIdlItCannotReadAreNamed) {
 // A recording's schema is untrusted: a struct defined twice (which could close a cycle A -> B ->
 // A and recurse without reading a byte) and a struct with no members are refused, named.
 TEST(CdrJson, AnIdlThatCouldRecurseForeverIsRefused) {
-  EXPECT_THROW(brickyard::fw::CdrJson("struct A { int32 x; };\nstruct B { A a; };\nstruct A { B b; };\n"), std::invalid_argument);
-  EXPECT_THROW(brickyard::fw::CdrJson("struct E { };\n"), std::invalid_argument);
-  EXPECT_THROW(brickyard::fw::CdrJson("struct A { double x[123456789012345678901234567890]; };\n"), std::invalid_argument);
+  EXPECT_THROW(brickyard::cdr::CdrJson("struct A { int32 x; };\nstruct B { A a; };\nstruct A { B b; };\n"), std::invalid_argument);
+  EXPECT_THROW(brickyard::cdr::CdrJson("struct E { };\n"), std::invalid_argument);
+  EXPECT_THROW(brickyard::cdr::CdrJson("struct A { double x[123456789012345678901234567890]; };\n"), std::invalid_argument);
 }
 
 // --record-only patterns: '*' any run of characters; matched in at most |pattern| x |topic| steps

@@ -6,9 +6,10 @@
 // 2.0: Manifest::constraints appended (its layout changed: 1.x plugins must be rebuilt).
 // 2.1: TriggerSpec::Kind::latency (Manifest::delivered_after).
 // 2.2: TriggerSpec::Kind::deadline (Manifest::step_deadline).
+// 2.3: inputs of any type (Manifest::input_any, Context::input_any, InputChannel::wire_type/idl).
 // 1.x history: 1.1 Context::find_file and BadInput; 1.2 Context::status.
 #define BRICKYARD_ABI_MAJOR 2u
-#define BRICKYARD_ABI_MINOR 2u
+#define BRICKYARD_ABI_MINOR 3u
 #define BRICKYARD_ENTRY_POINT_NAME "brickyard_plugin_library"
 #define BRICKYARD_EXPORT __attribute__((visibility("default")))
 

@@ -14,6 +14,12 @@
 
 namespace brickyard {
 
+// A sample of an input of any type (Manifest::input_any): the message as CDR, as on the wire,
+// its encapsulation header first. (ABI 2.3)
+struct SerializedSample {
+  std::vector<unsigned char> cdr;
+};
+
 namespace detail {
 // Type-erased port endpoints implemented by the host.
 struct InputChannel {
@@ -22,6 +28,10 @@ struct InputChannel {
   virtual std::vector<std::shared_ptr<const void>> take() = 0;   // new samples, oldest first
   virtual std::shared_ptr<const void> latest() const = 0;        // last sample ever received
   virtual bool connected() const = 0;
+  // ABI 2.3, appended: for an input of any type, the type its wire carries ("" when unwired) and
+  // that type's IDL text (null when unwired).
+  virtual const std::string& wire_type() const { return type_name(); }
+  virtual const char* wire_idl() const { return nullptr; }
 };
 struct OutputChannel {
   virtual ~OutputChannel() = default;
@@ -63,6 +73,30 @@ template <class T> class Output {
 
  private:
   detail::OutputChannel* ch_ = nullptr;
+};
+
+// An input of any type: its samples as CDR, with the wire's type name and IDL to decode them by.
+class AnyInput {
+ public:
+  AnyInput() = default;
+  explicit AnyInput(detail::InputChannel* c) : ch_(c) {}
+  // "brickyard::msgs::Path"; empty when the input is not wired.
+  const std::string& type_name() const {
+    static const std::string none;
+    return ch_ ? ch_->wire_type() : none;
+  }
+  // The IDL text that defines the type (and the types it uses); null when not wired.
+  const char* idl() const { return ch_ ? ch_->wire_idl() : nullptr; }
+  std::vector<std::shared_ptr<const SerializedSample>> take() {
+    std::vector<std::shared_ptr<const SerializedSample>> out;
+    if (!ch_) return out;
+    for (auto& s : ch_->take()) out.push_back(std::static_pointer_cast<const SerializedSample>(std::move(s)));
+    return out;
+  }
+  bool connected() const { return ch_ && ch_->connected(); }
+
+ private:
+  detail::InputChannel* ch_ = nullptr;
 };
 
 enum class LogLevel { debug, info, warn, error };
@@ -115,6 +149,12 @@ class Context {
     auto* c = input_channel(port);
     check_type(c->type_name(), message_traits<T>::name, port);
     return Input<T>(c);
+  }
+  // An input declared with Manifest::input_any.
+  AnyInput input_any(std::string_view port) {
+    auto* c = input_channel(port);
+    check_type(c->type_name(), kAnyMessageType, port);
+    return AnyInput(c);
   }
   template <class T> Output<T> output(std::string_view port) {
     auto* c = output_channel(port);

@@ -123,6 +123,12 @@ struct Manifest {
                      std::move(doc), required, depth});
     return *this;
   }
+  // An input of any message type: the wire's, whatever it is (a generic checker or recorder).
+  // Its samples arrive as CDR (Context::input_any); validation lets any output feed it. (ABI 2.3)
+  Manifest& input_any(std::string port, std::string doc = {}, bool required = true, std::uint32_t depth = 16) {
+    ports.push_back({std::move(port), PortDirection::input, kAnyMessageType, "", std::move(doc), required, depth});
+    return *this;
+  }
   template <class T>
   Manifest& output(std::string port, std::string doc = {}) {
     ports.push_back({std::move(port), PortDirection::output, message_traits<T>::name, message_traits<T>::hash,

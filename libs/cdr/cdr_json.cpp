@@ -1,4 +1,4 @@
-#include "record/cdr_json.hpp"
+#include "cdr/cdr_json.hpp"
 
 #include <cctype>
 #include <cstring>
@@ -6,7 +6,7 @@
 #include <memory>
 #include <stdexcept>
 
-namespace brickyard::fw {
+namespace brickyard::cdr {
 
 // A member's type: a primitive, a string, a struct (by name), or a sequence of / array of one.
 struct CdrJson::Type {
@@ -241,4 +241,43 @@ nlohmann::json CdrJson::decode(const std::string& type, const unsigned char* dat
   return object(bare(type));
 }
 
-}  // namespace brickyard::fw
+std::string CdrJson::field_kind(const std::string& type, const FieldPath& path) const {
+  auto it = structs_.find(bare(type));
+  if (it == structs_.end()) throw std::invalid_argument("no struct '" + type + "' in the IDL");
+  std::string struct_name = bare(type);
+  const std::vector<Member>* members = it->second.get();
+  const Type* ty = nullptr;
+  for (std::size_t s = 0; s < path.steps.size(); ++s) {
+    const auto& st = path.steps[s];
+    if (!members) throw std::invalid_argument(path.text + ": '" + path.steps[s - 1].member + "' has no members");
+    const Member* m = nullptr;
+    for (const auto& x : *members)
+      if (x.name == st.member) m = &x;
+    if (!m) {
+      std::string have;
+      for (const auto& x : *members) have += (have.empty() ? "" : ", ") + x.name;
+      throw std::invalid_argument(path.text + ": no member '" + st.member + "' in " + struct_name + " (members: " + have + ")");
+    }
+    ty = &m->type;
+    for (std::size_t k = 0; k < st.index.size(); ++k) {
+      if (ty->kind != Type::Sequence && ty->kind != Type::Array)
+        throw std::invalid_argument(path.text + ": '" + st.member + "' is not a sequence or an array; it takes no index");
+      if (ty->kind == Type::Array && st.index[k] != FieldPath::kEvery && static_cast<std::size_t>(st.index[k]) >= ty->size)
+        throw std::invalid_argument(path.text + ": '" + st.member + "' has " + std::to_string(ty->size) + " elements");
+      ty = ty->of.get();
+    }
+    members = nullptr;
+    if (ty->kind == Type::Struct) {
+      struct_name = ty->name;
+      members = structs_.at(ty->name).get();
+    }
+  }
+  switch (ty->kind) {
+    case Type::Primitive: return ty->name == "boolean" ? "boolean" : "number";
+    case Type::String: return "string";
+    case Type::Struct: return "struct";
+    default: return "sequence";
+  }
+}
+
+}  // namespace brickyard::cdr

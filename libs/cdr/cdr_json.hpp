@@ -5,6 +5,8 @@
 // structs, the primitive types, string, sequence<T> and fixed arrays; CDR as Fast DDS writes it
 // (XCDR1, either byte order, each primitive aligned to its size from the end of the 4-byte
 // encapsulation header).
+#include "cdr/field_path.hpp"
+
 #include <nlohmann/json.hpp>
 
 #include <map>
@@ -12,7 +14,7 @@
 #include <string>
 #include <vector>
 
-namespace brickyard::fw {
+namespace brickyard::cdr {
 
 class CdrJson {
  public:
@@ -22,6 +24,13 @@ class CdrJson {
   // std::runtime_error naming the byte offset when the bytes do not fit the type.
   nlohmann::json decode(const std::string& type, const unsigned char* data, std::size_t size) const;
 
+  // What a field path reaches in `type`: "number", "boolean", "string", "struct" or "sequence"
+  // (what is left of an array or sequence the path does not index). Throws std::invalid_argument
+  // naming the step the type does not have, and what it has there ("no member 'posez' in Path
+  // (members: header, poses, speeds)"; "'speeds' is a sequence: index it, [N] or [*]" is not an
+  // error: it is a "sequence").
+  std::string field_kind(const std::string& type, const FieldPath& path) const;
+
   struct Type;
   struct Member;
 
@@ -29,4 +38,4 @@ class CdrJson {
   std::map<std::string, std::shared_ptr<std::vector<Member>>> structs_;  // by name, qualified and bare
 };
 
-}  // namespace brickyard::fw
+}  // namespace brickyard::cdr

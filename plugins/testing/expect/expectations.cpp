@@ -1,0 +1,263 @@
+#include "expectations.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <set>
+#include <stdexcept>
+
+namespace brickyard::testing {
+namespace {
+
+using nlohmann::json;
+
+std::string num(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.6g", v);
+  return b;
+}
+
+std::string window_text(double a, double b) {
+  if (std::isinf(a) && std::isinf(b)) return "the whole run";
+  return "[" + (std::isinf(a) ? std::string("start") : num(a) + " s") + ", " + (std::isinf(b) ? std::string("end") : num(b) + " s") + "]";
+}
+
+std::string show(const json& v) { return v.is_number() ? num(v.get<double>()) : v.dump(); }
+
+bool has_every(const cdr::FieldPath& p) {
+  for (const auto& s : p.steps)
+    for (auto i : s.index)
+      if (i == cdr::FieldPath::kEvery) return true;
+  return false;
+}
+
+// Two numbers, lo <= hi: a range or a window.
+std::pair<double, double> pair_of(const json& v, const std::string& where) {
+  if (!v.is_array() || v.size() != 2 || !v[0].is_number() || !v[1].is_number())
+    throw std::invalid_argument(where + ": expected [low, high], found " + v.dump());
+  const double a = v[0].get<double>(), b = v[1].get<double>();
+  if (!std::isfinite(a) || !std::isfinite(b) || a > b) throw std::invalid_argument(where + ": expected finite low <= high, found " + v.dump());
+  return {a, b};
+}
+
+std::vector<cdr::FieldPath> paths(const json& v, const std::string& where, const cdr::CdrJson& idl, const std::string& type,
+                                  bool several, std::vector<std::string>* kinds) {
+  std::vector<std::string> texts;
+  if (v.is_string()) texts.push_back(v.get<std::string>());
+  else if (several && v.is_array() && !v.empty() && v.size() <= 3) {
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      if (!v[i].is_string()) throw std::invalid_argument(where + "/" + std::to_string(i) + ": expected a field path");
+      texts.push_back(v[i].get<std::string>());
+    }
+  } else {
+    throw std::invalid_argument(where + ": expected a field path" + std::string(several ? " or a list of 1 to 3 of them" : "") + ", found " + v.dump());
+  }
+  std::vector<cdr::FieldPath> out;
+  for (std::size_t i = 0; i < texts.size(); ++i) {
+    const std::string w = v.is_array() ? where + "/" + std::to_string(i) : where;
+    try {
+      out.push_back(cdr::parse_field_path(texts[i]));
+      kinds->push_back(idl.field_kind(type, out.back()));
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(w + ": " + e.what());
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<Expectation> parse_expectations(const json& spec, const cdr::CdrJson& idl, const std::string& type,
+                                            const cdr::CdrJson* ref_idl, const std::string& ref_type) {
+  if (!spec.is_array()) throw std::invalid_argument(": expected a list of expectations, found " + spec.dump().substr(0, 80));
+  if (spec.empty()) throw std::invalid_argument(": no expectation (a check that checks nothing cannot fail)");
+  if (spec.size() > 10000) throw std::invalid_argument(": more than 10000 expectations");
+  static const std::set<std::string> known = {"field", "range", "equals", "tolerance", "increasing", "nondecreasing", "near",
+                                              "always", "eventually", "count", "rate_hz"};
+  std::vector<Expectation> out;
+  for (std::size_t k = 0; k < spec.size(); ++k) {
+    const json& x = spec[k];
+    Expectation e;
+    e.where = "/" + std::to_string(k);
+    const std::string& w = e.where;
+    if (!x.is_object()) throw std::invalid_argument(w + ": expected an object, found " + x.dump().substr(0, 80));
+    for (const auto& [key, v] : x.items())
+      if (!known.count(key))
+        throw std::invalid_argument(w + "/" + key + ": unknown; an expectation takes field with one of range, equals "
+                                    "(tolerance), increasing, nondecreasing, near, and always or eventually; or count, rate_hz");
+    if (x.contains("count") || x.contains("rate_hz")) {
+      const bool count = x.contains("count");
+      if (x.size() != 1) throw std::invalid_argument(w + ": count and rate_hz stand alone");
+      e.kind = count ? Expectation::Kind::count : Expectation::Kind::rate;
+      std::tie(e.lo, e.hi) = pair_of(x.at(count ? "count" : "rate_hz"), w + (count ? "/count" : "/rate_hz"));
+      e.text = std::string(count ? "count" : "rate") + " within [" + num(e.lo) + ", " + num(e.hi) + "]" + (count ? "" : " Hz");
+      out.push_back(std::move(e));
+      continue;
+    }
+    if (!x.contains("field")) throw std::invalid_argument(w + ": needs field (or count, rate_hz)");
+    int tests = 0;
+    for (const char* t : {"range", "equals", "increasing", "nondecreasing", "near"}) tests += x.contains(t);
+    if (tests != 1) throw std::invalid_argument(w + ": needs exactly one of range, equals, increasing, nondecreasing, near");
+    std::vector<std::string> kinds;
+    e.fields = paths(x["field"], w + "/field", idl, type, x.contains("near"), &kinds);
+    const std::string& f = e.fields[0].text;
+    auto need_numbers = [&](const char* key) {
+      for (std::size_t i = 0; i < kinds.size(); ++i)
+        if (kinds[i] != "number")
+          throw std::invalid_argument(w + "/" + key + ": " + e.fields[i].text + " is a " + kinds[i] + ", not a number");
+    };
+    if (x.contains("range")) {
+      need_numbers("range");
+      e.test = Expectation::Test::range;
+      std::tie(e.lo, e.hi) = pair_of(x["range"], w + "/range");
+      e.text = f + " within [" + num(e.lo) + ", " + num(e.hi) + "]";
+    } else if (x.contains("equals")) {
+      e.test = Expectation::Test::equals;
+      e.equals = x["equals"];
+      const std::string want = e.equals.is_number() ? "number" : e.equals.is_string() ? "string" : e.equals.is_boolean() ? "boolean" : "?";
+      if (want != kinds[0])
+        throw std::invalid_argument(w + "/equals: " + f + " is a " + kinds[0] + "; found " + e.equals.dump().substr(0, 80));
+      if (x.contains("tolerance")) {
+        if (!x["tolerance"].is_number() || !(x["tolerance"].get<double>() >= 0) || want != "number")
+          throw std::invalid_argument(w + "/tolerance: expected a number >= 0, for a number");
+        e.tolerance = x["tolerance"].get<double>();
+      }
+      e.text = f + " equals " + show(e.equals) + (e.tolerance > 0 ? " within " + num(e.tolerance) : "");
+    } else if (x.contains("increasing") || x.contains("nondecreasing")) {
+      const char* key = x.contains("increasing") ? "increasing" : "nondecreasing";
+      need_numbers(key);
+      if (x[key] != true) throw std::invalid_argument(w + "/" + key + ": expected true");
+      e.test = x.contains("increasing") ? Expectation::Test::increasing : Expectation::Test::nondecreasing;
+      e.text = f + (has_every(e.fields[0]) ? " along each sample " : " sample to sample ") + key;
+    } else {
+      need_numbers("near");
+      e.test = Expectation::Test::near;
+      const json& n = x["near"];
+      if (!ref_idl) throw std::invalid_argument(w + "/near: compares with the input 'ref', which is not wired");
+      if (!n.is_object() || !n.contains("field") || !n.contains("within") || n.size() != 2 || !n["within"].is_number() ||
+          !(n["within"].get<double>() >= 0))
+        throw std::invalid_argument(w + "/near: expected {\"field\": PATH or [PATH, ...], \"within\": DISTANCE >= 0}");
+      std::vector<std::string> ref_kinds;
+      e.ref_fields = paths(n["field"], w + "/near/field", *ref_idl, ref_type, true, &ref_kinds);
+      for (std::size_t i = 0; i < ref_kinds.size(); ++i)
+        if (ref_kinds[i] != "number") throw std::invalid_argument(w + "/near/field: " + e.ref_fields[i].text + " is a " + ref_kinds[i] + ", not a number");
+      if (e.ref_fields.size() != e.fields.size())
+        throw std::invalid_argument(w + "/near/field: " + std::to_string(e.ref_fields.size()) + " fields against " + std::to_string(e.fields.size()));
+      for (const auto* list : {&e.fields, &e.ref_fields})
+        for (const auto& p : *list)
+          if (has_every(p)) throw std::invalid_argument(w + "/near: " + p.text + ": one value each, no [*]");
+      e.within = n["within"].get<double>();
+      std::string a, b;
+      for (const auto& p : e.fields) a += (a.empty() ? "" : ", ") + p.text;
+      for (const auto& p : e.ref_fields) b += (b.empty() ? "" : ", ") + p.text;
+      e.text = "(" + a + ") within " + num(e.within) + " of ref's (" + b + ")";
+    }
+    if (x.contains("always") && x.contains("eventually")) throw std::invalid_argument(w + ": always or eventually, not both");
+    for (const char* key : {"always", "eventually"}) {
+      if (!x.contains(key)) continue;
+      e.when = std::string(key) == "always" ? Expectation::When::always : Expectation::When::eventually;
+      if (x[key] != true) std::tie(e.from_s, e.to_s) = pair_of(x[key], w + "/" + key);
+    }
+    e.text += std::string(e.when == Expectation::When::always ? ", always in " : ", eventually in ") + window_text(e.from_s, e.to_s);
+    out.push_back(std::move(e));
+  }
+  return out;
+}
+
+ExpectationChecker::ExpectationChecker(std::vector<Expectation> e) : e_(std::move(e)), state_(e_.size()) {}
+
+void ExpectationChecker::observe(double t_s, const json& sample) {
+  if (samples_ == 0) first_s_ = t_s;
+  last_s_ = t_s;
+  const std::uint64_t index = samples_++;
+  for (std::size_t i = 0; i < e_.size(); ++i) {
+    const Expectation& e = e_[i];
+    State& st = state_[i];
+    if (e.kind != Expectation::Kind::field || t_s < e.from_s - 1e-9 || t_s > e.to_s + 1e-9) continue;
+    if (e.test == Expectation::Test::near && !ref_) continue;  // nothing to compare with yet
+    ++st.in_window;
+    std::string bad;  // this sample's first failing value, said as "path = value"
+    values_.clear();
+    std::string missing;
+    double distance = 0;
+    if (e.test == Expectation::Test::near) {
+      for (std::size_t f = 0; f < e.fields.size() && bad.empty(); ++f) {
+        values_.clear();
+        ref_values_.clear();
+        std::string ref_missing;
+        cdr::field_values(sample, e.fields[f], values_, missing);
+        cdr::field_values(*ref_, e.ref_fields[f], ref_values_, ref_missing);
+        if (!missing.empty()) bad = "it has no " + missing;
+        else if (!ref_missing.empty()) bad = "ref's sample has no " + ref_missing;
+        else {
+          const double d = values_[0].value->get<double>() - ref_values_[0].value->get<double>();
+          distance += d * d;
+        }
+        ++checks_;
+      }
+      distance = std::sqrt(distance);
+      if (bad.empty() && !(distance <= e.within)) bad = "distance " + num(distance);
+    } else {
+      cdr::field_values(sample, e.fields[0], values_, missing);
+      if (!missing.empty()) bad = "it has no " + missing;
+      const bool along = has_every(e.fields[0]);
+      std::optional<double> prev = along ? std::nullopt : st.previous;
+      for (const auto& fv : values_) {
+        ++checks_;
+        const json& v = *fv.value;
+        bool ok = true;
+        switch (e.test) {
+          case Expectation::Test::range: {
+            const double d = v.get<double>();
+            ok = d >= e.lo && d <= e.hi;
+            break;
+          }
+          case Expectation::Test::equals:
+            ok = v.is_number() ? std::abs(v.get<double>() - e.equals.get<double>()) <= e.tolerance : v == e.equals;
+            break;
+          default: {  // increasing, nondecreasing
+            const double d = v.get<double>();
+            if (prev) ok = e.test == Expectation::Test::increasing ? d > *prev : d >= *prev;
+            prev = d;
+            if (!along) st.previous = d;
+          }
+        }
+        if (!ok && bad.empty()) bad = cdr::concrete(e.fields[0], fv.every) + " = " + show(v);
+      }
+    }
+    char at[96];
+    std::snprintf(at, sizeof at, "sample %llu at %.3f s", static_cast<unsigned long long>(index), t_s);
+    if (bad.empty()) {
+      st.held = true;  // eventually: it held here
+    } else {
+      if (st.failed++ == 0) st.first_failure = std::string(at) + ": " + bad;
+      st.last_seen = std::string(at) + ": " + bad;
+    }
+  }
+}
+
+std::vector<std::string> ExpectationChecker::finish() const {
+  std::vector<std::string> out;
+  const double rate = samples_ > 1 && last_s_ > first_s_ ? static_cast<double>(samples_ - 1) / (last_s_ - first_s_) : 0.0;
+  for (std::size_t i = 0; i < e_.size(); ++i) {
+    const Expectation& e = e_[i];
+    const State& st = state_[i];
+    const std::string head = e.where + " " + e.text + ": ";
+    if (e.kind == Expectation::Kind::count) {
+      const double n = static_cast<double>(samples_);
+      if (n < e.lo || n > e.hi) out.push_back(head + std::to_string(samples_) + " samples");
+    } else if (e.kind == Expectation::Kind::rate) {
+      if (rate < e.lo || rate > e.hi) out.push_back(head + num(rate) + " Hz over " + std::to_string(samples_) + " samples");
+    } else if (st.in_window == 0) {
+      out.push_back(head + "no sample in " + window_text(e.from_s, e.to_s) +
+                    (e.test == Expectation::Test::near && !ref_ ? " (none from ref)" : ""));
+    } else if (e.when == Expectation::When::always && st.failed > 0) {
+      out.push_back(head + st.first_failure +
+                    (st.failed > 1 ? " (" + std::to_string(st.failed) + " of " + std::to_string(st.in_window) + " samples failed)" : ""));
+    } else if (e.when == Expectation::When::eventually && !st.held) {
+      out.push_back(head + "never held over " + std::to_string(st.in_window) + " samples; the last, " + st.last_seen);
+    }
+  }
+  return out;
+}
+
+}  // namespace brickyard::testing

@@ -1,0 +1,69 @@
+#pragma once
+// What testing.expect checks on a stream of any message type, decoded by its IDL: each
+// expectation a field (by path), a predicate and a time window, or the stream's count or rate;
+// every failed one reported at the end, each with its field, sample and time (issue 21,
+// docs/testing.md). Framework-free: unit tests feed it decoded samples directly.
+#include "cdr/cdr_json.hpp"
+#include "cdr/field_path.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <cstdint>
+#include <limits>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace brickyard::testing {
+
+struct Expectation {
+  enum class Kind { count, rate, field } kind = Kind::field;
+  enum class Test { range, equals, increasing, nondecreasing, near } test = Test::range;
+  enum class When { always, eventually } when = When::always;
+  std::string where;                     // "/3": its place in the parameter
+  std::string text;                      // what it asks, as said in a report
+  std::vector<cdr::FieldPath> fields;    // one; several (a point) for near
+  std::vector<cdr::FieldPath> ref_fields;
+  double lo = -std::numeric_limits<double>::infinity(), hi = std::numeric_limits<double>::infinity();
+  nlohmann::json equals;
+  double tolerance = 0, within = 0;
+  double from_s = -std::numeric_limits<double>::infinity(), to_s = std::numeric_limits<double>::infinity();
+};
+
+// Reads the "expect" parameter, each path checked against the types: throws std::invalid_argument
+// "/2/field: poses[0].q: no member 'q' in Pose2D (members: x, y, yaw)". `ref` null: no ref wired.
+std::vector<Expectation> parse_expectations(const nlohmann::json& spec, const cdr::CdrJson& idl, const std::string& type,
+                                            const cdr::CdrJson* ref_idl, const std::string& ref_type);
+
+class ExpectationChecker {
+ public:
+  explicit ExpectationChecker(std::vector<Expectation> e);
+  // The newest sample of the reference wire (for near): kept until the next.
+  void reference(const nlohmann::json& sample) { ref_ = sample; }
+  // One sample of the stream under test, at t_s on the run's clock.
+  void observe(double t_s, const nlohmann::json& sample);
+  // Every expectation that failed, in order, each one line: "/2 poses[*].x within [0, 100]:
+  // sample 17 at 3.250 s: poses[4].x = 101.2 (and 3 more samples)".
+  std::vector<std::string> finish() const;
+
+  std::uint64_t samples() const { return samples_; }
+  std::uint64_t field_checks() const { return checks_; }
+  std::size_t size() const { return e_.size(); }
+
+ private:
+  struct State {
+    std::uint64_t in_window = 0, failed = 0;
+    bool held = false;
+    std::string first_failure, last_seen;
+    std::optional<double> previous;
+  };
+  bool check(const Expectation& e, State& st, double t_s, const nlohmann::json& sample);
+  std::vector<Expectation> e_;
+  std::vector<State> state_;
+  std::optional<nlohmann::json> ref_;
+  std::uint64_t samples_ = 0, checks_ = 0;
+  double first_s_ = 0, last_s_ = 0;
+  std::vector<cdr::FieldValue> values_, ref_values_;
+};
+
+}  // namespace brickyard::testing

@@ -1,0 +1,107 @@
+// testing.expect: checks fields of any message type, decoded by the wire's IDL — ranges, values,
+// order, "always" and "eventually" within time windows, the stream's count and rate, and
+// nearness to a second wire ("ref") — and reports every expectation that failed at the end of the
+// run (exit 1), each with its field, sample and time. docs/testing.md.
+#include <brickyard/plugin.hpp>
+
+#include "expectations.hpp"
+
+#include <memory>
+#include <optional>
+
+namespace {
+
+using namespace brickyard;
+
+struct Settings {
+  std::string expect = "[]";
+  std::int64_t finish_after = 0;
+};
+
+ParamBinding<Settings> bindings() {
+  ParamBinding<Settings> b;
+  b.bind_json("expect", &Settings::expect)
+      .doc("the expectations: [{\"field\": \"poses[*].x\", \"range\": [-10, 10]}, {\"count\": [5, 100]}, ...] (docs/testing.md)");
+  b.bind("finish_after", &Settings::finish_after).range(0, 1e9).doc("end the run, successfully, after this many samples (0: never)");
+  return b;
+}
+
+class Expect : public Plugin {
+ public:
+  static Manifest manifest() {
+    return Manifest("testing.expect", "1.0.0")
+        .describe("Checks fields of any message type by path (range, equals, order, near a second wire; always or "
+                  "eventually in a time window; count, rate) and reports every failed expectation at the end")
+        .input_any("in", "the stream under test: any message type", true, 1024)
+        .input_any("ref", "a second stream to compare with (near): its newest sample", false, 64)
+        .parameters(bindings())
+        .on_input("in");
+  }
+
+  void configure(Context& ctx) override {
+    const Settings s = bindings().read(ctx.params());
+    finish_after_ = s.finish_after;
+    in_ = ctx.input_any("in");
+    ref_ = ctx.input_any("ref");
+    try {
+      idl_.emplace(in_.idl() ? in_.idl() : "");
+      if (ref_.connected() && ref_.idl()) ref_idl_.emplace(ref_.idl());
+      checker_.emplace(testing::parse_expectations(nlohmann::json::parse(s.expect), *idl_, in_.type_name(),
+                                                   ref_idl_ ? &*ref_idl_ : nullptr, ref_.type_name()));
+    } catch (const std::invalid_argument& e) {
+      throw BadInput("parameter 'expect' " + std::string(e.what()) + " (" + in_.type_name() + ")");
+    } catch (const nlohmann::json::exception& e) {
+      throw BadInput(std::string("parameter 'expect': ") + e.what());
+    }
+  }
+
+  void step(Context& ctx) override { read(ctx); }
+
+  void deactivate(Context& ctx) override {
+    read(ctx);
+    const auto failed = checker_->finish();
+    ctx.metric("samples", static_cast<double>(checker_->samples()));
+    ctx.metric("field_checks", static_cast<double>(checker_->field_checks()));
+    ctx.metric("expectations", static_cast<double>(checker_->size()));
+    ctx.metric("failed", static_cast<double>(failed.size() + decode_errors_.size()));
+    std::vector<std::string> all = decode_errors_;
+    all.insert(all.end(), failed.begin(), failed.end());
+    for (std::size_t i = 0; i < all.size(); ++i) {
+      ctx.log(LogLevel::error, "expectation failed: " + all[i]);
+      ctx.metric("failure_" + std::to_string(i), all[i]);
+    }
+    if (!all.empty())
+      ctx.fail(std::to_string(all.size()) + " of " + std::to_string(checker_->size()) + " expectations failed" +
+               (all.size() > 1 ? " (each above); the first: " : ": ") + all[0]);
+  }
+
+ private:
+  void read(Context& ctx) {
+    for (const auto& r : ref_.take()) {
+      try {
+        checker_->reference(ref_idl_->decode(ref_.type_name(), r->cdr.data(), r->cdr.size()));
+      } catch (const std::exception& e) {
+        if (decode_errors_.size() < 8) decode_errors_.push_back("ref: a sample does not decode: " + std::string(e.what()));
+      }
+    }
+    for (const auto& m : in_.take()) {
+      try {
+        checker_->observe(ctx.now_s(), idl_->decode(in_.type_name(), m->cdr.data(), m->cdr.size()));
+      } catch (const std::exception& e) {
+        if (decode_errors_.size() < 8) decode_errors_.push_back("in: a sample does not decode: " + std::string(e.what()));
+      }
+      if (finish_after_ > 0 && checker_->samples() == static_cast<std::uint64_t>(finish_after_))
+        ctx.finish("received " + std::to_string(finish_after_) + " samples");
+    }
+  }
+
+  std::int64_t finish_after_ = 0;
+  AnyInput in_, ref_;
+  std::optional<cdr::CdrJson> idl_, ref_idl_;
+  std::optional<testing::ExpectationChecker> checker_;
+  std::vector<std::string> decode_errors_;
+};
+
+}  // namespace
+
+BRICKYARD_PLUGINS(Expect)

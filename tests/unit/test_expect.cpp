@@ -1,0 +1,127 @@
+// testing.expect's parts (issue 21): field paths checked against a type's IDL, and the checker
+// fed decoded samples directly.
+#include "cdr/cdr_json.hpp"
+#include "cdr/field_path.hpp"
+#include "expect/expectations.hpp"
+#include "record/recorder.hpp"  // idl_text, omgidl_schema: the IDL texts the build carries
+
+#include <gtest/gtest.h>
+
+using brickyard::cdr::CdrJson;
+using brickyard::cdr::FieldPath;
+using brickyard::cdr::parse_field_path;
+using namespace brickyard::testing;
+using nlohmann::json;
+
+namespace {
+
+const std::string kPath = "brickyard::msgs::Path";
+
+const CdrJson& path_idl() {
+  static const CdrJson idl(brickyard::fw::omgidl_schema(brickyard::fw::idl_text(kPath)));
+  return idl;
+}
+
+std::string path_error(const std::string& text) {
+  try {
+    path_idl().field_kind(kPath, parse_field_path(text));
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return {};
+}
+
+// A Path as CdrJson decodes it: n poses along x, speeds 10, 11, ...
+json path_sample(int n, std::int64_t stamp_ns = 0) {
+  json j = {{"header", {{"stamp_ns", stamp_ns}, {"seq", 0}, {"frame_id", "map"}}}, {"poses", json::array()},
+            {"curvature", json::array()}, {"speed", json::array()}, {"s", json::array()}};
+  for (int i = 0; i < n; ++i) {
+    j["poses"].push_back({{"x", 1.0 * i}, {"y", 0.0}, {"yaw", 0.0}});
+    j["speed"].push_back(10.0 + i);
+    j["s"].push_back(1.0 * i);
+    j["curvature"].push_back(0.0);
+  }
+  return j;
+}
+
+std::vector<Expectation> parse(const std::string& text, bool with_ref = false) {
+  return parse_expectations(json::parse(text), path_idl(), kPath, with_ref ? &path_idl() : nullptr, kPath);
+}
+
+std::string parse_error(const std::string& text, bool with_ref = false) {
+  try {
+    parse(text, with_ref);
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return {};
+}
+
+}  // namespace
+
+TEST(FieldPath, PathsAreCheckedAgainstTheType) {
+  EXPECT_EQ(path_idl().field_kind(kPath, parse_field_path("poses[*].x")), "number");
+  EXPECT_EQ(path_idl().field_kind(kPath, parse_field_path("header.frame_id")), "string");
+  EXPECT_EQ(path_idl().field_kind(kPath, parse_field_path("poses")), "sequence");
+  EXPECT_EQ(path_idl().field_kind(kPath, parse_field_path("poses[2]")), "struct");
+  EXPECT_EQ(path_error("poses[*].q"), "poses[*].q: no member 'q' in Pose2D (members: x, y, yaw)");
+  EXPECT_EQ(path_error("posez"), "posez: no member 'posez' in Path (members: header, poses, curvature, speed, s)");
+  EXPECT_EQ(path_error("header[0]"), "header[0]: 'header' is not a sequence or an array; it takes no index");
+  EXPECT_EQ(path_error("speed.x"), "speed.x: 'speed' has no members");
+  EXPECT_THROW(parse_field_path("poses[x]"), std::invalid_argument);
+  EXPECT_THROW(parse_field_path("poses..x"), std::invalid_argument);
+  EXPECT_THROW(parse_field_path("poses."), std::invalid_argument);
+  EXPECT_THROW(parse_field_path(std::string(300, 'a')), std::invalid_argument);
+}
+
+TEST(FieldPath, ValuesAreFoundAndMissingOnesNamed) {
+  const json j = path_sample(3);
+  std::vector<brickyard::cdr::FieldValue> v;
+  std::string missing;
+  brickyard::cdr::field_values(j, parse_field_path("poses[*].x"), v, missing);
+  ASSERT_EQ(v.size(), 3u);
+  EXPECT_EQ(*v[2].value, 2.0);
+  EXPECT_EQ(brickyard::cdr::concrete(parse_field_path("poses[*].x"), v[2].every), "poses[2].x");
+  v.clear();
+  brickyard::cdr::field_values(j, parse_field_path("poses[5].x"), v, missing);
+  EXPECT_TRUE(v.empty());
+  EXPECT_EQ(missing, "poses[5].x");
+}
+
+TEST(Expect, BadExpectationsAreNamedByTheirPointer) {
+  EXPECT_EQ(parse_error("[]"), ": no expectation (a check that checks nothing cannot fail)");
+  EXPECT_EQ(parse_error(R"([{"field": "poses[*].q", "range": [0, 1]}])"), "/0/field: poses[*].q: no member 'q' in Pose2D (members: x, y, yaw)");
+  EXPECT_EQ(parse_error(R"([{"count": [1, 2]}, {"field": "header.frame_id", "range": [0, 1]}])"),
+            "/1/range: header.frame_id is a string, not a number");
+  EXPECT_EQ(parse_error(R"([{"field": "speed[0]", "range": [2, 1]}])"), "/0/range: expected finite low <= high, found [2,1]");
+  EXPECT_EQ(parse_error(R"([{"field": "speed[0]"}])"), "/0: needs exactly one of range, equals, increasing, nondecreasing, near");
+  EXPECT_EQ(parse_error(R"([{"field": "speed[0]", "equals": "fast"}])"), "/0/equals: speed[0] is a number; found \"fast\"");
+  EXPECT_EQ(parse_error(R"([{"field": "poses[0].x", "near": {"field": "poses[0].x", "within": 1}}])"),
+            "/0/near: compares with the input 'ref', which is not wired");
+  EXPECT_EQ(parse_error(R"([{"field": "poses[*].x", "near": {"field": "poses[0].x", "within": 1}}])", true),
+            "/0/near: poses[*].x: one value each, no [*]");
+  EXPECT_NE(parse_error(R"([{"field": "speed[0]", "range": [0, 1], "sometimes": true}])").find("/0/sometimes: unknown"), std::string::npos);
+}
+
+TEST(Expect, EveryFailedExpectationIsReportedWithItsSampleAndTime) {
+  ExpectationChecker c(parse(R"([
+    {"count": [1, 2]},
+    {"field": "speed[*]", "range": [10, 12]},
+    {"field": "header.stamp_ns", "increasing": true},
+    {"field": "s[*]", "increasing": true},
+    {"field": "poses[4].x", "equals": 4, "eventually": [0.5, 2]},
+    {"field": "header.frame_id", "equals": "map", "always": [0, 10]},
+    {"field": "speed[0]", "range": [0, 100], "always": [50, 60]}
+  ])"));
+  c.observe(0.0, path_sample(3, 100));
+  c.observe(1.0, path_sample(5, 200));
+  c.observe(2.0, path_sample(4, 200));
+  const auto f = c.finish();
+  ASSERT_EQ(f.size(), 4u);  // /3 and /5 held, /4 held at 1 s
+  EXPECT_EQ(f[0], "/0 count within [1, 2]: 3 samples");
+  EXPECT_EQ(f[1], "/1 speed[*] within [10, 12], always in the whole run: sample 1 at 1.000 s: speed[3] = 13 (2 of 3 samples failed)");
+  EXPECT_EQ(f[2], "/2 header.stamp_ns sample to sample increasing, always in the whole run: sample 2 at 2.000 s: header.stamp_ns = 200");
+  EXPECT_EQ(f[3], "/6 speed[0] within [0, 100], always in [50 s, 60 s]: no sample in [50 s, 60 s]");
+  EXPECT_EQ(c.samples(), 3u);
+  EXPECT_GT(c.field_checks(), 20u);
+}
