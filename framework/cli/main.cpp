@@ -640,6 +640,8 @@ int run_graph(const Args& a, GraphDecl g, bool validate_only) {
     }
     fs::remove(dir / "report.html", ec);
     fs::remove(dir / "summary.json", ec);
+    // An earlier run here that was killed left its recording unclosed, under its temporary name.
+    for (const char* end : {"", "-wal", "-shm"}) fs::remove(dir / (std::string(kOutRecording) + ".part" + end), ec);
   }
   if (record_out && a.record.empty()) {
     opt.record = (fs::path(a.out) / kOutRecording).string();

@@ -17,6 +17,8 @@
 #include <stdexcept>
 
 #include <fcntl.h>
+#include <stdio.h>  // renameat2
+#include <sys/stat.h>
 #include <unistd.h>
 
 namespace brickyard::fw {
@@ -63,7 +65,12 @@ std::string omgidl_schema(const std::string& idl) {
   return out;
 }
 
-bool is_sqlite_recording(const std::string& path) { return std::filesystem::path(path).extension() == ".db3"; }
+// FILE.db3, or FILE.db3.part (a recording not closed: a killed run's).
+bool is_sqlite_recording(const std::string& path) {
+  std::filesystem::path p(path);
+  if (p.extension() == ".part") p = p.stem();
+  return p.extension() == ".db3";
+}
 
 bool topic_selected(const std::string& topic, const std::vector<std::string>& patterns) {
   // '*' matches any run of characters. Greedy with one backtrack point, the last star: at most
@@ -89,24 +96,33 @@ struct Recorder::Topic {
   std::uint16_t channel = 0, schema = 0;  // MCAP
 };
 
-Recorder::Recorder(const std::string& path, const std::string& compression) : path_(path) {
-  if (!is_sqlite_recording(path)) {
-    mcap::WriterOptions o;
-    if (!mcap::parse_compression(compression, o.compression))
-      throw std::runtime_error(path + ": compression '" + compression + "' is none of zstd, lz4, none");
-    mcap_ = std::make_unique<mcap::Writer>(path, o);
-    return;
-  }
-  // Created exclusively: two runs given the same FILE cannot both pass an exists() check.
-  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0644);
+Recorder::Recorder(const std::string& path, const std::string& compression) : path_(path), part_(path + ".part") {
+  struct stat st {};
+  if (::lstat(path.c_str(), &st) == 0) throw std::runtime_error(path + ": exists; a recording is never overwritten");
+  // Written as PATH.part, created exclusively (two runs given the same FILE cannot both pass an
+  // exists() check), and renamed PATH when closed: a file at PATH is a whole recording.
+  const int fd = ::open(part_.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0644);
   if (fd < 0) {
-    if (errno == EEXIST) throw std::runtime_error(path + ": exists; a recording is never overwritten");
-    throw std::runtime_error(path + ": cannot create (" + std::strerror(errno) + ")");
+    if (errno == EEXIST)
+      throw std::runtime_error(part_ + ": exists: a run recording into " + path + " is under way, or was killed (what it "
+                               "recorded is in that file: brickyard bag info " + part_ + "); move it away");
+    throw std::runtime_error(path + ": cannot create " + part_ + " (" + std::strerror(errno) + ")");
   }
   ::close(fd);
-  if (sqlite3_open_v2(path.c_str(), &db_, SQLITE_OPEN_READWRITE, nullptr) != SQLITE_OK) {
+  if (!is_sqlite_recording(path)) {
+    mcap::WriterOptions o;
+    if (!mcap::parse_compression(compression, o.compression)) {
+      ::unlink(part_.c_str());
+      throw std::runtime_error(path + ": compression '" + compression + "' is none of zstd, lz4, none");
+    }
+    ::unlink(part_.c_str());  // the MCAP writer makes it, exclusively, itself
+    mcap_ = std::make_unique<mcap::Writer>(part_, o);
+    return;
+  }
+  if (sqlite3_open_v2(part_.c_str(), &db_, SQLITE_OPEN_READWRITE, nullptr) != SQLITE_OK) {
     sqlite3_close(db_);
     db_ = nullptr;
+    ::unlink(part_.c_str());
     throw std::runtime_error(path + ": cannot open as a database");
   }
   try {
@@ -115,6 +131,7 @@ Recorder::Recorder(const std::string& path, const std::string& compression) : pa
     sqlite3_finalize(insert_);
     sqlite3_close(db_);
     db_ = nullptr;
+    for (const char* end : {"", "-wal", "-shm"}) ::unlink((part_ + end).c_str());
     throw;
   }
 }
@@ -277,12 +294,27 @@ void Recorder::flush_batch(std::int64_t stamp_ns) {
   }
 }
 
+// The closed recording takes its name; never over a file that appeared there meanwhile.
+void Recorder::publish() {
+  if (published_) return;
+  published_ = true;
+  if (failed_) return;  // a write failed: not whole, left as PATH.part (the run failed naming it)
+  if (::renameat2(AT_FDCWD, part_.c_str(), AT_FDCWD, path_.c_str(), RENAME_NOREPLACE) != 0)
+    throw std::runtime_error(path_ + ": the recording cannot take its name (" + std::strerror(errno) + "); it is kept as " + part_);
+}
+
 void Recorder::close() {
   std::lock_guard<std::mutex> l(m_);
   if (mcap_) {
     if (!metadata_.empty()) mcap_->add_metadata("brickyard", {metadata_.begin(), metadata_.end()}), metadata_.clear();
     auto w = std::move(mcap_);
-    w->close();
+    try {
+      w->close();
+    } catch (const std::exception& e) {
+      published_ = true;  // not whole: left as PATH.part
+      throw std::runtime_error(std::string(e.what()) + "; what was recorded is kept as " + part_);
+    }
+    publish();
     return;
   }
   if (!db_) return;
@@ -301,7 +333,11 @@ void Recorder::close() {
   run("PRAGMA journal_mode=DELETE");  // one self-contained file
   sqlite3_close_v2(db_);
   db_ = nullptr;
-  if (!error.empty()) throw std::runtime_error(path_ + ": recording: " + error);
+  if (!error.empty()) {
+    published_ = true;  // not whole: left as PATH.part
+    throw std::runtime_error(path_ + ": recording: " + error + "; what was recorded is kept as " + part_);
+  }
+  publish();
 }
 
 }  // namespace brickyard::fw

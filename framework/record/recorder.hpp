@@ -31,10 +31,11 @@ class Recorder {
   int add_topic(const std::string& name, const std::string& type);
   // One sample, serialized as on the wire (SampleSerializer), at the run's clock. Thread-safe.
   void write(int topic, std::int64_t stamp_ns, const unsigned char* cdr, std::size_t size);
-  // Commits and closes; the file is complete only after this.
+  // Commits and closes, then renames PATH.part to PATH: a file at PATH is a whole recording.
   void close();
 
   const std::string& path() const { return path_; }
+  const std::string& part() const { return part_; }
   std::uint64_t messages() const { return messages_; }
   std::uint64_t bytes() const { return bytes_; }
 
@@ -44,7 +45,9 @@ class Recorder {
   void flush_batch(std::int64_t stamp_ns);  // commits (SQLite) or writes the chunk (MCAP) once a second
   void exec(const char* sql);
   [[noreturn]] void fail(const std::string& what);
-  std::string path_;
+  void publish();
+  std::string path_, part_;  // the recording's name, and the name it is written under until closed
+  bool published_ = false;
   sqlite3* db_ = nullptr;
   std::unique_ptr<mcap::Writer> mcap_;
   std::vector<std::pair<std::string, std::string>> metadata_;  // MCAP: written with the first topic

@@ -27,7 +27,9 @@ for clock in sim real; do
     [ $rc -eq 1 ] || { cat "$dir.log"; echo "FAIL: $clock/$mode: exit $rc, expected 1"; exit 1; }
     grep -qF "$want" "$dir.log" || { cat "$dir.log"; echo "FAIL: $clock/$mode: stderr lacks: $want"; exit 1; }
     grep -qF "$want" "$dir/summary.json" || { cat "$dir/summary.json"; echo "FAIL: $clock/$mode: the summary lacks the reason"; exit 1; }
-    # What was published up to a second before the fault is in the recording.
+    # What was published up to a second before the fault is in the recording, under its name
+    # (written as .part, renamed by the crash handler too).
+    [ ! -e "$out/$clock-$mode.mcap.part" ] || { echo "FAIL: $clock/$mode: the recording was left as .part"; exit 1; }
     "$by" bag info "$out/$clock-$mode.mcap" --json > "$dir.info.json" 2> /dev/null
     python3 - "$dir.info.json" "$clock" "$mode" <<'PY' || exit 1
 import json, sys

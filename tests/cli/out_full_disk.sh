@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # `brickyard run --out DIR` onto a full disk (issue 20): exit 1 naming the file that could not be
-# written, and nothing half-written left behind — no `.part`, a summary.json whole (it parses) or
-# absent. The disk is a 192 KiB tmpfs mounted in a mount namespace of the test's own (unshare -m,
-# or -rm as a user); exit 77 (skipped) where the platform allows neither.
+# written, and nothing half-written left behind — a summary.json whole (it parses) or absent, the
+# recording cut short kept as recording.mcap.part, never under its own name. The disk is a
+# 192 KiB tmpfs mounted in a mount namespace of the test's own (unshare -m, or -rm as a user);
+# exit 77 (skipped) where the platform allows neither.
 set -u
 by=$(realpath "$1"); graph=$(realpath "$2"); domain=$3; out=$4
 if [ "${BY_MOUNT_NS:-0}" != 1 ]; then
@@ -21,7 +22,9 @@ cat "$out/run.log"
 grep -q "$out/disk/run/[a-z.]*[: ].*No space left on device\|$out/disk/run/[a-z.]*: .*database or disk is full" "$out/run.log" \
   || fail "the message names no file under --out with the disk full"
 ls -la "$out/disk/run"
-[ -z "$(find "$out/disk" -name '*.part')" ] || fail "a .part file was left"
+# The recording cut short by the full disk is kept under its temporary name, never as a whole one.
+[ ! -e "$out/disk/run/recording.mcap" ] || fail "a recording cut short took the name of a whole one"
+[ -z "$(find "$out/disk" -name '*.part' ! -name 'recording.mcap.part')" ] || fail "a .part file other than the recording's was left"
 if [ -e "$out/disk/run/summary.json" ]; then
   python3 -c 'import json,sys; json.load(open(sys.argv[1]))' "$out/disk/run/summary.json" || fail "a half-written summary.json"
 fi
