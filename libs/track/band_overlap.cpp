@@ -31,9 +31,10 @@ bool proper_cross(Vec a, Vec b, Vec c, Vec d) {
 
 }  // namespace
 
-std::optional<BandOverlap> find_band_overlap(const CenterLine& c) {
+BandCheck check_band(const CenterLine& c) {
+  BandCheck out;
   const std::size_t n = c.x.size();
-  if (n < 4) return std::nullopt;
+  if (n < 4) return out;
   auto p = [&](std::size_t i) { return Vec{c.x[i % n], c.y[i % n]}; };
   std::vector<double> arc(n + 1, 0.0);
   double max_w = 0;
@@ -63,7 +64,13 @@ std::optional<BandOverlap> find_band_overlap(const CenterLine& c) {
     const auto& w = left ? c.width_left : c.width_right;
     return (1 - t) * w[i % n] + t * w[(i + 1) % n];
   };
-  std::optional<BandOverlap> worst;
+  // Every pair of stretches near each other, first; then the crossings among them, then the rest
+  // away from the bridges.
+  struct Near {
+    std::size_t i, j;
+    double ti, tj, d, wi, wj, si, sj, angle_deg;
+  };
+  std::vector<Near> near;
   std::vector<std::uint32_t> seen;
   for (std::size_t i = 0; i < n; ++i) {
     seen.clear();
@@ -81,7 +88,7 @@ std::optional<BandOverlap> find_band_overlap(const CenterLine& c) {
       const Vec e = p(j), f = p(j + 1);
       // The two nearest points of the segments: on a crossing, the crossing; else an end of one
       // and its nearest point on the other.
-      double ti = 0, tj = 0, d = 0;
+      double ti = 0, tj = 0, d = 0, angle = 0;
       if (proper_cross(a, b, e, f)) {
         const double den = cross(b - a, f - e);
         ti = cross(e - a, f - e) / den;
@@ -99,19 +106,57 @@ std::optional<BandOverlap> find_band_overlap(const CenterLine& c) {
         consider(nearest_t(a, b, f), 1);
       }
       const Vec qi{a.x + ti * (b.x - a.x), a.y + ti * (b.y - a.y)}, qj{e.x + tj * (f.x - e.x), e.y + tj * (f.y - e.y)};
-      // Each stretch's width on the side that faces the other.
-      const double wi = width_at(i, ti, cross(b - a, qj - qi) > 0), wj = width_at(j, tj, cross(f - e, qi - qj) > 0);
-      const double along = std::abs((arc[j] + tj * (arc[j + 1] - arc[j])) - (arc[i] + ti * (arc[i + 1] - arc[i])));
-      const double apart = std::min(along, loop - along);
-      const bool crossing = d == 0;
-      if (!crossing && (apart <= 3 * (wi + wj) || d >= wi + wj)) continue;
-      if (!worst || d - (wi + wj) < worst->distance_m - worst->widths_m) {
-        worst = BandOverlap{ti < 0.5 ? i : (i + 1) % n, tj < 0.5 ? j : (j + 1) % n, d, wi + wj};
-        if (crossing) return worst;
+      // Each stretch's width on the side that faces the other (at a crossing, or where one
+      // passes through a point of the other, the wider side).
+      const bool crossing = d < 1e-9;
+      if (crossing) {
+        d = 0;
+        const Vec u = b - a, v = f - e;
+        angle = std::acos(std::min(1.0, std::abs(dot(u, v)) / (std::hypot(u.x, u.y) * std::hypot(v.x, v.y)))) * 180 / M_PI;
       }
+      const double wi = crossing ? std::max(width_at(i, ti, true), width_at(i, ti, false)) : width_at(i, ti, cross(b - a, qj - qi) > 0);
+      const double wj = crossing ? std::max(width_at(j, tj, true), width_at(j, tj, false)) : width_at(j, tj, cross(f - e, qi - qj) > 0);
+      if (!crossing && d >= wi + wj) continue;
+      near.push_back({i, j, ti, tj, d, wi, wj, arc[i] + ti * (arc[i + 1] - arc[i]), arc[j] + tj * (arc[j + 1] - arc[j]), angle});
     }
   }
-  return worst;
+  auto loop_gap = [&](double s1, double s2) {
+    const double g = std::abs(s1 - s2);
+    return std::min(g, loop - g);
+  };
+  auto as_overlap = [&](const Near& x) {
+    return BandOverlap{x.ti < 0.5 ? x.i : (x.i + 1) % n, x.tj < 0.5 ? x.j : (x.j + 1) % n, x.d, x.wi + x.wj, x.angle_deg};
+  };
+  std::vector<Near> bridges;
+  for (const Near& x : near) {
+    if (x.d != 0) continue;
+    if (x.angle_deg >= kBridgeMinAngleDeg) {
+      bool same = false;  // a crossing through a point of the line is found once per segment there
+      for (const Near& br : bridges)
+        same = same || (loop_gap(x.si, br.si) <= br.wi + br.wj && loop_gap(x.sj, br.sj) <= br.wi + br.wj) ||
+               (loop_gap(x.si, br.sj) <= br.wi + br.wj && loop_gap(x.sj, br.si) <= br.wi + br.wj);
+      if (same) continue;
+      bridges.push_back(x);
+      out.bridges.push_back(as_overlap(x));
+    } else if (!out.overlap) {
+      out.overlap = as_overlap(x);  // two stretches merged at a shallow angle: no bridge
+    }
+  }
+  if (out.overlap) return out;
+  for (const Near& x : near) {
+    if (x.d == 0 || loop_gap(x.si, x.sj) <= 3 * (x.wi + x.wj)) continue;
+    // Around a bridge the two roads' bands overlap: as far along each road as the other's band
+    // reaches at that angle, and a band's width more.
+    bool at_bridge = false;
+    for (const Near& br : bridges) {
+      const double reach = 2 * (br.wi + br.wj) / std::sin(br.angle_deg * M_PI / 180) + std::max(br.wi, br.wj);
+      at_bridge = at_bridge || (loop_gap(x.si, br.si) <= reach && loop_gap(x.sj, br.sj) <= reach) ||
+                  (loop_gap(x.si, br.sj) <= reach && loop_gap(x.sj, br.si) <= reach);
+    }
+    if (at_bridge) continue;
+    if (!out.overlap || x.d - (x.wi + x.wj) < out.overlap->distance_m - out.overlap->widths_m) out.overlap = as_overlap(x);
+  }
+  return out;
 }
 
 }  // namespace brickyard::track

@@ -90,18 +90,29 @@ CenterLine parse(std::istream& in, const std::string& name, std::size_t fields) 
     throw TrackFileError(name + ": not a closed loop: its last point (line " + std::to_string(lines.back()) + ") is " +
                          std::to_string(static_cast<int>(std::hypot(c.x.back() - c.x[0], c.y.back() - c.y[0]))) +
                          " m from its first (at most " + std::to_string(static_cast<int>(kMaxStep_m)) + " m)");
-  // A track's band does not run over itself.
-  if (fields == 4)
-    if (const auto o = find_band_overlap(c)) {
-      char what[160];
+  // A track's band does not run over itself; a bridge (a steep crossing) is read, and said.
+  if (fields == 4) {
+    const BandCheck band = check_band(c);
+    if (const auto& o = band.overlap) {
+      char what[200];
       if (o->distance_m == 0)
-        std::snprintf(what, sizeof what, "its centre line crosses itself between lines %d and %d", lines[o->a], lines[o->b]);
+        std::snprintf(what, sizeof what,
+                      "its centre line crosses itself between lines %d and %d at %.0f degrees: two stretches over each "
+                      "other, not a bridge (one of at least %.0f degrees)",
+                      lines[o->a], lines[o->b], o->angle_deg, kBridgeMinAngleDeg);
       else
         std::snprintf(what, sizeof what,
                       "the track runs over itself: near lines %d and %d two stretches are %.2f m apart centre to "
                       "centre, less than their facing widths together (%.2f m)", lines[o->a], lines[o->b], o->distance_m, o->widths_m);
       throw TrackFileError(name + ": " + what);
     }
+    for (const auto& b : band.bridges) {
+      char what[160];
+      std::snprintf(what, sizeof what, "the track crosses itself between lines %d and %d at %.0f degrees: a bridge", lines[b.a],
+                    lines[b.b], b.angle_deg);
+      c.notes.push_back(name + ": " + what);
+    }
+  }
   return c;
 }
 

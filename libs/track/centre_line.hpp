@@ -15,6 +15,8 @@ struct CenterLine {
   // A fifth column, when the file has one: the road's bank angle across the centre line, degrees,
   // positive raising the left edge (a mapped track carries its own: docs/mapping.md). Empty: none.
   std::vector<double> bank_deg;
+  // What a reader should say about the file (a bridge where the track crosses itself).
+  std::vector<std::string> notes;
 };
 
 // A problem with a track file; what() starts with "<file>:<line>:".

@@ -75,6 +75,7 @@ class TrackFileMap : public Plugin {
     } catch (const track::TrackFileError& e) {
       throw BadInput(std::string("track file ") + e.what());
     }
+    for (const auto& note : g.line.notes) ctx.log(LogLevel::info, note);  // a bridge
     const vehicle::Vehicle car = plugins::read_vehicle(ctx, s.vehicle);
     if (const std::string where = narrower_than(g.line, 2 * car.half_width); !where.empty()) {
       char width[32];

@@ -124,6 +124,7 @@ int line_cmd(std::map<std::string, std::string> o) {
   if (!(mp.curvature_slack >= 0)) throw Usage("--curvature-slack " + slack_text + ": must be >= 0");
   no_leftovers(o);
   const track::CenterLine c = track::load_centerline_csv(track);
+  for (const auto& note : c.notes) std::fprintf(stderr, "note: %s\n", note.c_str());  // a bridge
   const ClosedLine line{c.x, c.y, c.width_left, c.width_right};
   const auto t0 = std::chrono::steady_clock::now();
   MinCurvatureResult r = min_curvature_line(line, p);

@@ -95,6 +95,7 @@ class World : public Plugin {
     } catch (const TrackFileError& e) {
       throw BadInput(std::string("track file ") + e.what());
     }
+    for (const auto& note : w.line.notes) ctx.log(LogLevel::info, note);  // a bridge
     w.name = s.name.empty() ? std::filesystem::path(path).stem().string() : s.name;
     try {
       w.bank = bank_profile(w.line, s.bank);
