@@ -171,7 +171,9 @@ Args parse_args(int argc, char** argv) {
     else if (f == "--arg") a.args.push_back(value());
     else if (f == "--seed") {
       std::string s = value();
-      if (s.empty() || s.find_first_not_of("0123456789") != std::string::npos) usage_error("--seed " + s, "expected a non-negative integer");
+      // Up to 19 digits: every such number fits the 64-bit seed (stoull would throw on more).
+      if (s.empty() || s.size() > 19 || s.find_first_not_of("0123456789") != std::string::npos)
+        usage_error("--seed " + (s.size() > 40 ? s.substr(0, 40) + "…" : s), "expected a non-negative integer of at most 19 digits");
       a.seed = std::stoull(s);
     } else if (f == "--out") a.out = value();
     else if (f == "--process") a.process = value();

@@ -12,6 +12,8 @@
 #include <mutex>
 #include <vector>
 
+namespace eprosima::fastdds::dds { class TopicDataType; }
+
 namespace brickyard::fw {
 
 class InputQueue final : public detail::InputChannel {
@@ -132,12 +134,21 @@ class OutputPort final : public detail::OutputChannel {
   OutputPort(std::string name, std::string type) : name_(std::move(name)), type_(std::move(type)) {}
   const std::string& name() const { return name_; }
   const std::string& type_name() const override { return type_; }
+  // An output of any type (Manifest::output_any): its readers' type, that type's IDL, and the
+  // decoding of what the plugin publishes (a SerializedSample) into a sample of it.
+  const std::string& wire_type() const override { return any_ ? wire_type_ : type_; }
+  const char* wire_idl() const override { return wire_idl_.empty() ? nullptr : wire_idl_.c_str(); }
+  void make_any(std::string type, std::string idl);
 
   void publish(std::shared_ptr<const void> s) override {
     if (!s) return;
     if (t_deferred) {  // stepped ahead of its turn: delivered at the turn
       t_deferred->emplace_back([this, s = std::move(s)]() mutable { publish(std::move(s)); });
       return;
+    }
+    if (any_) {  // the plugin's CDR, decoded once it is delivered
+      if (wire_type_.empty()) return;  // it feeds nothing
+      s = decode_any(*static_cast<const SerializedSample*>(s.get()));
     }
     ++published_;
     if (tap) tap(s.get());  // the recorder, before anyone downstream runs
@@ -151,6 +162,10 @@ class OutputPort final : public detail::OutputChannel {
   std::function<void(const void*)> tap;  // set by the executive when this port is recorded
 
  private:
+  std::shared_ptr<const void> decode_any(const SerializedSample& s);
+  bool any_ = false;
+  std::string wire_type_, wire_idl_;
+  std::shared_ptr<eprosima::fastdds::dds::TopicDataType> support_;
   std::string name_, type_;
   std::atomic<std::uint64_t> published_{0};
 };

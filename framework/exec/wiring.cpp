@@ -45,17 +45,26 @@ void Executive::build() {
         n->inputs.push_back(std::make_unique<InputQueue>(p.name, p.type_name, p.depth, wired.count(p.name) > 0));
         n->inputs.back()->clock = [this] { return now_ns(); };
       } else {
-        n->outputs.push_back(std::make_unique<OutputPort>(p.name, p.type_name));
-        n->outputs.back()->writer = transport_->make_writer(topic_name(n->name, p.name), p.type_name);
         const std::string topic = n->name + "." + p.name;
-        const bool skip = std::find(opt_.record_skip_types.begin(), opt_.record_skip_types.end(), p.type_name) != opt_.record_skip_types.end();
+        n->outputs.push_back(std::make_unique<OutputPort>(p.name, p.type_name));
+        // An output of any type sends its readers' type: the plugin's CDR decoded for them here.
+        std::string type = p.type_name;
+        if (is_any_message_type(type)) {
+          const auto t = graph_.output_types.find(topic);
+          type = t == graph_.output_types.end() ? std::string() : t->second;
+          const char* idl = type.empty() ? nullptr : idl_text(type);
+          n->outputs.back()->make_any(type, idl ? omgidl_schema(idl) : std::string());
+        }
+        if (!type.empty()) {  // (an output of any type that feeds nothing has no writer, nothing to record)
+        n->outputs.back()->writer = transport_->make_writer(topic_name(n->name, p.name), type);
+        const bool skip = std::find(opt_.record_skip_types.begin(), opt_.record_skip_types.end(), type) != opt_.record_skip_types.end();
         const int rec = recorder_ && !skip && (opt_.record_only.empty() || topic_selected(topic, opt_.record_only))
-                            ? recorder_->add_topic(topic, p.type_name)
+                            ? recorder_->add_topic(topic, type)
                             : 0;
-        const long live = live_ ? static_cast<long>(live_->add_channel(topic, "cdr", p.type_name, "omgidl",
-                                                                         omgidl_schema(idl_text(p.type_name) ? idl_text(p.type_name) : "")))
+        const long live = live_ ? static_cast<long>(live_->add_channel(topic, "cdr", type, "omgidl",
+                                                                         omgidl_schema(idl_text(type) ? idl_text(type) : "")))
                                 : -1;
-        auto scene = scene_ ? scene_->handler(topic, p.type_name) : std::function<void(const void*, std::uint64_t)>();
+        auto scene = scene_ ? scene_->handler(topic, type) : std::function<void(const void*, std::uint64_t)>();
         if (rec || live >= 0) {
           // Serialized once for both; live only while a client is subscribed. A failed write
           // stops the run; it must not unwind through the publishing plugin.
@@ -64,7 +73,7 @@ void Executive::build() {
             SampleSerializer serializer;
             std::mutex m;
           };
-          auto tap = std::make_shared<Tap>(p.type_name);
+          auto tap = std::make_shared<Tap>(type);
           n->outputs.back()->tap = [this, rec, live, tap, scene](const void* m) {
             const bool to_live = live >= 0 && live_->wanted(static_cast<std::uint32_t>(live));
             if (!rec && !to_live && !scene) return;
@@ -85,6 +94,7 @@ void Executive::build() {
               request_stop(RunResult::failed, e.what());
             }
           };
+        }
         }
       }
     }

@@ -2,6 +2,8 @@
 
 #include "graph/diagnostics.hpp"
 
+#include <brickyard/msgs/registry.hpp>
+
 #include <cmath>
 #include <map>
 #include <queue>
@@ -215,6 +217,28 @@ ResolvedGraph resolve_graph(const GraphDecl& g, const Registry& reg, const std::
     by_name.emplace(name, std::move(rn));
   }
 
+  // Outputs of any type whose type the graph names by the parameter the plugin gives for it
+  // (Manifest::output_any(port, doc, param)): typed ports from here on.
+  std::map<std::string, PortSpec> named_type;  // "node.port" -> the port as that type
+  for (const auto& [name, rn] : by_name)
+    for (const auto& p : rn.plugin->manifest.ports) {
+      if (p.direction != PortDirection::output || !is_any_message_type(p.type_name) || p.type_name.size() == 1) continue;
+      const std::string param = p.type_name.substr(1);
+      if (!rn.params.has(param)) continue;
+      const std::string type = rn.params.string(param);
+      if (type.empty()) continue;
+      const auto* entry = msgs::find_type(type.c_str());
+      if (!entry) {
+        err("/nodes/" + pointer_escape(name) + "/params/" + pointer_escape(param), "no message type \"" + type + "\" in this build");
+        continue;
+      }
+      PortSpec typed = p;
+      typed.type_name = type;
+      typed.type_hash = entry->hash;
+      named_type[name + "." + p.name] = typed;
+      rg.output_types[name + "." + p.name] = type;
+    }
+
   // Wires.
   std::map<std::string, std::string> writer_of;  // "node.port" input -> pointer of its wire
   std::map<std::string, std::set<std::string>> downstream_zero_delay;  // node -> data-triggered subscribers
@@ -235,6 +259,7 @@ ResolvedGraph resolve_graph(const GraphDecl& g, const Registry& reg, const std::
       if (rit == by_name.end()) { ok = false; continue; }  // its plugin is unknown: reported above
       const Manifest& m = rit->second.plugin->manifest;
       ports[k] = m.port(ends[k]->port);
+      if (const auto nt = named_type.find(ends[k]->text()); k == 0 && nt != named_type.end()) ports[k] = &nt->second;
       if (!ports[k]) {
         std::vector<std::string> names;
         for (const auto& p : m.ports)
@@ -254,7 +279,23 @@ ResolvedGraph resolve_graph(const GraphDecl& g, const Registry& reg, const std::
       ok = false;
     }
     if (!ok) continue;
-    const bool any = ports[1]->type_name == kAnyMessageType;  // an input that takes the wire's type
+    // A port of any type takes the type of the port at the wire's other end: an input, its
+    // writer's; an output, its readers' (one type for all of them).
+    const bool any_in = ports[1]->type_name == kAnyMessageType, any_out = is_any_message_type(ports[0]->type_name);
+    if (any_in && any_out) {
+      err(w.to_item.empty() ? ptr : w.to_ptr(), w.from.text() + " and " + w.to.text() + " both take any message type: nothing says which" +
+                                                     (ports[0]->type_name.size() > 1 ? " (set " + w.from.node + "'s parameter '" + ports[0]->type_name.substr(1) + "')" : ""));
+      continue;
+    }
+    if (any_out) {
+      auto [ot, fresh_type] = rg.output_types.emplace(w.from.text(), ports[1]->type_name);
+      if (!fresh_type && ot->second != ports[1]->type_name) {
+        err(w.to_item.empty() ? ptr : w.to_ptr(), "type mismatch: " + w.from.text() + " (any type) already feeds " + ot->second +
+                                                       ", " + w.to.text() + " takes " + ports[1]->type_name);
+        continue;
+      }
+    }
+    const bool any = any_in || any_out;
     if (!any && (ports[0]->type_name != ports[1]->type_name || ports[0]->type_hash != ports[1]->type_hash)) {
       err(w.to_item.empty() ? ptr : w.to_ptr(), "type mismatch: " + w.from.text() + " carries " + ports[0]->type_name + ", " + w.to.text() +
                    " takes " + ports[1]->type_name);
@@ -265,7 +306,7 @@ ResolvedGraph resolve_graph(const GraphDecl& g, const Registry& reg, const std::
       err(w.to_ptr(), "input \"" + w.to.text() + "\" already has a writer (" + it->second + "); an input takes one wire");
       continue;
     }
-    rg.wire_types[w.to.text()] = ports[0]->type_name;
+    rg.wire_types[w.to.text()] = any_out ? ports[1]->type_name : ports[0]->type_name;
     downstream[w.from.node].insert(w.to.node);
     if (by_name.at(w.to.node).trigger_inputs.count(w.to.port))
       downstream_zero_delay[w.from.node].insert(w.to.node);

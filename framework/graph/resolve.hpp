@@ -26,6 +26,7 @@ struct ResolvedGraph {
   std::set<std::string> processes;
   std::vector<std::string> notices;       // said before the run (not with --quiet): params a plugin swap left out
   std::map<std::string, std::string> wire_types;  // "node.input" -> the type its writer sends, every process's
+  std::map<std::string, std::string> output_types;  // "node.output" of any type -> the type its readers take
 
   const ResolvedNode* node(const std::string& name) const;
 };

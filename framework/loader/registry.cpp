@@ -50,8 +50,15 @@ std::vector<std::string> check_manifest(const Manifest& m) {
   for (const auto& port : m.ports) {
     if (!is_identifier(port.name)) p.push_back(who + ": port name '" + port.name + "' is not an identifier");
     if (!ports.insert(port.name).second) p.push_back(who + ": port '" + port.name + "' declared twice");
-    const bool any = port.type_name == kAnyMessageType;  // an input of any type (Manifest::input_any)
-    if (any && port.direction != PortDirection::input) p.push_back(who + ": output '" + port.name + "' of any type: an output has one");
+    // A port of any type (Manifest::input_any: "*"; output_any: "*" or "*PARAM", PARAM a string parameter).
+    const bool any = is_any_message_type(port.type_name);
+    if (any && port.direction == PortDirection::input && port.type_name != kAnyMessageType)
+      p.push_back(who + ": input '" + port.name + "' of type " + port.type_name + ": an input of any type is \"*\"");
+    if (any && port.type_name.size() > 1) {
+      const ParamSpec* ps = m.param_spec(port.type_name.substr(1));
+      if (!ps || ps->type != ParamType::string)
+        p.push_back(who + ": output '" + port.name + "' takes its type from parameter '" + port.type_name.substr(1) + "', which is not a string parameter");
+    }
     const auto* t = any ? nullptr : msgs::find_type(port.type_name.c_str());
     if (any) {
     } else if (!t) p.push_back(who + ": port '" + port.name + "' uses unknown message type " + port.type_name);

@@ -1,6 +1,7 @@
 #include "cdr/cdr_json.hpp"
 
 #include <cctype>
+#include <cmath>
 #include <cstring>
 #include <functional>
 #include <memory>
@@ -239,6 +240,112 @@ nlohmann::json CdrJson::decode(const std::string& type, const unsigned char* dat
     return nullptr;
   };
   return object(bare(type));
+}
+
+namespace {
+
+// Writing CDR: little-endian, each primitive aligned to its size from the end of the header.
+struct Writer {
+  std::vector<unsigned char> out{0, 1, 0, 0};
+  void align(std::size_t k) {
+    while ((out.size() - 4) % k) out.push_back(0);
+  }
+  template <typename T>
+  void num(T v) {
+    align(sizeof(T));
+    unsigned char b[sizeof(T)];
+    std::memcpy(b, &v, sizeof(T));
+    out.insert(out.end(), b, b + sizeof(T));  // this host is little-endian (x86-64, arm64)
+  }
+};
+
+}  // namespace
+
+std::vector<unsigned char> CdrJson::encode(const std::string& type, const nlohmann::json& sample) const {
+  Writer w;
+  int depth = 0;
+  auto bad = [](const std::string& where, const std::string& what, const nlohmann::json* v) {
+    throw std::invalid_argument((where.empty() ? "/" : where) + ": " + what + (v ? ", found " + v->dump().substr(0, 60) : ""));
+  };
+  std::function<void(const Type&, const nlohmann::json*, const std::string&)> value;
+  std::function<void(const std::string&, const nlohmann::json*, const std::string&)> object =
+      [&](const std::string& name, const nlohmann::json* v, const std::string& where) {
+        if (++depth > 64) bad(where, "structs nested more than 64 deep", nullptr);
+        const auto it = structs_.find(name);
+        if (it == structs_.end()) throw std::invalid_argument("no struct '" + name + "' in the IDL");
+        if (v && !v->is_object()) bad(where, "expected an object (" + name + ")", v);
+        if (v)
+          for (const auto& [key, x] : v->items()) {
+            bool known = false;
+            for (const Member& m : *it->second) known = known || m.name == key;
+            if (!known) {
+              std::string have;
+              for (const Member& m : *it->second) have += (have.empty() ? "" : ", ") + m.name;
+              bad(where + "/" + key, "no member '" + key + "' in " + name + " (members: " + have + ")", nullptr);
+            }
+          }
+        for (const Member& m : *it->second) {
+          const nlohmann::json* x = v && v->contains(m.name) ? &(*v)[m.name] : nullptr;
+          value(m.type, x, where + "/" + m.name);
+        }
+        --depth;
+      };
+  value = [&](const Type& ty, const nlohmann::json* v, const std::string& where) {
+    switch (ty.kind) {
+      case Type::Primitive: {
+        const std::string& n = ty.name;
+        if (n == "boolean") {
+          if (v && !v->is_boolean()) bad(where, "expected true or false", v);
+          return w.num<std::uint8_t>(v && v->get<bool>() ? 1 : 0);
+        }
+        if (v && !v->is_number()) bad(where, "expected a number", v);
+        const double d = v ? v->get<double>() : 0.0;
+        if (n == "double") return w.num<double>(d);
+        if (n == "float") return w.num<float>(static_cast<float>(d));
+        // Integers: whole, and within the type's range (int64 and uint64 from JSON's integers).
+        auto whole = [&](double lo, double hi) {
+          if (v && !(v->is_number_integer() || (d == std::floor(d) && d >= lo && d <= hi))) bad(where, "expected a whole number", v);
+          if (d < lo || d > hi) bad(where, "out of " + n + "'s range", v);
+        };
+        if (n == "int64") {
+          if (v && !v->is_number_integer()) bad(where, "expected an integer", v);
+          return w.num<std::int64_t>(v ? v->get<std::int64_t>() : 0);
+        }
+        if (n == "uint64") {
+          if (v && !v->is_number_unsigned() && !(v->is_number_integer() && v->get<std::int64_t>() >= 0)) bad(where, "expected an integer >= 0", v);
+          return w.num<std::uint64_t>(v ? v->get<std::uint64_t>() : 0);
+        }
+        if (n == "int8") return whole(-128, 127), w.num<std::int8_t>(static_cast<std::int8_t>(d));
+        if (n == "uint8" || n == "octet" || n == "char") return whole(0, 255), w.num<std::uint8_t>(static_cast<std::uint8_t>(d));
+        if (n == "int16" || n == "short") return whole(-32768, 32767), w.num<std::int16_t>(static_cast<std::int16_t>(d));
+        if (n == "uint16") return whole(0, 65535), w.num<std::uint16_t>(static_cast<std::uint16_t>(d));
+        if (n == "int32" || n == "long") return whole(-2147483648.0, 2147483647.0), w.num<std::int32_t>(static_cast<std::int32_t>(d));
+        return whole(0, 4294967295.0), w.num<std::uint32_t>(static_cast<std::uint32_t>(d));
+      }
+      case Type::String: {
+        if (v && !v->is_string()) bad(where, "expected a string", v);
+        const std::string text = v ? v->get<std::string>() : std::string();
+        w.num<std::uint32_t>(static_cast<std::uint32_t>(text.size() + 1));
+        w.out.insert(w.out.end(), text.begin(), text.end());
+        w.out.push_back(0);
+        return;
+      }
+      case Type::Struct:
+        return object(ty.name, v, where);
+      case Type::Sequence:
+      case Type::Array: {
+        if (v && !v->is_array()) bad(where, "expected a list", v);
+        const std::size_t count = v ? v->size() : 0;
+        if (ty.kind == Type::Array && v && count != ty.size) bad(where, "expected " + std::to_string(ty.size) + " elements", v);
+        if (ty.kind == Type::Sequence) w.num<std::uint32_t>(static_cast<std::uint32_t>(count));
+        const std::size_t n = ty.kind == Type::Array ? ty.size : count;
+        for (std::size_t k = 0; k < n; ++k) value(*ty.of, v ? &(*v)[k] : nullptr, where + "/" + std::to_string(k));
+        return;
+      }
+    }
+  };
+  object(bare(type), &sample, "");
+  return w.out;
 }
 
 std::string CdrJson::field_kind(const std::string& type, const FieldPath& path) const {

@@ -24,6 +24,13 @@ class CdrJson {
   // std::runtime_error naming the byte offset when the bytes do not fit the type.
   nlohmann::json decode(const std::string& type, const unsigned char* data, std::size_t size) const;
 
+  // The other way: a sample of `type` from JSON, as CDR (XCDR1, little-endian, its encapsulation
+  // header first) that Fast DDS's type support reads. A member the JSON leaves out is zero (an
+  // empty string or sequence); one the type has not, a value of the wrong kind or out of its
+  // type's range is std::invalid_argument naming its JSON pointer ("/poses/3/x: expected a
+  // number, found \"a\"").
+  std::vector<unsigned char> encode(const std::string& type, const nlohmann::json& sample) const;
+
   // What a field path reaches in `type`: "number", "boolean", "string", "struct" or "sequence"
   // (what is left of an array or sequence the path does not index). Throws std::invalid_argument
   // naming the step the type does not have, and what it has there ("no member 'posez' in Path

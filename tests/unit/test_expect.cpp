@@ -125,3 +125,56 @@ TEST(Expect, EveryFailedExpectationIsReportedWithItsSampleAndTime) {
   EXPECT_EQ(c.samples(), 3u);
   EXPECT_GT(c.field_checks(), 20u);
 }
+
+// ---- testing.json_source: JSON encoded by the IDL, read back by Fast DDS's own type ----
+
+#include "json_source/json_samples.hpp"
+
+#include <brickyard/msgs/PathPubSubTypes.h>
+#include <fastdds/rtps/common/SerializedPayload.h>
+
+#include <cstring>
+
+TEST(JsonSource, AMessageFromJsonIsWhatFastDdsReads) {
+  const json msg = {{"header", {{"stamp_ns", 123}, {"frame_id", "map"}}},
+                    {"poses", {{{"x", 1.5}, {"y", -2}, {"yaw", 0.25}}, {{"x", 3}}}},
+                    {"speed", {10, 20.5}}};
+  const auto bytes = path_idl().encode(kPath, msg);
+  brickyard::msgs::PathPubSubType support;
+  eprosima::fastrtps::rtps::SerializedPayload_t payload(static_cast<std::uint32_t>(bytes.size()));
+  std::memcpy(payload.data, bytes.data(), bytes.size());
+  payload.length = static_cast<std::uint32_t>(bytes.size());
+  brickyard::msgs::Path p;
+  ASSERT_TRUE(support.deserialize(&payload, &p));
+  EXPECT_EQ(p.header().stamp_ns(), 123);
+  EXPECT_EQ(p.header().frame_id(), "map");
+  ASSERT_EQ(p.poses().size(), 2u);
+  EXPECT_EQ(p.poses()[0].y(), -2);
+  EXPECT_EQ(p.poses()[1].x(), 3);
+  EXPECT_EQ(p.poses()[1].yaw(), 0);  // left out: zero
+  EXPECT_EQ(p.speed(), (std::vector<double>{10, 20.5}));
+  EXPECT_TRUE(p.s().empty());
+  // And the IDL decoder reads back what was written.
+  EXPECT_EQ(path_idl().decode(kPath, bytes.data(), bytes.size())["poses"][0]["yaw"], 0.25);
+}
+
+TEST(JsonSource, BadSamplesAreNamedByTheirPointer) {
+  auto error = [](const std::string& text) {
+    try {
+      encode_script(json::parse(text), path_idl(), kPath);
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_EQ(error(R"([{"t": 0, "msg": {"poses": [{"x": "a"}]}}])"), "/0/msg/poses/0/x: expected a number, found \"a\"");
+  EXPECT_EQ(error(R"([{"t": 0, "msg": {}}, {"t": 1, "msg": {"posez": []}}])"),
+            "/1/msg/posez: no member 'posez' in Path (members: header, poses, curvature, speed, s)");
+  EXPECT_EQ(error(R"([{"t": 1, "msg": {}}, {"t": 0.5, "msg": {}}])"), "/1/t: 0.5 s is before the sample above it");
+  EXPECT_EQ(error(R"([{"t": 0, "msg": {"header": {"seq": -1}}}])"), "/0/msg/header/seq: out of uint32's range, found -1");
+  EXPECT_EQ(error(R"([{"t": 0}])"), "/0: expected {\"t\": SECONDS, \"msg\": {...}}");
+  EXPECT_EQ(error("[]"), ": expected a list of samples, [{\"t\": S, \"msg\": {...}}, ...]");
+  // A message with a header and no stamp is stamped with its time.
+  const auto s = encode_script(json::parse(R"([{"t": 0.25, "msg": {}}])"), path_idl(), kPath);
+  EXPECT_EQ(path_idl().decode(kPath, s[0].cdr.data(), s[0].cdr.size())["header"]["stamp_ns"], 250000000);
+}

@@ -6,7 +6,8 @@
 // 2.0: Manifest::constraints appended (its layout changed: 1.x plugins must be rebuilt).
 // 2.1: TriggerSpec::Kind::latency (Manifest::delivered_after).
 // 2.2: TriggerSpec::Kind::deadline (Manifest::step_deadline).
-// 2.3: inputs of any type (Manifest::input_any, Context::input_any, InputChannel::wire_type/idl).
+// 2.3: ports of any type (Manifest::input_any/output_any, Context::input_any/output_any,
+//      InputChannel and OutputChannel::wire_type/wire_idl).
 // 1.x history: 1.1 Context::find_file and BadInput; 1.2 Context::status.
 #define BRICKYARD_ABI_MAJOR 2u
 #define BRICKYARD_ABI_MINOR 3u

@@ -37,6 +37,10 @@ struct OutputChannel {
   virtual ~OutputChannel() = default;
   virtual const std::string& type_name() const = 0;
   virtual void publish(std::shared_ptr<const void> sample) = 0;
+  // ABI 2.3, appended: for an output of any type, the type of the inputs it feeds ("" when it
+  // feeds none) and that type's IDL text (null then).
+  virtual const std::string& wire_type() const { return type_name(); }
+  virtual const char* wire_idl() const { return nullptr; }
 };
 }  // namespace detail
 
@@ -99,6 +103,26 @@ class AnyInput {
   detail::InputChannel* ch_ = nullptr;
 };
 
+// An output of any type: samples published as CDR of the type its readers take.
+class AnyOutput {
+ public:
+  AnyOutput() = default;
+  explicit AnyOutput(detail::OutputChannel* c) : ch_(c) {}
+  // The type of the inputs it feeds; empty when it feeds none.
+  const std::string& type_name() const {
+    static const std::string none;
+    return ch_ ? ch_->wire_type() : none;
+  }
+  const char* idl() const { return ch_ ? ch_->wire_idl() : nullptr; }
+  // The host decodes it for the readers; bytes that are not a sample of the type fail the run.
+  void publish(SerializedSample sample) {
+    if (ch_) ch_->publish(std::make_shared<const SerializedSample>(std::move(sample)));
+  }
+
+ private:
+  detail::OutputChannel* ch_ = nullptr;
+};
+
 enum class LogLevel { debug, info, warn, error };
 
 // Throw from configure() when a parameter, or a file a parameter names, is wrong: the host stops
@@ -155,6 +179,12 @@ class Context {
     auto* c = input_channel(port);
     check_type(c->type_name(), kAnyMessageType, port);
     return AnyInput(c);
+  }
+  // An output declared with Manifest::output_any.
+  AnyOutput output_any(std::string_view port) {
+    auto* c = output_channel(port);
+    if (!is_any_message_type(c->type_name())) check_type(c->type_name(), kAnyMessageType, port);
+    return AnyOutput(c);
   }
   template <class T> Output<T> output(std::string_view port) {
     auto* c = output_channel(port);

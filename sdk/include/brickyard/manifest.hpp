@@ -129,6 +129,14 @@ struct Manifest {
     ports.push_back({std::move(port), PortDirection::input, kAnyMessageType, "", std::move(doc), required, depth});
     return *this;
   }
+  // An output of any message type: the type of the inputs it is wired to (all of one type), or
+  // the one a string parameter names (type_param, when the graph sets it: an output that feeds
+  // only inputs of any type). The plugin publishes CDR (Context::output_any); the host decodes it
+  // for typed readers. Declared as the type name "*" + type_param. (ABI 2.3)
+  Manifest& output_any(std::string port, std::string doc = {}, std::string type_param = {}) {
+    ports.push_back({std::move(port), PortDirection::output, kAnyMessageType + type_param, "", std::move(doc), false, 0});
+    return *this;
+  }
   template <class T>
   Manifest& output(std::string port, std::string doc = {}) {
     ports.push_back({std::move(port), PortDirection::output, message_traits<T>::name, message_traits<T>::hash,

@@ -1,0 +1,90 @@
+// testing.json_source: publishes samples of any message type written as JSON — inline or in a
+// file — each at its time, on the type of the input it is wired to: a planner, a controller or
+// the fusion tested without the simulator (docs/testing.md).
+#include <brickyard/plugin.hpp>
+
+#include "json_samples.hpp"
+
+#include <fstream>
+#include <optional>
+#include <sstream>
+
+namespace {
+
+using namespace brickyard;
+
+struct Settings {
+  std::string samples = "[]";
+  std::string file;
+  std::string type;
+  double rate_hz = 100;
+};
+
+ParamBinding<Settings> bindings() {
+  ParamBinding<Settings> b;
+  b.bind_json("samples", &Settings::samples).doc("[{\"t\": SECONDS, \"msg\": {...}}, ...]: each message as JSON, at its time");
+  b.bind("file", &Settings::file).doc("a JSON file of such samples instead (relative to the graph)");
+  b.bind("type", &Settings::type)
+      .doc("the message type (brickyard::msgs::VehicleState); empty: the type of the input it feeds. Needed when it feeds only "
+           "inputs of any type (a testing.expect's ref)");
+  b.bind("rate_hz", &Settings::rate_hz).in_unit("Hz").range(0.1, 10000).doc("how often due samples are sent");
+  return b;
+}
+
+class JsonSource : public Plugin {
+ public:
+  static Manifest manifest() {
+    return Manifest("testing.json_source", "1.0.0")
+        .describe("publishes samples of any message type written as JSON, each at its time, as the type of the input it feeds")
+        .output_any("out", "the samples: the type parameter's, or that of the input this is wired to", "type")
+        .parameters(bindings())
+        .periodic("rate_hz");
+  }
+
+  void configure(Context& ctx) override {
+    const Settings s = bindings().read(ctx.params());
+    out_ = ctx.output_any("out");
+    if (out_.type_name().empty()) throw BadInput("output 'out' feeds no input: it takes its readers' type, so it needs one");
+    const cdr::CdrJson idl(out_.idl() ? out_.idl() : "");
+    const bool inline_given = s.samples != "[]";
+    if (inline_given == !s.file.empty()) throw BadInput("parameter 'samples': give samples or file, one of them");
+    std::string where = "parameter 'samples' ";
+    nlohmann::json script;
+    try {
+      if (inline_given) {
+        script = nlohmann::json::parse(s.samples);
+      } else {
+        const std::string path = ctx.find_file(s.file);
+        where = "file " + path + ": ";
+        std::ifstream f(path);
+        std::stringstream text;
+        text << f.rdbuf();
+        if (!f) throw BadInput(where + "cannot be read");
+        script = nlohmann::json::parse(text.str());
+      }
+      samples_ = testing::encode_script(script, idl, out_.type_name());
+    } catch (const std::invalid_argument& e) {
+      throw BadInput(where + e.what() + " (" + out_.type_name() + ")");
+    } catch (const nlohmann::json::exception& e) {
+      throw BadInput(where + e.what());
+    }
+  }
+
+  void step(Context& ctx) override {
+    for (; next_ < samples_.size() && samples_[next_].t_ns <= ctx.now_ns(); ++next_) out_.publish(SerializedSample{samples_[next_].cdr});
+  }
+
+  void deactivate(Context& ctx) override {
+    ctx.metric("published", static_cast<double>(next_));
+    ctx.metric("left", static_cast<double>(samples_.size() - next_));
+  }
+
+ private:
+  AnyOutput out_;
+  std::vector<testing::ScriptedSample> samples_;
+  std::size_t next_ = 0;
+};
+
+}  // namespace
+
+BRICKYARD_PLUGINS(JsonSource)
