@@ -1,4 +1,4 @@
-// libFuzzer harness: CDR bytes decoded as each message type by its IDL (framework/record/
+// libFuzzer harness: CDR bytes decoded as each message type by its IDL (libs/cdr/
 // cdr_json), as `topic echo` and the recording tools decode samples (the IDL ordered as they order it). The first byte picks the
 // type. Bytes that do not fit must end in a runtime_error naming the offset.
 #include "cdr/cdr_json.hpp"
