@@ -3,6 +3,7 @@
 #include "band_overlap.hpp"
 #include "io/whole_file.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -90,6 +91,20 @@ CenterLine parse(std::istream& in, const std::string& name, std::size_t fields) 
     throw TrackFileError(name + ": not a closed loop: its last point (line " + std::to_string(lines.back()) + ") is " +
                          std::to_string(static_cast<int>(std::hypot(c.x.back() - c.x[0], c.y.back() - c.y[0]))) +
                          " m from its first (at most " + std::to_string(static_cast<int>(kMaxStep_m)) + " m)");
+  // Nor one whose ends are far apart for its spacing (a C, an open stretch): every track of the
+  // TUM database closes with a gap of its usual spacing (5 m); 4 times it, and at least 20 m.
+  if (fields == 4) {
+    std::vector<double> steps;
+    for (std::size_t i = 0; i + 1 < c.x.size(); ++i) steps.push_back(std::hypot(c.x[i + 1] - c.x[i], c.y[i + 1] - c.y[i]));
+    std::nth_element(steps.begin(), steps.begin() + steps.size() / 2, steps.end());
+    const double usual = steps[steps.size() / 2], gap = std::hypot(c.x.back() - c.x[0], c.y.back() - c.y[0]);
+    if (gap > std::max(4 * usual, 20.0)) {
+      char what[200];
+      std::snprintf(what, sizeof what, "not a closed loop: its last point (line %d) is %.1f m from its first, more than 4 times "
+                    "its points' usual spacing (%.1f m)", lines.back(), gap, usual);
+      throw TrackFileError(name + ": " + what);
+    }
+  }
   // A track's band does not run over itself; a bridge (a steep crossing) is read, and said.
   if (fields == 4) {
     const BandCheck band = check_band(c);

@@ -94,7 +94,8 @@ TEST(Expect, BadExpectationsAreNamedByTheirPointer) {
   EXPECT_EQ(parse_error(R"([{"count": [1, 2]}, {"field": "header.frame_id", "range": [0, 1]}])"),
             "/1/range: header.frame_id is a string, not a number");
   EXPECT_EQ(parse_error(R"([{"field": "speed[0]", "range": [2, 1]}])"), "/0/range: expected finite low <= high, found [2,1]");
-  EXPECT_EQ(parse_error(R"([{"field": "speed[0]"}])"), "/0: needs exactly one of range, equals, increasing, nondecreasing, near");
+  EXPECT_EQ(parse_error(R"([{"field": "speed[0]"}])"),
+            "/0: needs exactly one of range, equals, values, increasing, nondecreasing, decreasing, nonincreasing, near");
   EXPECT_EQ(parse_error(R"([{"field": "speed[0]", "equals": "fast"}])"), "/0/equals: speed[0] is a number; found \"fast\"");
   EXPECT_EQ(parse_error(R"([{"field": "poses[0].x", "near": {"field": "poses[0].x", "within": 1}}])"),
             "/0/near: compares with the input 'ref', which is not wired");
@@ -120,7 +121,7 @@ TEST(Expect, EveryFailedExpectationIsReportedWithItsSampleAndTime) {
   ASSERT_EQ(f.size(), 4u);  // /3 and /5 held, /4 held at 1 s
   EXPECT_EQ(f[0], "/0 count within [1, 2]: 3 samples");
   EXPECT_EQ(f[1], "/1 speed[*] within [10, 12], always in the whole run: sample 1 at 1.000 s: speed[3] = 13 (2 of 3 samples failed)");
-  EXPECT_EQ(f[2], "/2 header.stamp_ns sample to sample increasing, always in the whole run: sample 2 at 2.000 s: header.stamp_ns = 200");
+  EXPECT_EQ(f[2], "/2 header.stamp_ns sample to sample increasing, always in the whole run: sample 2 at 2.000 s: header.stamp_ns = 200 after 200");
   EXPECT_EQ(f[3], "/6 speed[0] within [0, 100], always in [50 s, 60 s]: no sample in [50 s, 60 s]");
   EXPECT_EQ(c.samples(), 3u);
   EXPECT_GT(c.field_checks(), 20u);
@@ -177,4 +178,27 @@ TEST(JsonSource, BadSamplesAreNamedByTheirPointer) {
   // A message with a header and no stamp is stamped with its time.
   const auto s = encode_script(json::parse(R"([{"t": 0.25, "msg": {}}])"), path_idl(), kPath);
   EXPECT_EQ(path_idl().decode(kPath, s[0].cdr.data(), s[0].cdr.size())["header"]["stamp_ns"], 250000000);
+}
+
+TEST(Expect, ValuesOrderAndAge) {
+  const std::string scalar = "brickyard::msgs::Scalar";
+  const CdrJson idl(brickyard::fw::omgidl_schema(brickyard::fw::idl_text(scalar)));
+  auto sample = [](double v, double stamp_s) { return json{{"header", {{"stamp_ns", std::llround(stamp_s * 1e9)}}}, {"value", v}}; };
+  ExpectationChecker c(parse_expectations(json::parse(R"([
+    {"field": "value", "values": [1, 3, 5]},
+    {"field": "value", "decreasing": true},
+    {"age_s": [0.1, 0.1]},
+    {"field": "value", "values": [1, 3, 5, 7, 9]}
+  ])"), idl, scalar, nullptr, ""));
+  c.observe(0.1, sample(1, 0.0));
+  c.observe(0.2, sample(3, 0.1));
+  c.observe(0.35, sample(4, 0.2));
+  const auto f = c.finish();
+  ASSERT_EQ(f.size(), 4u);
+  EXPECT_EQ(f[0], "/0 value of the first 3 samples [1,3,5], always in the whole run: sample 2 at 0.350 s: value = 4, expected 5");
+  EXPECT_EQ(f[1], "/1 value sample to sample decreasing, always in the whole run: sample 1 at 0.200 s: value = 3 after 1 (2 of 3 samples failed)");
+  EXPECT_EQ(f[2], "/2 age (arrival less header.stamp_ns) within [0.1, 0.1] s: sample 2 at 0.350000 s stamped 0.200000 s: 0.150000 s old");
+  EXPECT_EQ(f[3], "/3 value of the first 5 samples [1,3,5,7,9], always in the whole run: sample 2 at 0.350 s: value = 4, expected 5");
+  EXPECT_EQ(parse_error(R"([{"age_s": [0, 1]}])").find("/0/age_s"), std::string::npos);  // Path has a header: accepted
+  EXPECT_EQ(parse_error(R"([{"field": "speed[*]", "values": [1]}])"), "/0/values: speed[*]: one value a sample, no [*]");
 }

@@ -100,6 +100,14 @@ TEST(TrackFile, ValuesNoCircuitHasAreRefused) {
   EXPECT_EQ(error("0,0,7,7\n500,0,7,7\n50,50,7,7\n0,50,7,7\n"), "t.csv:2: 500 m from the point of line 1 (points at most 200 m apart)");
   EXPECT_EQ(error("0,0,7,7\n150,0,7,7\n300,0,7,7\n450,0,7,7\n"),
             "t.csv: not a closed loop: its last point (line 4) is 450 m from its first (at most 200 m)");
+  // A C: 5 m apart, and its ends 60 m apart.
+  std::string c_shape;
+  for (int i = 0; i <= 60; ++i) {
+    const double a = M_PI / 2 + 1.6 * M_PI * i / 60;
+    c_shape += std::to_string(100 * std::cos(a)) + "," + std::to_string(100 * std::sin(a)) + ",6,6\n";
+  }
+  EXPECT_NE(error(c_shape).find("t.csv: not a closed loop: its last point (line 61) is "), std::string::npos) << error(c_shape);
+  EXPECT_NE(error(c_shape).find("more than 4 times its points' usual spacing (8.4 m)"), std::string::npos) << error(c_shape);
 }
 
 // A track whose band runs over itself is refused naming two lines where it does (issue 20: figure

@@ -71,8 +71,9 @@ std::vector<Expectation> parse_expectations(const json& spec, const cdr::CdrJson
   if (!spec.is_array()) throw std::invalid_argument(": expected a list of expectations, found " + spec.dump().substr(0, 80));
   if (spec.empty()) throw std::invalid_argument(": no expectation (a check that checks nothing cannot fail)");
   if (spec.size() > 10000) throw std::invalid_argument(": more than 10000 expectations");
-  static const std::set<std::string> known = {"field", "range", "equals", "tolerance", "increasing", "nondecreasing", "near",
-                                              "always", "eventually", "count", "rate_hz"};
+  static const std::set<std::string> known = {"field", "range", "equals", "values", "tolerance", "increasing", "nondecreasing",
+                                              "decreasing", "nonincreasing", "near", "always", "eventually", "count", "rate_hz",
+                                              "age_s"};
   std::vector<Expectation> out;
   for (std::size_t k = 0; k < spec.size(); ++k) {
     const json& x = spec[k];
@@ -83,20 +84,32 @@ std::vector<Expectation> parse_expectations(const json& spec, const cdr::CdrJson
     for (const auto& [key, v] : x.items())
       if (!known.count(key))
         throw std::invalid_argument(w + "/" + key + ": unknown; an expectation takes field with one of range, equals "
-                                    "(tolerance), increasing, nondecreasing, near, and always or eventually; or count, rate_hz");
-    if (x.contains("count") || x.contains("rate_hz")) {
-      const bool count = x.contains("count");
-      if (x.size() != 1) throw std::invalid_argument(w + ": count and rate_hz stand alone");
-      e.kind = count ? Expectation::Kind::count : Expectation::Kind::rate;
-      std::tie(e.lo, e.hi) = pair_of(x.at(count ? "count" : "rate_hz"), w + (count ? "/count" : "/rate_hz"));
-      e.text = std::string(count ? "count" : "rate") + " within [" + num(e.lo) + ", " + num(e.hi) + "]" + (count ? "" : " Hz");
+                                    "(tolerance), values (tolerance), increasing, nondecreasing, decreasing, nonincreasing, near, "
+                                    "and always or eventually; or count, rate_hz, age_s");
+    if (x.contains("count") || x.contains("rate_hz") || x.contains("age_s")) {
+      const char* key = x.contains("count") ? "count" : x.contains("rate_hz") ? "rate_hz" : "age_s";
+      if (x.size() != 1) throw std::invalid_argument(w + ": count, rate_hz and age_s stand alone");
+      e.kind = x.contains("count") ? Expectation::Kind::count : x.contains("rate_hz") ? Expectation::Kind::rate : Expectation::Kind::age;
+      std::tie(e.lo, e.hi) = pair_of(x.at(key), w + "/" + key);
+      if (e.kind == Expectation::Kind::age) {
+        std::string kind;
+        try {
+          kind = idl.field_kind(type, cdr::parse_field_path("header.stamp_ns"));
+        } catch (const std::invalid_argument&) {
+        }
+        if (kind != "number") throw std::invalid_argument(w + "/age_s: " + type + " has no header.stamp_ns to age from");
+      }
+      e.text = e.kind == Expectation::Kind::count ? "count within [" + num(e.lo) + ", " + num(e.hi) + "]"
+               : e.kind == Expectation::Kind::rate ? "rate within [" + num(e.lo) + ", " + num(e.hi) + "] Hz"
+                                                    : "age (arrival less header.stamp_ns) within [" + num(e.lo) + ", " + num(e.hi) + "] s";
       out.push_back(std::move(e));
       continue;
     }
-    if (!x.contains("field")) throw std::invalid_argument(w + ": needs field (or count, rate_hz)");
+    if (!x.contains("field")) throw std::invalid_argument(w + ": needs field (or count, rate_hz, age_s)");
     int tests = 0;
-    for (const char* t : {"range", "equals", "increasing", "nondecreasing", "near"}) tests += x.contains(t);
-    if (tests != 1) throw std::invalid_argument(w + ": needs exactly one of range, equals, increasing, nondecreasing, near");
+    for (const char* t : {"range", "equals", "values", "increasing", "nondecreasing", "decreasing", "nonincreasing", "near"}) tests += x.contains(t);
+    if (tests != 1)
+      throw std::invalid_argument(w + ": needs exactly one of range, equals, values, increasing, nondecreasing, decreasing, nonincreasing, near");
     std::vector<std::string> kinds;
     e.fields = paths(x["field"], w + "/field", idl, type, x.contains("near"), &kinds);
     const std::string& f = e.fields[0].text;
@@ -122,11 +135,30 @@ std::vector<Expectation> parse_expectations(const json& spec, const cdr::CdrJson
         e.tolerance = x["tolerance"].get<double>();
       }
       e.text = f + " equals " + show(e.equals) + (e.tolerance > 0 ? " within " + num(e.tolerance) : "");
-    } else if (x.contains("increasing") || x.contains("nondecreasing")) {
-      const char* key = x.contains("increasing") ? "increasing" : "nondecreasing";
+    } else if (x.contains("values")) {
+      e.test = Expectation::Test::values;
+      e.equals = x["values"];
+      if (has_every(e.fields[0])) throw std::invalid_argument(w + "/values: " + f + ": one value a sample, no [*]");
+      if (!e.equals.is_array() || e.equals.empty() || e.equals.size() > 100000)
+        throw std::invalid_argument(w + "/values: expected a list of the first samples' values");
+      for (std::size_t i = 0; i < e.equals.size(); ++i) {
+        const json& v = e.equals[i];
+        const std::string want = v.is_number() ? "number" : v.is_string() ? "string" : v.is_boolean() ? "boolean" : "?";
+        if (want != kinds[0]) throw std::invalid_argument(w + "/values/" + std::to_string(i) + ": " + f + " is a " + kinds[0] + "; found " + v.dump().substr(0, 80));
+      }
+      if (x.contains("tolerance")) {
+        if (!x["tolerance"].is_number() || !(x["tolerance"].get<double>() >= 0) || kinds[0] != "number")
+          throw std::invalid_argument(w + "/tolerance: expected a number >= 0, for a number");
+        e.tolerance = x["tolerance"].get<double>();
+      }
+      e.text = f + " of the first " + std::to_string(e.equals.size()) + " samples " + e.equals.dump().substr(0, 60);
+    } else if (x.contains("increasing") || x.contains("nondecreasing") || x.contains("decreasing") || x.contains("nonincreasing")) {
+      const char* key = x.contains("increasing") ? "increasing" : x.contains("nondecreasing") ? "nondecreasing" : x.contains("decreasing") ? "decreasing" : "nonincreasing";
       need_numbers(key);
       if (x[key] != true) throw std::invalid_argument(w + "/" + key + ": expected true");
-      e.test = x.contains("increasing") ? Expectation::Test::increasing : Expectation::Test::nondecreasing;
+      const std::string k = key;
+      e.test = k == "increasing" ? Expectation::Test::increasing : k == "nondecreasing" ? Expectation::Test::nondecreasing
+               : k == "decreasing" ? Expectation::Test::decreasing : Expectation::Test::nonincreasing;
       e.text = f + (has_every(e.fields[0]) ? " along each sample " : " sample to sample ") + key;
     } else {
       need_numbers("near");
@@ -165,10 +197,41 @@ std::vector<Expectation> parse_expectations(const json& spec, const cdr::CdrJson
 
 ExpectationChecker::ExpectationChecker(std::vector<Expectation> e) : e_(std::move(e)), state_(e_.size()) {}
 
+void ExpectationChecker::feed(double t_s, const unsigned char* bytes, std::size_t size) {
+  auto add = [&](const unsigned char* p, std::size_t n) {
+    for (std::size_t i = 0; i < n; ++i) hash_ = (hash_ ^ p[i]) * 1099511628211ull;
+  };
+  add(reinterpret_cast<const unsigned char*>(&t_s), sizeof t_s);
+  add(bytes, size);
+}
+
+std::string ExpectationChecker::digest() const {
+  char b[17];
+  std::snprintf(b, sizeof b, "%016llx", static_cast<unsigned long long>(hash_));
+  return b;
+}
+
 void ExpectationChecker::observe(double t_s, const json& sample) {
   if (samples_ == 0) first_s_ = t_s;
   last_s_ = t_s;
   const std::uint64_t index = samples_++;
+  // Ages: the arrival less the sample's own stamp.
+  for (std::size_t i = 0; i < e_.size(); ++i) {
+    const Expectation& e = e_[i];
+    if (e.kind != Expectation::Kind::age) continue;
+    State& st = state_[i];
+    ++st.in_window;
+    const json* stamp = sample.contains("header") ? &sample["header"] : nullptr;
+    stamp = stamp && stamp->is_object() && stamp->contains("stamp_ns") ? &(*stamp)["stamp_ns"] : nullptr;
+    if (!stamp || !stamp->is_number()) continue;
+    ++checks_;
+    const double age = t_s - stamp->get<double>() * 1e-9;
+    if (age >= e.lo - 1e-9 && age <= e.hi + 1e-9) continue;
+    char at[160];
+    std::snprintf(at, sizeof at, "sample %llu at %.6f s stamped %.6f s: %.6f s old", static_cast<unsigned long long>(index), t_s,
+                  stamp->get<double>() * 1e-9, age);
+    if (st.failed++ == 0) st.first_failure = at;
+  }
   for (std::size_t i = 0; i < e_.size(); ++i) {
     const Expectation& e = e_[i];
     State& st = state_[i];
@@ -214,9 +277,22 @@ void ExpectationChecker::observe(double t_s, const json& sample) {
           case Expectation::Test::equals:
             ok = v.is_number() ? std::abs(v.get<double>() - e.equals.get<double>()) <= e.tolerance : v == e.equals;
             break;
-          default: {  // increasing, nondecreasing
+          case Expectation::Test::values: {  // the k-th sample in the window, against the k-th value
+            const std::uint64_t k = st.in_window - 1;
+            if (k >= e.equals.size()) break;
+            const json& want = e.equals[k];
+            ok = v.is_number() ? std::abs(v.get<double>() - want.get<double>()) <= e.tolerance : v == want;
+            if (!ok) bad = cdr::concrete(e.fields[0], fv.every) + " = " + show(v) + ", expected " + show(want);
+            break;
+          }
+          default: {  // increasing, nondecreasing, decreasing, nonincreasing
             const double d = v.get<double>();
-            if (prev) ok = e.test == Expectation::Test::increasing ? d > *prev : d >= *prev;
+            if (prev)
+              ok = e.test == Expectation::Test::increasing      ? d > *prev
+                   : e.test == Expectation::Test::nondecreasing ? d >= *prev
+                   : e.test == Expectation::Test::decreasing    ? d < *prev
+                                                                : d <= *prev;
+            if (!ok && bad.empty()) bad = cdr::concrete(e.fields[0], fv.every) + " = " + show(v) + " after " + num(*prev);
             prev = d;
             if (!along) st.previous = d;
           }
@@ -247,6 +323,11 @@ std::vector<std::string> ExpectationChecker::finish() const {
       if (n < e.lo || n > e.hi) out.push_back(head + std::to_string(samples_) + " samples");
     } else if (e.kind == Expectation::Kind::rate) {
       if (rate < e.lo || rate > e.hi) out.push_back(head + num(rate) + " Hz over " + std::to_string(samples_) + " samples");
+    } else if (e.kind == Expectation::Kind::age) {
+      if (st.failed > 0)
+        out.push_back(head + st.first_failure + (st.failed > 1 ? " (" + std::to_string(st.failed) + " of " + std::to_string(st.in_window) + " samples)" : ""));
+    } else if (e.test == Expectation::Test::values && st.in_window < e.equals.size() && st.failed == 0) {
+      out.push_back(head + "only " + std::to_string(st.in_window) + " samples");
     } else if (st.in_window == 0) {
       out.push_back(head + "no sample in " + window_text(e.from_s, e.to_s) +
                     (e.test == Expectation::Test::near && !ref_ ? " (none from ref)" : ""));

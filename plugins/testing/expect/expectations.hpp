@@ -17,15 +17,15 @@
 namespace brickyard::testing {
 
 struct Expectation {
-  enum class Kind { count, rate, field } kind = Kind::field;
-  enum class Test { range, equals, increasing, nondecreasing, near } test = Test::range;
+  enum class Kind { count, rate, age, field } kind = Kind::field;
+  enum class Test { range, equals, values, increasing, nondecreasing, decreasing, nonincreasing, near } test = Test::range;
   enum class When { always, eventually } when = When::always;
   std::string where;                     // "/3": its place in the parameter
   std::string text;                      // what it asks, as said in a report
   std::vector<cdr::FieldPath> fields;    // one; several (a point) for near
   std::vector<cdr::FieldPath> ref_fields;
   double lo = -std::numeric_limits<double>::infinity(), hi = std::numeric_limits<double>::infinity();
-  nlohmann::json equals;
+  nlohmann::json equals;                 // equals: the value; values: the list
   double tolerance = 0, within = 0;
   double from_s = -std::numeric_limits<double>::infinity(), to_s = std::numeric_limits<double>::infinity();
 };
@@ -42,6 +42,9 @@ class ExpectationChecker {
   void reference(const nlohmann::json& sample) { ref_ = sample; }
   // One sample of the stream under test, at t_s on the run's clock.
   void observe(double t_s, const nlohmann::json& sample);
+  // A digest of every sample's time and bytes (FNV-1a), for determinism tests: feed() each one.
+  void feed(double t_s, const unsigned char* bytes, std::size_t size);
+  std::string digest() const;
   // Every expectation that failed, in order, each one line: "/2 poses[*].x within [0, 100]:
   // sample 17 at 3.250 s: poses[4].x = 101.2 (and 3 more samples)".
   std::vector<std::string> finish() const;
@@ -61,7 +64,7 @@ class ExpectationChecker {
   std::vector<Expectation> e_;
   std::vector<State> state_;
   std::optional<nlohmann::json> ref_;
-  std::uint64_t samples_ = 0, checks_ = 0;
+  std::uint64_t samples_ = 0, checks_ = 0, hash_ = 1469598103934665603ull;
   double first_s_ = 0, last_s_ = 0;
   std::vector<cdr::FieldValue> values_, ref_values_;
 };

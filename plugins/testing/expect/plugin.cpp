@@ -64,6 +64,7 @@ class Expect : public Plugin {
     ctx.metric("field_checks", static_cast<double>(checker_->field_checks()));
     ctx.metric("expectations", static_cast<double>(checker_->size()));
     ctx.metric("failed", static_cast<double>(failed.size() + decode_errors_.size()));
+    ctx.metric("digest", checker_->digest());  // every sample's time and bytes: the same run, the same digest
     std::vector<std::string> all = decode_errors_;
     all.insert(all.end(), failed.begin(), failed.end());
     for (std::size_t i = 0; i < all.size(); ++i) {
@@ -85,6 +86,7 @@ class Expect : public Plugin {
       }
     }
     for (const auto& m : in_.take()) {
+      checker_->feed(ctx.now_s(), m->cdr.data(), m->cdr.size());
       try {
         checker_->observe(ctx.now_s(), idl_->decode(in_.type_name(), m->cdr.data(), m->cdr.size()));
       } catch (const std::exception& e) {
