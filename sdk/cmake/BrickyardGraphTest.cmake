@@ -1,8 +1,11 @@
 # brickyard_add_graph_test(NAME <test> GRAPH <graph.json>
 #                          [EXPECT_EXIT <code>]       # default 0
 #                          [EXPECT_OUTPUT <regex>]    # CMake regular expression over stdout + stderr
+#                          [EXPECT_ABSENT <regex>]    # ... that the output must not match
 #                          [ARGS <arg>...]            # more `brickyard run` arguments: --set, --seed, --duration...
-#                          [PLUGIN_PATH <dir>...])    # default: the folder of every brickyard_add_plugin() target
+#                          [PLUGIN_PATH <dir>...]     # default: the folder of every brickyard_add_plugin() target
+#                          [LAUNCHER <cmd>...])       # a command the run is started through (a private network
+#                                                     # namespace, a timeout, valgrind)
 #
 # A CTest test that runs the host on a graph,
 #   brickyard run <graph> --plugin-path <dir>... <args>...
@@ -19,7 +22,7 @@ set(_BRICKYARD_RUN_GRAPH_SCRIPT "${CMAKE_CURRENT_LIST_DIR}/brickyard_run_graph.c
 set(BRICKYARD_GRAPH_TEST_ARGS "" CACHE STRING "Arguments added to every brickyard_add_graph_test() run, e.g. --domain;7")
 
 function(brickyard_add_graph_test)
-  cmake_parse_arguments(PARSE_ARGV 0 ARG "" "NAME;GRAPH;EXPECT_EXIT;EXPECT_OUTPUT" "ARGS;PLUGIN_PATH")
+  cmake_parse_arguments(PARSE_ARGV 0 ARG "" "NAME;GRAPH;EXPECT_EXIT;EXPECT_OUTPUT;EXPECT_ABSENT" "ARGS;PLUGIN_PATH;LAUNCHER")
   if(NOT ARG_NAME OR NOT ARG_GRAPH)
     message(FATAL_ERROR "brickyard_add_graph_test: NAME and GRAPH are required")
   endif()
@@ -51,7 +54,11 @@ function(brickyard_add_graph_test)
   string(MAKE_C_IDENTIFIER "${ARG_NAME}" id)
   set(dir "${CMAKE_CURRENT_BINARY_DIR}/brickyard_graph_tests")
   string(CONCAT data "set(GRAPH [==[${graph}]==])\n" "set(EXPECT_EXIT ${ARG_EXPECT_EXIT})\n"
-         "set(EXPECT_OUTPUT [==[${ARG_EXPECT_OUTPUT}]==])\n" "set(RUN_ARGS")
+         "set(EXPECT_OUTPUT [==[${ARG_EXPECT_OUTPUT}]==])\n" "set(EXPECT_ABSENT [==[${ARG_EXPECT_ABSENT}]==])\n" "set(LAUNCHER")
+  foreach(a IN LISTS ARG_LAUNCHER)
+    string(APPEND data " [==[${a}]==]")
+  endforeach()
+  string(APPEND data ")\nset(RUN_ARGS")
   foreach(a IN LISTS ARG_ARGS BRICKYARD_GRAPH_TEST_ARGS)
     string(APPEND data " [==[${a}]==]")
   endforeach()

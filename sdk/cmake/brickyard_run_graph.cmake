@@ -1,7 +1,8 @@
 # Run by the tests of brickyard_add_graph_test() (cmake -P, through the file it generates, which
-# sets BRICKYARD_EXE, GRAPH, EXPECT_EXIT, EXPECT_OUTPUT, RUN_ARGS and PLUGIN_PATH): runs the graph,
-# shows its output, and fails unless both the exit code and the output are as expected.
-set(cmd "${BRICKYARD_EXE}" run "${GRAPH}")
+# sets BRICKYARD_EXE, GRAPH, EXPECT_EXIT, EXPECT_OUTPUT, EXPECT_ABSENT, LAUNCHER, RUN_ARGS and
+# PLUGIN_PATH): runs the graph, shows its output (every failed expectation of a testing.expect is
+# in it), and fails unless the exit code and the output are as expected.
+set(cmd ${LAUNCHER} "${BRICKYARD_EXE}" run "${GRAPH}")
 foreach(d IN LISTS PLUGIN_PATH)
   list(APPEND cmd --plugin-path "${d}")
 endforeach()
@@ -16,6 +17,9 @@ if(NOT "${rc}" STREQUAL "${EXPECT_EXIT}")
 endif()
 if(NOT "${EXPECT_OUTPUT}" STREQUAL "" AND NOT "${out}" MATCHES "${EXPECT_OUTPUT}")
   string(APPEND why "\n  the output does not match: ${EXPECT_OUTPUT}")
+endif()
+if(NOT "${EXPECT_ABSENT}" STREQUAL "" AND "${out}" MATCHES "${EXPECT_ABSENT}")
+  string(APPEND why "\n  the output matches what it must not: ${EXPECT_ABSENT}")
 endif()
 if(why)
   message(FATAL_ERROR "graph test ${GRAPH} failed:${why}")
