@@ -14,7 +14,6 @@
 
 #include <dirent.h>
 #include <fcntl.h>
-#include <stdio.h>  // renameat2
 #include <sys/mman.h>
 #include <unistd.h>
 
@@ -47,7 +46,6 @@ thread_local const char* t_node = nullptr;
 thread_local const char* t_phase = nullptr;
 
 char g_summary[4096] = {0};
-char g_rec_part[4096] = {0}, g_rec_path[4096] = {0};  // a recording's temporary and final names
 std::set<std::string> g_before;  // /dev/shm before the transport (set and read outside any handler)
 constexpr int kShm = 64;
 char g_shm[kShm][256];
@@ -100,15 +98,6 @@ const char* signal_name(int sig) {
     }
   }
   for (int i = 0; i < g_shm_n; ++i) unlink(g_shm[i]);
-  if (g_rec_part[0]) {  // the log first, so that PATH never appears without it; never over a file
-    Text a, b, c;
-    a << g_rec_part << "-wal";
-    b << g_rec_path << "-wal";
-    (void)!renameat2(AT_FDCWD, a.b, AT_FDCWD, b.b, RENAME_NOREPLACE);
-    c << g_rec_part << "-shm";
-    unlink(c.b);
-    (void)!renameat2(AT_FDCWD, g_rec_part, AT_FDCWD, g_rec_path, RENAME_NOREPLACE);
-  }
   _exit(code);
 }
 
@@ -164,12 +153,6 @@ void watchdog() {
 }
 
 }  // namespace
-
-void recording_started(const std::string& part, const std::string& path) {
-  std::snprintf(g_rec_path, sizeof g_rec_path, "%s", path.c_str());
-  std::snprintf(g_rec_part, sizeof g_rec_part, "%s", part.c_str());
-}
-void recording_closed() { g_rec_part[0] = '\0'; }
 
 void install(const std::string& summary_path) {
   static bool once = false;

@@ -29,11 +29,6 @@ void install(const std::string& summary_path);
 // mapped that were not there, its own, to remove on a crash.
 void snapshot_shared_memory();
 void note_shared_memory();
-// A recording written to PART until it is closed, then renamed PATH (record/recorder.hpp): on a
-// crash its files are given their names here (PATH, and SQLite's log PATH-wal with it), so what
-// was recorded is where the run was told to put it. recording_closed(): nothing left to rename.
-void recording_started(const std::string& part, const std::string& path);
-void recording_closed();
 // Disarms the exit() trap and the interrupt watchdog: the run has ended normally.
 void run_ended();
 // The first SIGINT/SIGTERM: from now on the run has 2 s; a second one forces the exit at once.

@@ -1,7 +1,5 @@
 #include "exec/recording.hpp"
 
-#include "exec/crash_guard.hpp"
-
 #include <brickyard/version.hpp>
 
 #include <filesystem>
@@ -17,14 +15,10 @@ std::unique_ptr<Recorder> open_recording(const RunOptions& opt, const GraphDecl&
   r->set_metadata("process", opt.process.empty() ? "all" : opt.process);
   r->set_metadata("brickyard_version", BRICKYARD_SDK_VERSION);
   r->set_metadata("schema", "brickyard recording 1 (docs/recording.md)");
-  crash_guard::recording_started(r->part(), r->path());  // a crash gives it its name too
   return r;
 }
 
 nlohmann::json close_recording(Recorder& r) {
-  struct Closed {
-    ~Closed() { crash_guard::recording_closed(); }
-  } closed;
   r.close();
   std::error_code ec;
   const auto abs = std::filesystem::absolute(r.path(), ec);

@@ -56,45 +56,45 @@ void Executive::build() {
           n->outputs.back()->make_any(type, idl ? omgidl_schema(idl) : std::string());
         }
         if (!type.empty()) {  // (an output of any type that feeds nothing has no writer, nothing to record)
-        n->outputs.back()->writer = transport_->make_writer(topic_name(n->name, p.name), type);
-        const bool skip = std::find(opt_.record_skip_types.begin(), opt_.record_skip_types.end(), type) != opt_.record_skip_types.end();
-        const int rec = recorder_ && !skip && (opt_.record_only.empty() || topic_selected(topic, opt_.record_only))
-                            ? recorder_->add_topic(topic, type)
-                            : 0;
-        const long live = live_ ? static_cast<long>(live_->add_channel(topic, "cdr", type, "omgidl",
-                                                                         omgidl_schema(idl_text(type) ? idl_text(type) : "")))
-                                : -1;
-        auto scene = scene_ ? scene_->handler(topic, type) : std::function<void(const void*, std::uint64_t)>();
-        if (rec || live >= 0) {
-          // Serialized once for both; live only while a client is subscribed. A failed write
-          // stops the run; it must not unwind through the publishing plugin.
-          struct Tap {
-            explicit Tap(const std::string& type) : serializer(type) {}
-            SampleSerializer serializer;
-            std::mutex m;
-          };
-          auto tap = std::make_shared<Tap>(type);
-          n->outputs.back()->tap = [this, rec, live, tap, scene](const void* m) {
-            const bool to_live = live >= 0 && live_->wanted(static_cast<std::uint32_t>(live));
-            if (!rec && !to_live && !scene) return;
-            try {
-              if (scene) {
-                try {
-                  scene(m, static_cast<std::uint64_t>(std::max<std::int64_t>(now_ns(), 0)));
-                } catch (const std::exception&) {  // the viewer's picture of a sample: never the run's failure
+          n->outputs.back()->writer = transport_->make_writer(topic_name(n->name, p.name), type);
+          const bool skip = std::find(opt_.record_skip_types.begin(), opt_.record_skip_types.end(), type) != opt_.record_skip_types.end();
+          const int rec = recorder_ && !skip && (opt_.record_only.empty() || topic_selected(topic, opt_.record_only))
+                              ? recorder_->add_topic(topic, type)
+                              : 0;
+          const long live = live_ ? static_cast<long>(live_->add_channel(topic, "cdr", type, "omgidl",
+                                                                           omgidl_schema(idl_text(type) ? idl_text(type) : "")))
+                                  : -1;
+          auto scene = scene_ ? scene_->handler(topic, type) : std::function<void(const void*, std::uint64_t)>();
+          if (rec || live >= 0) {
+            // Serialized once for both; live only while a client is subscribed. A failed write
+            // stops the run; it must not unwind through the publishing plugin.
+            struct Tap {
+              explicit Tap(const std::string& type) : serializer(type) {}
+              SampleSerializer serializer;
+              std::mutex m;
+            };
+            auto tap = std::make_shared<Tap>(type);
+            n->outputs.back()->tap = [this, rec, live, tap, scene](const void* m) {
+              const bool to_live = live >= 0 && live_->wanted(static_cast<std::uint32_t>(live));
+              if (!rec && !to_live && !scene) return;
+              try {
+                if (scene) {
+                  try {
+                    scene(m, static_cast<std::uint64_t>(std::max<std::int64_t>(now_ns(), 0)));
+                  } catch (const std::exception&) {  // the viewer's picture of a sample: never the run's failure
+                  }
                 }
+                if (!rec && !to_live) return;
+                std::lock_guard<std::mutex> l(tap->m);
+                const auto b = tap->serializer.serialize(m);
+                const std::int64_t now = now_ns();
+                if (rec) recorder_->write(rec, now, b.data, b.size);
+                if (to_live) live_->publish(static_cast<std::uint32_t>(live), static_cast<std::uint64_t>(std::max<std::int64_t>(now, 0)), b.data, b.size);
+              } catch (const std::exception& e) {
+                request_stop(RunResult::failed, e.what());
               }
-              if (!rec && !to_live) return;
-              std::lock_guard<std::mutex> l(tap->m);
-              const auto b = tap->serializer.serialize(m);
-              const std::int64_t now = now_ns();
-              if (rec) recorder_->write(rec, now, b.data, b.size);
-              if (to_live) live_->publish(static_cast<std::uint32_t>(live), static_cast<std::uint64_t>(std::max<std::int64_t>(now, 0)), b.data, b.size);
-            } catch (const std::exception& e) {
-              request_stop(RunResult::failed, e.what());
-            }
-          };
-        }
+            };
+          }
         }
       }
     }

@@ -27,10 +27,17 @@ for clock in sim real; do
     [ $rc -eq 1 ] || { cat "$dir.log"; echo "FAIL: $clock/$mode: exit $rc, expected 1"; exit 1; }
     grep -qF "$want" "$dir.log" || { cat "$dir.log"; echo "FAIL: $clock/$mode: stderr lacks: $want"; exit 1; }
     grep -qF "$want" "$dir/summary.json" || { cat "$dir/summary.json"; echo "FAIL: $clock/$mode: the summary lacks the reason"; exit 1; }
-    # What was published up to a second before the fault is in the recording, under its name
-    # (written as .part, renamed by the crash handler too).
-    [ ! -e "$out/$clock-$mode.mcap.part" ] || { echo "FAIL: $clock/$mode: the recording was left as .part"; exit 1; }
-    "$by" bag info "$out/$clock-$mode.mcap" --json > "$dir.info.json" 2> /dev/null
+    # What was published up to a second before the fault is in the recording. A run that ends
+    # (throw) closes it under its name; one the fault takes down cannot, and it stays .part:
+    # a file under the name is always a whole recording.
+    rec="$out/$clock-$mode.mcap"
+    if [ $mode = throw ]; then
+      [ -e "$rec" ] && [ ! -e "$rec.part" ] || { echo "FAIL: $clock/$mode: the recording was not closed under its name"; exit 1; }
+    else
+      [ ! -e "$rec" ] && [ -e "$rec.part" ] || { echo "FAIL: $clock/$mode: an unclosed recording took its name"; exit 1; }
+      rec="$rec.part"
+    fi
+    "$by" bag info "$rec" --json > "$dir.info.json" 2> /dev/null
     python3 - "$dir.info.json" "$clock" "$mode" <<'PY' || exit 1
 import json, sys
 info = json.load(open(sys.argv[1]))
