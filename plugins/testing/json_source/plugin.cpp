@@ -5,6 +5,7 @@
 
 #include "json_samples.hpp"
 
+#include <filesystem>
 #include <fstream>
 #include <optional>
 #include <sstream>
@@ -12,6 +13,8 @@
 namespace {
 
 using namespace brickyard;
+
+constexpr std::uintmax_t kMaxFileBytes = 256u << 20;
 
 struct Settings {
   std::string samples = "[]";
@@ -56,6 +59,10 @@ class JsonSource : public Plugin {
       } else {
         const std::string path = ctx.find_file(s.file);
         where = "file " + path + ": ";
+        // Of a sane size (find_file has refused what is not a regular file): a runaway script.
+        std::error_code ec;
+        if (std::filesystem::file_size(path, ec) > kMaxFileBytes)
+          throw BadInput(where + "larger than " + std::to_string(kMaxFileBytes >> 20) + " MiB");
         std::ifstream f(path);
         std::stringstream text;
         text << f.rdbuf();
