@@ -5,6 +5,7 @@
 #include "cli/topic_command.hpp"
 #include "exec/crash_guard.hpp"
 #include "exec/executive.hpp"
+#include "exec/node_checks.hpp"
 #include "graph/diagnostics.hpp"
 #include "io/whole_file.hpp"
 #include "record/recording_info.hpp"
@@ -91,6 +92,8 @@ options:
                        127.0.0.1:PORT: every wire as a channel (docs/live.md)
   --live-address A     bind the live server to address A instead (opt-in: 0.0.0.0 is every
                        interface)
+  --live-cloud-hz X    send each point-cloud channel at most X clouds a second of wall time
+                       (default 20, a display's rate; 0: every cloud)
   --pace X             sim clock: run at most X times real time, so a person can watch
   --threads N          sim clock: step nodes that cannot see each other on N threads (default:
                        the machine's cores, at most 4); the run is the same on any number
@@ -114,6 +117,7 @@ struct Args {
   std::vector<std::string> only;
   std::string live_address = "127.0.0.1";
   bool live_address_set = false;
+  std::optional<double> live_cloud_hz;  // --live-cloud-hz
   int threads = 0;
   std::uint64_t seed = 0;
   bool json = false, dot = false, quiet = false, no_report = false, profile = false, one_process = false;
@@ -195,6 +199,11 @@ Args parse_args(int argc, char** argv) {
         usage_error("--live " + v, "expected a port from 0 to 65535 (0: any free one)");
       a.live_port = std::stoi(v);
     } else if (f == "--live-address") a.live_address = value(), a.live_address_set = true;
+    else if (f == "--live-cloud-hz") {
+      a.live_cloud_hz = parse_number(f, value());
+      if (!(*a.live_cloud_hz >= 0) || *a.live_cloud_hz > 1000)
+        usage_error("--live-cloud-hz", "expected clouds a second from 0 (every one) to 1000");
+    }
     else if (f == "--pace") {
       a.pace = parse_number(f, value());
       if (!(a.pace > 0)) usage_error("--pace", "expected a factor of real time, more than 0");
@@ -550,6 +559,8 @@ int run_graph(const Args& a, GraphDecl g, bool validate_only) {
   ResolvedGraph rg = resolve_graph(g, reg, a.process);
   if (!a.quiet)
     for (const auto& n : rg.notices) std::fprintf(stderr, "notice: %s\n", n.c_str());
+  // What each plugin's configure would refuse, every node's together, before anything starts.
+  if (auto failed = run_node_checks(rg); !failed.empty()) throw InvalidInput(std::move(failed));
   // DDS security: the identity this process runs as, its files checked before anything starts.
   // Several processes in one participant would need one identity that writes for all of them,
   // which would let a stolen key forge any topic: refused.
@@ -608,6 +619,7 @@ int run_graph(const Args& a, GraphDecl g, bool validate_only) {
   opt.security = security;
   opt.live_port = a.live_port ? a.live_port : g.live.port;  // the flag, else the graph's "live"
   opt.live_address = a.live_address_set ? a.live_address : g.live.address;
+  opt.live_cloud_hz = a.live_cloud_hz ? *a.live_cloud_hz : g.live.cloud_hz.value_or(20.0);
   opt.pace = a.pace;
   if (a.pace > 0 && !g.clock.sim) usage_error("--pace", "the graph runs on the real clock, which needs no pacing");
   if (!a.record_only.empty() && a.record.empty()) usage_error("--record-only", "needs --record FILE");

@@ -2,6 +2,7 @@
 // by the clock's scheduler, deactivated (every activated node, even after a failure), and the
 // summary. Also what the executive serves NodeContext: the clock, logs, end requests.
 #include "exec/executive.hpp"
+#include "exec/node_checks.hpp"
 #include "exec/crash_guard.hpp"
 #include "exec/file_search.hpp"
 #include "exec/node_runtime.hpp"
@@ -178,27 +179,6 @@ void Executive::request_stop(RunResult r, std::string reason) {
   for (auto& n : nodes_) n->cv.notify_all();
 }
 
-// A plugin's "parameter 'expect' /0/field: ..." (a parameter, and a JSON pointer inside its value)
-// said with the file and pointer that gave the value: "... (g.json#/nodes/check/params/expect/0/field)".
-std::string Executive::with_param_place(const std::string& node, const std::string& what) const {
-  const std::string head = "parameter '";
-  if (what.compare(0, head.size(), head) != 0) return what;
-  const std::size_t end = what.find('\'', head.size());
-  if (end == std::string::npos) return what;
-  const std::string name = what.substr(head.size(), end - head.size());
-  std::size_t at = end + 1;
-  std::string inner;
-  if (what.compare(at, 2, " /") == 0) {
-    const std::size_t colon = what.find(':', at);
-    if (colon == std::string::npos) return what;
-    inner = what.substr(at + 1, colon - at - 1);
-    if (inner.find(' ') != std::string::npos) return what;
-    at = colon;
-  }
-  if (what.compare(at, 2, ": ") != 0) return what;
-  return what + " (" + graph_.decl->where("/nodes/" + pointer_escape(node) + "/params/" + pointer_escape(name) + inner) + ")";
-}
-
 bool Executive::call(NodeRuntime& n, const char* phase, const std::function<void()>& f) {
   try {
     // Named if the plugin takes the process down, or its step hangs far past its deadline.
@@ -211,7 +191,7 @@ bool Executive::call(NodeRuntime& n, const char* phase, const std::function<void
     const bool setup = std::string_view(phase) == "configure";
     request_stop(setup ? RunResult::invalid_input : RunResult::failed,
                  "node '" + n.name + "' (" + n.plugin_name() + ")" + (setup ? ": " : std::string(" failed in ") + phase + ": ") +
-                     (setup ? with_param_place(n.name, e.what()) : std::string(e.what())));
+                     (setup ? with_param_place(*graph_.decl, n.name, e.what()) : std::string(e.what())));
   } catch (const std::exception& e) {
     request_stop(RunResult::failed, "node '" + n.name + "' (" + n.plugin_name() + ") failed in " + phase + ": " + e.what());
   } catch (...) {
@@ -265,6 +245,7 @@ RunSummary Executive::run() {
     lo.address = opt_.live_address;
     lo.port = static_cast<std::uint16_t>(*opt_.live_port);
     lo.sim_clock = sim();
+    lo.cloud_hz = opt_.live_cloud_hz;
     lo.name = "brickyard: " + g.name;
     try {
       live_ = std::make_unique<LiveServer>(lo);
@@ -324,7 +305,8 @@ RunSummary Executive::run() {
   if (live_) {
     const LiveStats st = live_->stats();
     live = {{"port", live_->port()}, {"clients", st.clients}, {"sent", st.sent}, {"dropped", st.dropped},
-            {"refused_requests", st.refused_requests}, {"disconnected", st.disconnected}};
+            {"refused_requests", st.refused_requests}, {"disconnected", st.disconnected}, {"clouds_thinned", st.clouds_thinned},
+            {"cloud_hz", opt_.live_cloud_hz}};
     // The server and the scene stay until the executive goes (taps may publish until the plugins
     // are destroyed); its clients are closed then.
   }

@@ -62,7 +62,8 @@ void Executive::build() {
                               ? recorder_->add_topic(topic, type)
                               : 0;
           const long live = live_ ? static_cast<long>(live_->add_channel(topic, "cdr", type, "omgidl",
-                                                                           omgidl_schema(idl_text(type) ? idl_text(type) : "")))
+                                                                           omgidl_schema(idl_text(type) ? idl_text(type) : ""),
+                                                                           type == "brickyard::msgs::PointCloud"))
                                   : -1;
           auto scene = scene_ ? scene_->handler(topic, type) : std::function<void(const void*, std::uint64_t)>();
           if (rec || live >= 0) {

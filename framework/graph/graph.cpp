@@ -125,7 +125,13 @@ void parse_transport(const json& j, GraphDecl& g, Ctx& c) {
 
 void parse_live(const json& j, GraphDecl& g, Ctx& c) {
   if (!c.expect(j, json::value_t::object, "object", "/live")) return;
-  c.only_keys(j, {"port", "address"}, "/live");
+  c.only_keys(j, {"port", "address", "cloud_hz"}, "/live");
+  if (j.contains("cloud_hz")) {
+    const json& v = j["cloud_hz"];
+    if (!v.is_number() || !(v.get<double>() >= 0) || v.get<double>() > 1000)
+      c.err("/live/cloud_hz", "expected clouds a second from 0 (every one) to 1000, found " + v.dump().substr(0, 40));
+    else g.live.cloud_hz = v.get<double>();
+  }
   if (j.contains("port") && c.expect(j["port"], json::value_t::number_integer, "integer", "/live/port")) {
     if (!j["port"].is_number_integer() || j["port"].get<long long>() < 0 || j["port"].get<long long>() > 65535)
       c.err("/live/port", "expected a port from 0 to 65535, found " + j["port"].dump());

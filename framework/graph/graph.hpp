@@ -66,6 +66,7 @@ struct ProcessDecl {
 struct LiveDecl {
   std::optional<int> port;
   std::string address = "127.0.0.1";  // loopback unless the graph says otherwise
+  std::optional<double> cloud_hz;      // a cloud channel's most clouds a second, wall time (0: every one)
 };
 
 struct GraphDecl {

@@ -27,7 +27,12 @@ constexpr const char* kSubprotocol = "foxglove.websocket.v1";
 
 struct Channel {
   std::string topic, encoding, schema_name, schema_encoding, schema;
+  bool cloud = false;
 };
+
+std::int64_t steady_ns() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
 
 // One connected client. `subs` (subscription id → channel) lives on the server's thread; the
 // rest is shared with the publishing threads under `m`.
@@ -49,10 +54,11 @@ struct LiveServer::Impl {
   std::thread thread;
   std::vector<Channel> channels;
   std::unique_ptr<std::atomic<int>[]> subscribers;  // per channel: how many clients are subscribed
+  std::unique_ptr<std::atomic<std::int64_t>[]> next_cloud_ns;  // per channel: a cloud channel's next send, wall time
   std::mutex clients_m;
   std::condition_variable clients_cv;
   std::map<Hdl, std::shared_ptr<Client>, std::owner_less<Hdl>> clients;
-  std::atomic<std::uint64_t> sent{0}, dropped{0}, refused{0}, disconnected{0}, accepted{0};
+  std::atomic<std::uint64_t> sent{0}, dropped{0}, refused{0}, disconnected{0}, accepted{0}, thinned{0};
   std::atomic<std::uint64_t> last_time{0};
   std::atomic<bool> any_time{false};
   bool started = false;
@@ -295,8 +301,8 @@ std::uint16_t LiveServer::port() const {
 }
 
 std::uint32_t LiveServer::add_channel(const std::string& topic, const std::string& encoding, const std::string& schema_name,
-                                      const std::string& schema_encoding, const std::string& schema) {
-  impl_->channels.push_back({topic, encoding, schema_name, schema_encoding, schema});
+                                      const std::string& schema_encoding, const std::string& schema, bool cloud) {
+  impl_->channels.push_back({topic, encoding, schema_name, schema_encoding, schema, cloud});
   return static_cast<std::uint32_t>(impl_->channels.size() - 1);
 }
 
@@ -304,6 +310,8 @@ void LiveServer::start() {
   Impl& s = *impl_;
   s.subscribers = std::make_unique<std::atomic<int>[]>(s.channels.size() + 1);
   for (std::size_t i = 0; i <= s.channels.size(); ++i) s.subscribers[i] = 0;
+  s.next_cloud_ns = std::make_unique<std::atomic<std::int64_t>[]>(s.channels.size() + 1);
+  for (std::size_t i = 0; i <= s.channels.size(); ++i) s.next_cloud_ns[i] = 0;
   s.started = true;
   s.timer = std::make_unique<asio::steady_timer>(s.server.get_io_service());
   asio::post(s.server.get_io_service(), [&s] { s.tick(); });
@@ -316,12 +324,22 @@ void LiveServer::start() {
 }
 
 bool LiveServer::wanted(std::uint32_t channel) const {
-  return impl_->started && channel < impl_->channels.size() && impl_->subscribers[channel].load(std::memory_order_relaxed) > 0;
+  Impl& s = *impl_;
+  if (!s.started || channel >= s.channels.size() || s.subscribers[channel].load(std::memory_order_relaxed) <= 0) return false;
+  // A cloud channel takes a cloud when its interval has passed (one writer per channel: the node
+  // that publishes it, so the check and the publish after it do not race).
+  if (s.channels[channel].cloud && s.opt.cloud_hz > 0 && steady_ns() < s.next_cloud_ns[channel].load(std::memory_order_relaxed)) {
+    ++s.thinned;
+    return false;
+  }
+  return true;
 }
 
 void LiveServer::publish(std::uint32_t channel, std::uint64_t stamp_ns, const unsigned char* data, std::size_t size) {
   if (!wanted(channel)) return;
   Impl& s = *impl_;
+  if (s.channels[channel].cloud && s.opt.cloud_hz > 0)
+    s.next_cloud_ns[channel].store(steady_ns() + static_cast<std::int64_t>(1e9 / s.opt.cloud_hz), std::memory_order_relaxed);
   std::vector<std::shared_ptr<Client>> to;
   {
     std::lock_guard<std::mutex> l(s.clients_m);
@@ -364,7 +382,7 @@ void LiveServer::time(std::uint64_t stamp_ns, std::uint64_t every_ns) {
 
 LiveStats LiveServer::stats() const {
   const Impl& s = *impl_;
-  return {s.accepted.load(), s.sent.load(), s.dropped.load(), s.refused.load(), s.disconnected.load()};
+  return {s.accepted.load(), s.sent.load(), s.dropped.load(), s.refused.load(), s.disconnected.load(), s.thinned.load()};
 }
 
 }  // namespace brickyard::fw

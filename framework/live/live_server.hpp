@@ -25,11 +25,16 @@ struct LiveOptions {
   std::size_t max_request = 64u << 10;     // bytes of one client message
   int max_requests_per_s = 200;            // client messages a second before it is disconnected
   bool sim_clock = false;                  // send the run's time (capability "time")
+  // A point-cloud channel sends at most this many clouds a second of wall time (0: every one):
+  // a display shows no more, and a sim run at 18x real time would otherwise push its three
+  // LiDARs' 20 Hz as 1,000 clouds a second through the socket. At --pace 1 nothing is left out.
+  double cloud_hz = 20;
   std::string name = "brickyard";
 };
 
 struct LiveStats {
   std::uint64_t clients = 0, sent = 0, dropped = 0, refused_requests = 0, disconnected = 0;
+  std::uint64_t clouds_thinned = 0;  // clouds not sent: a channel's cloud_hz would be exceeded
 };
 
 class LiveServer {
@@ -41,12 +46,14 @@ class LiveServer {
   LiveServer& operator=(const LiveServer&) = delete;
 
   std::uint16_t port() const;
-  // A channel (before start()): its id for publish().
+  // A channel (before start()): its id for publish(). `cloud`: its samples are point clouds, sent
+  // at most at LiveOptions::cloud_hz.
   std::uint32_t add_channel(const std::string& topic, const std::string& encoding, const std::string& schema_name,
-                            const std::string& schema_encoding, const std::string& schema);
+                            const std::string& schema_encoding, const std::string& schema, bool cloud = false);
   void start();  // serves from here on, on its own thread
 
-  // Whether any client is subscribed to the channel (cheap: check before serializing).
+  // Whether any client is subscribed to the channel and, for a cloud channel, a cloud is due
+  // (cheap: check before serializing).
   bool wanted(std::uint32_t channel) const;
   // One sample to every client subscribed to its channel; never blocks on a client.
   void publish(std::uint32_t channel, std::uint64_t stamp_ns, const unsigned char* data, std::size_t size);

@@ -286,7 +286,7 @@ std::function<void(const void*, std::uint64_t)> LiveScene::handler(const std::st
       s->send(s->obstacles, ns, {{"deletions", json::array()}, {"entities", {e}}});
     };
   if (type == "brickyard::msgs::PointCloud") {
-    const std::uint32_t ch = s->server.add_channel("/lidar/" + topic, "cdr", "foxglove::PointCloud", "omgidl", kPointCloudIdl);
+    const std::uint32_t ch = s->server.add_channel("/lidar/" + topic, "cdr", "foxglove::PointCloud", "omgidl", kPointCloudIdl, true);
     return [s, ch](const void* p, std::uint64_t ns) {
       if (!s->server.wanted(ch)) return;
       const auto& c = *static_cast<const msgs::PointCloud*>(p);

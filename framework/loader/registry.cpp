@@ -179,6 +179,9 @@ void Registry::load(const std::string& path, std::size_t folder) {
     PluginEntry e;
     try {
       e.manifest = descs[i].manifest();
+      // A plugin of ABI 2.3 or older returned a manifest without the appended checker: what the
+      // host reads there is not the plugin's.
+      if (info->abi_minor < 4) e.manifest.checker = nullptr;
     } catch (const std::exception& ex) {
       fail("manifest() of plugin #" + std::to_string(i) + " threw: " + ex.what());
       continue;

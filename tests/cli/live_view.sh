@@ -39,12 +39,16 @@ print(f"watched live: {len(watched['channels'])} channels advertised, {len(topic
       f"the last at {watched['last_time'] / 1e9:.2f} s")
 print(f"scene (each message valid against Foxglove's schema): {json.dumps(scene)}")
 print(f"server: {live['clients']} clients, {live['sent']} frames sent, {live['dropped']} dropped (the client that never read), "
+      f"{live['clouds_thinned']} clouds thinned to {live['cloud_hz']} a second, "
       f"{live['refused_requests']} requests refused, {live['disconnected']} disconnected; abuse: {json.dumps(abuse)}")
 ok = len(same) == len(topics) and len(topics) >= 10 and n > 5000
 ok = ok and all(scene.get(t, 0) > 0 for t in ["/tf", "/scene/track", "/scene/path", "/scene/wall", "/scene/obstacles", "/lidar/lidar_front.cloud"])
 ok = ok and "/lidar/lidar_left.cloud" not in scene
 ok = ok and "time" in watched["serverInfo"]["capabilities"] and watched["last_time"] >= 15e9
 ok = ok and all(c["schemaEncoding"] == "omgidl" and c["encoding"] == "cdr" for c in watched["channels"] if not c["topic"].startswith("/"))
+# Clouds at most 20 a second of wall time (--live-cloud-hz): 16 s of sim at --pace 4 take at
+# least 4 s, 80 clouds of the front LiDAR's 320 (a little more for the span of the last interval).
+ok = ok and live["cloud_hz"] == 20 and live["clouds_thinned"] > 0 and 0 < scene["/lidar/lidar_front.cloud"] <= 20 * 16 / 4 * 1.2
 ok = ok and watched["last"]["/lidar/lidar_front.cloud"]["point_stride"] == 16 and watched["last"]["/lidar/lidar_front.cloud"]["data"]["bytes"] > 100000
 ok = ok and abuse["garbage"]["statuses"] >= 3 and abuse["bad_subscriptions"]["statuses"] >= 3
 ok = ok and abuse["flood"]["closed"] and live["disconnected"] >= 1 and live["dropped"] > 0 and live["clients"] >= 6
@@ -64,6 +68,7 @@ expect2() {  # pattern, then the command
 expect2 "--live 70000: expected a port from 0 to 65535" "$by" run "$graph" --live 70000
 expect2 "--live nope.example:8765: cannot listen (not an IP address)" "$by" run "$graph" --domain "$domain" --duration 1 --live 8765 --live-address nope.example
 expect2 "--pace: expected a factor of real time, more than 0" "$by" run "$graph" --pace 0
+expect2 "--live-cloud-hz: expected clouds a second from 0 (every one) to 1000" "$by" run "$graph" --live-cloud-hz -1
 expect2 "--pace: the graph runs on the real clock" "$by" run "$configs/../tests/graphs/real_clock.json" --pace 2
 python3 -c "import socket,time; s=socket.socket(); s.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1); s.bind(('127.0.0.1', $port)); s.listen(); time.sleep(30)" &
 holder=$!

@@ -95,7 +95,7 @@ TEST(Expect, BadExpectationsAreNamedByTheirPointer) {
             "/1/range: header.frame_id is a string, not a number");
   EXPECT_EQ(parse_error(R"([{"field": "speed[0]", "range": [2, 1]}])"), "/0/range: expected finite low <= high, found [2,1]");
   EXPECT_EQ(parse_error(R"([{"field": "speed[0]"}])"),
-            "/0: needs exactly one of range, equals, values, increasing, nondecreasing, decreasing, nonincreasing, near");
+            "/0: needs exactly one of range, equals, values, increasing, nondecreasing, decreasing, nonincreasing, near, away_from");
   EXPECT_EQ(parse_error(R"([{"field": "speed[0]", "equals": "fast"}])"), "/0/equals: speed[0] is a number; found \"fast\"");
   EXPECT_EQ(parse_error(R"([{"field": "poses[0].x", "near": {"field": "poses[0].x", "within": 1}}])"),
             "/0/near: compares with the input 'ref', which is not wired");
@@ -201,4 +201,30 @@ TEST(Expect, ValuesOrderAndAge) {
   EXPECT_EQ(f[3], "/3 value of the first 5 samples [1,3,5,7,9], always in the whole run: sample 2 at 0.350 s: value = 4, expected 5");
   EXPECT_EQ(parse_error(R"([{"age_s": [0, 1]}])").find("/0/age_s"), std::string::npos);  // Path has a header: accepted
   EXPECT_EQ(parse_error(R"([{"field": "speed[*]", "values": [1]}])"), "/0/values: speed[*]: one value a sample, no [*]");
+}
+
+TEST(Expect, AwayFromAPointAlongEveryPose) {
+  // Poses along x at 0, 1, 2, ...: the 4th (x = 3) is 0.5 from (3, 0.5); an obstacle at (30, 5)
+  // stays 5 from them all.
+  ExpectationChecker c(parse(R"([
+    {"field": ["poses[*].x", "poses[*].y"], "away_from": {"point": [3, 0.5], "beyond": 1}},
+    {"field": ["poses[*].x", "poses[*].y"], "away_from": {"point": [30, 5], "beyond": 4.9}},
+    {"field": ["poses[2].x", "poses[2].y"], "away_from": {"point": [2, 0], "beyond": 0}}
+  ])"));
+  c.observe(0.1, path_sample(10));
+  const auto f = c.finish();
+  ASSERT_EQ(f.size(), 1u);
+  EXPECT_EQ(f[0], "/0 (poses[*].x, poses[*].y) at least 1 from (3, 0.5), always in the whole run: sample 0 at 0.100 s: "
+                  "poses[3].x = 3, poses[3].y = 0: 0.5 from it");
+  EXPECT_EQ(c.field_checks(), 15u);  // 4 to the first failure, 10, 1
+  EXPECT_EQ(parse_error(R"([{"field": ["poses[*].x", "poses[*].y"], "away_from": {"point": [1], "beyond": 1}}])"),
+            "/0/away_from/point: 1 coordinates against 2 fields");
+  EXPECT_EQ(parse_error(R"([{"field": ["poses[*].x", "poses[0].y"], "away_from": {"point": [1, 2], "beyond": 1}}])"),
+            "/0/field: poses[0].y: every field with [*], or none");
+  EXPECT_EQ(parse_error(R"([{"field": ["poses[*].x", "poses[*].y"], "away_from": {"point": [1, "a"], "beyond": 1}}])"),
+            "/0/away_from/point/1: expected a finite number, found \"a\"");
+  EXPECT_EQ(parse_error(R"([{"field": ["header.frame_id"], "away_from": {"point": [1], "beyond": 1}}])"),
+            "/0/away_from: header.frame_id is a string, not a number");
+  EXPECT_EQ(parse_error(R"([{"field": ["poses[*].x"], "away_from": {"point": [1], "beyond": -1}}])"),
+            "/0/away_from: expected {\"point\": [X, ...], \"beyond\": DISTANCE >= 0}");
 }

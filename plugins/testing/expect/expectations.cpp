@@ -72,8 +72,8 @@ std::vector<Expectation> parse_expectations(const json& spec, const cdr::CdrJson
   if (spec.empty()) throw std::invalid_argument(": no expectation (a check that checks nothing cannot fail)");
   if (spec.size() > 10000) throw std::invalid_argument(": more than 10000 expectations");
   static const std::set<std::string> known = {"field", "range", "equals", "values", "tolerance", "increasing", "nondecreasing",
-                                              "decreasing", "nonincreasing", "near", "always", "eventually", "count", "rate_hz",
-                                              "age_s"};
+                                              "decreasing", "nonincreasing", "near", "away_from", "always", "eventually", "count",
+                                              "rate_hz", "age_s"};
   std::vector<Expectation> out;
   for (std::size_t k = 0; k < spec.size(); ++k) {
     const json& x = spec[k];
@@ -84,7 +84,7 @@ std::vector<Expectation> parse_expectations(const json& spec, const cdr::CdrJson
     for (const auto& [key, v] : x.items())
       if (!known.count(key))
         throw std::invalid_argument(w + "/" + key + ": unknown; an expectation takes field with one of range, equals "
-                                    "(tolerance), values (tolerance), increasing, nondecreasing, decreasing, nonincreasing, near, "
+                                    "(tolerance), values (tolerance), increasing, nondecreasing, decreasing, nonincreasing, near, away_from, "
                                     "and always or eventually; or count, rate_hz, age_s");
     if (x.contains("count") || x.contains("rate_hz") || x.contains("age_s")) {
       const char* key = x.contains("count") ? "count" : x.contains("rate_hz") ? "rate_hz" : "age_s";
@@ -107,11 +107,13 @@ std::vector<Expectation> parse_expectations(const json& spec, const cdr::CdrJson
     }
     if (!x.contains("field")) throw std::invalid_argument(w + ": needs field (or count, rate_hz, age_s)");
     int tests = 0;
-    for (const char* t : {"range", "equals", "values", "increasing", "nondecreasing", "decreasing", "nonincreasing", "near"}) tests += x.contains(t);
+    for (const char* t : {"range", "equals", "values", "increasing", "nondecreasing", "decreasing", "nonincreasing", "near", "away_from"})
+      tests += x.contains(t);
     if (tests != 1)
-      throw std::invalid_argument(w + ": needs exactly one of range, equals, values, increasing, nondecreasing, decreasing, nonincreasing, near");
+      throw std::invalid_argument(w + ": needs exactly one of range, equals, values, increasing, nondecreasing, decreasing, nonincreasing, "
+                                      "near, away_from");
     std::vector<std::string> kinds;
-    e.fields = paths(x["field"], w + "/field", idl, type, x.contains("near"), &kinds);
+    e.fields = paths(x["field"], w + "/field", idl, type, x.contains("near") || x.contains("away_from"), &kinds);
     const std::string& f = e.fields[0].text;
     auto need_numbers = [&](const char* key) {
       for (std::size_t i = 0; i < kinds.size(); ++i)
@@ -160,6 +162,33 @@ std::vector<Expectation> parse_expectations(const json& spec, const cdr::CdrJson
       e.test = k == "increasing" ? Expectation::Test::increasing : k == "nondecreasing" ? Expectation::Test::nondecreasing
                : k == "decreasing" ? Expectation::Test::decreasing : Expectation::Test::nonincreasing;
       e.text = f + (has_every(e.fields[0]) ? " along each sample " : " sample to sample ") + key;
+    } else if (x.contains("away_from")) {
+      // Every point the fields make (element by element along a [*]) at least "beyond" from a
+      // fixed one: a path that keeps clear of an obstacle, a car that stays off a pylon.
+      need_numbers("away_from");
+      e.test = Expectation::Test::away_from;
+      const json& a = x["away_from"];
+      if (!a.is_object() || a.size() != 2 || !a.contains("point") || !a.contains("beyond") || !a["point"].is_array() ||
+          !a["beyond"].is_number() || !(a["beyond"].get<double>() >= 0) || !std::isfinite(a["beyond"].get<double>()))
+        throw std::invalid_argument(w + "/away_from: expected {\"point\": [X, ...], \"beyond\": DISTANCE >= 0}");
+      if (a["point"].size() != e.fields.size())
+        throw std::invalid_argument(w + "/away_from/point: " + std::to_string(a["point"].size()) + " coordinates against " +
+                                    std::to_string(e.fields.size()) + " fields");
+      for (std::size_t i = 0; i < e.fields.size(); ++i) {
+        const json& c = a["point"][i];
+        if (!c.is_number() || !std::isfinite(c.get<double>()))
+          throw std::invalid_argument(w + "/away_from/point/" + std::to_string(i) + ": expected a finite number, found " + c.dump().substr(0, 80));
+        e.point.push_back(c.get<double>());
+        if (has_every(e.fields[i]) != has_every(e.fields[0]))
+          throw std::invalid_argument(w + "/field: " + e.fields[i].text + ": every field with [*], or none");
+      }
+      e.within = a["beyond"].get<double>();
+      std::string f_text, p_text;
+      for (std::size_t i = 0; i < e.fields.size(); ++i) {
+        f_text += (i ? ", " : "") + e.fields[i].text;
+        p_text += (i ? ", " : "") + num(e.point[i]);
+      }
+      e.text = "(" + f_text + ") at least " + num(e.within) + " from (" + p_text + ")";
     } else {
       need_numbers("near");
       e.test = Expectation::Test::near;
@@ -259,6 +288,31 @@ void ExpectationChecker::observe(double t_s, const json& sample) {
       }
       distance = std::sqrt(distance);
       if (bad.empty() && !(distance <= e.within)) bad = "distance " + num(distance);
+    } else if (e.test == Expectation::Test::away_from) {
+      point_values_.resize(e.fields.size());
+      for (std::size_t f = 0; f < e.fields.size(); ++f) {
+        point_values_[f].clear();
+        cdr::field_values(sample, e.fields[f], point_values_[f], missing);
+      }
+      const std::size_t n = point_values_[0].size();
+      if (!missing.empty()) bad = "it has no " + missing;
+      for (std::size_t f = 1; f < e.fields.size() && bad.empty(); ++f)
+        if (point_values_[f].size() != n)
+          bad = e.fields[f].text + " has " + std::to_string(point_values_[f].size()) + " values against " + std::to_string(n) + " of " + e.fields[0].text;
+      for (std::size_t i = 0; i < n && bad.empty(); ++i) {
+        ++checks_;
+        double d2 = 0;
+        for (std::size_t f = 0; f < e.fields.size(); ++f) {
+          const double d = point_values_[f][i].value->get<double>() - e.point[f];
+          d2 += d * d;
+        }
+        if (!(std::sqrt(d2) >= e.within)) {
+          std::string at;
+          for (std::size_t f = 0; f < e.fields.size(); ++f)
+            at += (f ? ", " : "") + cdr::concrete(e.fields[f], point_values_[f][i].every) + " = " + show(*point_values_[f][i].value);
+          bad = at + ": " + num(std::sqrt(d2)) + " from it";
+        }
+      }
     } else {
       cdr::field_values(sample, e.fields[0], values_, missing);
       if (!missing.empty()) bad = "it has no " + missing;

@@ -18,15 +18,16 @@ namespace brickyard::testing {
 
 struct Expectation {
   enum class Kind { count, rate, age, field } kind = Kind::field;
-  enum class Test { range, equals, values, increasing, nondecreasing, decreasing, nonincreasing, near } test = Test::range;
+  enum class Test { range, equals, values, increasing, nondecreasing, decreasing, nonincreasing, near, away_from } test = Test::range;
   enum class When { always, eventually } when = When::always;
   std::string where;                     // "/3": its place in the parameter
   std::string text;                      // what it asks, as said in a report
-  std::vector<cdr::FieldPath> fields;    // one; several (a point) for near
+  std::vector<cdr::FieldPath> fields;    // one; several (a point) for near and away_from
   std::vector<cdr::FieldPath> ref_fields;
   double lo = -std::numeric_limits<double>::infinity(), hi = std::numeric_limits<double>::infinity();
   nlohmann::json equals;                 // equals: the value; values: the list
-  double tolerance = 0, within = 0;
+  std::vector<double> point;             // away_from: the point every one of the fields' points keeps clear of
+  double tolerance = 0, within = 0;      // within: near's distance, away_from's least one
   double from_s = -std::numeric_limits<double>::infinity(), to_s = std::numeric_limits<double>::infinity();
 };
 
@@ -67,6 +68,7 @@ class ExpectationChecker {
   std::uint64_t samples_ = 0, checks_ = 0, hash_ = 1469598103934665603ull;
   double first_s_ = 0, last_s_ = 0;
   std::vector<cdr::FieldValue> values_, ref_values_;
+  std::vector<std::vector<cdr::FieldValue>> point_values_;  // away_from: each field's values
 };
 
 }  // namespace brickyard::testing

@@ -35,7 +35,8 @@ class Expect : public Plugin {
         .input_any("in", "the stream under test: any message type", true, 1024)
         .input_any("ref", "a second stream to compare with (near): its newest sample", false, 64)
         .parameters(bindings())
-        .on_input("in");
+        .on_input("in")
+        .check(&Expect::check);
   }
 
   void configure(Context& ctx) override {
@@ -43,16 +44,19 @@ class Expect : public Plugin {
     finish_after_ = s.finish_after;
     in_ = ctx.input_any("in");
     ref_ = ctx.input_any("ref");
-    try {
-      idl_.emplace(in_.idl() ? in_.idl() : "");
-      if (ref_.connected() && ref_.idl()) ref_idl_.emplace(ref_.idl());
-      checker_.emplace(testing::parse_expectations(nlohmann::json::parse(s.expect), *idl_, in_.type_name(),
-                                                   ref_idl_ ? &*ref_idl_ : nullptr, ref_.type_name()));
-    } catch (const std::invalid_argument& e) {
-      throw BadInput("parameter 'expect' " + std::string(e.what()) + " (" + in_.type_name() + ")");
-    } catch (const nlohmann::json::exception& e) {
-      throw BadInput(std::string("parameter 'expect': ") + e.what());
-    }
+    idl_.emplace(in_.idl() ? in_.idl() : "");
+    if (ref_.connected() && ref_.idl()) ref_idl_.emplace(ref_.idl());
+    checker_.emplace(parse(s, *idl_, in_.type_name(), ref_idl_ ? &*ref_idl_ : nullptr, ref_.type_name()));
+  }
+
+  // At validation: the same parse, on the types the wires will carry.
+  static void check(const CheckView& v) {
+    const Settings s = bindings().read(v.params());
+    const char* ref = v.port_type("ref").empty() ? nullptr : v.port_idl("ref");
+    const cdr::CdrJson idl(v.port_idl("in") ? v.port_idl("in") : "");
+    std::optional<cdr::CdrJson> ref_idl;
+    if (ref) ref_idl.emplace(ref);
+    parse(s, idl, v.port_type("in"), ref_idl ? &*ref_idl : nullptr, v.port_type("ref"));
   }
 
   void step(Context& ctx) override { read(ctx); }
@@ -77,6 +81,17 @@ class Expect : public Plugin {
   }
 
  private:
+  static testing::ExpectationChecker parse(const Settings& s, const cdr::CdrJson& idl, const std::string& type,
+                                           const cdr::CdrJson* ref_idl, const std::string& ref_type) {
+    try {
+      return testing::ExpectationChecker(testing::parse_expectations(nlohmann::json::parse(s.expect), idl, type, ref_idl, ref_type));
+    } catch (const std::invalid_argument& e) {
+      throw BadInput("parameter 'expect' " + std::string(e.what()) + " (" + type + ")");
+    } catch (const nlohmann::json::exception& e) {
+      throw BadInput(std::string("parameter 'expect': ") + e.what());
+    }
+  }
+
   void read(Context& ctx) {
     for (const auto& r : ref_.take()) {
       try {

@@ -41,40 +41,19 @@ class JsonSource : public Plugin {
         .describe("publishes samples of any message type written as JSON, each at its time, as the type of the input it feeds")
         .output_any("out", "the samples: the type parameter's, or that of the input this is wired to", "type")
         .parameters(bindings())
-        .periodic("rate_hz");
+        .periodic("rate_hz")
+        .check(&JsonSource::check);
   }
 
   void configure(Context& ctx) override {
-    const Settings s = bindings().read(ctx.params());
     out_ = ctx.output_any("out");
-    if (out_.type_name().empty()) throw BadInput("output 'out' feeds no input: it takes its readers' type, so it needs one");
-    const cdr::CdrJson idl(out_.idl() ? out_.idl() : "");
-    const bool inline_given = s.samples != "[]";
-    if (inline_given == !s.file.empty()) throw BadInput("parameter 'samples': give samples or file, one of them");
-    std::string where = "parameter 'samples' ";
-    nlohmann::json script;
-    try {
-      if (inline_given) {
-        script = nlohmann::json::parse(s.samples);
-      } else {
-        const std::string path = ctx.find_file(s.file);
-        where = "file " + path + ": ";
-        // Of a sane size (find_file has refused what is not a regular file): a runaway script.
-        std::error_code ec;
-        if (std::filesystem::file_size(path, ec) > kMaxFileBytes)
-          throw BadInput(where + "larger than " + std::to_string(kMaxFileBytes >> 20) + " MiB");
-        std::ifstream f(path);
-        std::stringstream text;
-        text << f.rdbuf();
-        if (!f) throw BadInput(where + "cannot be read");
-        script = nlohmann::json::parse(text.str());
-      }
-      samples_ = testing::encode_script(script, idl, out_.type_name());
-    } catch (const std::invalid_argument& e) {
-      throw BadInput(where + e.what() + " (" + out_.type_name() + ")");
-    } catch (const nlohmann::json::exception& e) {
-      throw BadInput(where + e.what());
-    }
+    samples_ = load(bindings().read(ctx.params()), out_.type_name(), out_.idl(),
+                    [&](const std::string& f) { return ctx.find_file(f); });
+  }
+
+  // At validation: the script read and encoded as configure will, on the type the wire carries.
+  static void check(const CheckView& v) {
+    load(bindings().read(v.params()), v.port_type("out"), v.port_idl("out"), [&](const std::string& f) { return v.find_file(f); });
   }
 
   void step(Context& ctx) override {
@@ -87,6 +66,39 @@ class JsonSource : public Plugin {
   }
 
  private:
+  template <class FindFile>
+  static std::vector<testing::ScriptedSample> load(const Settings& s, const std::string& type, const char* idl_text,
+                                                   FindFile find_file) {
+    if (type.empty()) throw BadInput("output 'out' feeds no input: it takes its readers' type, so it needs one");
+    const cdr::CdrJson idl(idl_text ? idl_text : "");
+    const bool inline_given = s.samples != "[]";
+    if (inline_given == !s.file.empty()) throw BadInput("parameter 'samples': give samples or file, one of them");
+    std::string where = "parameter 'samples' ";
+    try {
+      nlohmann::json script;
+      if (inline_given) {
+        script = nlohmann::json::parse(s.samples);
+      } else {
+        const std::string path = find_file(s.file);
+        where = "file " + path + ": ";
+        // Of a sane size (find_file has refused what is not a regular file): a runaway script.
+        std::error_code ec;
+        if (std::filesystem::file_size(path, ec) > kMaxFileBytes)
+          throw BadInput(where + "larger than " + std::to_string(kMaxFileBytes >> 20) + " MiB");
+        std::ifstream f(path);
+        std::stringstream text;
+        text << f.rdbuf();
+        if (!f) throw BadInput(where + "cannot be read");
+        script = nlohmann::json::parse(text.str());
+      }
+      return testing::encode_script(script, idl, type);
+    } catch (const std::invalid_argument& e) {
+      throw BadInput(where + e.what() + " (" + type + ")");
+    } catch (const nlohmann::json::exception& e) {
+      throw BadInput(where + e.what());
+    }
+  }
+
   AnyOutput out_;
   std::vector<testing::ScriptedSample> samples_;
   std::size_t next_ = 0;

@@ -8,9 +8,11 @@
 // 2.2: TriggerSpec::Kind::deadline (Manifest::step_deadline).
 // 2.3: ports of any type (Manifest::input_any/output_any, Context::input_any/output_any,
 //      InputChannel and OutputChannel::wire_type/wire_idl).
+// 2.4: Manifest::checker appended (Manifest::check, CheckView): a plugin's own checks at
+//      validation. The host ignores the field in an older plugin's manifest, which lacks it.
 // 1.x history: 1.1 Context::find_file and BadInput; 1.2 Context::status.
 #define BRICKYARD_ABI_MAJOR 2u
-#define BRICKYARD_ABI_MINOR 3u
+#define BRICKYARD_ABI_MINOR 4u
 #define BRICKYARD_ENTRY_POINT_NAME "brickyard_plugin_library"
 #define BRICKYARD_EXPORT __attribute__((visibility("default")))
 

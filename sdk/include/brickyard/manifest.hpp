@@ -8,6 +8,7 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace brickyard {
@@ -103,6 +104,22 @@ struct TriggerSpec {
   std::string ref;
 };
 
+// What validation knows of a node before any plugin object exists (Manifest::check, ABI 2.4):
+// its parameters, the types its ports carry and where its files are. A check throws BadInput
+// (brickyard/context.hpp) naming the parameter, as configure would.
+class CheckView {
+ public:
+  virtual ~CheckView() = default;
+  virtual const Params& params() const = 0;
+  // The type a port carries: its declared one, or for a port of any type its wire's ("" when it
+  // is not wired); that type's IDL text (null when unknown).
+  virtual const std::string& port_type(std::string_view port) const = 0;
+  virtual const char* port_idl(std::string_view port) const = 0;
+  // A file named in a parameter, found as Context::find_file finds it.
+  virtual std::string find_file(std::string_view path) const = 0;
+};
+using CheckFn = void (*)(const CheckView&);
+
 struct Manifest {
   std::string name;      // "area.plugin_name", unique among loaded libraries
   std::string version;   // semantic version of the plugin
@@ -111,6 +128,7 @@ struct Manifest {
   std::vector<ParamSpec> params;
   std::vector<TriggerSpec> triggers;
   std::vector<ParamConstraint> constraints;  // ABI 2: appended to the manifest
+  CheckFn checker = nullptr;                 // ABI 2.4, appended: the host ignores it for older plugins
 
   Manifest() = default;
   Manifest(std::string n, std::string v) : name(std::move(n)), version(std::move(v)) {}
@@ -172,6 +190,14 @@ struct Manifest {
   // ends the process, which a supervisor may restart (docs/reliability.md). (ABI 2.2)
   Manifest& step_deadline(std::string seconds_param) {
     triggers.push_back({TriggerSpec::Kind::deadline, std::move(seconds_param)});
+    return *this;
+  }
+
+  // A check of what the plugin's configure would refuse, run by `brickyard validate` and before a
+  // run starts, every node's together: a field path that the wire's type lacks, a script that does
+  // not encode. It may read files the parameters name; it must have no other effect. (ABI 2.4)
+  Manifest& check(CheckFn f) {
+    checker = f;
     return *this;
   }
 
