@@ -3,7 +3,8 @@
 // the scene but the point clouds, and to those and the three LiDARs' clouds (as
 // foxglove::PointCloud, what the 3D panel shows) — at most 20 a second of wall time each, the
 // server's default (--live-cloud-hz), and every one (--live-cloud-hz 0) — beside the same run
-// without the server, measured in the same run of this program; runs alternate, medians. The
+// without the server, measured in the same run of this program; runs alternate, and each cost
+// is the median of each round's ratio to its own baseline run. The
 // client (tests/clients/live_sink.cjs, Node) counts what arrives and decodes nothing; it shares
 // these two cores with the run, so its own work is part of the wall-time figure; the run's own CPU
 // time (user + system, of the host process alone) is the server's cost without the client's.
@@ -82,10 +83,18 @@ int main(int argc, char** argv) {
   std::printf("the live server on the main job (configs/ims_race.json, %.1f s of sim time, %d runs each)\n", sim_s, runs);
   std::printf("%-48s %12s %14s %10s %10s %8s %10s\n", "", "x real time", "frames sent", "MB", "wall cost", "CPU s", "CPU cost");
   const double none = median(factor[0]), none_cpu = median(cpu[0]);
+  // Each cost is the median of the runs' own ratios to the baseline run beside them (the
+  // machine's speed drifts between rounds by more than the figures measured).
+  auto paired = [&](const std::vector<double>* v, int mode, bool inverse) {
+    std::vector<double> r;
+    for (std::size_t i = 0; i < v[mode].size() && i < v[0].size(); ++i)
+      r.push_back(inverse ? v[0][i] / v[mode][i] - 1.0 : v[mode][i] / v[0][i] - 1.0);
+    return 100.0 * median(r);
+  };
   auto row = [&](const char* name, int mode) {
     const double f = median(factor[mode]), c = median(cpu[mode]);
     std::printf("%-48s %12.1f %14.0f %10.1f %9.1f%% %8.1f %9.1f%%\n", name, f, median(messages[mode]), median(mb[mode]),
-                100.0 * (none / f - 1.0), c, 100.0 * (c / none_cpu - 1.0));
+                paired(factor, mode, true), c, paired(cpu, mode, false));
   };
   row("ours: a client on all but the clouds", 1);
   row("ours: the same and the 3 LiDAR clouds", 2);
