@@ -8,6 +8,11 @@
 #include "security/security_files.hpp"
 #include "transport/dds.hpp"
 
+#include "cloud/quantized_cloud.hpp"
+
+#include <brickyard/msgs/PointCloud.h>
+#include <brickyard/msgs/QuantizedPointCloud.h>
+
 #include <brickyard/msgs/registry.hpp>
 
 #include <fastdds/dds/topic/TopicDataType.hpp>
@@ -33,6 +38,8 @@ struct Played {
   void* sample = nullptr;
   eprosima::fastrtps::rtps::SerializedPayload_t payload;
   std::uint64_t count = 0;
+  bool packed = false;     // a QuantizedPointCloud, played as the PointCloud it was (--record-cloud-precision)
+  msgs::PointCloud cloud;
   ~Played() {
     if (sample) support->deleteData(sample);
   }
@@ -83,7 +90,8 @@ int bag_play(const BagPlayOptions& o) {
     auto p = std::make_unique<Played>();
     p->support.reset(entry->make());
     p->sample = p->support->createData();
-    p->writer = dds.make_writer(topic_name(name.substr(0, dot), name.substr(dot + 1)), type);
+    p->packed = type == "brickyard::msgs::QuantizedPointCloud";
+    p->writer = dds.make_writer(topic_name(name.substr(0, dot), name.substr(dot + 1)), p->packed ? "brickyard::msgs::PointCloud" : type);
     topics[name] = std::move(p);
   }
   if (topics.empty()) return std::fprintf(stderr, "error: %s: no recorded topic matches --only\n", o.file.c_str()), 2;
@@ -113,7 +121,17 @@ int bag_play(const BagPlayOptions& o) {
                 where_it_breaks(p.support->getName(), data, size);
         return;
       }
-      p.writer->write(p.sample);
+      if (p.packed) {
+        try {
+          p.cloud = cloud::unpack<msgs::PointCloud>(*static_cast<const msgs::QuantizedPointCloud*>(p.sample));
+        } catch (const std::invalid_argument& e) {
+          error = "sample " + std::to_string(p.count) + " of " + topic + ": " + e.what();
+          return;
+        }
+        p.writer->write(&p.cloud);
+      } else {
+        p.writer->write(p.sample);
+      }
       ++p.count;
       ++played;
     });

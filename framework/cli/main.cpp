@@ -88,6 +88,8 @@ options:
                        .db3 (docs/recording.md)
   --record-compression zstd|lz4|none   the MCAP chunks' (default zstd)
   --record-only P,...  record only the topics NODE.PORT matching these patterns ('*' any)
+  --record-cloud-precision M   record point clouds compact, each coordinate to M metres
+                       (0 < M <= 0.1; about 4x smaller; docs/recording.md)
   --live PORT          serve the run to Foxglove (WebSocket, foxglove.websocket.v1) on
                        127.0.0.1:PORT: every wire as a channel (docs/live.md)
   --live-address A     bind the live server to address A instead (opt-in: 0.0.0.0 is every
@@ -118,6 +120,7 @@ struct Args {
   std::string live_address = "127.0.0.1";
   bool live_address_set = false;
   std::optional<double> live_cloud_hz;  // --live-cloud-hz
+  double record_cloud_precision = 0;    // --record-cloud-precision (0: clouds exact)
   int threads = 0;
   std::uint64_t seed = 0;
   bool json = false, dot = false, quiet = false, no_report = false, profile = false, one_process = false;
@@ -199,6 +202,11 @@ Args parse_args(int argc, char** argv) {
         usage_error("--live " + v, "expected a port from 0 to 65535 (0: any free one)");
       a.live_port = std::stoi(v);
     } else if (f == "--live-address") a.live_address = value(), a.live_address_set = true;
+    else if (f == "--record-cloud-precision") {
+      a.record_cloud_precision = parse_number(f, value());
+      if (!(a.record_cloud_precision > 0 && a.record_cloud_precision <= 0.1))
+        usage_error("--record-cloud-precision", "expected metres, more than 0 and at most 0.1");
+    }
     else if (f == "--live-cloud-hz") {
       a.live_cloud_hz = parse_number(f, value());
       if (!(*a.live_cloud_hz >= 0) || *a.live_cloud_hz > 1000)
@@ -588,6 +596,8 @@ int run_graph(const Args& a, GraphDecl g, bool validate_only) {
   }
   if (!a.out.empty()) refuse_foreign_files(a.out);
   if (a.one_process && !a.process.empty()) usage_error("--one-process", "cannot go with --process");
+  if (a.record_cloud_precision > 0 && a.record.empty())
+    usage_error("--record-cloud-precision", "needs --record FILE (the --out folder's recording leaves the clouds out)");
   if (a.process.empty() && !a.one_process && rg.processes.size() > 1 && !g.clock.sim) {
     // A split graph on the real clock: each process a child of this one (cli/supervisor.hpp).
     if (!a.record.empty()) usage_error("--record", "a supervised run records each process into --out DIR/PROCESS/recording.mcap; use --out (or --process, or --one-process)");
@@ -614,6 +624,7 @@ int run_graph(const Args& a, GraphDecl g, bool validate_only) {
   opt.progress_s = a.progress;
   opt.record_only = a.record_only;
   opt.record_compression = a.record_compression;
+  opt.record_cloud_precision = a.record_cloud_precision;
   opt.profile = a.profile;
   opt.threads = a.threads;
   opt.security = security;

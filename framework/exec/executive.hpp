@@ -34,6 +34,7 @@ struct RunOptions {
   std::vector<std::string> record_skip_types;  // message types not recorded (the --out default skips clouds)
   std::optional<int> live_port;          // --live PORT: the Foxglove WebSocket server (docs/live.md)
   std::string live_address = "127.0.0.1";  // --live-address: loopback unless said otherwise
+  double record_cloud_precision = 0;      // --record-cloud-precision: clouds recorded to this many metres, compact (0: exact)
   double live_cloud_hz = 20;             // --live-cloud-hz: a cloud channel's most clouds a second, wall time (0: all)
   double pace = 0;                       // --pace X: sim clock at most X times real time (0: as fast as it goes)
   int threads = 0;        // sim clock: threads that step nodes (0: the machine's cores, at most 4)

@@ -8,6 +8,11 @@
 #include "record/recorder.hpp"
 #include "record/sample_serializer.hpp"
 
+#include "cloud/quantized_cloud.hpp"
+
+#include <brickyard/msgs/PointCloud.h>
+#include <brickyard/msgs/QuantizedPointCloud.h>
+
 #include <algorithm>
 #include <map>
 #include <mutex>
@@ -58,8 +63,10 @@ void Executive::build() {
         if (!type.empty()) {  // (an output of any type that feeds nothing has no writer, nothing to record)
           n->outputs.back()->writer = transport_->make_writer(topic_name(n->name, p.name), type);
           const bool skip = std::find(opt_.record_skip_types.begin(), opt_.record_skip_types.end(), type) != opt_.record_skip_types.end();
+          // --record-cloud-precision: a point cloud is recorded compact (libs/cloud/quantized_cloud.hpp).
+          const bool pack_cloud = opt_.record_cloud_precision > 0 && type == "brickyard::msgs::PointCloud";
           const int rec = recorder_ && !skip && (opt_.record_only.empty() || topic_selected(topic, opt_.record_only))
-                              ? recorder_->add_topic(topic, type)
+                              ? recorder_->add_topic(topic, pack_cloud ? "brickyard::msgs::QuantizedPointCloud" : type)
                               : 0;
           const long live = live_ ? static_cast<long>(live_->add_channel(topic, "cdr", type, "omgidl",
                                                                            omgidl_schema(idl_text(type) ? idl_text(type) : ""),
@@ -72,10 +79,13 @@ void Executive::build() {
             struct Tap {
               explicit Tap(const std::string& type) : serializer(type) {}
               SampleSerializer serializer;
+              std::unique_ptr<SampleSerializer> packed;  // the compact cloud's, for the recording
               std::mutex m;
             };
             auto tap = std::make_shared<Tap>(type);
-            n->outputs.back()->tap = [this, rec, live, tap, scene](const void* m) {
+            if (pack_cloud && rec) tap->packed = std::make_unique<SampleSerializer>("brickyard::msgs::QuantizedPointCloud");
+            const double precision = opt_.record_cloud_precision;
+            n->outputs.back()->tap = [this, rec, live, tap, scene, precision](const void* m) {
               const bool to_live = live >= 0 && live_->wanted(static_cast<std::uint32_t>(live));
               if (!rec && !to_live && !scene) return;
               try {
@@ -87,10 +97,17 @@ void Executive::build() {
                 }
                 if (!rec && !to_live) return;
                 std::lock_guard<std::mutex> l(tap->m);
-                const auto b = tap->serializer.serialize(m);
                 const std::int64_t now = now_ns();
-                if (rec) recorder_->write(rec, now, b.data, b.size);
-                if (to_live) live_->publish(static_cast<std::uint32_t>(live), static_cast<std::uint64_t>(std::max<std::int64_t>(now, 0)), b.data, b.size);
+                if (rec && tap->packed) {
+                  const auto q = cloud::pack<msgs::PointCloud, msgs::QuantizedPointCloud>(*static_cast<const msgs::PointCloud*>(m), precision);
+                  const auto p = tap->packed->serialize(&q);
+                  recorder_->write(rec, now, p.data, p.size);
+                }
+                if ((rec && !tap->packed) || to_live) {
+                  const auto b = tap->serializer.serialize(m);
+                  if (rec && !tap->packed) recorder_->write(rec, now, b.data, b.size);
+                  if (to_live) live_->publish(static_cast<std::uint32_t>(live), static_cast<std::uint64_t>(std::max<std::int64_t>(now, 0)), b.data, b.size);
+                }
               } catch (const std::exception& e) {
                 request_stop(RunResult::failed, e.what());
               }

@@ -14,6 +14,7 @@
 #include <brickyard/msgs/ObstacleListPubSubTypes.h>
 #include <brickyard/msgs/PathPubSubTypes.h>
 #include <brickyard/msgs/PointCloudPubSubTypes.h>
+#include <brickyard/msgs/QuantizedPointCloudPubSubTypes.h>
 #include <brickyard/msgs/ScalarPubSubTypes.h>
 #include <brickyard/msgs/TrackWorldPubSubTypes.h>
 #include <brickyard/msgs/VehicleStatePubSubTypes.h>
@@ -26,9 +27,12 @@
 
 #include "common/recording.hpp"
 
+#include "cloud/quantized_cloud.hpp"
+
 #include <cstring>
-#include <vector>
 #include <memory>
+#include <type_traits>
+#include <vector>
 
 namespace {
 
@@ -104,18 +108,36 @@ class Replay : public Plugin {
         for (const auto& x : rec.topics()) have += (have.empty() ? "" : ", ") + x.name;
         throw BadInput("recording " + file + " has no topic '" + topic + "' (it has: " + have + ")");
       }
-      if (t->type != message_traits<T>::name)
+      // A cloud recorded compact (--record-cloud-precision) is replayed as the PointCloud it was.
+      bool packed = false;
+      if constexpr (std::is_same_v<T, msgs::PointCloud>) packed = t->type == message_traits<msgs::QuantizedPointCloud>::name;
+      const std::string& want = packed ? message_traits<msgs::QuantizedPointCloud>::name : message_traits<T>::name;
+      const std::string& want_hash = packed ? message_traits<msgs::QuantizedPointCloud>::hash : message_traits<T>::hash;
+      if (t->type != want)
         throw BadInput("recording " + file + ": topic '" + topic + "' holds " + t->type + ", this node replays " +
                        message_traits<T>::name + " (use the replay plugin of that type)");
-      if (t->type_hash != message_traits<T>::hash)
+      if (t->type_hash != want_hash)
         throw BadInput("recording " + file + ": topic '" + topic + "' was recorded with another definition of " + t->type +
-                       " (IDL hash " + t->type_hash + ", this build " + message_traits<T>::hash + ")");
+                       " (IDL hash " + t->type_hash + ", this build " + want_hash + ")");
       // Every sample decoded now: a bad one is bad input, found before the run starts.
       for (auto& s : rec.samples(*t)) {
         auto m = std::make_shared<T>();
-        if (const std::string e = decode(s.data, *m); !e.empty())
+        std::string e;
+        if constexpr (std::is_same_v<T, msgs::PointCloud>) {
+          if (packed) {
+            msgs::QuantizedPointCloud q;
+            e = decode(s.data, q);
+            try {
+              if (e.empty()) *m = cloud::unpack<msgs::PointCloud>(q);
+            } catch (const std::invalid_argument& x) {
+              e = x.what();
+            }
+          }
+        }
+        if (!packed) e = decode(s.data, *m);
+        if (!e.empty())
           throw BadInput("recording " + file + ": sample " + std::to_string(samples_.size()) + " of '" + topic + "' does not decode as " +
-                         message_traits<T>::name + ": " + e);
+                         want + ": " + e);
         std::int64_t stamp = s.stamp_ns;
         if (retime) {  // the drive from 0: the sample's time and its measurement's stamp alike
           if (stamp < s_.retime_from_ns) continue;

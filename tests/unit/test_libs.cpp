@@ -7,6 +7,11 @@
 #include "track/track.hpp"
 #include "vehicle/vehicle.hpp"
 
+#include "cloud/quantized_cloud.hpp"
+
+#include <brickyard/msgs/PointCloud.h>
+#include <brickyard/msgs/QuantizedPointCloud.h>
+
 #include "av21.hpp"
 #include "shapes.hpp"
 
@@ -14,6 +19,8 @@
 
 #include <cmath>
 #include <fstream>
+#include <limits>
+#include <random>
 #include <sstream>
 
 using namespace brickyard;
@@ -141,4 +148,92 @@ TEST(RacingLine, LeavesTrackNamesThePoint) {
   EXPECT_EQ(motion::leaves_track(circle(104.8, 200, 0), t), "");
   const std::string e = motion::leaves_track(circle(106, 200, 0), t);
   EXPECT_NE(e.find("point 1 (106.00, 0.00) is 1.00 m beyond the track's right edge"), std::string::npos) << e;
+}
+
+// ---- compact clouds for recordings (libs/cloud/quantized_cloud.hpp, issue 18) ----
+
+TEST(QuantizedCloud, RoundTripWithinHalfThePrecision) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> u(-200.0f, 200.0f), w(0.0f, 0.8f);
+  std::vector<float> x(5000), y(5000), z(5000), in(5000);
+  for (std::size_t i = 0; i < x.size(); ++i) x[i] = u(rng), y[i] = u(rng), z[i] = u(rng) / 50, in[i] = w(rng);
+  for (double precision : {0.001, 0.01, 0.05}) {
+    const auto q = brickyard::cloud::quantize(x, y, z, in, precision);
+    std::vector<float> rx, ry, rz, ri;
+    brickyard::cloud::restore(q, rx, ry, rz, ri);
+    ASSERT_EQ(rx.size(), x.size());
+    double worst = 0, worst_i = 0;
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      worst = std::max({worst, std::abs(double(rx[i]) - x[i]), std::abs(double(ry[i]) - y[i]), std::abs(double(rz[i]) - z[i])});
+      worst_i = std::max(worst_i, std::abs(double(ri[i]) - in[i]));
+    }
+    EXPECT_LE(worst, precision / 2 + 2e-5) << precision;  // float32 at 200 m holds 15 µm
+    EXPECT_LE(worst_i, q.intensity_max / 510.0 + 1e-6);
+  }
+}
+
+TEST(QuantizedCloud, AScanLineIsSmallStepsAndPointsNotFiniteComeBackAsNaN) {
+  // A ring of returns 30 m round, 0.1° apart: each step a few centimetres.
+  std::vector<float> x, y, z, in;
+  for (int k = 0; k < 3600; ++k) {
+    const double a = k * 0.1 * M_PI / 180;
+    x.push_back(static_cast<float>(30 * std::cos(a))), y.push_back(static_cast<float>(30 * std::sin(a))), z.push_back(-1.5f), in.push_back(0.2f);
+  }
+  x[10] = std::numeric_limits<float>::quiet_NaN();
+  y[20] = 3e38f;  // beyond 2^31 centimetres
+  const auto q = brickyard::cloud::quantize(x, y, z, in, 0.01);
+  ASSERT_EQ(q.not_finite, (std::vector<std::uint32_t>{10, 20}));
+  // Steps of at most 6 cm a coordinate, zigzag-coded: below 256, so every plane but the low bytes' is zero.
+  const std::size_t n = x.size();
+  ASSERT_EQ(q.steps.size(), 12 * n);
+  for (int axis = 0; axis < 3; ++axis)
+    for (int b = 1; b < 4; ++b)
+      for (std::size_t i = 1; i < n; ++i) ASSERT_EQ(q.steps[(4 * axis + b) * n + i], 0) << axis << " " << b << " " << i;
+  std::vector<float> rx, ry, rz, ri;
+  brickyard::cloud::restore(q, rx, ry, rz, ri);
+  EXPECT_TRUE(std::isnan(rx[10]) && std::isnan(ry[10]) && std::isnan(rz[10]));
+  EXPECT_TRUE(std::isnan(ry[20]));
+  EXPECT_NEAR(rx[21], x[21], 0.005 + 1e-5);  // the points after them are where they were
+  EXPECT_NEAR(ry[3599], y[3599], 0.005 + 1e-5);
+}
+
+TEST(QuantizedCloud, BadInputIsNamed) {
+  using brickyard::cloud::quantize;
+  const std::vector<float> a{1, 2}, b{1};
+  auto error = [](auto f) {
+    try {
+      f();
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_NE(error([&] { quantize(a, a, a, {}, 0); }).find("expected (0, 1] m"), std::string::npos);
+  EXPECT_EQ(error([&] { quantize(a, b, a, {}, 0.01); }), "x, y, z and intensity hold 2, 1, 2 and 0 values");
+  brickyard::cloud::Quantized q = quantize(a, a, a, {}, 0.01);
+  q.not_finite = {5};
+  std::vector<float> x, y, z, i;
+  EXPECT_EQ(error([&] { brickyard::cloud::restore(q, x, y, z, i); }), "not_finite lists point 5 out of order or beyond the cloud's 2");
+  q.not_finite.clear();
+  q.steps.pop_back();
+  EXPECT_EQ(error([&] { brickyard::cloud::restore(q, x, y, z, i); }), "steps hold 23 bytes, not 12 a point");
+}
+
+TEST(QuantizedCloud, ThePointCloudMessageComesBackWithItsHeaderAndMount) {
+  brickyard::msgs::PointCloud c;
+  c.header().stamp_ns(123456789);
+  c.header().frame_id("lidar_front");
+  c.sensor_id(2);
+  c.sensor_x(1.5), c.sensor_yaw(0.25);
+  c.x({1.234f, 5.678f}), c.y({-1.0f, 2.0f}), c.z({0.5f, 0.25f}), c.intensity({0.1f, 0.4f});
+  const auto q = brickyard::cloud::pack<brickyard::msgs::PointCloud, brickyard::msgs::QuantizedPointCloud>(c, 0.001);
+  const auto r = brickyard::cloud::unpack<brickyard::msgs::PointCloud>(q);
+  EXPECT_EQ(r.header().stamp_ns(), 123456789);
+  EXPECT_EQ(r.header().frame_id(), "lidar_front");
+  EXPECT_EQ(r.sensor_id(), 2);
+  EXPECT_EQ(r.sensor_x(), 1.5);
+  EXPECT_EQ(r.sensor_yaw(), 0.25);
+  ASSERT_EQ(r.x().size(), 2u);
+  EXPECT_NEAR(r.x()[1], 5.678f, 0.0005 + 1e-6);
+  EXPECT_NEAR(r.intensity()[0], 0.1f, 0.4 / 510 + 1e-6);
 }
