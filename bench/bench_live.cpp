@@ -42,7 +42,7 @@ int main(int argc, char** argv) {
   const std::string dir = "/tmp/bench_live";
   fs::remove_all(dir);
   fs::create_directories(dir);
-  std::vector<double> factor[4], messages[4], mb[4], cpu[4];
+  std::vector<double> factor[4], messages[4], mb[4], cpu[4], own[4], server_s[4], taps_s[4];
   double sim_s = 0;
   for (int i = 0; i < runs; ++i)
     for (int mode : {0, 1, 2, 3}) {  // none; a client on all but the clouds; on everything; on everything, every cloud
@@ -72,6 +72,12 @@ int main(int argc, char** argv) {
         std::system("sleep 0.5");  // the client writes its count once the server has closed
         const auto live = j.value("live", nlohmann::json::object());
         messages[mode].push_back(live.value("sent", 0.0));
+        // The server's own work, counted in the run: its thread's CPU time and the stepping
+        // threads' time in the live view's taps, as a share of the run's CPU time (less noisy
+        // than a difference of two runs on a shared machine).
+        server_s[mode].push_back(live.value("server_cpu_s", 0.0));
+        taps_s[mode].push_back(live.value("taps_s", 0.0));
+        own[mode].push_back((server_s[mode].back() + taps_s[mode].back()) / cpu[mode].back());
         std::ifstream f(dir + "/sink.json");
         try {
           mb[mode].push_back(nlohmann::json::parse(f).value("bytes", 0.0) / 1e6);
@@ -81,7 +87,8 @@ int main(int argc, char** argv) {
       }
     }
   std::printf("the live server on the main job (configs/ims_race.json, %.1f s of sim time, %d runs each)\n", sim_s, runs);
-  std::printf("%-48s %12s %14s %10s %10s %8s %10s\n", "", "x real time", "frames sent", "MB", "wall cost", "CPU s", "CPU cost");
+  std::printf("%-48s %12s %14s %10s %10s %8s %10s %9s %8s %9s\n", "", "x real time", "frames sent", "MB", "wall cost", "CPU s",
+              "CPU cost", "server s", "taps s", "own share");
   const double none = median(factor[0]), none_cpu = median(cpu[0]);
   // Each cost is the median of the runs' own ratios to the baseline run beside them (the
   // machine's speed drifts between rounds by more than the figures measured).
@@ -93,8 +100,9 @@ int main(int argc, char** argv) {
   };
   auto row = [&](const char* name, int mode) {
     const double f = median(factor[mode]), c = median(cpu[mode]);
-    std::printf("%-48s %12.1f %14.0f %10.1f %9.1f%% %8.1f %9.1f%%\n", name, f, median(messages[mode]), median(mb[mode]),
-                paired(factor, mode, true), c, paired(cpu, mode, false));
+    std::printf("%-48s %12.1f %14.0f %10.1f %9.1f%% %8.1f %9.1f%% %9.2f %8.2f %8.1f%%\n", name, f, median(messages[mode]),
+                median(mb[mode]), paired(factor, mode, true), c, paired(cpu, mode, false), median(server_s[mode]), median(taps_s[mode]),
+                100.0 * median(own[mode]));
   };
   row("ours: a client on all but the clouds", 1);
   row("ours: the same and the 3 LiDAR clouds", 2);

@@ -306,7 +306,7 @@ RunSummary Executive::run() {
     const LiveStats st = live_->stats();
     live = {{"port", live_->port()}, {"clients", st.clients}, {"sent", st.sent}, {"dropped", st.dropped},
             {"refused_requests", st.refused_requests}, {"disconnected", st.disconnected}, {"clouds_thinned", st.clouds_thinned},
-            {"cloud_hz", opt_.live_cloud_hz}};
+            {"cloud_hz", opt_.live_cloud_hz}, {"server_cpu_s", st.server_cpu_s}, {"taps_s", 1e-9 * static_cast<double>(live_tap_ns_.load())}};
     // The server and the scene stay until the executive goes (taps may publish until the plugins
     // are destroyed); its clients are closed then.
   }

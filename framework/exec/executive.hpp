@@ -106,6 +106,7 @@ class Executive {
   std::vector<std::unique_ptr<NodeRuntime>> nodes_;
 
   std::atomic<bool> stop_{false};
+  std::atomic<std::int64_t> live_tap_ns_{0};  // wall time the stepping threads spent on the live view (summary: live.taps_s)
   std::vector<std::unique_ptr<RemoteInput>> remote_inputs_;
   std::vector<std::string> lost_peers_;  // under stop_m_: writers lost that fail the run
   nlohmann::json peer_events_ = nlohmann::json::array();  // under stop_m_: every lapse and return

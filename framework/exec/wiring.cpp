@@ -14,6 +14,7 @@
 #include <brickyard/msgs/QuantizedPointCloud.h>
 
 #include <algorithm>
+#include <chrono>
 #include <map>
 #include <mutex>
 #include <set>
@@ -90,10 +91,12 @@ void Executive::build() {
               if (!rec && !to_live && !scene) return;
               try {
                 if (scene) {
+                  const auto t0 = std::chrono::steady_clock::now();  // the live view's own time (summary: live.taps_s)
                   try {
                     scene(m, static_cast<std::uint64_t>(std::max<std::int64_t>(now_ns(), 0)));
                   } catch (const std::exception&) {  // the viewer's picture of a sample: never the run's failure
                   }
+                  live_tap_ns_ += (std::chrono::steady_clock::now() - t0).count();
                 }
                 if (!rec && !to_live) return;
                 std::lock_guard<std::mutex> l(tap->m);
@@ -104,9 +107,15 @@ void Executive::build() {
                   recorder_->write(rec, now, p.data, p.size);
                 }
                 if ((rec && !tap->packed) || to_live) {
+                  const auto t0 = std::chrono::steady_clock::now();
                   const auto b = tap->serializer.serialize(m);
-                  if (rec && !tap->packed) recorder_->write(rec, now, b.data, b.size);
-                  if (to_live) live_->publish(static_cast<std::uint32_t>(live), static_cast<std::uint64_t>(std::max<std::int64_t>(now, 0)), b.data, b.size);
+                  const bool shared = rec && !tap->packed;  // serialized for the recording anyway
+                  if (shared) recorder_->write(rec, now, b.data, b.size);
+                  if (to_live) {
+                    const auto t1 = std::chrono::steady_clock::now();
+                    live_->publish(static_cast<std::uint32_t>(live), static_cast<std::uint64_t>(std::max<std::int64_t>(now, 0)), b.data, b.size);
+                    live_tap_ns_ += (std::chrono::steady_clock::now() - (shared ? t1 : t0)).count();
+                  }
                 }
               } catch (const std::exception& e) {
                 request_stop(RunResult::failed, e.what());

@@ -9,6 +9,9 @@
 #include <nlohmann/json.hpp>
 
 #include <chrono>
+#include <ctime>
+
+#include <pthread.h>
 #include <condition_variable>
 #include <cstring>
 #include <deque>
@@ -382,7 +385,13 @@ void LiveServer::time(std::uint64_t stamp_ns, std::uint64_t every_ns) {
 
 LiveStats LiveServer::stats() const {
   const Impl& s = *impl_;
-  return {s.accepted.load(), s.sent.load(), s.dropped.load(), s.refused.load(), s.disconnected.load(), s.thinned.load()};
+  double cpu = 0;
+  clockid_t id;
+  timespec ts{};
+  if (s.thread.joinable() && pthread_getcpuclockid(const_cast<std::thread&>(s.thread).native_handle(), &id) == 0 &&
+      clock_gettime(id, &ts) == 0)
+    cpu = static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+  return {s.accepted.load(), s.sent.load(), s.dropped.load(), s.refused.load(), s.disconnected.load(), s.thinned.load(), cpu};
 }
 
 }  // namespace brickyard::fw

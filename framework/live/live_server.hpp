@@ -35,6 +35,7 @@ struct LiveOptions {
 struct LiveStats {
   std::uint64_t clients = 0, sent = 0, dropped = 0, refused_requests = 0, disconnected = 0;
   std::uint64_t clouds_thinned = 0;  // clouds not sent: a channel's cloud_hz would be exceeded
+  double server_cpu_s = 0;           // the server thread's CPU time so far (its own share of the run's cost)
 };
 
 class LiveServer {
