@@ -90,8 +90,8 @@ int bag_play(const BagPlayOptions& o) {
     auto p = std::make_unique<Played>();
     p->support.reset(entry->make());
     p->sample = p->support->createData();
-    p->packed = type == "brickyard::msgs::QuantizedPointCloud";
-    p->writer = dds.make_writer(topic_name(name.substr(0, dot), name.substr(dot + 1)), p->packed ? "brickyard::msgs::PointCloud" : type);
+    p->packed = type == message_traits<msgs::QuantizedPointCloud>::name;
+    p->writer = dds.make_writer(topic_name(name.substr(0, dot), name.substr(dot + 1)), p->packed ? message_traits<msgs::PointCloud>::name : type);
     topics[name] = std::move(p);
   }
   if (topics.empty()) return std::fprintf(stderr, "error: %s: no recorded topic matches --only\n", o.file.c_str()), 2;

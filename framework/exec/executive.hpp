@@ -87,6 +87,8 @@ class Executive {
 
  private:
   void build();
+  // Records an output's samples, serves them live and draws them in the scene (exec/output_tap.cpp).
+  void tap_output(OutputPort& out, const std::string& topic, const std::string& type);
   bool call(NodeRuntime& n, const char* phase, const std::function<void()>& f);
   void run_sim();
   void run_real();

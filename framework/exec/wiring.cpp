@@ -8,13 +8,7 @@
 #include "record/recorder.hpp"
 #include "record/sample_serializer.hpp"
 
-#include "cloud/quantized_cloud.hpp"
-
-#include <brickyard/msgs/PointCloud.h>
-#include <brickyard/msgs/QuantizedPointCloud.h>
-
 #include <algorithm>
-#include <chrono>
 #include <map>
 #include <mutex>
 #include <set>
@@ -63,65 +57,7 @@ void Executive::build() {
         }
         if (!type.empty()) {  // (an output of any type that feeds nothing has no writer, nothing to record)
           n->outputs.back()->writer = transport_->make_writer(topic_name(n->name, p.name), type);
-          const bool skip = std::find(opt_.record_skip_types.begin(), opt_.record_skip_types.end(), type) != opt_.record_skip_types.end();
-          // --record-cloud-precision: a point cloud is recorded compact (libs/cloud/quantized_cloud.hpp).
-          const bool pack_cloud = opt_.record_cloud_precision > 0 && type == "brickyard::msgs::PointCloud";
-          const int rec = recorder_ && !skip && (opt_.record_only.empty() || topic_selected(topic, opt_.record_only))
-                              ? recorder_->add_topic(topic, pack_cloud ? "brickyard::msgs::QuantizedPointCloud" : type)
-                              : 0;
-          const long live = live_ ? static_cast<long>(live_->add_channel(topic, "cdr", type, "omgidl",
-                                                                           omgidl_schema(idl_text(type) ? idl_text(type) : ""),
-                                                                           type == "brickyard::msgs::PointCloud"))
-                                  : -1;
-          auto scene = scene_ ? scene_->handler(topic, type) : std::function<void(const void*, std::uint64_t)>();
-          if (rec || live >= 0) {
-            // Serialized once for both; live only while a client is subscribed. A failed write
-            // stops the run; it must not unwind through the publishing plugin.
-            struct Tap {
-              explicit Tap(const std::string& type) : serializer(type) {}
-              SampleSerializer serializer;
-              std::unique_ptr<SampleSerializer> packed;  // the compact cloud's, for the recording
-              std::mutex m;
-            };
-            auto tap = std::make_shared<Tap>(type);
-            if (pack_cloud && rec) tap->packed = std::make_unique<SampleSerializer>("brickyard::msgs::QuantizedPointCloud");
-            const double precision = opt_.record_cloud_precision;
-            n->outputs.back()->tap = [this, rec, live, tap, scene, precision](const void* m) {
-              const bool to_live = live >= 0 && live_->wanted(static_cast<std::uint32_t>(live));
-              if (!rec && !to_live && !scene) return;
-              try {
-                if (scene) {
-                  const auto t0 = std::chrono::steady_clock::now();  // the live view's own time (summary: live.taps_s)
-                  try {
-                    scene(m, static_cast<std::uint64_t>(std::max<std::int64_t>(now_ns(), 0)));
-                  } catch (const std::exception&) {  // the viewer's picture of a sample: never the run's failure
-                  }
-                  live_tap_ns_ += (std::chrono::steady_clock::now() - t0).count();
-                }
-                if (!rec && !to_live) return;
-                std::lock_guard<std::mutex> l(tap->m);
-                const std::int64_t now = now_ns();
-                if (rec && tap->packed) {
-                  const auto q = cloud::pack<msgs::PointCloud, msgs::QuantizedPointCloud>(*static_cast<const msgs::PointCloud*>(m), precision);
-                  const auto p = tap->packed->serialize(&q);
-                  recorder_->write(rec, now, p.data, p.size);
-                }
-                if ((rec && !tap->packed) || to_live) {
-                  const auto t0 = std::chrono::steady_clock::now();
-                  const auto b = tap->serializer.serialize(m);
-                  const bool shared = rec && !tap->packed;  // serialized for the recording anyway
-                  if (shared) recorder_->write(rec, now, b.data, b.size);
-                  if (to_live) {
-                    const auto t1 = std::chrono::steady_clock::now();
-                    live_->publish(static_cast<std::uint32_t>(live), static_cast<std::uint64_t>(std::max<std::int64_t>(now, 0)), b.data, b.size);
-                    live_tap_ns_ += (std::chrono::steady_clock::now() - (shared ? t1 : t0)).count();
-                  }
-                }
-              } catch (const std::exception& e) {
-                request_stop(RunResult::failed, e.what());
-              }
-            };
-          }
+          tap_output(*n->outputs.back(), topic, type);
         }
       }
     }

@@ -9,17 +9,17 @@
 #include <nlohmann/json.hpp>
 
 #include <chrono>
-#include <ctime>
-
-#include <pthread.h>
 #include <condition_variable>
 #include <cstring>
+#include <ctime>
 #include <deque>
 #include <map>
 #include <mutex>
 #include <stdexcept>
 #include <thread>
 #include <unordered_map>
+
+#include <pthread.h>  // pthread_getcpuclockid: the server thread's CPU time
 
 namespace brickyard::fw {
 

@@ -4,7 +4,7 @@
 # message decoded by its OMG IDL; at most a third of the exact file's size; replayed by
 # replay.point_cloud as PointClouds whose every coordinate lies within half a centimetre of the
 # exact recording's, with the same stamps and mounts; bag play republishes them as PointClouds.
-# Bad values: exit 2.
+# Bad values and damaged compact samples: exit 2.
 set -u
 by=$1; graphs=$2; domain=$3; out=$4; clients=$5
 rm -rf "$out"; mkdir -p "$out"
@@ -79,6 +79,28 @@ expect2() {  # pattern, then the command
   [ $rc -eq 2 ] || { cat "$out/bad.log"; echo "FAIL: exit $rc, expected 2: $*"; exit 1; }
   grep -q -- "$pat" "$out/bad.log" || { cat "$out/bad.log"; echo "FAIL: message lacks '$pat'"; exit 1; }
 }
+# A damaged compact sample: cut short (the CDR does not decode), or a precision out of range (it
+# decodes, and does not restore): exit 2 naming the recording and the sample.
+python3 - "$out/cm.db3" "$out/cut.db3" "$out/precision.db3" <<'PY'
+import shutil, sqlite3, struct, sys
+for dst, how in ((sys.argv[2], "cut"), (sys.argv[3], "precision")):
+    shutil.copy(sys.argv[1], dst)
+    c = sqlite3.connect(dst)
+    mid, d = c.execute("SELECT m.id, m.data FROM messages m JOIN topics t ON t.id = m.topic_id "
+                       "WHERE t.name = 'lidar_front.cloud' ORDER BY m.id LIMIT 1").fetchone()
+    d = bytearray(d)
+    if how == "cut":
+        d = d[:len(d) // 2]
+    else:  # precision_m: after the header, sensor_id and the six doubles of the mount
+        o = 16 + 4 + struct.unpack_from("<I", d, 16)[0] + 1
+        o = 4 + (((o - 4) + 7) & ~7) + 48
+        struct.pack_into("<d", d, o, 5.0)
+    c.execute("UPDATE messages SET data = ? WHERE id = ?", (bytes(d), mid)); c.commit()
+PY
+expect2 "cut.db3: sample 0 of 'lidar_front.cloud' does not decode as brickyard::msgs::QuantizedPointCloud: its first" \
+  "$by" run "$replay" --domain "$domain" --set lidar_front.file="$out/cut.db3"
+expect2 "precision.db3: sample 0 of 'lidar_front.cloud' does not decode as brickyard::msgs::QuantizedPointCloud: precision_m 5.000000: expected (0, 1\] m" \
+  "$by" run "$replay" --domain "$domain" --set lidar_front.file="$out/precision.db3"
 expect2 "--record-cloud-precision: expected metres, more than 0 and at most 0.1" "$by" run "$run" --record "$out/x.mcap" --record-cloud-precision 0.5
 expect2 "--record-cloud-precision: needs --record FILE" "$by" run "$run" --record-cloud-precision 0.01
 echo "cloud precision: ok"
