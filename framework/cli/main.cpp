@@ -167,7 +167,7 @@ Args parse_args(int argc, char** argv) {
       return v[++i];
     };
     // Flags every process of a supervised run is given as they are.
-    static const std::set<std::string> kForwarded = {"--set", "--arg", "--seed", "--plugin-path", "--threads", "--progress"};
+    static const std::set<std::string> kForwarded = {"--set", "--arg", "--seed", "--plugin-path", "--threads", "--progress", "--pace"};
     if (kForwarded.count(f) && i + 1 < v.size()) a.child_flags.insert(a.child_flags.end(), {f, v[i + 1]});
     if (f == "--quiet" || f == "-q" || f == "--profile" || f == "--no-report") a.child_flags.push_back(f);
     if (f == "--duration") {
@@ -575,7 +575,9 @@ int run_graph(const Args& a, GraphDecl g, bool validate_only) {
   DdsSecurity security;
   if (!g.transport.security.empty()) {
     const bool many_here = a.process.empty() && rg.processes.size() > 1;
-    if (many_here && !validate_only && (a.one_process || g.clock.sim)) {
+    if (g.clock.sim && rg.processes.size() > 1 && !a.one_process && !validate_only)
+      usage_error(g.where("/transport/security"), "a split run on the sim clock (its processes in lockstep) does not run secured yet: its clock topics have no permissions; use the real clock");
+    if (many_here && !validate_only && a.one_process) {
       std::string names;
       for (const auto& p : rg.processes) names += (names.empty() ? "" : ", ") + p;
       usage_error(g.where("/transport/security"), "a run of processes " + names +
@@ -598,11 +600,12 @@ int run_graph(const Args& a, GraphDecl g, bool validate_only) {
   if (a.one_process && !a.process.empty()) usage_error("--one-process", "cannot go with --process");
   if (a.record_cloud_precision > 0 && a.record.empty())
     usage_error("--record-cloud-precision", "needs --record FILE (the --out folder's recording leaves the clouds out)");
-  if (a.process.empty() && !a.one_process && rg.processes.size() > 1 && !g.clock.sim) {
-    // A split graph on the real clock: each process a child of this one (cli/supervisor.hpp).
+  if (a.process.empty() && !a.one_process && rg.processes.size() > 1) {
+    // A split graph: each process a child of this one (cli/supervisor.hpp); on the sim clock they
+    // step in lockstep (exec/lockstep.hpp).
     if (!a.record.empty()) usage_error("--record", "a supervised run records each process into --out DIR/PROCESS/recording.mcap; use --out (or --process, or --one-process)");
     if (a.live_port || g.live.port) usage_error("--live", "a supervised run serves nothing live itself; use --process NAME --live PORT for the process to watch (or --one-process)");
-    if (a.pace > 0) usage_error("--pace", "the graph runs on the real clock, which needs no pacing");
+    if (a.pace > 0 && !g.clock.sim) usage_error("--pace", "the graph runs on the real clock, which needs no pacing");
     SuperviseOptions so;
     so.graph_file = a.target;
     so.child_flags = a.child_flags;

@@ -104,8 +104,11 @@ void Supervisor::spawn(Child& c) {
   c.shm_list = (fs::path(tmp_) / (c.name + "." + std::to_string(c.restarts) + ".shm")).string();
   std::vector<std::string> argv = {self_, "run", o_.graph_file, "--process", c.name, "--domain", std::to_string(o_.domain), "--out", c.dir};
   if (o_.duration_s) {
+    // The real clock: what is left of the run (a restarted process ends with the others); the
+    // sim clock: the whole, to the bit (every process of the lockstep ends at the same instant).
     char d[32];
-    std::snprintf(d, sizeof d, "%.3f", std::max(*o_.duration_s - elapsed(), 0.001));
+    if (g_.clock.sim) std::snprintf(d, sizeof d, "%.17g", *o_.duration_s);
+    else std::snprintf(d, sizeof d, "%.3f", std::max(*o_.duration_s - elapsed(), 0.001));
     argv.insert(argv.end(), {"--duration", d});
   }
   argv.insert(argv.end(), o_.child_flags.begin(), o_.child_flags.end());
@@ -265,8 +268,11 @@ void Supervisor::ended(Child& c, int status) {
   }
   if (clean) {
     say("process '" + c.name + "' ended" + (reason.empty() ? "" : ": " + reason));
-    // The first process to end on its own ends the run (its referee, its sink, its duration).
-    if (!c.stopped && !stopping_) {
+    // The first process to end on its own ends the run (its referee, its sink, its duration). On
+    // the sim clock the others end at the same event by themselves, perhaps later in wall time.
+    if (!c.stopped && !stopping_ && g_.clock.sim) {
+      if (!finished_by_) finished_by_ = "process '" + c.name + "': " + reason;
+    } else if (!c.stopped && !stopping_) {
       finished_by_ = "process '" + c.name + "': " + reason;
       if (std::any_of(children_.begin(), children_.end(), [](const Child& o) { return o.state != Child::State::done; }))
         say("stopping the other processes");
@@ -282,6 +288,7 @@ void Supervisor::ended(Child& c, int status) {
   // its command watchdog) rather than being stopped; the verdict is kept.
   if (c.policy.restart != ProcessDecl::Restart::on_failure) {
     say(c.policy.may_die ? "the graph lets process '" + c.name + "' die; the others go on"
+        : g_.clock.sim   ? "the run has failed (process '" + c.name + "' may not die); the others, in lockstep with it, end too"
                          : "the others go on; the run has failed (process '" + c.name + "' may not die)",
         true);
     return;
@@ -307,7 +314,7 @@ void Supervisor::ended(Child& c, int status) {
 
 void Supervisor::write_summary(const std::string& result, const std::string& reason) {
   if (o_.out.empty()) return;
-  nlohmann::json j = {{"graph", g_.name}, {"graph_file", g_.file}, {"result", result}, {"reason", reason}, {"clock", "real"},
+  nlohmann::json j = {{"graph", g_.name}, {"graph_file", g_.file}, {"result", result}, {"reason", reason}, {"clock", g_.clock.sim ? "sim" : "real"},
                       {"process", "supervisor"}, {"wall_time_s", elapsed()}, {"processes", nlohmann::json::object()}};
   // What watching cost: the supervisor's own CPU time beside its children's (docs/reliability.md).
   auto cpu = [](int who) {

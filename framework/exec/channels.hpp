@@ -18,8 +18,8 @@ namespace brickyard::fw {
 
 class InputQueue final : public detail::InputChannel {
  public:
-  InputQueue(std::string name, std::string type, std::uint32_t depth, bool connected)
-      : name_(std::move(name)), type_(std::move(type)), depth_(depth), connected_(connected) {}
+  InputQueue(std::string name, std::string type, std::uint32_t depth, bool connected, bool phantom = false)
+      : name_(std::move(name)), type_(std::move(type)), depth_(depth), connected_(connected), phantom_(phantom) {}
 
   const std::string& name() const { return name_; }
   const std::string& type_name() const override { return type_; }
@@ -35,8 +35,16 @@ class InputQueue final : public detail::InputChannel {
     serialize_ = std::move(serialize);
   }
 
+  // An input of another process's node in a lockstep run (exec/lockstep.hpp): it keeps nothing;
+  // a sample's arrival only queues its phantom node's turn, as the real one's is queued there.
+  bool phantom() const { return phantom_; }
+
   // Thread-safe; the oldest sample is dropped (and counted) when the queue is full.
   void push(std::shared_ptr<const void> s) {
+    if (phantom_) {
+      if (on_arrival) on_arrival(name_);
+      return;
+    }
     if (serialize_) s = serialize_(s.get());
     {
       std::lock_guard<std::mutex> l(m_);
@@ -96,7 +104,7 @@ class InputQueue final : public detail::InputChannel {
  private:
   std::string name_, type_;
   std::uint32_t depth_;
-  bool connected_;
+  bool connected_, phantom_;
   std::string wire_type_, wire_idl_;
   std::function<std::shared_ptr<const void>(const void*)> serialize_;
   void arrive(std::shared_ptr<const void> s) {  // m_ held
@@ -150,15 +158,18 @@ class OutputPort final : public detail::OutputChannel {
       if (wire_type_.empty()) return;  // it feeds nothing
       s = decode_any(*static_cast<const SerializedSample*>(s.get()));
     }
+    if (t_publog) t_publog->push_back(index);  // a lockstep run's record of this step (exec/lockstep.hpp)
     ++published_;
     if (tap) tap(s.get());  // the recorder, before anyone downstream runs
     for (InputQueue* q : local) q->push(s);
-    if (writer && writer->has_remote_readers()) writer->write(s.get());
+    if (writer && writer->has_remote_readers() && !writer->write(s.get()) && write_failed) write_failed(name_);
   }
   std::uint64_t published() const { return published_; }
 
   std::vector<InputQueue*> local;
   DdsWriter* writer = nullptr;
+  std::uint16_t index = 0;                          // its place among its node's outputs
+  std::function<void(const std::string&)> write_failed;  // a lockstep run: a sample its peers need was not sent
   std::function<void(const void*)> tap;  // set by the executive when this port is recorded
 
  private:

@@ -5,11 +5,13 @@
 #include "exec/node_checks.hpp"
 #include "exec/crash_guard.hpp"
 #include "exec/file_search.hpp"
+#include "exec/lockstep.hpp"
 #include "exec/node_runtime.hpp"
 #include "exec/recording.hpp"
 #include "exec/summary.hpp"
 
 #include <algorithm>
+#include <set>
 #include <chrono>
 #include <thread>
 #include <cstdio>
@@ -19,6 +21,7 @@ namespace brickyard::fw {
 std::atomic<bool> g_interrupt{false};
 thread_local Deferred* t_deferred = nullptr;
 thread_local std::int64_t t_step_now_ns = -1;
+thread_local std::vector<std::uint16_t>* t_publog = nullptr;
 
 const char* to_string(RunResult r) {
   switch (r) {
@@ -41,6 +44,7 @@ Executive::Executive(const ResolvedGraph& g, RunOptions opt) : graph_(g), opt_(s
 Executive::~Executive() {
   // Teardown order matters: deliveries stop, plugin objects go, then DDS entities.
   if (transport_) transport_->close_readers();
+  lock_.reset();  // (after its readers, which feed it)
   for (auto& n : nodes_)
     if (n->instance) n->rn->plugin->descriptor->destroy(n->instance);
   nodes_.clear();
@@ -165,9 +169,49 @@ bool Executive::await_peers() {
   }
 }
 
+// A lockstep run's start-up (exec/lockstep.hpp): every wire across processes matched both ways
+// (a sample written before its reader is known would be lost, and the replay would wait for it),
+// then a hello to and from each peer, which carries the graph's fingerprint and whether its
+// process started. A peer that could not start ends this run with its verdict.
+void Executive::lockstep_start() {
+  std::map<const DdsWriter*, std::set<std::string>> readers;  // each output's writer: the processes it feeds
+  for (const auto& w : graph_.decl->wires) {
+    const auto& from = graph_.decl->nodes.at(w.from.node), &to = graph_.decl->nodes.at(w.to.node);
+    if (from.process != opt_.process || to.process == opt_.process) continue;
+    for (auto& n : nodes_)
+      if (n->name == w.from.node)
+        if (OutputPort* o = n->output(w.from.port); o && o->writer) readers[o->writer].insert(to.process);
+  }
+  auto matched = [&] {
+    for (const auto& r : remote_inputs_)
+      if (r->reader->matched() == 0) return false;
+    for (const auto& [w, ps] : readers)
+      if (w->matched() < static_cast<int>(ps.size())) return false;
+    return true;
+  };
+  LockRecord hello;
+  if (stop_) {
+    std::lock_guard<std::mutex> l(stop_m_);
+    hello.stop = true;
+    hello.result = static_cast<std::uint8_t>(stop_result_.value_or(RunResult::failed));
+    hello.reason = stop_reason_;
+  }
+  std::string why;
+  std::optional<std::pair<RunResult, std::string>> peer_stop;
+  if (!lock_->start(graph_.decl->transport.startup_timeout_s, matched, hello, why, peer_stop) && !stop_) lockstep_failed(why, peer_stop);
+}
+
 void Executive::request_stop(RunResult r, std::string reason) {
   if (t_deferred) {
     t_deferred->emplace_back([this, r, reason = std::move(reason)]() mutable { request_stop(r, std::move(reason)); });
+    return;
+  }
+  if (deactivate_log_) {  // a lockstep run's deactivation: applied with the other processes' (run())
+    LockRecord d;
+    d.node = static_cast<std::uint32_t>(deactivating_);
+    d.result = static_cast<std::uint8_t>(r);
+    d.reason = std::move(reason);
+    deactivate_log_->push_back(std::move(d));
     return;
   }
   std::lock_guard<std::mutex> l(stop_m_);
@@ -265,25 +309,40 @@ RunSummary Executive::run() {
     live_->start();
     host_log("live: ws://" + opt_.live_address + ":" + std::to_string(live_->port()) + " (Foxglove: Open connection, Foxglove WebSocket)");
   }
-  if (built) {
-    for (auto& n : nodes_)
-      if (!call(*n, "construction", [&] { n->instance = n->rn->plugin->descriptor->create(); })) break;
-  }
+  // A lockstep run meets its peers before anything of its nodes runs: from construction on,
+  // every lifecycle call is an event of its process, so every process stops at the same node.
+  if (lock_) lockstep_start();
+  // The lifecycle, node by node in schedule order, up to the first call that fails.
+  auto phase = [&](std::int64_t tag, const std::vector<NodeRuntime*>& over, const std::function<bool(NodeRuntime&)>& one) {
+    std::vector<NodeRuntime*> done;
+    for (std::size_t i = 0; i < over.size(); ++i) {
+      NodeRuntime& n = *over[i];
+      if (n.phantom) {
+        remote_event(i, tag);
+        if (stop_) break;
+        continue;
+      }
+      bool ok = false;
+      local_event(i, tag, [&] { ok = one(n); });
+      if (!ok) break;
+      done.push_back(&n);
+    }
+    return done;
+  };
+  std::vector<NodeRuntime*> every;  // this process's nodes, or with lockstep every process's
+  if (lock_) every = sched_;
+  else
+    for (auto& n : nodes_) every.push_back(n.get());
+  if (built && !stop_)
+    phase(kConstruction, every, [&](NodeRuntime& n) { return call(n, "construction", [&] { n.instance = n.rn->plugin->descriptor->create(); }); });
   std::vector<NodeRuntime*> configured;
   if (!stop_) {
     host_log("graph '" + g.name + "': " + std::to_string(nodes_.size()) + " nodes, " + (sim() ? "sim" : "real") + " clock");
-    for (auto& n : nodes_) {
-      if (!call(*n, "configure", [&] { n->instance->configure(*n->ctx); })) break;
-      configured.push_back(n.get());
-    }
+    configured = phase(kConfigure, every, [&](NodeRuntime& n) { return call(n, "configure", [&] { n.instance->configure(*n.ctx); }); });
   }
   std::vector<NodeRuntime*> active;
-  if (!stop_) {
-    for (auto* n : configured) {
-      if (!call(*n, "activate", [&] { n->instance->activate(*n->ctx); })) break;
-      active.push_back(n);
-    }
-  }
+  if (!stop_)
+    active = phase(kActivate, lock_ ? every : configured, [&](NodeRuntime& n) { return call(n, "activate", [&] { n.instance->activate(*n.ctx); }); });
   if (!stop_ && !sim() && !await_peers() && g_interrupt) request_stop(RunResult::interrupted, "interrupted");
   if (!stop_) {
     host_log("running");
@@ -291,15 +350,42 @@ RunSummary Executive::run() {
     else run_real();
     progress(true);
   }
-  if (transport_) transport_->close_readers();
+  if (transport_ && !lock_) transport_->close_readers();
   // The run loop's wake-up hooks refer to its own state: samples published from here on (in
   // deactivate) are queued, and step nothing.
   for (auto& n : nodes_)
     for (auto& in : n->inputs) in->on_arrival = nullptr;
   // Every node that was activated is deactivated, in reverse order, even after a failure:
-  // sinks report their verdicts there.
-  for (auto it = active.rbegin(); it != active.rend(); ++it)
+  // sinks report their verdicts there. In a lockstep run what each asks is kept, and applied
+  // with the other processes' in the one order of the schedule (below).
+  std::vector<LockRecord> asked;
+  if (lock_) deactivate_log_ = &asked;
+  for (auto it = active.rbegin(); it != active.rend(); ++it) {
+    deactivating_ = (*it)->rn->order;
     call(**it, "deactivate", [&] { (*it)->instance->deactivate(*(*it)->ctx); });
+  }
+  deactivate_log_ = nullptr;
+  if (lock_) {
+    // The peers may be behind: this process's last records and samples reach them before it goes.
+    std::vector<DdsWriter*> writers;
+    for (auto& n : nodes_)
+      for (auto& o : n->outputs)
+        if (o->writer) writers.push_back(o->writer);
+    RunResult result = RunResult::success;
+    std::string reason = "sim clock reached the end", why;
+    {
+      std::lock_guard<std::mutex> l(stop_m_);
+      if (stop_result_) result = *stop_result_, reason = stop_reason_;
+    }
+    std::vector<LockRecord> all = lock_->finish(result, reason, writers, asked, why);
+    all.insert(all.end(), asked.begin(), asked.end());
+    // Deactivation runs downstream first (reverse schedule order): the same requests in the same
+    // order as in one process, so the same verdict.
+    std::stable_sort(all.begin(), all.end(), [](const LockRecord& a, const LockRecord& b) { return a.node > b.node; });
+    for (const auto& r : all) request_stop(static_cast<RunResult>(r.result), r.reason);
+    if (!why.empty()) request_stop(RunResult::failed, why);
+    transport_->close_readers();
+  }
 
   nlohmann::json live;
   if (live_) {

@@ -16,6 +16,7 @@
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
+#include <map>
 #include <optional>
 
 namespace brickyard::fw {
@@ -56,6 +57,8 @@ struct RunSummary {
 extern std::atomic<bool> g_interrupt;
 
 class NodeRuntime;
+class Lockstep;
+struct LockRecord;
 
 class Executive {
  public:
@@ -91,6 +94,7 @@ class Executive {
   void tap_output(OutputPort& out, const std::string& topic, const std::string& type);
   bool call(NodeRuntime& n, const char* phase, const std::function<void()>& f);
   void run_sim();
+  std::int64_t sim_end_ns() const;  // the sim clock's end (INT64_MAX: none)
   void run_real();
   void step(NodeRuntime& n, Trigger t);
   bool step_body(NodeRuntime& n, Trigger t);  // step without counting it: whether it returned
@@ -98,6 +102,15 @@ class Executive {
   void progress(bool last = false);  // prints the progress line when it is due (or last)
   void pace(std::int64_t sim_ns);    // --pace: waits until the wall clock has caught up with sim_ns / pace
   bool await_peers();                // a split run's start-up: its inputs' writers matched, or the run fails
+  // A split run on the sim clock (exec/lockstep.hpp): the start-up with its peers, whose own
+  // start-up failures end this run too; an event of this process recorded, another's replayed.
+  void lockstep_start();
+  template <class Effects>
+  void local_event(std::size_t i, std::int64_t t_ns, Effects&& effects);
+  void remote_event(std::size_t i, std::int64_t t_ns);
+  // The lifecycle's events, told apart from steps by their time (no step is at a negative time).
+  static constexpr std::int64_t kConstruction = -3, kConfigure = -2, kActivate = -1;
+  void lockstep_failed(const std::string& why, const std::optional<std::pair<RunResult, std::string>>& peer_stop);
 
   const ResolvedGraph& graph_;
   RunOptions opt_;
@@ -106,6 +119,14 @@ class Executive {
   std::unique_ptr<LiveServer> live_;
   std::unique_ptr<LiveScene> scene_;  // the scene in Foxglove's schemas, beside the wires (--live)
   std::vector<std::unique_ptr<NodeRuntime>> nodes_;
+  // Every node the sim scheduler steps, in schedule order: this process's, and in a lockstep run
+  // the others' phantoms (kept in phantoms_) between them.
+  std::vector<NodeRuntime*> sched_;
+  std::vector<std::unique_ptr<NodeRuntime>> phantoms_;
+  std::unique_ptr<Lockstep> lock_;
+  std::vector<LockRecord>* deactivate_log_ = nullptr;  // a lockstep run's deactivation: what each node asks
+  std::size_t deactivating_ = 0;                              // its place in the schedule
+  std::map<std::pair<const OutputPort*, const InputQueue*>, int> lock_wires_;  // a phantom's wire into this process: its samples' key
 
   std::atomic<bool> stop_{false};
   std::atomic<std::int64_t> live_tap_ns_{0};  // wall time the stepping threads spent on the live view (summary: live.taps_s)

@@ -21,6 +21,7 @@ class NodeRuntime {
  public:
   const ResolvedNode* rn;
   std::string name;
+  bool phantom = false;  // another process's node in a lockstep run: ports only (exec/lockstep.hpp)
   Plugin* instance = nullptr;
   std::vector<std::unique_ptr<InputQueue>> inputs;
   std::vector<std::unique_ptr<OutputPort>> outputs;

@@ -20,6 +20,7 @@
 // that its last frame feeds runs, and the run is still the same on any number of threads.
 #include "exec/ahead_pool.hpp"
 #include "exec/executive.hpp"
+#include "exec/lockstep.hpp"
 #include "exec/node_runtime.hpp"
 
 #include <algorithm>
@@ -49,7 +50,7 @@ struct NodeSet {
 
 // Per node: the nodes whose inputs a step of it can change within the same instant — those its
 // outputs reach, and, for each of those its sample triggers, theirs in turn.
-std::vector<NodeSet> reach_within_instant(const std::vector<std::unique_ptr<NodeRuntime>>& nodes) {
+std::vector<NodeSet> reach_within_instant(const std::vector<NodeRuntime*>& nodes) {
   const std::size_t n = nodes.size();
   std::map<const InputQueue*, std::size_t> owner;
   for (std::size_t i = 0; i < n; ++i)
@@ -90,16 +91,65 @@ int thread_count(int asked) {
 
 }  // namespace
 
+// Another process's event: its record awaited and replayed — each publish pushes the phantom's
+// readers in wire order, a real one with the next sample its DDS reader took.
+void Executive::remote_event(std::size_t i, std::int64_t t_ns) {
+  LockRecord r;
+  std::string why;
+  std::optional<std::pair<RunResult, std::string>> peer_stop;
+  if (!lock_->await(static_cast<std::uint32_t>(i), t_ns, r, why, peer_stop)) {
+    lockstep_failed(why, peer_stop);
+    return;
+  }
+  NodeRuntime& n = *sched_[i];
+  for (const std::uint16_t p : r.pubs) {
+    if (p >= n.outputs.size()) {
+      lockstep_failed("lockstep: process '" + lock_->owner(i) + "' sent a publish on output " + std::to_string(p) + " of node '" +
+                          n.name + "', which has " + std::to_string(n.outputs.size()),
+                      {});
+      return;
+    }
+    OutputPort& o = *n.outputs[p];
+    for (InputQueue* q : o.local) {
+      if (q->phantom()) {
+        q->push(nullptr);
+        continue;
+      }
+      auto s = lock_->sample(&lock_wires_.at({&o, q}), why);
+      if (!s) {
+        lockstep_failed(why, {});
+        return;
+      }
+      q->push(std::move(s));
+    }
+  }
+  if (r.stop) request_stop(static_cast<RunResult>(r.result), r.reason);
+}
+
+void Executive::lockstep_failed(const std::string& why, const std::optional<std::pair<RunResult, std::string>>& peer_stop) {
+  // Said at once, even with --quiet: the run ends here, and its verdict comes after deactivation.
+  if (why != "interrupted" && !peer_stop) console_.line([&] { std::fprintf(stderr, "[brickyard] %s\n", why.c_str()); });
+  if (peer_stop) request_stop(peer_stop->first, peer_stop->second);
+  else if (why == "interrupted") request_stop(RunResult::interrupted, why);
+  else request_stop(RunResult::failed, why);
+}
+
+std::int64_t Executive::sim_end_ns() const {
+  const auto dur = opt_.duration_s ? opt_.duration_s : graph_.decl->clock.duration_s;
+  return dur ? static_cast<std::int64_t>(std::llround(*dur * 1e9)) : INT64_MAX;
+}
+
 void Executive::run_sim() {
-  const auto& clock = graph_.decl->clock;
-  auto dur = opt_.duration_s ? opt_.duration_s : clock.duration_s;
-  const std::int64_t end_ns = dur ? static_cast<std::int64_t>(std::llround(*dur * 1e9)) : INT64_MAX;
+  const std::int64_t end_ns = sim_end_ns();
+  // Every node stepped here in schedule order; in a lockstep run the other processes' phantoms
+  // among them, whose turns are their owners' records replayed (remote_event).
+  const std::vector<NodeRuntime*>& nodes = sched_;
 
   using Due = std::pair<std::int64_t, std::size_t>;  // (time, schedule order): earliest, then upstream first
   std::priority_queue<Due, std::vector<Due>, std::greater<Due>> timers;
   std::deque<std::size_t> ready;  // input-triggered steps queued at this instant, in publish order
-  for (std::size_t i = 0; i < nodes_.size(); ++i) {
-    NodeRuntime& n = *nodes_[i];
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    NodeRuntime& n = *nodes[i];
     if (n.rn->period_ns > 0) timers.push({0, i});
     for (auto& in : n.inputs) {
       if (!n.rn->trigger_inputs.count(in->name())) continue;
@@ -111,7 +161,7 @@ void Executive::run_sim() {
       };
     }
   }
-  const std::vector<NodeSet> reach = reach_within_instant(nodes_);
+  const std::vector<NodeSet> reach = reach_within_instant(nodes);
   AheadPool pool(thread_count(opt_.threads) - 1, [this](NodeRuntime& n) {
     t_deferred = &n.deferred;
     t_step_now_ns = n.ahead_now_ns;
@@ -121,7 +171,7 @@ void Executive::run_sim() {
   });
   std::vector<std::size_t> due;  // the periodic steps of this instant, in schedule order
   std::size_t next_due = 0;      // the first not yet taken
-  NodeSet before(nodes_.size());
+  NodeSet before(nodes.size());
   const Trigger periodic{Trigger::Kind::periodic, {}};
   // The instant's queue is `ready`, then due[next_due..]: its head steps now; each later step
   // that nothing before it can change is handed out.
@@ -130,8 +180,8 @@ void Executive::run_sim() {
     before.clear();
     bool head = true;
     auto consider = [&](std::size_t i, bool timer) {
-      NodeRuntime& n = *nodes_[i];
-      if (!head && !before.has(i) && n.ahead.load() == 0 && !n.undelivered) {
+      NodeRuntime& n = *nodes[i];
+      if (!head && !before.has(i) && !n.phantom && n.ahead.load() == 0 && !n.undelivered) {
         n.ahead_trigger = timer ? periodic : Trigger{Trigger::Kind::input, n.queued_port};
         n.ahead_now_ns = sim_now_ns_;
         pool.hand_out(n);
@@ -154,7 +204,9 @@ void Executive::run_sim() {
   std::uint64_t taken = 0;
   // A latency step is done: its held inputs arrive, what it did is kept for its delivery.
   auto collect = [&](Delivery& d) {
-    NodeRuntime& n = *nodes_[d.node];
+    NodeRuntime& n = *nodes[d.node];
+    d.collected = true;
+    if (n.phantom) return;  // its owner steps it
     if (n.ahead.load() != 0) {
       pool.wait(n);
       n.ahead.store(0);
@@ -162,7 +214,6 @@ void Executive::run_sim() {
     for (auto& in : n.inputs) in->release();
     d.effects.swap(n.deferred);
     d.ok = n.ahead_ok;
-    d.collected = true;
     n.undelivered = false;
   };
   auto collect_node = [&](std::size_t i) {
@@ -172,7 +223,11 @@ void Executive::run_sim() {
   // A latency step's turn: handed out (with no helper, this thread steps it when it is
   // collected: the same step, on the inputs held for it) and its delivery set.
   auto latency_turn = [&](std::size_t i) {
-    NodeRuntime& n = *nodes_[i];
+    NodeRuntime& n = *nodes[i];
+    if (n.phantom) {  // its delivery is its owner's event
+      deliveries[{sim_now_ns_ + n.rn->latency_ns, taken++}].node = i;
+      return;
+    }
     if (n.undelivered) collect_node(i);  // a latency of one whole period: the last step first
     if (n.ahead.load() == 0) {
       n.ahead_trigger = periodic;
@@ -189,10 +244,16 @@ void Executive::run_sim() {
     while (!stop_ && !deliveries.empty() && deliveries.begin()->first.first == sim_now_ns_) {
       Delivery d = std::move(deliveries.begin()->second);
       deliveries.erase(deliveries.begin());
-      if (!d.collected) collect(d);
-      for (auto& f : d.effects) f();
-      if (d.ok) ++nodes_[d.node]->steps;
       any = true;
+      if (nodes[d.node]->phantom) {
+        remote_event(d.node, sim_now_ns_);
+        continue;
+      }
+      local_event(d.node, sim_now_ns_, [&] {
+        if (!d.collected) collect(d);
+        for (auto& f : d.effects) f();
+        if (d.ok) ++nodes[d.node]->steps;
+      });
     }
     return any;
   };
@@ -205,13 +266,17 @@ void Executive::run_sim() {
   };
   // A step's turn: stepped now, or, when it was handed out, what it did then is done now.
   auto turn = [&](std::size_t i, Trigger t) {
-    NodeRuntime& n = *nodes_[i];
+    NodeRuntime& n = *nodes[i];
     if (n.rn->latency_ns > 0) {
       latency_turn(i);
       return;
     }
+    if (n.phantom) {
+      remote_event(i, sim_now_ns_);
+      return;
+    }
     if (n.ahead.load() == 0) {
-      step(n, std::move(t));
+      local_event(i, sim_now_ns_, [&] { step(n, std::move(t)); });
       return;
     }
     pool.wait(n);
@@ -219,13 +284,15 @@ void Executive::run_sim() {
     Deferred d;
     d.swap(n.deferred);
     if (stop_) return;  // the run ended before its turn: it never stepped, as far as the run knows
-    for (auto& f : d) f();
-    if (n.ahead_ok) ++n.steps;
+    local_event(i, sim_now_ns_, [&] {
+      for (auto& f : d) f();
+      if (n.ahead_ok) ++n.steps;
+    });
   };
   // The run ends inside an instant: the steps handed out finish, and what they did is dropped.
   auto settle = [&] {
     auto drop = [&](std::size_t i) {
-      NodeRuntime& n = *nodes_[i];
+      NodeRuntime& n = *nodes[i];
       if (n.ahead.load() == 0 || n.undelivered) return;  // a latency step: drop_deliveries
       pool.wait(n);
       n.ahead.store(0);
@@ -263,8 +330,8 @@ void Executive::run_sim() {
       if (!ready.empty()) {
         const std::size_t i = ready.front();
         ready.pop_front();
-        nodes_[i]->queued = false;
-        turn(i, Trigger{Trigger::Kind::input, nodes_[i]->queued_port});
+        nodes[i]->queued = false;
+        turn(i, Trigger{Trigger::Kind::input, nodes[i]->queued_port});
         continue;
       }
       if (g_interrupt) {
@@ -273,9 +340,10 @@ void Executive::run_sim() {
       }
       const std::size_t i = due[next_due++];
       turn(i, periodic);
-      timers.push({t + nodes_[i]->rn->period_ns, i});
+      timers.push({t + nodes[i]->rn->period_ns, i});
       if ((++events & 255) == 0) progress();
     }
+    if (lock_) lock_->flush();  // the instant's records: a peer behind this process catches up
     if (stop_) settle();
   }
   drop_deliveries();

@@ -3,6 +3,7 @@
 // runs in another process through a DDS reader.
 #include "exec/crash_guard.hpp"
 #include "exec/executive.hpp"
+#include "exec/lockstep.hpp"
 #include "exec/node_runtime.hpp"
 #include "exec/seeding.hpp"
 #include "record/recorder.hpp"
@@ -25,17 +26,35 @@ void Executive::build() {
   ds.peers = g.transport.peers;
   ds.shared_memory = g.transport.shared_memory;
   ds.security = opt_.security;
+  ds.lockstep = graph_.lockstep;
   ds.name = participant_name(opt_.process.empty() ? "all" : opt_.process);
   crash_guard::snapshot_shared_memory();
   transport_ = std::make_unique<DdsTransport>(ds);
   crash_guard::note_shared_memory();  // the participant's own segment and port files, made just now
   if (live_) scene_ = std::make_unique<LiveScene>(*live_);
 
-  std::map<std::string, NodeRuntime*> here;
+  std::map<std::string, NodeRuntime*> here, phantom;
   for (const auto& rn : graph_.nodes) {
     auto n = std::make_unique<NodeRuntime>();
     n->rn = &rn;
     n->name = rn.decl->name;
+    if (!rn.here) {
+      // Another process's node in a lockstep run: its ports, so that this process queues the same
+      // turns; no plugin, writer or tap (its process has them).
+      n->phantom = true;
+      for (const auto& p : rn.plugin->manifest.ports) {
+        if (p.direction == PortDirection::input) {
+          n->inputs.push_back(std::make_unique<InputQueue>(p.name, p.type_name, p.depth, true, true));
+        } else {
+          n->outputs.push_back(std::make_unique<OutputPort>(p.name, p.type_name));
+          n->outputs.back()->index = static_cast<std::uint16_t>(n->outputs.size() - 1);
+        }
+      }
+      phantom[n->name] = n.get();
+      sched_.push_back(n.get());
+      phantoms_.push_back(std::move(n));
+      continue;
+    }
     n->seed = node_seed(opt_.seed, n->name);
     std::set<std::string> wired;
     for (const auto& w : g.wires)
@@ -47,6 +66,7 @@ void Executive::build() {
       } else {
         const std::string topic = n->name + "." + p.name;
         n->outputs.push_back(std::make_unique<OutputPort>(p.name, p.type_name));
+        n->outputs.back()->index = static_cast<std::uint16_t>(n->outputs.size() - 1);
         // An output of any type sends its readers' type: the plugin's CDR decoded for them here.
         std::string type = p.type_name;
         if (is_any_message_type(type)) {
@@ -64,11 +84,30 @@ void Executive::build() {
     n->ctx = std::make_unique<NodeContext>(*this, *n);
     console_.add_node(n->name);
     here[n->name] = n.get();
+    sched_.push_back(n.get());
     nodes_.push_back(std::move(n));
+  }
+  if (graph_.lockstep) {
+    std::vector<std::string> owner;
+    for (const auto& rn : graph_.nodes) owner.push_back(rn.decl->process);
+    lock_ = std::make_unique<Lockstep>(*transport_, opt_.process, std::move(owner),
+                                       lockstep_fingerprint(graph_, opt_.seed, sim_end_ns()));
+    for (auto& n : nodes_)
+      for (auto& o : n->outputs)
+        o->write_failed = [this, node = n->name](const std::string& port) {
+          request_stop(RunResult::failed, "lockstep: a sample of " + node + "." + port + " could not be sent to another process within 10 s");
+        };
   }
   for (const auto& w : g.wires) {
     auto to = here.find(w.to.node);
-    if (to == here.end()) continue;  // its reader lives in another process
+    if (to == here.end()) {
+      // Its reader lives in another process; in a lockstep run its phantom here is queued too.
+      if (auto p = phantom.find(w.to.node); p != phantom.end()) {
+        NodeRuntime* from = here.count(w.from.node) ? here.at(w.from.node) : phantom.at(w.from.node);
+        from->output(w.from.port)->local.push_back(p->second->input(w.to.port));
+      }
+      continue;
+    }
     InputQueue* in = to->second->input(w.to.port);
     // The writer's type: what an input of any type takes (its samples serialized for it).
     const std::string& wire_type = graph_.wire_types.at(w.to.text());
@@ -88,6 +127,10 @@ void Executive::build() {
     if (from != here.end()) {
       from->second->output(w.from.port)->local.push_back(in);
     } else {
+      // Lockstep: the phantom's publishes replayed push this input, in wire order, each with the
+      // next sample its reader took (Lockstep::feed).
+      OutputPort* by_phantom = lock_ ? phantom.at(w.from.node)->output(w.from.port) : nullptr;
+      if (by_phantom) by_phantom->local.push_back(in);
       const PortSpec* ps = to->second->rn->plugin->manifest.port(w.to.port);
       // A writer in another process that dies is noticed within the liveliness lease (0.5 s), said
       // at once, and the run fails at its end naming the input and its writer (unless its process
@@ -107,7 +150,9 @@ void Executive::build() {
       check.accept_others = g.transport.accept_foreign_writers;
       check.other = [this, r](const std::string& participant, const std::string& writer) { foreign_writer(*r, participant, writer); };
       r->reader = transport_->make_reader(topic_name(w.from.node, w.from.port), wire_type, ps->depth,
-                                          [in](std::shared_ptr<const void> s) { in->push(std::move(s)); },
+                                          by_phantom ? lock_->feed(&lock_wires_[{by_phantom, in}], r->process)
+                                                     : std::function<void(std::shared_ptr<const void>)>(
+                                                           [in](std::shared_ptr<const void> s) { in->push(std::move(s)); }),
                                           [this, r](bool alive) { peer_liveliness(*r, alive); }, std::move(check));
     }
   }

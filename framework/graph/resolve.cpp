@@ -368,8 +368,23 @@ ResolvedGraph resolve_graph(const GraphDecl& g, const Registry& reg, const std::
       std::vector<std::string> ps(rg.processes.begin(), rg.processes.end());
       d.add("--process " + process, "no node of the graph runs in process \"" + process + "\" (processes: " + join(ps) + ")");
     } else if (g.clock.sim && rg.processes.size() > 1) {
-      d.add(g.where("/clock/mode"), "the sim clock runs a whole graph in one process; a split run (--process) needs \"real\"");
+      rg.lockstep = true;
     }
+  }
+  if (g.clock.sim && rg.processes.size() > 1) {
+    // One sim clock across processes (exec/lockstep.hpp): every process replays the others' steps,
+    // so none can restart or leave, and every sample must be the graph's writer's.
+    for (const auto& [name, p] : g.processes) {
+      if (p.restart == ProcessDecl::Restart::on_failure)
+        d.add(g.where("/processes/" + pointer_escape(name) + "/restart"),
+              "on-failure needs the real clock: a process of a split run on the sim clock cannot rejoin its lockstep");
+      if (p.may_die)
+        d.add(g.where("/processes/" + pointer_escape(name) + "/may_die"),
+              "needs the real clock: on the sim clock every process of a split run steps in lockstep with the others");
+    }
+    if (g.transport.accept_foreign_writers)
+      d.add(g.where("/transport/foreign_writers"),
+            "accept needs the real clock: a split run on the sim clock takes each sample from its graph's writer alone");
   }
   d.raise_if_any();
 
@@ -393,9 +408,11 @@ ResolvedGraph resolve_graph(const GraphDecl& g, const Registry& reg, const std::
     remaining.erase(pick);
     for (const auto& m : downstream[pick])
       if (m != pick && --indeg[m] == 0 && remaining.count(m)) ready.insert(m);
-    if (process.empty() || by_name.at(pick).decl->process == process) {
+    const bool here = process.empty() || by_name.at(pick).decl->process == process;
+    if (here || rg.lockstep) {
       ResolvedNode rn = by_name.at(pick);
       rn.order = rg.nodes.size();
+      rn.here = here;
       rg.nodes.push_back(std::move(rn));
     }
   }

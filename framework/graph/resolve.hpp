@@ -18,11 +18,15 @@ struct ResolvedNode {
   std::int64_t latency_ns = 0;            // sim clock: a step's outputs delivered this long after it
   double deadline_s = 0;                  // the step deadline: the graph node's deadline_s, else the manifest's parameter (0: none)
   std::size_t order = 0;                  // position in the deterministic schedule order
+  bool here = true;                       // runs in this process (a split run on the sim clock keeps every node:
+                                          // the others' as phantoms, exec/lockstep.hpp)
 };
 
 struct ResolvedGraph {
   const GraphDecl* decl = nullptr;
-  std::vector<ResolvedNode> nodes;        // in schedule order: upstream first, then by name
+  std::vector<ResolvedNode> nodes;        // in schedule order: upstream first, then by name (this process's,
+                                          // or with `lockstep` every process's, `here` telling them apart)
+  bool lockstep = false;                  // one process of a split graph on the sim clock (exec/lockstep.hpp)
   std::set<std::string> processes;
   std::vector<std::string> notices;       // said before the run (not with --quiet): params a plugin swap left out
   std::map<std::string, std::string> wire_types;  // "node.input" -> the type its writer sends, every process's
@@ -31,7 +35,8 @@ struct ResolvedGraph {
   const ResolvedNode* node(const std::string& name) const;
 };
 
-// `process`: empty to run every node here; else only that process's nodes (checked to exist).
+// `process`: empty to run every node here; else only that process's nodes (checked to exist), or
+// on the sim clock every node, the others' marked not `here` (the lockstep).
 ResolvedGraph resolve_graph(const GraphDecl& g, const Registry& reg, const std::string& process = {});
 
 // Convert one JSON param value against its spec; returns an error text or empty.

@@ -125,9 +125,25 @@ struct DiscoveryListener : DomainParticipantListener {
   }
 };
 
+namespace {
+// Lockstep QoS (DdsSettings::lockstep): every sample kept until acknowledged, whatever the depth.
+template <class Qos>
+void keep_all(Qos& q) {
+  q.history().kind = KEEP_ALL_HISTORY_QOS;
+  q.resource_limits().max_samples = 100000;
+  q.resource_limits().max_instances = 1;
+  q.resource_limits().max_samples_per_instance = 100000;
+  q.reliability().max_blocking_time = eprosima::fastrtps::Duration_t(10.0);
+}
+}  // namespace
+
 bool DdsWriter::write(const void* sample) { return writer_->write(const_cast<void*>(sample)); }
 
-DdsTransport::DdsTransport(const DdsSettings& s) : secured_(s.security.on()) {
+bool DdsWriter::wait_acked(double seconds) {
+  return writer_->wait_for_acknowledgments(eprosima::fastrtps::Duration_t(seconds)) == ReturnCode_t::RETCODE_OK;
+}
+
+DdsTransport::DdsTransport(const DdsSettings& s) : secured_(s.security.on()), lockstep_(s.lockstep) {
   auto* factory = DomainParticipantFactory::get_instance();
   // Profiles (FASTRTPS_DEFAULT_PROFILES_FILE) first, then read the defaults, then make them ours.
   factory->load_profiles();
@@ -234,6 +250,7 @@ DdsWriter* DdsTransport::make_writer(const std::string& topic_n, const std::stri
   q.history().depth = 8;
   q.durability().kind = VOLATILE_DURABILITY_QOS;
   q.endpoint().history_memory_policy = eprosima::fastrtps::rtps::PREALLOCATED_WITH_REALLOC_MEMORY_MODE;
+  if (lockstep_) keep_all(q);
   auto w = std::make_unique<DdsWriter>();
   w->listener_ = std::make_unique<WriterListener>();
   w->listener_->matched = &w->matched_;
@@ -256,6 +273,7 @@ DdsReader* DdsTransport::make_reader(const std::string& topic_n, const std::stri
   q.history().depth = static_cast<int32_t>(depth);
   q.durability().kind = VOLATILE_DURABILITY_QOS;
   q.endpoint().history_memory_policy = eprosima::fastrtps::rtps::PREALLOCATED_WITH_REALLOC_MEMORY_MODE;
+  if (lockstep_) keep_all(q);
   auto r = std::make_unique<DdsReader>();
   r->listener_ = std::make_unique<ReaderListener>();
   r->listener_->type = TypeSupport(msgs::find_type(type_name.c_str())->make());

@@ -30,6 +30,8 @@ class DdsWriter {
   bool has_remote_readers() const { return matched_.load(std::memory_order_relaxed) > 0; }
   int matched() const { return matched_.load(); }
   bool write(const void* sample);
+  // Until every matched reader has acknowledged what was written, at most `seconds`: whether they did.
+  bool wait_acked(double seconds);
 
  private:
   friend class DdsTransport;
@@ -72,6 +74,10 @@ struct DdsSettings {
   std::function<void(const std::string& topic, const std::string& type)> on_writer;
   std::string name = "brickyard";
   DdsSecurity security;
+  // A split run on the sim clock (exec/lockstep.hpp): no sample may be lost between processes, so
+  // writers and readers keep all (no depth drops the oldest unacknowledged one) and a writer
+  // blocks, at most 10 s, rather than overwrite.
+  bool lockstep = false;
 };
 
 // What a graph's process calls its DDS participant.
@@ -106,6 +112,7 @@ class DdsTransport {
  private:
   eprosima::fastdds::dds::Topic* topic(const std::string& name, const std::string& type_name);
   bool secured_ = false;
+  bool lockstep_ = false;
   eprosima::fastdds::dds::DomainParticipant* participant_ = nullptr;
   std::unique_ptr<struct DiscoveryListener> discovery_;
   std::shared_ptr<struct PeerNames> peers_;  // participants discovered: GUID prefix -> name

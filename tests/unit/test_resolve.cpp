@@ -150,3 +150,36 @@ TEST(ParamBounds, AnUndeclaredBoundIsTheFrameworks) {
                 .find("element 1"),
             std::string::npos);
 }
+
+// A split graph on the sim clock (exec/lockstep.hpp): one process's resolution keeps every node,
+// in the one schedule order, the others' not `here`; restarts and foreign writers are refused.
+TEST(Resolve, SimSplitKeepsEveryNodeInOneOrder) {
+  static std::vector<GraphDecl> keep;
+  const std::string text = R"({"nodes": {"src": {"plugin": "testing.scripted_source", "process": "a"},
+    "double": {"plugin": "testing.transform", "process": "b"}, "check": {"plugin": "testing.assert_sink", "process": "a"}},
+    "wires": [{"from": "src.out", "to": "double.in"}, {"from": "double.out", "to": "check.in"}]})";
+  keep.push_back(parse_graph_text(text, "g.json"));
+  const ResolvedGraph all = resolve_graph(keep.back(), registry());
+  const ResolvedGraph a = resolve_graph(keep.back(), registry(), "a");
+  EXPECT_FALSE(all.lockstep);
+  ASSERT_TRUE(a.lockstep);
+  ASSERT_EQ(a.nodes.size(), all.nodes.size());
+  for (std::size_t i = 0; i < a.nodes.size(); ++i) {
+    EXPECT_EQ(a.nodes[i].decl->name, all.nodes[i].decl->name);
+    EXPECT_EQ(a.nodes[i].order, i);
+    EXPECT_EQ(a.nodes[i].here, a.nodes[i].decl->process == "a");
+  }
+  const std::string real = R"({"nodes": {"src": {"plugin": "testing.scripted_source", "process": "a"},
+    "check": {"plugin": "testing.assert_sink", "process": "b"}}, "wires": [{"from": "src.out", "to": "check.in"}], "clock": {"mode": "real"}})";
+  keep.push_back(parse_graph_text(real, "r.json"));
+  const ResolvedGraph ra = resolve_graph(keep.back(), registry(), "a");
+  EXPECT_FALSE(ra.lockstep);
+  EXPECT_EQ(ra.nodes.size(), 1u);
+  const std::string restart = R"({"nodes": {"src": {"plugin": "testing.scripted_source", "process": "a"},
+    "check": {"plugin": "testing.assert_sink", "process": "b"}}, "wires": [{"from": "src.out", "to": "check.in"}],
+    "processes": {"b": {"restart": "on-failure", "may_die": true}}, "transport": {"foreign_writers": "accept"}})";
+  const auto e = errors(restart);
+  EXPECT_TRUE(has(e, "g.json#/processes/b/restart", "needs the real clock"));
+  EXPECT_TRUE(has(e, "g.json#/processes/b/may_die", "needs the real clock"));
+  EXPECT_TRUE(has(e, "g.json#/transport/foreign_writers", "needs the real clock"));
+}
