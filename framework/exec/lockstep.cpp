@@ -337,6 +337,7 @@ std::vector<LockRecord> Lockstep::finish(RunResult r, const std::string& reason,
   {
     std::unique_lock<std::mutex> l(m_);
     for (auto& [name, p] : peers_) {
+      if (!p.hello) continue;  // it never joined (start-up failed): no end will come
       while (!p.end) {
         if (const std::string g = gone(name, nullptr); !g.empty()) {
           if (why.empty()) why = g;
