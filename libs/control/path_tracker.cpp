@@ -143,11 +143,21 @@ void PathTracker::pedals_feedforward(double s_car, double v_target, const CarSta
   const double ahead = std::max(2.0, 0.5 * v);
   const double v_next = speed_target(s_car + ahead, std::max(v, 1.0));
   double a = (v_next * v_next - v_target * v_target) / (2 * ahead) + p_.accel_gain * (v_target - v);
+  // Faster than the target: the error alone, never the profile's rise ahead. A car too fast in a
+  // corner exit accelerated on that rise (Monza's first chicane on a mapped file: throttle at
+  // 0.48, 1.7 m/s over the target, the steering at its stop) and ran wide into the wall.
+  if (v > v_target) a = std::min(a, p_.accel_gain * (v_target - v));
   if (p_.grip > 0) {  // within the friction circle, less what the turn takes
-    const double lat = v * v * std::abs(curvature(s_car));
-    const double room = std::sqrt(std::max(0.0, p_.grip * p_.grip - lat * lat));
-    // Braking keeps a fifth of the grip however tight the turn: a car too fast for it must slow.
-    a = std::clamp(a, -std::max(room, 0.2 * p_.grip), room);
+    auto room = [&](double at) {
+      const double lat = at * at * std::abs(curvature(s_car));
+      return std::sqrt(std::max(0.0, p_.grip * p_.grip - lat * lat));
+    };
+    // Accelerating: what the turn leaves at the car's speed. Braking: what it leaves at the
+    // target's, the budget the speed profile planned the braking with. At the car's own speed a
+    // car arriving too fast had its braking cut (to the fifth of the grip below) exactly when it
+    // had to slow, arrived faster still and left the line (the same chicane). Braking keeps a
+    // fifth of the grip however tight the turn.
+    a = std::clamp(a, -std::max(room(std::min(v, v_target)), 0.2 * p_.grip), room(v));
   }
   const double force = pt.mass * a + pt.drag * v * v + (v > 0.05 ? pt.rolling : 0.0);
   out.throttle = out.brake = 0;

@@ -15,9 +15,10 @@
 //    which the car can still brake (at `decel`) to each slower point further on within that
 //    preview — so it is slow at the corner, not after it.
 //  - Pedals, `proportional`: pedal = speed_gain x speed error. `feedforward`: the acceleration the
-//    target's slope asks for plus accel_gain x speed error, within the friction circle (grip less
-//    the lateral acceleration the path's curvature takes), turned into drive or brake force with
-//    the car's mass, drag and rolling resistance.
+//    target's slope asks for plus accel_gain x speed error (the error alone when the car is faster
+//    than the target), within the friction circle (grip less the lateral acceleration the path's
+//    curvature takes: at the car's speed for drive, at the target's for braking), turned into
+//    drive or brake force with the car's mass, drag and rolling resistance.
 #include "lateral_lqr.hpp"
 #include "motion/command.hpp"
 

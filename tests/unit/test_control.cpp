@@ -207,6 +207,55 @@ TEST(PathTracker, FeedforwardPedalsDriveASlowCarOnTowardAFarCorner) {
   EXPECT_GT(fast.brake, 0);
 }
 
+// A car faster than its target where the path's speed rises ahead (a corner's exit): the error
+// alone, so it brakes. It used to add the rise and throttle (Monza's first chicane on a mapped
+// file: 0.48 of throttle 1.7 m/s over the target, the steering at its stop, into the wall).
+TEST(PathTracker, FeedforwardPedalsNeverDriveACarThatIsFasterThanItsTarget) {
+  std::vector<PathPoint> p;
+  for (int i = 0; i <= 400; ++i) p.push_back({static_cast<double>(i), 0, 15.0 + 0.5 * i});  // rising fast
+  TrackerParams tp;
+  apply_vehicle(tp, av21_vehicle());
+  tp.closed = false;
+  tp.steer_law = SteerLaw::lqr;
+  tp.pedal_law = PedalLaw::feedforward;
+  PathTracker t(tp);
+  t.set_path(p);
+  const Command over = t.control(CarState{0, 0, 0, 17, 0, 0});  // 2 m/s over the 15 at the car
+  EXPECT_DOUBLE_EQ(over.throttle, 0);
+  EXPECT_GT(over.brake, 0);
+  const Command under = t.control(CarState{0, 0, 0, 14, 0, 0});  // below it: the rise drives it on
+  EXPECT_GT(under.throttle, 0);
+}
+
+// In a turn that takes all the grip at the car's speed but not at the target's, the car still
+// brakes with the room the target's speed leaves (what the speed profile planned its braking
+// with), not the fifth of the grip kept for a turn that takes everything.
+TEST(PathTracker, ACarTooFastForATurnBrakesWithThePlannedRoom) {
+  TrackerParams tp;
+  apply_vehicle(tp, av21_vehicle());
+  tp.closed = false;
+  tp.steer_law = SteerLaw::lqr;
+  tp.pedal_law = PedalLaw::feedforward;
+  ASSERT_GT(tp.grip, 0);
+  // A circle of radius R whose speed takes 70 % of the grip laterally.
+  const double R = 100, v_plan = std::sqrt(0.7 * tp.grip * R);
+  std::vector<PathPoint> p;
+  for (int i = 0; i <= 600; ++i) {
+    const double a = i / R;  // 1 m steps
+    p.push_back({R * std::sin(a), R * (1 - std::cos(a)), v_plan});
+  }
+  PathTracker t(tp);
+  t.set_path(p);
+  // At 1.25 times the plan's speed the turn alone takes more than the grip (0.7 x 1.5625 > 1).
+  const double v = 1.25 * v_plan;
+  const Command c = t.control(CarState{0, 0, 0, v, v / R, 0});
+  // The braking force asked for, back to an acceleration: more than the fifth of the grip.
+  const Powertrain& pt = tp.powertrain;
+  const double decel = (c.brake * pt.max_brake_force + pt.drag * v * v + pt.rolling) / pt.mass;
+  EXPECT_EQ(c.throttle, 0);
+  EXPECT_GT(decel, 0.3 * tp.grip) << "brake " << c.brake;
+}
+
 // u_w = w_θ y′(L) + w_d (d_w − side·gap), by hand.
 TEST(WallFollower, ThePapersLawSignsAndSpeedPolicy) {
   WallFollowerParams p;  // right wall, gap 8, lookahead 10
