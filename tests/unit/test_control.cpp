@@ -184,17 +184,23 @@ TEST(PathTracker, LqrAndFeedforwardPedalsOnACircle) {
   EXPECT_GT(t.control(CarState{bx, by, yaw, 35, 0.35, 0}).brake, 0);
 }
 
+// The AV-21 on an open path with the LQR and the feedforward pedals (the race's laws).
+static TrackerParams race_laws() {
+  TrackerParams tp;
+  apply_vehicle(tp, av21_vehicle());
+  tp.closed = false;
+  tp.steer_law = SteerLaw::lqr;
+  tp.pedal_law = PedalLaw::feedforward;
+  return tp;
+}
+
 // A slow car (after a stop, or handed back by the wall follower) on a fast straight with a
 // corner 60 m ahead: beyond what its speed previews, so the feedforward pedals drive it on.
 // (They once previewed the slope at the target's speed, saw the corner, and braked it to a stop.)
 TEST(PathTracker, FeedforwardPedalsDriveASlowCarOnTowardAFarCorner) {
   std::vector<PathPoint> p;
   for (int i = 0; i <= 800; ++i) p.push_back({static_cast<double>(i), 0, i < 60 ? 50.0 : 15.0});
-  TrackerParams tp;
-  apply_vehicle(tp, av21_vehicle());
-  tp.closed = false;
-  tp.steer_law = SteerLaw::lqr;
-  tp.pedal_law = PedalLaw::feedforward;
+  TrackerParams tp = race_laws();
   PathTracker t(tp);
   t.set_path(p);
   for (double v : {0.5, 2.0, 5.0, 10.0}) {
@@ -213,11 +219,7 @@ TEST(PathTracker, FeedforwardPedalsDriveASlowCarOnTowardAFarCorner) {
 TEST(PathTracker, FeedforwardPedalsNeverDriveACarThatIsFasterThanItsTarget) {
   std::vector<PathPoint> p;
   for (int i = 0; i <= 400; ++i) p.push_back({static_cast<double>(i), 0, 15.0 + 0.5 * i});  // rising fast
-  TrackerParams tp;
-  apply_vehicle(tp, av21_vehicle());
-  tp.closed = false;
-  tp.steer_law = SteerLaw::lqr;
-  tp.pedal_law = PedalLaw::feedforward;
+  TrackerParams tp = race_laws();
   PathTracker t(tp);
   t.set_path(p);
   const Command over = t.control(CarState{0, 0, 0, 17, 0, 0});  // 2 m/s over the 15 at the car
@@ -231,11 +233,7 @@ TEST(PathTracker, FeedforwardPedalsNeverDriveACarThatIsFasterThanItsTarget) {
 // brakes with the room the target's speed leaves (what the speed profile planned its braking
 // with), not the fifth of the grip kept for a turn that takes everything.
 TEST(PathTracker, ACarTooFastForATurnBrakesWithThePlannedRoom) {
-  TrackerParams tp;
-  apply_vehicle(tp, av21_vehicle());
-  tp.closed = false;
-  tp.steer_law = SteerLaw::lqr;
-  tp.pedal_law = PedalLaw::feedforward;
+  TrackerParams tp = race_laws();
   ASSERT_GT(tp.grip, 0);
   // A circle of radius R whose speed takes 70 % of the grip laterally.
   const double R = 100, v_plan = std::sqrt(0.7 * tp.grip * R);
