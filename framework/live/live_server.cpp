@@ -12,7 +12,6 @@
 #include <condition_variable>
 #include <cstring>
 #include <ctime>
-#include <deque>
 #include <map>
 #include <mutex>
 #include <stdexcept>
@@ -46,9 +45,26 @@ struct Client {
   int requests = 0;
   std::mutex m;
   std::unordered_map<std::uint32_t, std::uint32_t> by_channel;  // channel → subscription id
-  std::deque<std::shared_ptr<const std::string>> queue;
-  std::size_t queued = 0;
+  // What the run published for this client since the last drain: whole WebSocket frames, one
+  // after another (frame_header), sent as one prepared message (drain).
+  std::string pending;
+  std::size_t pending_frames = 0;
 };
+
+// A server's unmasked, final binary frame of n payload bytes: its header (RFC 6455 §5.2).
+void frame_header(std::string& out, std::size_t n) {
+  out.push_back(static_cast<char>(0x82));
+  if (n < 126) {
+    out.push_back(static_cast<char>(n));
+  } else if (n <= 0xffff) {
+    out.push_back(126);
+    out.push_back(static_cast<char>(n >> 8));
+    out.push_back(static_cast<char>(n & 0xff));
+  } else {
+    out.push_back(127);
+    for (int shift = 56; shift >= 0; shift -= 8) out.push_back(static_cast<char>((static_cast<std::uint64_t>(n) >> shift) & 0xff));
+  }
+}
 }  // namespace
 
 struct LiveServer::Impl {
@@ -79,15 +95,19 @@ struct LiveServer::Impl {
     auto it = clients.find(h);
     return it == clients.end() ? nullptr : it->second;
   }
-  // Queues a frame for one client; the server's thread writes it (drain).
-  void enqueue(const std::shared_ptr<Client>& c, std::shared_ptr<const std::string> frame) {
-    std::lock_guard<std::mutex> l(c->m);
-    if (c->queued + frame->size() > opt.max_queue) {
+  // Appends one Foxglove binary message (opcode, then `head` bytes, then `body`) to a client's
+  // pending frames, or counts it dropped when they would pass max_queue. Called with c->m held.
+  void append(Client& c, unsigned char opcode, const void* head, std::size_t head_size, const void* body, std::size_t body_size) {
+    const std::size_t n = 1 + head_size + body_size;
+    if (c.pending.size() + n + 10 > opt.max_queue) {
       ++dropped;
       return;
     }
-    c->queued += frame->size();
-    c->queue.push_back(std::move(frame));
+    frame_header(c.pending, n);
+    c.pending.push_back(static_cast<char>(opcode));
+    c.pending.append(static_cast<const char*>(head), head_size);
+    if (body_size) c.pending.append(static_cast<const char*>(body), body_size);
+    ++c.pending_frames;
   }
   // Every 2 ms the server's thread writes what the run queued: a wake-up per sample cost more
   // than the samples (futex and epoll calls, one socket write per few frames).
@@ -103,26 +123,34 @@ struct LiveServer::Impl {
       if (!ec) tick();
     });
   }
+  // A client's pending frames go out as one message that websocketpp writes as it is (prepared:
+  // the frames already framed): one message, one allocation and one write for the hundreds of
+  // frames a run publishes in 2 ms, where a send per frame cost 2.9 µs of the server's thread
+  // each (docs/live.md).
   void drain(const std::shared_ptr<Client>& c) {
-    std::deque<std::shared_ptr<const std::string>> frames;
+    std::string frames;
+    std::size_t count = 0;
     {
       std::lock_guard<std::mutex> l(c->m);
-      if (c->queue.empty()) return;
-      frames.swap(c->queue);
-      c->queued = 0;
+      if (c->pending.empty()) return;
+      frames.swap(c->pending);
+      count = c->pending_frames;
+      c->pending_frames = 0;
+      c->pending.reserve(frames.capacity());
     }
     websocketpp::lib::error_code ec;
     auto con = server.get_con_from_hdl(c->hdl, ec);
     if (ec || con->get_state() != websocketpp::session::state::open) return;
-    for (const auto& f : frames) {
-      // What the socket has not taken yet: a client that does not read loses samples.
-      if (con->get_buffered_amount() > opt.max_queue) {
-        ++dropped;
-        continue;
-      }
-      server.send(c->hdl, f->data(), f->size(), websocketpp::frame::opcode::binary, ec);
-      if (!ec) ++sent;
+    // What the socket has not taken yet: a client that does not read loses samples.
+    if (con->get_buffered_amount() > opt.max_queue) {
+      dropped += count;
+      return;
     }
+    auto msg = con->get_message(websocketpp::frame::opcode::binary, 0);
+    msg->get_raw_payload().swap(frames);
+    msg->set_header("");
+    msg->set_prepared(true);
+    if (!con->send(msg)) sent += count;
   }
   void on_open(Hdl h) {
     auto c = std::make_shared<Client>();
@@ -343,26 +371,16 @@ void LiveServer::publish(std::uint32_t channel, std::uint64_t stamp_ns, const un
   Impl& s = *impl_;
   if (s.channels[channel].cloud && s.opt.cloud_hz > 0)
     s.next_cloud_ns[channel].store(steady_ns() + static_cast<std::int64_t>(1e9 / s.opt.cloud_hz), std::memory_order_relaxed);
-  std::vector<std::shared_ptr<Client>> to;
-  {
-    std::lock_guard<std::mutex> l(s.clients_m);
-    for (const auto& [h, c] : s.clients) to.push_back(c);
-  }
-  for (const auto& c : to) {
-    std::uint32_t id;
-    {
-      std::lock_guard<std::mutex> l(c->m);
-      auto it = c->by_channel.find(channel);
-      if (it == c->by_channel.end()) continue;
-      id = it->second;
-    }
-    // Message Data: opcode 1, subscription id (u32), receive time (u64), the payload.
-    auto frame = std::make_shared<std::string>(13 + size, '\0');
-    (*frame)[0] = 0x01;
-    std::memcpy(frame->data() + 1, &id, 4);
-    std::memcpy(frame->data() + 5, &stamp_ns, 8);
-    std::memcpy(frame->data() + 13, data, size);
-    s.enqueue(c, std::move(frame));
+  // Message Data: opcode 1, subscription id (u32), receive time (u64), the payload.
+  std::lock_guard<std::mutex> all(s.clients_m);
+  for (const auto& [h, c] : s.clients) {
+    std::lock_guard<std::mutex> l(c->m);
+    auto it = c->by_channel.find(channel);
+    if (it == c->by_channel.end()) continue;
+    unsigned char head[12];
+    std::memcpy(head, &it->second, 4);
+    std::memcpy(head + 4, &stamp_ns, 8);
+    s.append(*c, 0x01, head, sizeof head, data, size);
   }
 }
 
@@ -372,15 +390,12 @@ void LiveServer::time(std::uint64_t stamp_ns, std::uint64_t every_ns) {
   if (s.any_time.load() && stamp_ns < s.last_time.load() + every_ns) return;
   s.any_time = true;
   s.last_time = stamp_ns;
-  auto frame = std::make_shared<std::string>(9, '\0');
-  (*frame)[0] = 0x02;
-  std::memcpy(frame->data() + 1, &stamp_ns, 8);
-  std::vector<std::shared_ptr<Client>> to;
-  {
-    std::lock_guard<std::mutex> l(s.clients_m);
-    for (const auto& [h, c] : s.clients) to.push_back(c);
+  // Time: opcode 2, the time (u64).
+  std::lock_guard<std::mutex> all(s.clients_m);
+  for (const auto& [h, c] : s.clients) {
+    std::lock_guard<std::mutex> l(c->m);
+    s.append(*c, 0x02, &stamp_ns, 8, nullptr, 0);
   }
-  for (const auto& c : to) s.enqueue(c, frame);
 }
 
 LiveStats LiveServer::stats() const {
