@@ -136,7 +136,7 @@ struct LiveServer::Impl {
       frames.swap(c->pending);
       count = c->pending_frames;
       c->pending_frames = 0;
-      c->pending.reserve(frames.capacity());
+      c->pending.reserve(frames.size());  // the last batch's size, not a capacity one burst of clouds ratcheted up
     }
     websocketpp::lib::error_code ec;
     auto con = server.get_con_from_hdl(c->hdl, ec);
