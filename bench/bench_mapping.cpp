@@ -4,7 +4,7 @@
 // voxel-filtered at 0.25 m (as a mapping front end would; both registrations get the same
 // points). The map: the frames 6, 4 and 2 m behind the scan's pose, stacked on their true
 // poses. The guess: the true pose moved 0.3 m and 0.5 deg. Per scan: ours = the scan's
-// covariances + the registration (the map's voxels built once, not timed); PCL = align()
+// surfaces + the registration (the map's voxels built once, not timed); PCL = align()
 // (which works out both clouds' covariances). Prints per-scan medians, the ratios, and the error
 // of each result against the truth (issue 17: <= 10 ms per scan, >= 10x PCL's GICP).
 // usage: bench_mapping [--scans N]
@@ -87,7 +87,7 @@ int main(int argc, char** argv) {
     guess.translate(Eigen::Vector3d(0.2, -0.2, 0.05));
     guess.rotate(Eigen::AngleAxisd(0.5 * M_PI / 180, Eigen::Vector3d::UnitZ()));
     const Eigen::Matrix4d truth = f.world_from_body.matrix();
-    // Ours: the map's voxels once; per scan, its covariances and the registration.
+    // Ours: the map's voxels once; per scan, its surfaces and the registration.
     const mapping::Covariances map_covs = mapping::point_covariances(map_pts);
     mapping::VoxelMap coarse(1.0f), fine(0.25f);
     coarse.add(map_pts, map_covs);
@@ -99,7 +99,7 @@ int main(int argc, char** argv) {
     const mapping::RegistrationParams direct1 = mapping::ScanMapperParams{}.registration;
     for (int run = 0; run < 5; ++run) {
       const auto t0 = std::chrono::steady_clock::now();
-      const mapping::Covariances covs = mapping::point_covariances(scan);
+      const mapping::Surfaces covs = mapping::point_surfaces(scan);
       const auto ta = std::chrono::steady_clock::now();
       r = mapping::register_scan(scan, covs, {&coarse, &fine}, guess);
       const auto tb = std::chrono::steady_clock::now();
@@ -123,7 +123,7 @@ int main(int argc, char** argv) {
     std::vector<double> tt;
     for (int run = 0; run < 5; ++run) {
       const auto t0 = std::chrono::steady_clock::now();
-      rt = mapping::register_scan(thin_scan, mapping::point_covariances(thin_scan, mp.covariances), {&coarse, &fine}, guess, direct1);
+      rt = mapping::register_scan(thin_scan, mapping::point_surfaces(thin_scan, mp.covariances), {&coarse, &fine}, guess, direct1);
       tt.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
     }
     thin.add(median(tt), rt.transform.matrix(), truth);
@@ -140,7 +140,7 @@ int main(int argc, char** argv) {
   std::printf("%-28s %10s %12s %12s\n", "", "ms/scan", "worst m", "worst deg");
   ours.print("ours: DIRECT7, 1 m -> 0.25 m");
   d1.print("ours: DIRECT1, as the mapper");
-  std::printf("%-28s %10.1f\n", "  of which the covariances", median(cov_ms));
+  std::printf("%-28s %10.1f\n", "  of which the surfaces", median(cov_ms));
   pcl.print("baseline: PCL GICP");
   ndt.print("baseline: PCL NDT (1 m)");
   std::printf("PCL GICP / ours: %.1f (DIRECT1, as the mapper), %.1f (DIRECT7)\n", median(pcl.ms) / median(d1.ms),

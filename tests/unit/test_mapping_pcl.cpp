@@ -28,7 +28,7 @@ Eigen::Matrix4d ours(const Points& source, const Points& target) {
   VoxelMap coarse(1.0f), fine(0.25f);
   coarse.add(target, tc);
   fine.add(target, tc);
-  const RegistrationResult r = register_scan(source, point_covariances(source, cp), {&coarse, &fine}, Eigen::Isometry3d::Identity());
+  const RegistrationResult r = register_scan(source, point_surfaces(source, cp), {&coarse, &fine}, Eigen::Isometry3d::Identity());
   EXPECT_TRUE(r.converged);
   return r.transform.matrix();
 }

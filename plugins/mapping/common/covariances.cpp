@@ -6,13 +6,47 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 
 namespace brickyard::mapping {
 
+namespace {
+
+// The unit eigenvector of c's smallest eigenvalue (the surface's normal): the eigenvalues by
+// the cubic's closed form, then the kernel of c - lambda I as the longest cross product of two
+// of its rows. Why not the whole decomposition: the regularized covariance needs this axis
+// alone, and the other two cost as much again. Where the two smallest eigenvalues meet (the
+// points on a line) the kernel is a plane: any direction across the line's row serves.
+Eigen::Vector3f smallest_axis(const Covariance& c) {
+  Eigen::SelfAdjointEigenSolver<Covariance> es;
+  es.computeDirect(c, Eigen::EigenvaluesOnly);
+  Covariance m = c;
+  m.diagonal().array() -= es.eigenvalues()(0);
+  const Eigen::Vector3f r0 = m.row(0), r1 = m.row(1), r2 = m.row(2);
+  const Eigen::Vector3f x[3] = {r0.cross(r1), r0.cross(r2), r1.cross(r2)};
+  const float n[3] = {x[0].squaredNorm(), x[1].squaredNorm(), x[2].squaredNorm()};
+  const int best = n[0] >= n[1] ? (n[0] >= n[2] ? 0 : 2) : (n[1] >= n[2] ? 1 : 2);
+  const float scale = m.squaredNorm();
+  if (n[best] > 1e-12f * scale * scale) return x[best] / std::sqrt(n[best]);
+  const float l0 = r0.squaredNorm(), l1 = r1.squaredNorm(), l2 = r2.squaredNorm();
+  const Eigen::Vector3f& row = l0 >= l1 ? (l0 >= l2 ? r0 : r2) : (l1 >= l2 ? r1 : r2);
+  return row.squaredNorm() > 0 ? row.unitOrthogonal() : Eigen::Vector3f::UnitZ();
+}
+
+}  // namespace
+
 Covariances point_covariances(const Points& pts, const CovarianceParams& p) {
+  const Surfaces s = point_surfaces(pts, p);
+  Covariances out(s.size());
+  for (std::size_t i = 0; i < s.size(); ++i) out[i] = covariance_of(s[i]);
+  return out;
+}
+
+Surfaces point_surfaces(const Points& pts, const CovarianceParams& p) {
   const int n = static_cast<int>(pts.size());
-  Covariances out(pts.size(), Covariance::Identity());
+  Surfaces out(pts.size(), Eigen::Vector3f::Zero());
   if (n == 0) return out;
+  const float flat = std::sqrt(std::max(0.0f, 1.0f - p.epsilon));
   // The points bucketed by grid cell (cells numbered first-met, each cell's points contiguous).
   const float inv = 1.0f / p.radius, r2 = p.radius * p.radius;
   perception::CellMap<std::uint32_t> cells;
@@ -40,11 +74,12 @@ Covariances point_covariances(const Points& pts, const CovarianceParams& p) {
   // scattered reads cost more than the distances.)
   const int k = std::max(3, p.neighbours);
   std::vector<float> gx, gy, gz, gd;
-  std::vector<std::uint32_t> gi;
+  std::vector<std::uint32_t> cand;
+  float last_kth = 0;  // squared, of the point before; 0: none
   std::vector<std::pair<float, std::uint32_t>> best(static_cast<std::size_t>(k));
   for (std::size_t cell_at = 0; cell_at < xyz.size(); ++cell_at) {
     const auto [cx, cy, cz] = xyz[cell_at];
-    gx.clear(), gy.clear(), gz.clear(), gi.clear();
+    gx.clear(), gy.clear(), gz.clear();
     for (int dx = -1; dx <= 1; ++dx)
       for (int dy = -1; dy <= 1; ++dy)
         for (int dz = -1; dz <= 1; ++dz) {
@@ -52,11 +87,12 @@ Covariances point_covariances(const Points& pts, const CovarianceParams& p) {
           if (!c) continue;
           for (std::uint32_t a = begin[*c]; a < begin[*c + 1]; ++a) {
             const Point& q = pts[order[a]];
-            gx.push_back(q.x()), gy.push_back(q.y()), gz.push_back(q.z()), gi.push_back(order[a]);
+            gx.push_back(q.x()), gy.push_back(q.y()), gz.push_back(q.z());
           }
         }
-    const std::size_t g = gi.size();
+    const std::size_t g = gx.size();
     gd.resize(g);
+    cand.resize(g);
     for (std::uint32_t at = begin[cell_at]; at < begin[cell_at + 1]; ++at) {
       const std::uint32_t i = order[at];
       const Point& q = pts[i];
@@ -66,9 +102,25 @@ Covariances point_covariances(const Points& pts, const CovarianceParams& p) {
         const float dx = gx[j] - q.x(), dy = gy[j] - q.y(), dz = gz[j] - q.z();
         gd[j] = dx * dx + dy * dy + dz * dz;
       }
+      // Only the candidates within a bound are sorted: 1.5 times the last point's k-th distance
+      // (points of a cell are alike spaced), else the radius. Gathered branch-free, in order:
+      // with k of them the k nearest of all are among them (the same ones, ties included), and
+      // the sort's mispredicted branches are for a few points, not for every one.
+      float bound = last_kth > 0 ? std::min(r2, 2.25f * last_kth) : r2;
+      std::size_t nc = 0;
+      for (;;) {
+        nc = 0;
+        for (std::size_t j = 0; j < g; ++j) {
+          cand[nc] = static_cast<std::uint32_t>(j);
+          nc += gd[j] <= bound;
+        }
+        if (nc >= static_cast<std::size_t>(k) || bound >= r2) break;
+        bound = r2;
+      }
       int m = 0;
       float worst = r2;
-      for (std::size_t j = 0; j < g; ++j) {
+      for (std::size_t a = 0; a < nc; ++a) {
+        const std::uint32_t j = cand[a];
         const float d2 = gd[j];
         if (d2 > worst || (d2 == worst && m == k)) continue;
         int slot = m < k ? m++ : k - 1;
@@ -76,25 +128,28 @@ Covariances point_covariances(const Points& pts, const CovarianceParams& p) {
           best[slot] = best[slot - 1];
           --slot;
         }
-        best[slot] = {d2, gi[j]};
+        best[slot] = {d2, j};
         if (m == k) worst = best[k - 1].first;
       }
+      last_kth = m == k ? worst : 0;
       if (m < 3) continue;
-      Eigen::Vector3f mean = Eigen::Vector3f::Zero();
-      for (int j = 0; j < m; ++j) mean += pts[best[j].second];
-      mean /= static_cast<float>(m);
-      Covariance c = Covariance::Zero();
+      // Their mean and covariance, read from the gathered copies (in cache), the upper
+      // triangle alone.
+      float mx = 0, my = 0, mz = 0;
+      for (int j = 0; j < m; ++j) mx += gx[best[j].second], my += gy[best[j].second], mz += gz[best[j].second];
+      const float inv_m = 1.0f / static_cast<float>(m);
+      mx *= inv_m, my *= inv_m, mz *= inv_m;
+      float c00 = 0, c01 = 0, c02 = 0, c11 = 0, c12 = 0, c22 = 0;
       for (int j = 0; j < m; ++j) {
-        const Eigen::Vector3f d = pts[best[j].second] - mean;
-        c += d * d.transpose();
+        const std::uint32_t at_j = best[j].second;
+        const float dx = gx[at_j] - mx, dy = gy[at_j] - my, dz = gz[at_j] - mz;
+        c00 += dx * dx, c01 += dx * dy, c02 += dx * dz, c11 += dy * dy, c12 += dy * dz, c22 += dz * dz;
       }
-      c /= static_cast<float>(m);
-      // Plane regularization: eigenvalues ascending, the smallest (the surface's normal) epsilon.
-      // The closed form (a cubic's roots): the iterative solver cost as much as the search.
-      Eigen::SelfAdjointEigenSolver<Covariance> es;
-      es.computeDirect(c);
-      const Eigen::Vector3f spread(p.epsilon, 1.0f, 1.0f);
-      out[i] = es.eigenvectors() * spread.asDiagonal() * es.eigenvectors().transpose();
+      Covariance c;
+      c << c00, c01, c02, c01, c11, c12, c02, c12, c22;
+      c *= inv_m;
+      // Plane regularization: spread 1 along the surface, epsilon along its normal.
+      out[i] = flat * smallest_axis(c);
     }
   }
   return out;

@@ -23,8 +23,17 @@ struct CovarianceParams {
   float epsilon = 1e-3f;
 };
 
-// One covariance per point. A point with fewer than 3 neighbours within the radius gets the
-// identity (a sphere: it pulls toward the neighbour's mean in every direction, weakly).
+// Each point's regularized covariance, I - (1 - epsilon) n n^T for its surface normal n, held as
+// the one vector s = sqrt(1 - epsilon) n, its covariance I - s s^T: what the registration needs
+// of it (three floats, not nine, and the inverse it takes has a closed form, vgicp.cpp). A point
+// with fewer than 3 neighbours within the radius gets s = 0, the identity (a sphere: it pulls
+// toward the neighbour's mean in every direction, weakly).
+using Surfaces = std::vector<Eigen::Vector3f>;
+Surfaces point_surfaces(const Points& pts, const CovarianceParams& p = {});
+
+inline Covariance covariance_of(const Eigen::Vector3f& s) { return Covariance::Identity() - s * s.transpose(); }
+
+// The same as covariance matrices.
 Covariances point_covariances(const Points& pts, const CovarianceParams& p = {});
 
 }  // namespace brickyard::mapping

@@ -21,7 +21,7 @@ ScanResult ScanMapper::add(const Points& scan, const Eigen::Isometry3d& guess, c
   ScanResult out;
   out.pose = out.map_pose = guess;
   const Points near = thinned(scan);
-  const Covariances covs = point_covariances(near, p_.covariances);
+  const Surfaces surfaces = point_surfaces(near, p_.covariances);
   const Eigen::FullPivLU<Eigen::Matrix<double, 6, 6>> prior_lu(information);
   prior_covariance_.reset();
   if (prior_lu.isInvertible()) {
@@ -42,7 +42,7 @@ ScanResult ScanMapper::add(const Points& scan, const Eigen::Isometry3d& guess, c
     PosePrior prior{guess, information};
     RegistrationParams rp = p_.registration;
     if (p_.points_worth > 0) rp.weight *= std::min(1.0, p_.points_worth / static_cast<double>(near.size()));
-    const RegistrationResult r = register_scan(near, covs, {&coarse_, &fine_}, guess, rp, &prior);
+    const RegistrationResult r = register_scan(near, surfaces, {&coarse_, &fine_}, guess, rp, &prior);
     out.matched = r.matched;
     out.iterations = r.iterations;
     const Eigen::Isometry3d moved = guess.inverse() * r.transform;
@@ -54,7 +54,7 @@ ScanResult ScanMapper::add(const Points& scan, const Eigen::Isometry3d& guess, c
         out.pose = r.transform;
         out.covariance = lu.inverse();
         out.registered = true;
-        keep_prior_where_unseen(near, covs, guess, out);
+        keep_prior_where_unseen(surfaces, guess, out);
         if (!(level && on_estimate)) {
           out.map_pose = out.pose;
         } else {  // the registration's heading: the estimate's jitters by tenths of a degree
@@ -72,7 +72,7 @@ ScanResult ScanMapper::add(const Points& scan, const Eigen::Isometry3d& guess, c
     const Eigen::Vector3f t = out.map_pose.translation().cast<float>();
     for (std::size_t i = 0; i < near.size(); ++i) {
       world[i] = R * near[i] + t;
-      wcovs[i] = R * covs[i] * R.transpose();
+      wcovs[i] = covariance_of(R * surfaces[i]);
     }
     coarse_.add(world, wcovs);
     fine_.add(world, wcovs);
@@ -86,14 +86,14 @@ ScanResult ScanMapper::add(const Points& scan, const Eigen::Isometry3d& guess, c
 std::optional<Eigen::Isometry3d> ScanMapper::level_on_ground(const Points& ground, const Eigen::Isometry3d& from) const {
   const Points near = thinned(ground);
   if (near.size() < p_.min_matched) return std::nullopt;
-  const Covariances covs = point_covariances(near, p_.covariances);
+  const Surfaces surfaces = point_surfaces(near, p_.covariances);
   // The (x, y, yaw) held at `from`'s (flat ground cannot tell them); roll, pitch and height free.
   Eigen::Matrix<double, 6, 6> hold = Eigen::Matrix<double, 6, 6>::Identity() * 1e-6;
   hold(kWz, kWz) = hold(kVx, kVx) = hold(kVy, kVy) = kHold;
   const PosePrior prior{from, hold};
   RegistrationParams rp = p_.registration;
   if (p_.points_worth > 0) rp.weight *= std::min(1.0, p_.points_worth / static_cast<double>(near.size()));
-  const RegistrationResult r = register_scan(near, covs, {&coarse_, &fine_}, from, rp, &prior);
+  const RegistrationResult r = register_scan(near, surfaces, {&coarse_, &fine_}, from, rp, &prior);
   const Eigen::Isometry3d moved = from.inverse() * r.transform;
   if (!r.converged || r.matched < p_.min_matched || moved.translation().norm() > p_.max_correction ||
       Eigen::AngleAxisd(moved.linear()).angle() > p_.max_turn)
@@ -125,13 +125,11 @@ Points ScanMapper::thinned(const Points& scan) const {
   return sum;
 }
 
-void ScanMapper::keep_prior_where_unseen(const Points& scan, const Covariances& covs, const Eigen::Isometry3d& guess,
-                                         ScanResult& out) const {
-  // The surfaces' normals, summed as n n^T: GICP's regularized covariance is V diag(1, 1, eps) V^T,
-  // so I - C = (1 - eps) n n^T, and the sum needs no eigenvectors. (A point with too few
-  // neighbours has C = I: it faces nowhere.)
+void ScanMapper::keep_prior_where_unseen(const Surfaces& surfaces, const Eigen::Isometry3d& guess, ScanResult& out) const {
+  // The surfaces' normals, summed as n n^T: a point's surface s is sqrt(1 - eps) n. (A point with
+  // too few neighbours has s = 0: it faces nowhere.)
   Eigen::Matrix3d support = Eigen::Matrix3d::Zero();
-  for (std::size_t i = 0; i < scan.size() && i < covs.size(); ++i) support += (Eigen::Matrix3d::Identity() - covs[i].cast<double>());
+  for (const Eigen::Vector3f& s : surfaces) support += (s * s.transpose()).cast<double>();
   const double eps = p_.covariances.epsilon;
   const Eigen::Matrix3d R = out.pose.linear();
   support = R * support * R.transpose() / (1.0 - eps);

@@ -88,8 +88,7 @@ class ScanMapper {
   Points thinned(const Points& scan) const;
   // Where the scan's surfaces tell nothing (ScanMapperParams::min_support): the guess's
   // translation and the prior's variance.
-  void keep_prior_where_unseen(const Points& scan, const Covariances& covs, const Eigen::Isometry3d& guess,
-                               ScanResult& out) const;
+  void keep_prior_where_unseen(const Surfaces& surfaces, const Eigen::Isometry3d& guess, ScanResult& out) const;
   // The pose's roll, pitch and height from the ground alone, its (x, y, yaw) held at `from`'s;
   // none when that registration fails. Why: walls tilt the whole frame's registration; between
   // two walls it put the car's roll degrees off within seconds (the banking 2.7 deg off on flat

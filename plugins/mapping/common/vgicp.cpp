@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 namespace brickyard::mapping {
 
@@ -25,68 +26,118 @@ struct Linearized {
 // moves the car by omega x t, kilometres away), and the lever arms are metres, so single
 // precision holds: each point's arithmetic is float, in coordinates relative to o, summed into
 // double every block of points.
-Linearized linearize(const Points& scan, const Covariances& covs, const VoxelMap& map, const Eigen::Isometry3d& T,
+//
+// The weight of a match, (Sigma_v + R C_i R^T)^-1 with C_i = I - s s^T (covariances.hpp) and
+// m = R s, is (B - m m^T)^-1 for the voxel's B = Sigma_v + I, whose inverse the voxel holds:
+// Sherman-Morrison gives B^-1 + u u^T / (1 - m^T u), u = B^-1 m. The denominator is at least
+// epsilon (B >= I and |m|^2 = 1 - epsilon), so it never vanishes.
+Linearized linearize(const Points& scan, const Surfaces& surfaces, const VoxelMap& map, const Eigen::Isometry3d& T,
                      const RegistrationParams& p) {
   Linearized out;
   const Eigen::Matrix3f R = T.linear().cast<float>();
-  const Eigen::Vector3d o = T.translation();
-  const Eigen::Vector3f of = o.cast<float>();
-  const float s = map.voxel_size();
-  const Eigen::Vector3f offsets[7] = {{0, 0, 0}, {s, 0, 0}, {-s, 0, 0}, {0, s, 0}, {0, -s, 0}, {0, 0, s}, {0, 0, -s}};
+  const Eigen::Vector3f of = T.translation().cast<float>();
+  const float vs = map.voxel_size();
+  const Eigen::Vector3f offsets[7] = {{0, 0, 0}, {vs, 0, 0}, {-vs, 0, 0}, {0, vs, 0}, {0, -vs, 0}, {0, 0, vs}, {0, 0, -vs}};
   const int looks = p.face_neighbours ? 7 : 1;
   const std::size_t stride = static_cast<std::size_t>(std::max(1, p.stride));
   const float weight = static_cast<float>(p.weight * static_cast<double>(stride));
-  // The system's blocks, float within a block of points: rotation-rotation, rotation-translation,
-  // translation-translation (W itself), and the gradient's halves.
-  Eigen::Matrix3f Hrr = Eigen::Matrix3f::Zero(), Hrt = Eigen::Matrix3f::Zero(), Htt = Eigen::Matrix3f::Zero();
-  Eigen::Vector3f gr = Eigen::Vector3f::Zero(), gt = Eigen::Vector3f::Zero();
-  float cost = 0;
-  auto flush = [&] {
-    out.H.topLeftCorner<3, 3>() += Hrr.cast<double>();
-    out.H.topRightCorner<3, 3>() += Hrt.cast<double>();
-    out.H.bottomRightCorner<3, 3>() += Htt.cast<double>();
-    out.g.head<3>() += gr.cast<double>();
-    out.g.tail<3>() += gt.cast<double>();
-    out.cost += cost;
-    Hrr.setZero(), Hrt.setZero(), Htt.setZero(), gr.setZero(), gt.setZero();
-    cost = 0;
+  const std::size_t n = std::min(scan.size(), surfaces.size());
+  // Block by block of points, in two passes. The first finds each point's voxels and starts
+  // loading them (a scan's lookups are scattered over the map, each a cache miss: the hash
+  // slots are prefetched kAhead points early, the voxels a whole block before they are read).
+  // The second does the arithmetic, with the system's upper triangle in float sums (the
+  // rotation block rr, the cross block rt, the translation block tt = W itself, the gradient's
+  // halves), added into double at the end of each block.
+  constexpr std::size_t kBlock = 128, kAhead = 8;
+  struct Match {
+    const VoxelTarget* v;
+    std::uint32_t point;  // in the block
   };
-  const std::size_t n = std::min(scan.size(), covs.size());
-  std::size_t block = 0;
-  // Each point's own voxel's slot is fetched kAhead points early.
-  constexpr std::size_t kAhead = 8;
-  const std::size_t ahead = kAhead * stride;
-  for (std::size_t i = 0; i < ahead && i < n; i += stride) map.prefetch(map.key(R * scan[i] + of));
-  for (std::size_t i = 0; i < n; i += stride) {
-    if (i + ahead < n) map.prefetch(map.key(R * scan[i + ahead] + of));
-    const Eigen::Vector3f r = R * scan[i];  // the point relative to o, in the map's axes
-    const Eigen::Vector3f q = r + of;       // in the map
-    const Eigen::Matrix3f rcr = R * covs[i] * R.transpose();
-    bool any = false;
-    for (int k = 0; k < looks; ++k) {
-      const VoxelTarget* v = map.target(map.key(q + offsets[k]));
-      if (!v) continue;
-      any = true;
-      const Eigen::Vector3f e = (v->mean - of) - r;
-      const Eigen::Matrix3f W = (weight * v->count) * (v->covariance + rcr).inverse();
-      if (!W.allFinite()) continue;
-      const Eigen::Vector3f We = W * e;
-      cost += e.dot(We);
-      // J = [ [r]x, -I ]: H = J^T W J, g = J^T W e, with [r]x^T = -[r]x.
-      Eigen::Matrix3f X;
-      X << 0, -r.z(), r.y(), r.z(), 0, -r.x(), -r.y(), r.x(), 0;
-      const Eigen::Matrix3f WX = W * X;
-      Hrr.noalias() -= X * WX;
-      Hrt.noalias() += X * W;
-      Htt += W;
-      gr.noalias() -= X * We;
-      gt -= We;
+  std::vector<Match> matches;
+  matches.reserve(kBlock * static_cast<std::size_t>(looks));
+  std::vector<Eigen::Vector3f> rs(kBlock), ms(kBlock);
+  std::vector<std::uint64_t> keys(kBlock * static_cast<std::size_t>(looks));
+  std::vector<std::size_t> points;
+  points.reserve(kBlock);
+  for (std::size_t b0 = 0; b0 < n; b0 += kBlock * stride) {
+    points.clear();
+    for (std::size_t i = b0; i < n && points.size() < kBlock; i += stride) points.push_back(i);
+    const std::size_t np = points.size();
+    for (std::size_t j = 0; j < np; ++j) {
+      rs[j] = R * scan[points[j]];  // the point relative to o, in the map's axes
+      ms[j] = R * surfaces[points[j]];
+      const Eigen::Vector3f q = rs[j] + of;
+      for (int k = 0; k < looks; ++k) keys[j * looks + k] = map.key(q + offsets[k]);
     }
-    out.matched += any;
-    if ((++block & 255) == 0) flush();
+    const std::size_t nk = np * static_cast<std::size_t>(looks);
+    for (std::size_t a = 0; a < kAhead && a < nk; ++a) map.prefetch(keys[a]);
+    matches.clear();
+    std::uint32_t last = ~0u;
+    for (std::size_t a = 0; a < nk; ++a) {
+      if (a + kAhead < nk) map.prefetch(keys[a + kAhead]);
+      const VoxelTarget* v = map.target(keys[a]);
+      if (!v) continue;
+      __builtin_prefetch(v);
+      const std::uint32_t j = static_cast<std::uint32_t>(a / static_cast<std::size_t>(looks));
+      matches.push_back({v, j});
+      out.matched += j != last;
+      last = j;
+    }
+    float rr00 = 0, rr01 = 0, rr02 = 0, rr11 = 0, rr12 = 0, rr22 = 0;
+    float rt[3][3] = {};
+    float tt00 = 0, tt01 = 0, tt02 = 0, tt11 = 0, tt12 = 0, tt22 = 0;
+    float gr0 = 0, gr1 = 0, gr2 = 0, gt0 = 0, gt1 = 0, gt2 = 0, cost = 0;
+    for (const Match& mt : matches) {
+      const VoxelTarget& v = *mt.v;
+      const Eigen::Vector3f& r = rs[mt.point];
+      const Eigen::Vector3f& m = ms[mt.point];
+      const float* B = v.inverse;  // (B^-1) upper triangle: 00 01 02 11 12 22
+      const float u0 = B[0] * m.x() + B[1] * m.y() + B[2] * m.z();
+      const float u1 = B[1] * m.x() + B[3] * m.y() + B[4] * m.z();
+      const float u2 = B[2] * m.x() + B[4] * m.y() + B[5] * m.z();
+      const float den = 1.0f - (m.x() * u0 + m.y() * u1 + m.z() * u2);
+      if (!(den > 0)) continue;
+      const float w = weight * v.count, c = w / den;
+      // W = w B^-1 + c u u^T
+      const float w00 = w * B[0] + c * u0 * u0, w01 = w * B[1] + c * u0 * u1, w02 = w * B[2] + c * u0 * u2;
+      const float w11 = w * B[3] + c * u1 * u1, w12 = w * B[4] + c * u1 * u2, w22 = w * B[5] + c * u2 * u2;
+      const float e0 = (v.mean.x() - of.x()) - r.x(), e1 = (v.mean.y() - of.y()) - r.y(), e2 = (v.mean.z() - of.z()) - r.z();
+      const float we0 = w00 * e0 + w01 * e1 + w02 * e2;
+      const float we1 = w01 * e0 + w11 * e1 + w12 * e2;
+      const float we2 = w02 * e0 + w12 * e1 + w22 * e2;
+      const float ec = e0 * we0 + e1 * we1 + e2 * we2;
+      if (!std::isfinite(ec)) continue;
+      cost += ec;
+      // J = [ [r]x, -I ]: H = J^T W J, g = J^T W e. The translation block is W; the cross
+      // block [r]x W has columns r x W_j; the rotation block -[r]x W [r]x has rows r x A_i,
+      // A_i the rows of [r]x W; the gradient's rotation half is -(r x We).
+      const float rx = r.x(), ry = r.y(), rz = r.z();
+      // A = [r]x W: column j = r x W_j.
+      const float a00 = ry * w02 - rz * w01, a10 = rz * w00 - rx * w02, a20 = rx * w01 - ry * w00;
+      const float a01 = ry * w12 - rz * w11, a11 = rz * w01 - rx * w12, a21 = rx * w11 - ry * w01;
+      const float a02 = ry * w22 - rz * w12, a12 = rz * w02 - rx * w22, a22 = rx * w12 - ry * w02;
+      rt[0][0] += a00, rt[0][1] += a01, rt[0][2] += a02;
+      rt[1][0] += a10, rt[1][1] += a11, rt[1][2] += a12;
+      rt[2][0] += a20, rt[2][1] += a21, rt[2][2] += a22;
+      // rows of -[r]x W [r]x: r x (a_i0, a_i1, a_i2)
+      rr00 += ry * a02 - rz * a01, rr01 += rz * a00 - rx * a02, rr02 += rx * a01 - ry * a00;
+      rr11 += rz * a10 - rx * a12, rr12 += rx * a11 - ry * a10;
+      rr22 += rx * a21 - ry * a20;
+      tt00 += w00, tt01 += w01, tt02 += w02, tt11 += w11, tt12 += w12, tt22 += w22;
+      gr0 -= ry * we2 - rz * we1, gr1 -= rz * we0 - rx * we2, gr2 -= rx * we1 - ry * we0;
+      gt0 -= we0, gt1 -= we1, gt2 -= we2;
+    }
+    Mat6& H = out.H;
+    H(0, 0) += rr00, H(0, 1) += rr01, H(0, 2) += rr02, H(1, 1) += rr11, H(1, 2) += rr12, H(2, 2) += rr22;
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b) H(a, 3 + b) += rt[a][b];
+    H(3, 3) += tt00, H(3, 4) += tt01, H(3, 5) += tt02, H(4, 4) += tt11, H(4, 5) += tt12, H(5, 5) += tt22;
+    out.g(0) += gr0, out.g(1) += gr1, out.g(2) += gr2, out.g(3) += gt0, out.g(4) += gt1, out.g(5) += gt2;
+    out.cost += cost;
   }
-  flush();
-  out.H.bottomLeftCorner<3, 3>() = out.H.topRightCorner<3, 3>().transpose();
+  // The lower triangle from the upper.
+  const Mat6 upper = out.H;
+  out.H = upper.selfadjointView<Eigen::Upper>();
   return out;
 }
 
@@ -116,13 +167,13 @@ Eigen::Isometry3d step(const Vec6& d, const Eigen::Isometry3d& T) {
 
 }  // namespace
 
-RegistrationResult register_scan(const Points& scan, const Covariances& covs, const VoxelMap& map,
+RegistrationResult register_scan(const Points& scan, const Surfaces& surfaces, const VoxelMap& map,
                                  const Eigen::Isometry3d& guess, const RegistrationParams& p, const PosePrior* prior) {
   RegistrationResult r;
   r.transform = guess;
   double lambda = 1e-6;
   auto at = [&](const Eigen::Isometry3d& T) {
-    Linearized L = linearize(scan, covs, map, T, p);
+    Linearized L = linearize(scan, surfaces, map, T, p);
     if (prior) add_prior(*prior, T, L);
     return L;
   };
@@ -166,7 +217,7 @@ RegistrationResult register_scan(const Points& scan, const Covariances& covs, co
   return r;
 }
 
-RegistrationResult register_scan(const Points& scan, const Covariances& covs, const std::vector<const VoxelMap*>& maps,
+RegistrationResult register_scan(const Points& scan, const Surfaces& surfaces, const std::vector<const VoxelMap*>& maps,
                                  const Eigen::Isometry3d& guess, const RegistrationParams& p, const PosePrior* prior) {
   RegistrationResult r;
   r.transform = guess;
@@ -177,7 +228,7 @@ RegistrationResult register_scan(const Points& scan, const Covariances& covs, co
     if (!maps[k]) continue;
     RegistrationParams stage = p;
     if (k + 1 < last) stage.stride = std::max(1, p.stride) * std::max(1, p.coarse_stride);
-    r = register_scan(scan, covs, *maps[k], r.transform, stage, prior);
+    r = register_scan(scan, surfaces, *maps[k], r.transform, stage, prior);
     iterations += r.iterations;
   }
   r.iterations = iterations;

@@ -57,9 +57,10 @@ struct RegistrationResult {
   Eigen::Matrix<double, 6, 6> hessian = Eigen::Matrix<double, 6, 6>::Zero();
 };
 
-// Registers `scan` (scan frame, with its covariances in the scan frame) onto `map`, from `guess`
-// (map from scan). Fewer than 6 matched points: not converged, the guess returned.
-RegistrationResult register_scan(const Points& scan, const Covariances& covs, const VoxelMap& map,
+// Registers `scan` (scan frame, with its points' surfaces in the scan frame: point_surfaces)
+// onto `map`, from `guess` (map from scan). Fewer than 6 matched points: not converged, the
+// guess returned.
+RegistrationResult register_scan(const Points& scan, const Surfaces& surfaces, const VoxelMap& map,
                                  const Eigen::Isometry3d& guess, const RegistrationParams& p = {},
                                  const PosePrior* prior = nullptr);
 
@@ -69,7 +70,7 @@ RegistrationResult register_scan(const Points& scan, const Covariances& covs, co
 // of a surface or two surfaces; fine voxels are accurate but only from near the answer (measured
 // on a walled yard: 1 m voxels from 0.4 m off, 9 cm left; 0.25 m voxels from there, 1 mm).
 // Not converged when the last stage did not converge.
-RegistrationResult register_scan(const Points& scan, const Covariances& covs, const std::vector<const VoxelMap*>& maps,
+RegistrationResult register_scan(const Points& scan, const Surfaces& surfaces, const std::vector<const VoxelMap*>& maps,
                                  const Eigen::Isometry3d& guess, const RegistrationParams& p = {},
                                  const PosePrior* prior = nullptr);
 

@@ -19,11 +19,14 @@ struct Voxel {
   Eigen::Matrix3d covariance() const { return cov_sum / count; }
 };
 
-// What a registration reads of a voxel, kept up to date as points are added: its mean and mean
-// covariance in float (the registration's arithmetic) and its count.
+// What a registration reads of a voxel, kept up to date as points are added, in float (the
+// registration's arithmetic): its mean, its count and (Sigma_v + I)^-1 of its mean covariance
+// Sigma_v. Why that inverse: a scan point's covariance is I - s s^T (covariances.hpp), so the
+// inverse the registration takes of Sigma_v + I - s s^T is this one plus a rank-one term
+// (Sherman-Morrison), with no 3x3 inverse per point.
 struct VoxelTarget {
   Eigen::Vector3f mean = Eigen::Vector3f::Zero();
-  Eigen::Matrix3f covariance = Eigen::Matrix3f::Zero();
+  float inverse[6] = {1, 0, 0, 1, 0, 1};  // its upper triangle: 00 01 02 11 12 22
   float count = 0;
 };
 
@@ -35,7 +38,7 @@ class VoxelMap {
   void add(const Points& pts, const Covariances& covs);
   // The voxel holding map point q, or null.
   const Voxel* at(const Eigen::Vector3d& q) const;
-  // Its target (the same voxel's mean, covariance and count in float), or null.
+  // Its target, or null.
   const VoxelTarget* target(const Eigen::Vector3f& q) const { return target(key(q)); }
   // The same in two steps, so a loop can prefetch a point's voxel a few points ahead of reading
   // it (the lookups of a scan's points are scattered over the map: each a cache miss).
@@ -60,6 +63,8 @@ class VoxelMap {
   perception::CellMap<std::uint32_t> index_;
   std::vector<Voxel> voxels_;  // first-added order
   std::vector<VoxelTarget> targets_;  // the same order
+  std::vector<std::uint32_t> touched_;  // by the add() under way, each once
+  std::vector<char> is_touched_;        // per voxel
 };
 
 }  // namespace brickyard::mapping
