@@ -1,5 +1,6 @@
 #include "live/scene.hpp"
 
+#include "live/json_text.hpp"
 #include "live/live_server.hpp"
 #include "cdr/cdr_json.hpp"
 #include "record/recorder.hpp"
@@ -17,7 +18,6 @@
 #include <nlohmann/json.hpp>
 
 #include <atomic>
-#include <charconv>
 #include <cmath>
 #include <cstring>
 #include <mutex>
@@ -27,60 +27,62 @@ namespace brickyard::fw {
 namespace {
 using nlohmann::json;
 
-json stamp(std::uint64_t ns) { return {{"sec", ns / 1'000'000'000u}, {"nsec", ns % 1'000'000'000u}}; }
-json vec(double x, double y, double z) { return {{"x", x}, {"y", y}, {"z", z}}; }
-json quat(double roll, double pitch, double yaw) {  // Z-Y-X (yaw, then pitch, then roll)
+// The scene's messages are written as JSON text (json_text.hpp), not built as objects.
+void stamp(JsonText& w, std::uint64_t ns) {
+  w.open('{').key("sec").uint(ns / 1'000'000'000u).key("nsec").uint(ns % 1'000'000'000u).close('}');
+}
+void vec(JsonText& w, double x, double y, double z) { w.open('{').key("x").num(x).key("y").num(y).key("z").num(z).close('}'); }
+struct Quat {
+  double x, y, z, w;
+};
+Quat quat(double roll, double pitch, double yaw) {  // Z-Y-X (yaw, then pitch, then roll)
   const double cr = std::cos(roll / 2), sr = std::sin(roll / 2), cp = std::cos(pitch / 2), sp = std::sin(pitch / 2);
   const double cy = std::cos(yaw / 2), sy = std::sin(yaw / 2);
-  return {{"x", sr * cp * cy - cr * sp * sy}, {"y", cr * sp * cy + sr * cp * sy}, {"z", cr * cp * sy - sr * sp * cy}, {"w", cr * cp * cy + sr * sp * sy}};
+  return {sr * cp * cy - cr * sp * sy, cr * sp * cy + sr * cp * sy, cr * cp * sy - sr * sp * cy, cr * cp * cy + sr * sp * sy};
 }
-json pose(double x, double y, double z, double roll, double pitch, double yaw) {
-  return {{"position", vec(x, y, z)}, {"orientation", quat(roll, pitch, yaw)}};
+void quat(JsonText& w, const Quat& q) { w.open('{').key("x").num(q.x).key("y").num(q.y).key("z").num(q.z).key("w").num(q.w).close('}'); }
+void pose(JsonText& w, double x, double y, double z, double roll, double pitch, double yaw) {
+  w.open('{').key("position");
+  vec(w, x, y, z);
+  w.key("orientation");
+  quat(w, quat(roll, pitch, yaw));
+  w.close('}');
 }
-json colour(double r, double g, double b, double a = 1.0) { return {{"r", r}, {"g", g}, {"b", b}, {"a", a}}; }
-// A line's points as JSON text, written directly: nlohmann builds an object per point, which for
-// the map's edges and the path took a fifth of the main job's time. In the message the line holds
-// a placeholder string, replaced by the text after the dump (Message::text).
+struct Colour {
+  double r, g, b, a = 1.0;
+};
+void colour(JsonText& w, const Colour& c) { w.open('{').key("r").num(c.r).key("g").num(c.g).key("b").num(c.b).key("a").num(c.a).close('}'); }
+// A line's points, x, y and z to the millimetre (a line of thousands of points is most of a
+// message's text).
 struct Points {
-  std::string text = "[";
-  void add(double x, double y, double z) {
-    char b[160];
-    char* p = b;
-    if (text.size() > 1) *p++ = ',';
-    for (const auto& [key, value] : {std::pair<const char*, double>{"{\"x\":", x}, {",\"y\":", y}, {",\"z\":", z}}) {
-      // JSON has no NaN or infinity, and a diverging fit is no place to draw: 0 there.
-      const double v = std::isfinite(value) && std::fabs(value) < 1e9 ? value : 0.0;
-      for (const char* k = key; *k;) *p++ = *k++;
-      p = std::to_chars(p, b + sizeof b - 2, v, std::chars_format::fixed, 3).ptr;  // |v| < 1e9: at most 14 characters
-    }
-    *p++ = '}';
-    text.append(b, p);
-  }
+  JsonText text;
+  void add(double x, double y, double z) { text.open('{').key("x").num(x, 3).key("y").num(y, 3).key("z").num(z, 3).close('}'); }
 };
-struct Message {
-  json j;
-  std::vector<std::string> points;
-  std::string dump() const {
-    std::string s = j.dump();
-    for (std::size_t i = 0; i < points.size(); ++i) {
-      const std::string key = "\"@points" + std::to_string(i) + "@\"";
-      const auto at = s.find(key);
-      if (at != std::string::npos) s.replace(at, key.size(), points[i] + "]");
-    }
-    return s;
-  }
-};
-json line_strip(Message& m, Points pts, double thickness, const json& c) {
-  m.points.push_back(std::move(pts.text));
-  return {{"type", 0}, {"pose", pose(0, 0, 0, 0, 0, 0)}, {"thickness", thickness}, {"scale_invariant", false},
-          {"points", "@points" + std::to_string(m.points.size() - 1) + "@"}, {"color", c}, {"colors", json::array()},
-          {"indices", json::array()}};
+// One LINE_STRIP primitive, appended to `lines` (an array's items).
+void line_strip(JsonText& lines, const Points& pts, double thickness, const Colour& c) {
+  lines.open('{').key("type").uint(0).key("pose");
+  pose(lines, 0, 0, 0, 0, 0, 0);
+  lines.key("thickness").num(thickness).key("scale_invariant").boolean(false).key("points").open('[').raw(pts.text.text()).close(']');
+  lines.key("color");
+  colour(lines, c);
+  lines.key("colors").open('[').close(']').key("indices").open('[').close(']').close('}');
 }
-json entity(std::uint64_t ns, const std::string& frame, const std::string& id) {
-  return {{"timestamp", stamp(ns)}, {"frame_id", frame}, {"id", id}, {"lifetime", stamp(0)}, {"frame_locked", false},
-          {"metadata", json::array()}, {"arrows", json::array()}, {"cubes", json::array()}, {"spheres", json::array()},
-          {"cylinders", json::array()}, {"lines", json::array()}, {"triangles", json::array()}, {"texts", json::array()},
-          {"models", json::array()}};
+// A SceneUpdate of one entity, its lines, cubes and cylinders given as their arrays' items (each
+// written by a JsonText of its own; empty: none).
+std::string scene_update(std::uint64_t ns, std::string_view frame, std::string_view id, const JsonText& lines, const JsonText& cubes,
+                         const JsonText& cylinders) {
+  JsonText w;
+  w.open('{').key("deletions").open('[').close(']').key("entities").open('[').open('{').key("timestamp");
+  stamp(w, ns);
+  w.key("frame_id").str(frame).key("id").str(id).key("lifetime");
+  stamp(w, 0);
+  w.key("frame_locked").boolean(false);
+  for (const char* none : {"metadata", "arrows", "spheres", "triangles", "texts", "models"}) w.key(none).open('[').close(']');
+  w.key("lines").open('[').raw(lines.text()).close(']');
+  w.key("cubes").open('[').raw(cubes.text()).close(']');
+  w.key("cylinders").open('[').raw(cylinders.text()).close(']');
+  w.close('}').close(']').close('}');
+  return w.take();
 }
 // The closed polyline `width + beyond` to the left of the centre line (sign -1: the right), z = 0.
 Points edge(const std::vector<double>& x, const std::vector<double>& y, const std::vector<double>& width, double sign, double beyond) {
@@ -137,10 +139,8 @@ struct LiveScene::Impl {
   std::uint32_t channel(const std::string& topic, const std::string& schema) {
     return server.add_channel(topic, "json", schema, "jsonschema", kSchema);
   }
-  void send(std::uint32_t ch, std::uint64_t ns, const json& j) { send_message(ch, ns, Message{j, {}}); }
-  void send_message(std::uint32_t ch, std::uint64_t ns, const Message& m) {
-    const std::string s = m.dump();
-    server.publish(ch, ns, reinterpret_cast<const unsigned char*>(s.data()), s.size());
+  void send(std::uint32_t ch, std::uint64_t ns, const std::string& text) {
+    server.publish(ch, ns, reinterpret_cast<const unsigned char*>(text.data()), text.size());
   }
   // A frame's transform at most every 20 ms of the run (50 Hz; Foxglove interpolates between
   // them): the truth comes at 500 Hz, and a JSON message each was a fifth of the main job's time.
@@ -150,16 +150,23 @@ struct LiveScene::Impl {
     std::uint64_t at = next.load();
     return ns >= at && next.compare_exchange_strong(at, ns + 20'000'000);
   }
-  void transform(std::uint64_t ns, const std::string& child, const json& p) {
-    send(tf, ns, {{"timestamp", stamp(ns)}, {"parent_frame_id", "map"}, {"child_frame_id", child},
-                  {"translation", p["position"]}, {"rotation", p["orientation"]}});
+  void transform(std::uint64_t ns, const char* child, double x, double y, double z, double roll, double pitch, double yaw) {
+    JsonText w;
+    w.open('{').key("timestamp");
+    stamp(w, ns);
+    w.key("parent_frame_id").str("map").key("child_frame_id").str(child).key("translation");
+    vec(w, x, y, z);
+    w.key("rotation");
+    quat(w, quat(roll, pitch, yaw));
+    w.close('}');
+    send(tf, ns, w.text());
   }
-  json path_colour() {
+  Colour path_colour() {
     std::lock_guard<std::mutex> l(m);
-    if (mode == "PATH") return colour(0.2, 0.9, 0.3);
-    if (mode == "WALL_FOLLOW") return colour(1.0, 0.6, 0.1);
-    if (mode == "SAFE_STOP") return colour(1.0, 0.2, 0.2);
-    return colour(0.9, 0.9, 0.9);
+    if (mode == "PATH") return {0.2, 0.9, 0.3};
+    if (mode == "WALL_FOLLOW") return {1.0, 0.6, 0.1};
+    if (mode == "SAFE_STOP") return {1.0, 0.2, 0.2};
+    return {0.9, 0.9, 0.9};
   }
 };
 
@@ -181,16 +188,15 @@ std::function<void(const void*, std::uint64_t)> LiveScene::handler(const std::st
       const auto& v = *static_cast<const msgs::VehicleState*>(p);
       const bool truth = s->due(s->next_truth, ns), vehicle = !s->has_estimate && s->due(s->next_vehicle, ns);
       if (!truth && !vehicle) return;
-      const json at = pose(v.x(), v.y(), v.z(), v.roll(), v.pitch(), v.yaw());
-      if (truth) s->transform(ns, "truth", at);
-      if (vehicle) s->transform(ns, "vehicle", at);
+      if (truth) s->transform(ns, "truth", v.x(), v.y(), v.z(), v.roll(), v.pitch(), v.yaw());
+      if (vehicle) s->transform(ns, "vehicle", v.x(), v.y(), v.z(), v.roll(), v.pitch(), v.yaw());
     };
   if (type == "brickyard::msgs::LocalizationEstimate") {
     s->has_estimate = true;  // (every topic is seen before the run starts)
     return [s](const void* p, std::uint64_t ns) {
       if (!s->due(s->next_vehicle, ns)) return;
       const auto& e = *static_cast<const msgs::LocalizationEstimate*>(p);
-      s->transform(ns, "vehicle", pose(e.x(), e.y(), 0, 0, 0, e.yaw()));
+      s->transform(ns, "vehicle", e.x(), e.y(), 0, 0, 0, e.yaw());
     };
   }
   if (type == "brickyard::msgs::ModeStatus" && topic.rfind("manager.", 0) == 0)
@@ -198,17 +204,33 @@ std::function<void(const void*, std::uint64_t)> LiveScene::handler(const std::st
       std::lock_guard<std::mutex> l(s->m);
       s->mode = static_cast<const msgs::ModeStatus*>(p)->mode_name();
     };
-  if (type == "brickyard::msgs::TrackMap")
-    return [s, topic](const void* p, std::uint64_t ns) {
+  if (type == "brickyard::msgs::TrackMap") {
+    // The map comes again and again, the same (for subscribers that join late): its edges are
+    // written once and kept while it does not change.
+    struct Kept {
+      std::mutex m;
+      std::vector<double> x, y, left, right;
+      JsonText lines;
+    };
+    auto kept = std::make_shared<Kept>();
+    return [s, kept, topic](const void* p, std::uint64_t ns) {
       if (!s->server.wanted(s->track)) return;
       const auto& m = *static_cast<const msgs::TrackMap*>(p);
-      Message msg;
-      json e = entity(ns, "map", "map:" + topic);
-      e["lines"].push_back(line_strip(msg, edge(m.x(), m.y(), m.width_left(), 1, 0), 0.25, colour(0.3, 0.6, 1.0)));
-      e["lines"].push_back(line_strip(msg, edge(m.x(), m.y(), m.width_right(), -1, 0), 0.25, colour(0.3, 0.6, 1.0)));
-      msg.j = {{"deletions", json::array()}, {"entities", {e}}};
-      s->send_message(s->track, ns, msg);
+      std::string text;
+      {
+        std::lock_guard<std::mutex> l(kept->m);
+        Kept& k = *kept;
+        if (k.lines.text().empty() || k.x != m.x() || k.y != m.y() || k.left != m.width_left() || k.right != m.width_right()) {
+          k.x = m.x(), k.y = m.y(), k.left = m.width_left(), k.right = m.width_right();
+          k.lines = JsonText();
+          line_strip(k.lines, edge(m.x(), m.y(), m.width_left(), 1, 0), 0.25, {0.3, 0.6, 1.0});
+          line_strip(k.lines, edge(m.x(), m.y(), m.width_right(), -1, 0), 0.25, {0.3, 0.6, 1.0});
+        }
+        text = scene_update(ns, "map", "map:" + topic, k.lines, JsonText(), JsonText());
+      }
+      s->send(s->track, ns, text);
     };
+  }
   if (type == "brickyard::msgs::TrackWorld") {
     // The simulator's world, read from its bytes by its IDL: the framework is car side and
     // includes no simulator message (architecture.car_side_never_includes_the_simulator).
@@ -217,30 +239,41 @@ std::function<void(const void*, std::uint64_t)> LiveScene::handler(const std::st
       SampleSerializer serializer;
       cdr::CdrJson idl;
       std::mutex m;
+      std::string bytes;  // the world last drawn, and its drawing: kept while the world is the same
+      JsonText lines, cylinders;
     };
     auto w = std::make_shared<World>(type);
     return [s, w, topic, type](const void* p, std::uint64_t ns) {
       if (!s->server.wanted(s->track)) return;
-      json d;
+      std::string text;
       {
         std::lock_guard<std::mutex> l(w->m);
         const auto b = w->serializer.serialize(p);
-        d = w->idl.decode(type, b.data, b.size);
+        const std::string_view now(reinterpret_cast<const char*>(b.data), b.size);
+        if (w->bytes.empty() || now != w->bytes) {
+          const json d = w->idl.decode(type, b.data, b.size);
+          w->bytes.assign(now);
+          w->lines = JsonText(), w->cylinders = JsonText();
+          const auto x = d["x"].get<std::vector<double>>(), y = d["y"].get<std::vector<double>>();
+          for (const auto& [side, sign] : {std::pair<std::string, double>{"left", 1.0}, {"right", -1.0}})
+            if (d["wall_" + side].get<bool>())
+              line_strip(w->lines, edge(x, y, d["width_" + side].get<std::vector<double>>(), sign, d["wall_" + side + "_offset_m"].get<double>()), 0.4,
+                         {0.6, 0.6, 0.6});
+          for (const auto& py : d["pylons"]) {
+            const double r = py["radius"].get<double>(), h = py["height"].get<double>();
+            JsonText& c = w->cylinders;
+            c.open('{').key("pose");
+            pose(c, py["x"].get<double>(), py["y"].get<double>(), py["z"].get<double>() + h / 2, 0, 0, 0);
+            c.key("size");
+            vec(c, 2 * r, 2 * r, h);
+            c.key("bottom_scale").num(1.0).key("top_scale").num(0.3).key("color");
+            colour(c, {1.0, 0.45, 0.0});
+            c.close('}');
+          }
+        }
+        text = scene_update(ns, "map", "world:" + topic, w->lines, JsonText(), w->cylinders);
       }
-      const auto x = d["x"].get<std::vector<double>>(), y = d["y"].get<std::vector<double>>();
-      Message msg;
-      json e = entity(ns, "map", "world:" + topic);
-      for (const auto& [side, sign] : {std::pair<std::string, double>{"left", 1.0}, {"right", -1.0}})
-        if (d["wall_" + side].get<bool>())
-          e["lines"].push_back(line_strip(msg, edge(x, y, d["width_" + side].get<std::vector<double>>(), sign, d["wall_" + side + "_offset_m"].get<double>()),
-                                          0.4, colour(0.6, 0.6, 0.6)));
-      for (const auto& py : d["pylons"]) {
-        const double r = py["radius"].get<double>(), h = py["height"].get<double>();
-        e["cylinders"].push_back({{"pose", pose(py["x"].get<double>(), py["y"].get<double>(), py["z"].get<double>() + h / 2, 0, 0, 0)},
-                                  {"size", vec(2 * r, 2 * r, h)}, {"bottom_scale", 1}, {"top_scale", 0.3}, {"color", colour(1.0, 0.45, 0.0)}});
-      }
-      msg.j = {{"deletions", json::array()}, {"entities", {e}}};
-      s->send_message(s->track, ns, msg);
+      s->send(s->track, ns, text);
     };
   }
   if (type == "brickyard::msgs::Path")
@@ -249,18 +282,15 @@ std::function<void(const void*, std::uint64_t)> LiveScene::handler(const std::st
       const auto& path = *static_cast<const msgs::Path*>(p);
       Points pts;
       for (const auto& q : path.poses()) pts.add(q.x(), q.y(), 0.1);
-      Message msg;
-      json e = entity(ns, "map", topic);
-      e["lines"].push_back(line_strip(msg, std::move(pts), 0.3, s->path_colour()));
-      msg.j = {{"deletions", json::array()}, {"entities", {e}}};
-      s->send_message(s->path, ns, msg);
+      JsonText lines;
+      line_strip(lines, pts, 0.3, s->path_colour());
+      s->send(s->path, ns, scene_update(ns, "map", topic, lines, JsonText(), JsonText()));
     };
   if (type == "brickyard::msgs::WallEstimate")
     return [s, topic](const void* p, std::uint64_t ns) {
       if (!s->server.wanted(s->wall)) return;
       const auto& w = *static_cast<const msgs::WallEstimate*>(p);
-      Message msg;
-      json e = entity(ns, "vehicle", topic);
+      JsonText lines;
       if (w.valid() && !w.coefficients().empty() && w.x_max() > w.x_min()) {
         Points pts;
         for (int i = 0; i <= 40; ++i) {
@@ -269,21 +299,25 @@ std::function<void(const void*, std::uint64_t)> LiveScene::handler(const std::st
           for (double c : w.coefficients()) y += c * xp, xp *= x;
           pts.add(x, y, 0.5);
         }
-        e["lines"].push_back(line_strip(msg, std::move(pts), 0.2, colour(1.0, 0.9, 0.2)));
+        line_strip(lines, pts, 0.2, {1.0, 0.9, 0.2});
       }
-      msg.j = {{"deletions", json::array()}, {"entities", {e}}};
-      s->send_message(s->wall, ns, msg);
+      s->send(s->wall, ns, scene_update(ns, "vehicle", topic, lines, JsonText(), JsonText()));
     };
   if (type == "brickyard::msgs::ObstacleList")
     return [s, topic](const void* p, std::uint64_t ns) {
       if (!s->server.wanted(s->obstacles)) return;
       const auto& list = *static_cast<const msgs::ObstacleList*>(p);
-      json e = entity(ns, "vehicle", topic);
-      for (const auto& o : list.obstacles())
-        e["cubes"].push_back({{"pose", pose(o.x(), o.y(), o.z(), 0, 0, 0)},
-                              {"size", vec(std::max(o.size_x(), 0.2), std::max(o.size_y(), 0.2), std::max(o.size_z(), 0.2))},
-                              {"color", colour(1.0, 0.2, 0.6, 0.8)}});
-      s->send(s->obstacles, ns, {{"deletions", json::array()}, {"entities", {e}}});
+      JsonText cubes;
+      for (const auto& o : list.obstacles()) {
+        cubes.open('{').key("pose");
+        pose(cubes, o.x(), o.y(), o.z(), 0, 0, 0);
+        cubes.key("size");
+        vec(cubes, std::max(o.size_x(), 0.2), std::max(o.size_y(), 0.2), std::max(o.size_z(), 0.2));
+        cubes.key("color");
+        colour(cubes, {1.0, 0.2, 0.6, 0.8});
+        cubes.close('}');
+      }
+      s->send(s->obstacles, ns, scene_update(ns, "vehicle", topic, JsonText(), cubes, JsonText()));
     };
   if (type == "brickyard::msgs::PointCloud") {
     const std::uint32_t ch = s->server.add_channel("/lidar/" + topic, "cdr", "foxglove::PointCloud", "omgidl", kPointCloudIdl, true);
@@ -295,10 +329,8 @@ std::function<void(const void*, std::uint64_t)> LiveScene::handler(const std::st
       w.num(static_cast<std::uint32_t>(ns / 1'000'000'000u));
       w.num(static_cast<std::uint32_t>(ns % 1'000'000'000u));
       w.str("vehicle");
-      const json q = quat(c.sensor_roll(), c.sensor_pitch(), c.sensor_yaw());
-      for (double v : {c.sensor_x(), c.sensor_y(), c.sensor_z(), q["x"].get<double>(), q["y"].get<double>(), q["z"].get<double>(),
-                       q["w"].get<double>()})
-        w.num(v);
+      const Quat q = quat(c.sensor_roll(), c.sensor_pitch(), c.sensor_yaw());
+      for (double v : {c.sensor_x(), c.sensor_y(), c.sensor_z(), q.x, q.y, q.z, q.w}) w.num(v);
       w.num(std::uint32_t{16});
       w.num(std::uint32_t{4});
       const char* names[4] = {"x", "y", "z", "intensity"};
