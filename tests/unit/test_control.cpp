@@ -284,6 +284,14 @@ TEST(WallFollower, ThePapersLawSignsAndSpeedPolicy) {
   WallFollower h(hold);
   h.engage(0, 60);
   EXPECT_NEAR(h.control(20, {{-8.0}, true}, 60).target_speed, 60, 1e-9);
+  // Taken over by a car that had stopped (the manager's resume_on_wall): it drives off to
+  // restart_speed (8 m/s), with either policy; one slower than that but moving, too.
+  f.engage(30.0, 0.0);
+  const Command off = f.control(30.1, {{-8.0}, true}, 0);
+  EXPECT_NEAR(off.target_speed, p.restart_speed, 1e-9);
+  EXPECT_GT(off.throttle, 0.5);
+  h.engage(30, 3);
+  EXPECT_NEAR(h.control(40, {{-8.0}, true}, 3).target_speed, hold.restart_speed, 1e-9);
   // Steering clamps; an invalid wall brakes with a straight wheel.
   EXPECT_NEAR(f.control(12.0, {{-30.0}, true}, 50).steer, -p.max_steer, 1e-12);
   const Command lost = f.control(12.0, {{-8.0}, false}, 50);
@@ -321,11 +329,53 @@ TEST(SystemManager, EmergencyWallRecoveryAndSafeStop) {
   while (!tr.happened && t < lost_at + 1);
   EXPECT_EQ(tr.to, Mode::safe_stop);
   EXPECT_DOUBLE_EQ(t - lost_at, 0.375);  // the first tick past wall_timeout_s (0.3 s)
-  // The safe stop holds while localization is bad, even if the wall comes back...
-  for (int i = 0; i < 5; ++i) EXPECT_FALSE(tick(LocStatus::emergency, true).happened);
+  // The safe stop holds while localization is bad, even if the wall comes back (no wall
+  // follower has spoken here: SafeStopFollowsAWallThatHoldsASecond)...
+  for (int i = 0; i < 10; ++i) EXPECT_FALSE(tick(LocStatus::emergency, true).happened);
   // ...and ends once NORMAL has held.
   for (int i = 0; i < 16; ++i) EXPECT_FALSE(tick(LocStatus::normal, true).happened);
   EXPECT_EQ(tick(LocStatus::normal, true).to, Mode::path);
+}
+
+// Stopped for want of a wall, with localization still in EMERGENCY: the car follows the wall
+// again once it has been valid for wall_resume_s (1 s), report after report; an invalid report
+// starts the second again; not with resume_on_wall off, nor with a wall follower gone silent.
+TEST(SystemManager, SafeStopFollowsAWallThatHoldsASecond) {
+  for (const int variant : {0, 1, 2}) {  // as is; resume_on_wall off; the wall follower silent
+    ManagerParams p;
+    p.resume_on_wall = variant != 1;
+    SystemManager m(p);
+    double t = 0;
+    auto tick = [&](bool wall) {
+      t += 0.125;
+      m.status(t, LocStatus::emergency);
+      m.wall(t, wall);
+      if (variant != 2 || t < 1.0) m.wall_command(t);
+      return m.update(t);
+    };
+    tick(false);
+    while (m.mode() != Mode::safe_stop && t < 2) tick(false);
+    ASSERT_EQ(m.mode(), Mode::safe_stop) << variant;
+    const double stopped_at = t;
+    while (t < 2.5) tick(false);
+    // Valid for 0.875 s, then one invalid report: still stopped.
+    for (int i = 0; i < 8; ++i) EXPECT_FALSE(tick(true).happened) << variant << " " << i;
+    EXPECT_FALSE(tick(false).happened);
+    const double from = t + 0.125;  // the run of valid walls that counts starts at the next tick
+    Transition tr;
+    do tr = tick(true);
+    while (!tr.happened && t < from + 5);
+    if (variant == 0) {
+      ASSERT_TRUE(tr.happened);
+      EXPECT_EQ(tr.to, Mode::wall);
+      EXPECT_DOUBLE_EQ(t - from, 1.0);
+      EXPECT_NE(tr.reason.find("valid wall again"), std::string::npos);
+      EXPECT_GT(t, stopped_at + 1);
+    } else {
+      EXPECT_FALSE(tr.happened) << variant;
+      EXPECT_EQ(m.mode(), Mode::safe_stop) << variant;
+    }
+  }
 }
 
 TEST(SystemManager, ASilentEstimatorIsAnEmergency) {

@@ -208,6 +208,12 @@ TEST(WallLine, ALostWallIsHeldThenTheFollowerBrakes) {
   f.walls(1.2, straight(5), WallView{});  // a wall again: taken afresh, the other side
   EXPECT_EQ(f.side(), 1);
   EXPECT_DOUBLE_EQ(f.gap(), 5);
+  // Handed the car at a standstill (the manager's resume_on_wall): it drives off to restart_speed.
+  f.engage(2, 0);
+  f.walls(2, WallView{}, straight(-6));
+  const Command off = f.control(2.05, 0, 0);
+  EXPECT_NEAR(off.target_speed, WallFollowerParams{}.restart_speed, 1e-9);
+  EXPECT_GT(off.throttle, 0);
 }
 
 // ---- the map's edge laid onto the LiDAR's wall (common/mapped_wall.hpp) ----

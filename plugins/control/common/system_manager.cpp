@@ -23,7 +23,13 @@ void SystemManager::status(double t, LocStatus s) {
 }
 
 void SystemManager::wall(double t, bool valid) {
-  if (valid) wall_valid_t_ = t;
+  if (!valid) {
+    wall_valid_since_ = 1e300;
+    return;
+  }
+  // A run of valid walls starts again after an invalid one or a silence.
+  if (wall_valid_since_ > t || t - wall_valid_t_ > p_.wall_timeout_s) wall_valid_since_ = t;
+  wall_valid_t_ = t;
 }
 
 void SystemManager::path_command(double t) { path_cmd_t_ = std::max(path_cmd_t_, t); }
@@ -59,6 +65,8 @@ Transition SystemManager::update(double t) {
       break;
     case Mode::safe_stop:
       if (recovered) return go(Mode::path, "localization NORMAL again: back to the path");
+      if (p_.resume_on_wall && wall_ok && t - wall_valid_since_ >= p_.wall_resume_s && !wall_silent && wall_cmd_t_ > -1e299)
+        return go(Mode::wall, "a valid wall again while localization is not back: following it");
       break;
   }
   return {};

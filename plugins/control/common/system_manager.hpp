@@ -5,6 +5,7 @@
 //   PATH ── EMERGENCY, no valid wall ──► SAFE_STOP
 //   WALL ── no valid wall for wall_timeout_s ──► SAFE_STOP
 //   WALL, SAFE_STOP ── localization NORMAL held for recover_after_s ──► PATH
+//   SAFE_STOP ── a valid wall held for wall_resume_s, the wall follower alive ──► WALL
 //   PATH ── the path tracker's commands stale (controller_timeout_s) ──► WALL, or SAFE_STOP with no valid wall
 //   WALL ── the wall follower's commands stale ──► SAFE_STOP
 // A localization status older than status_timeout_s counts as EMERGENCY (a silent estimator is
@@ -29,6 +30,13 @@ struct ManagerParams {
   bool cautious_pedals = false;
   double command_timeout_s = 0.1; // a path command older than this is not taken for its pedals
   double wall_timeout_s = 0.3;    // no valid wall this long: safe stop
+  // A car stopped for want of a wall drives again behind the wall follower once a wall has been
+  // valid this long, frame after frame, while localization is still not back (false: it stands
+  // until localization is; the paper says nothing). Why: the wall is lost where the road bends
+  // out of the detector's reach (an S-bend's exit); stopped, the car often sees it again, and a
+  // car standing on a race track for the seconds a fault lasts is a hazard and out of the race.
+  bool resume_on_wall = true;
+  double wall_resume_s = 1.0;
   double status_timeout_s = 0.5;  // no localization status this long: EMERGENCY
   double controller_timeout_s = 0.25;  // a controller whose commands have come and then not for this long: silent
 };
@@ -67,6 +75,7 @@ class SystemManager {
   Mode mode_ = Mode::path;
   LocStatus status_ = LocStatus::normal;
   double status_t_ = -1e300, normal_since_ = -1e300, wall_valid_t_ = -1e300;
+  double wall_valid_since_ = 1e300;  // the start of the reports' current run of valid walls; 1e300: none
   double path_cmd_t_ = -1e300, wall_cmd_t_ = -1e300;  // -1e300: none yet (not silent: not started)
   bool have_status_ = false;
 };

@@ -11,7 +11,7 @@ using math::poly_value;
 
 void WallFollower::engage(double t, double speed) {
   t0_ = t;
-  v0_ = speed;
+  v0_ = std::max(speed, p_.restart_speed);
 }
 
 double WallFollower::steering(const WallView& wall, double speed) const {

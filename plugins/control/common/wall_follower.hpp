@@ -8,8 +8,9 @@
 // a wall curving left ahead (y′ > 0) gives u > 0: turn with it. u_w is the road-wheel angle,
 // clamped to max_steer.
 // Speed while it drives: `hold` the speed it took over at, or `reduce` to fallback_speed at
-// `decel` (never above the speed it took over at); either way at most sqrt(a_lat / κ) for the
-// wall's curvature κ at the look-ahead.
+// `decel` (never above the speed it took over at, or restart_speed when that was slower: a car
+// that had stopped); either way at most sqrt(a_lat / κ) for the wall's curvature κ at the
+// look-ahead.
 #include "motion/command.hpp"
 
 #include <vector>
@@ -40,6 +41,10 @@ struct WallFollowerParams {
   // braking the racing line's speed profile plans with.
   double fallback_speed = 25;  // m/s
   double decel = 12;           // m/s^2 to the fallback speed
+  // Taking over slower than this (a car the manager stopped for want of a wall, handed back to
+  // the wall follower once it sees one: ManagerParams::resume_on_wall), the speed it drives off
+  // to, not the standstill it took over at; the curvature's limit below still holds.
+  double restart_speed = 8;    // m/s
   double a_lat = 10;           // m/s^2: never faster than the wall's curvature allows at this
   double speed_gain = 0.5;
 };

@@ -101,7 +101,7 @@ WallLineFollower::WallLineFollower(WallLineParams line, WallFollowerParams polic
 
 void WallLineFollower::engage(double t, double speed) {
   t0_ = t;
-  v0_ = speed;
+  v0_ = std::max(speed, policy_.restart_speed);
   rechoose_ = true;
 }
 

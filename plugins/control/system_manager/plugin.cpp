@@ -33,6 +33,10 @@ ParamBinding<Settings> bindings() {
   b.bind("recover_after_s", &Settings::manager, &M::recover_after_s).in_unit("s").range(0, 3600)
       .doc("NORMAL this long before the path tracker drives again");
   b.bind("wall_timeout_s", &Settings::manager, &M::wall_timeout_s).in_unit("s").range(0, 3600).doc("no valid wall this long: safe stop");
+  b.bind("resume_on_wall", &Settings::manager, &M::resume_on_wall)
+      .doc("a car stopped for want of a wall follows it again once it has been valid wall_resume_s (false: it stands until localization is back)");
+  b.bind("wall_resume_s", &Settings::manager, &M::wall_resume_s).in_unit("s").range(0, 3600)
+      .doc("resume_on_wall: a valid wall this long, frame after frame");
   b.bind("status_timeout_s", &Settings::manager, &M::status_timeout_s).in_unit("s").range(0, 3600)
       .doc("no localization status this long counts as EMERGENCY");
   b.bind_choice("wall_pedals", {{"wall_follower", false}, {"cautious", true}}, &Settings::manager, &M::cautious_pedals)

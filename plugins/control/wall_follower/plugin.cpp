@@ -59,6 +59,8 @@ ParamBinding<Settings> bindings() {
       .doc("while following: slow to fallback_speed, or hold");
   b.bind("fallback_speed", &Settings::law, &P::fallback_speed).in_unit("m/s").range(0, 200);
   b.bind("decel", &Settings::law, &P::decel).in_unit("m/s^2").range(0.1, 100);
+  b.bind("restart_speed", &Settings::law, &P::restart_speed).in_unit("m/s").range(0, 200)
+      .doc("taking over slower than this (a car that had stopped), the speed it drives off to");
   b.bind("a_lat", &Settings::law, &P::a_lat).in_unit("m/s^2").range(0, 100).doc("the wall's bend caps the speed at sqrt(a_lat / curvature); 0: off");
   b.bind("speed_gain", &Settings::law, &P::speed_gain).range(0, 100);
   b.bind_choice("law", {{"paper", false}, {"offset_line", true}}, &Settings::offset_line)
