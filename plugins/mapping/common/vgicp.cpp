@@ -44,7 +44,7 @@ Linearized linearize(const Points& scan, const Surfaces& surfaces, const VoxelMa
   const std::size_t n = std::min(scan.size(), surfaces.size());
   // Block by block of points, in two passes. The first finds each point's voxels and starts
   // loading them (a scan's lookups are scattered over the map, each a cache miss: the hash
-  // slots are prefetched kAhead points early, the voxels a whole block before they are read).
+  // slots are prefetched kAhead lookups early, the voxels a whole block before they are read).
   // The second does the arithmetic, with the system's upper triangle in float sums (the
   // rotation block rr, the cross block rt, the translation block tt = W itself, the gradient's
   // halves), added into double at the end of each block.
