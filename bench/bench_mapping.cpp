@@ -99,11 +99,11 @@ int main(int argc, char** argv) {
     const mapping::RegistrationParams direct1 = mapping::ScanMapperParams{}.registration;
     for (int run = 0; run < 5; ++run) {
       const auto t0 = std::chrono::steady_clock::now();
-      const mapping::Surfaces covs = mapping::point_surfaces(scan);
+      const mapping::Surfaces surfaces = mapping::point_surfaces(scan);
       const auto ta = std::chrono::steady_clock::now();
-      r = mapping::register_scan(scan, covs, {&coarse, &fine}, guess);
+      r = mapping::register_scan(scan, surfaces, {&coarse, &fine}, guess);
       const auto tb = std::chrono::steady_clock::now();
-      r1 = mapping::register_scan(scan, covs, {&coarse, &fine}, guess, direct1);
+      r1 = mapping::register_scan(scan, surfaces, {&coarse, &fine}, guess, direct1);
       const auto te = std::chrono::steady_clock::now();
       t.push_back(std::chrono::duration<double, std::milli>(tb - t0).count());
       tc.push_back(std::chrono::duration<double, std::milli>(ta - t0).count());

@@ -2,7 +2,7 @@
 // JSON written as text as it goes, for the live scene's messages (scene.cpp). Why not
 // nlohmann::json objects: a scene message built as objects (a std::map and a string per key,
 // copied into its parent, then dumped) cost the run 20 to 50 us, and the scene sends a hundred
-// and fifty a second (docs/live.md, "Cost"). Commas are placed from the last character written:
+// and fifty a second of sim time (docs/live.md, "Cost"). Commas are placed from the last character written:
 // none after an opening bracket or a key's colon, one before anything else.
 #include <algorithm>
 #include <charconv>

@@ -185,15 +185,15 @@ TEST(Mapping, RegistrationFindsTheScansPose) {
   truth.translate(Eigen::Vector3d(0.4, -0.3, 0.05));
   truth.rotate(Eigen::AngleAxisd(3 * M_PI / 180, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(0.5 * M_PI / 180, Eigen::Vector3d::UnitX()));
   const Points scan = moved(yard(0.2, 0.01, 2), truth.inverse());  // the scan, in its own frame
-  const Surfaces covs = point_surfaces(scan);
+  const Surfaces surfaces = point_surfaces(scan);
   for (const Eigen::Isometry3d& guess : {Eigen::Isometry3d::Identity(), Eigen::Isometry3d(Eigen::Translation3d(0.35, -0.25, 0))}) {
-    const RegistrationResult r = register_scan(scan, covs, {&coarse, &fine}, guess);
+    const RegistrationResult r = register_scan(scan, surfaces, {&coarse, &fine}, guess);
     EXPECT_TRUE(r.converged);
     EXPECT_LT((r.transform.translation() - truth.translation()).norm(), 0.01) << r.transform.translation().transpose();
     EXPECT_LT(angle(r.transform.linear().transpose() * truth.linear()) * 180 / M_PI, 0.05);
     EXPECT_GT(r.matched, scan.size() * 9 / 10);
   }
-  const RegistrationResult alone = register_scan(scan, covs, coarse, Eigen::Isometry3d::Identity());
+  const RegistrationResult alone = register_scan(scan, surfaces, coarse, Eigen::Isometry3d::Identity());
   EXPECT_GT((alone.transform.translation() - truth.translation()).norm(), 0.01);
 }
 
@@ -208,7 +208,7 @@ TEST(Mapping, ThePoseCovarianceIsTheCarsWhereverTheMapIs) {
   truth.rotate(Eigen::AngleAxisd(2 * M_PI / 180, Eigen::Vector3d::UnitZ()));
   const Points map_here = yard(0.15, 0.01, 1);
   const Points scan = moved(yard(0.2, 0.01, 2), truth.inverse());
-  const Surfaces covs = point_surfaces(scan);
+  const Surfaces surfaces = point_surfaces(scan);
   const Eigen::Isometry3d far(Eigen::Translation3d(3000, -2000, 40));
   RegistrationResult at[2];
   for (int k = 0; k < 2; ++k) {
@@ -218,7 +218,7 @@ TEST(Mapping, ThePoseCovarianceIsTheCarsWhereverTheMapIs) {
     VoxelMap coarse(1.0f), fine(0.25f);
     coarse.add(map_pts, map_covs);
     fine.add(map_pts, map_covs);
-    at[k] = register_scan(scan, covs, {&coarse, &fine}, where * Eigen::Isometry3d(Eigen::Translation3d(0.25, -0.15, 0)));
+    at[k] = register_scan(scan, surfaces, {&coarse, &fine}, where * Eigen::Isometry3d(Eigen::Translation3d(0.25, -0.15, 0)));
     ASSERT_TRUE(at[k].converged);
     const Eigen::Isometry3d found = where.inverse() * at[k].transform;  // relative to the yard
     EXPECT_LT((found.translation() - truth.translation()).norm(), 0.01) << "k " << k;
