@@ -13,38 +13,60 @@ Localizer::Localizer(LocalizerParams p)
 
 void Localizer::advance(double t) {
   if (t_ < 0) t_ = t;
-  if (t > t_ && have_imu_) filter_.predict(t - t_, speed_, yaw_rate_);
+  if (t > t_ && have_imu_) {
+    const double dt = t - t_;
+    filter_.predict(dt, speed_, yaw_rate_);
+    // Dead reckoning alone, never corrected: the motion between two times that a late fix or
+    // pose is carried by. The filter's own poses would carry the corrections made since as well
+    // and count them twice (a 0.2 s late fix in a turn rocks the heading back and forth).
+    const double mid = odo_.yaw + 0.5 * yaw_rate_ * dt;
+    odo_.x += speed_ * std::cos(mid) * dt;
+    odo_.y += speed_ * std::sin(mid) * dt;
+    odo_.yaw += yaw_rate_ * dt;
+  }
   t_ = std::max(t_, t);
-  if (!filter_.initialized()) return;
+  odo_.t = t_;
   constexpr std::size_t kPast = 200;
-  const Past now{t_, filter_.state()(PoseFilter::X), filter_.state()(PoseFilter::Y), filter_.state()(PoseFilter::YAW)};
   if (past_.size() < kPast) {
-    past_.push_back(now);
+    past_.push_back(odo_);
   } else {
-    past_[past_next_] = now;
+    past_[past_next_] = odo_;
     past_next_ = (past_next_ + 1) % kPast;
   }
 }
 
-bool Localizer::scan_pose(double stamp, const Eigen::Vector2d& xy, const Eigen::Matrix2d& cov) {
-  if (!p_.scan_pose || !filter_.initialized() || t_ - last_accepted_t_ < p_.scan_after_s) return false;
-  if (!xy.allFinite() || !cov.allFinite() || !std::isfinite(stamp)) return false;
-  // The filter's pose at the stamp: the two kept around it, interpolated.
+std::optional<Localizer::Motion> Localizer::motion_since(double stamp) const {
+  // Dead reckoning's pose at the stamp: the two kept around it, interpolated.
   const Past* before = nullptr;
   const Past* after = nullptr;
   for (const Past& q : past_) {
     if (q.t <= stamp && (!before || q.t > before->t)) before = &q;
     if (q.t >= stamp && (!after || q.t < after->t)) after = &q;
   }
-  if (!before || !after) return false;  // older than the history, or from the future
+  if (!before || !after) return std::nullopt;  // older than the history, or from the future
   const double f = after->t > before->t ? (stamp - before->t) / (after->t - before->t) : 0.0;
   const Eigen::Vector2d then(before->x + f * (after->x - before->x), before->y + f * (after->y - before->y));
-  const double yaw_then = before->yaw + f * std::remainder(after->yaw - before->yaw, 2 * M_PI);
+  const double yaw_then = before->yaw + f * (after->yaw - before->yaw);
+  // Dead reckoning's frame laid on the filter's now: the filter's position then is its position
+  // now less the dead-reckoned travel since, turned by the two frames' heading difference.
+  const Eigen::Rotation2Dd align(filter_.state()(PoseFilter::YAW) - odo_.yaw);
+  const Eigen::Vector2d travel = Eigen::Vector2d(odo_.x, odo_.y) - then;
+  return Motion{filter_.position() - align * travel, odo_.yaw - yaw_then};
+}
+
+Eigen::Vector2d Localizer::Motion::carry(const Eigen::Vector2d& p, const Eigen::Vector2d& now) const {
+  return now + Eigen::Rotation2Dd(turn) * (p - then);
+}
+
+bool Localizer::scan_pose(double stamp, const Eigen::Vector2d& xy, const Eigen::Matrix2d& cov) {
+  if (!p_.scan_pose || !filter_.initialized() || t_ - last_accepted_t_ < p_.scan_after_s) return false;
+  if (!xy.allFinite() || !cov.allFinite() || !std::isfinite(stamp)) return false;
   // The pose carried by the motion since: the offset from the filter's pose then, turned by the
   // turn since and put at the filter's pose now.
-  const double turn = std::remainder(filter_.state()(PoseFilter::YAW) - yaw_then, 2 * M_PI);
-  const Eigen::Rotation2Dd r(turn);
-  const Eigen::Vector2d z = filter_.position() + r * (xy - then);
+  const auto m = motion_since(stamp);
+  if (!m) return false;
+  const Eigen::Rotation2Dd r(m->turn);
+  const Eigen::Vector2d z = m->carry(xy, filter_.position());
   const double floor = p_.scan_min_sigma * p_.scan_min_sigma;
   Eigen::Matrix2d R = r.toRotationMatrix() * cov * r.toRotationMatrix().transpose();
   R(0, 0) = std::max(R(0, 0), floor);
@@ -89,8 +111,21 @@ void Localizer::fixes(double t, const std::vector<Fix>& epoch_in) {
   if (!std::isfinite(t)) malformed_ += epoch.size(), epoch.clear();
   if (epoch.empty()) return;
   advance(t);
+  if (filter_.initialized() && t < t_) {
+    // Delivered after IMU samples stamped later (a sample resent by DDS, a loaded host): the
+    // filter has moved on since the stamp, so each antenna is carried by the filter's motion since
+    // then. Taken as now, a fix 0.15 s late at 35 m/s is 5 m behind: past δ, rejected.
+    const auto m = motion_since(t);
+    if (!m) {  // older than the history kept: nothing to carry it by
+      too_late_ += epoch.size();
+      return;
+    }
+    for (auto& f : epoch) f.antenna = m->carry(f.antenna, filter_.position());
+    late_ += epoch.size();
+    late_max_s_ = std::max(late_max_s_, t_ - t);
+  }
   if (!filter_.initialized()) {
-    initialize(epoch);
+    initialize(t, epoch);
     for (const auto& f : epoch) manager_.on_fix(f.receiver, t, true);
     last_accepted_t_ = t;
     return;
@@ -129,7 +164,7 @@ void Localizer::reacquire(double t, const std::vector<Fix>& epoch, EpochResult& 
 }
 
 // Position from the fixes; heading from the direction of travel once the car has moved.
-void Localizer::initialize(const std::vector<Fix>& epoch) {
+void Localizer::initialize(double t, const std::vector<Fix>& epoch) {
   Eigen::Vector2d p = Eigen::Vector2d::Zero();
   Eigen::Vector3d lever = Eigen::Vector3d::Zero();
   for (const auto& f : epoch) {
@@ -148,6 +183,8 @@ void Localizer::initialize(const std::vector<Fix>& epoch) {
   filter_.init(p.x(), p.y(), yaw, 0.1, 0.05);
   const Eigen::Vector2d base = filter_.base_from_antenna(p, lever);
   filter_.init(base.x(), base.y(), yaw, 0.1, 0.05);
+  // The pose is the one at the epoch's stamp; the filter's time may be later (a late epoch).
+  if (t < t_) filter_.predict(t_ - t, speed_, yaw_rate_);
 }
 
 Status Localizer::status(double t) { return filter_.initialized() ? manager_.update(t) : Status::warning; }

@@ -46,7 +46,9 @@ class Localizer {
     if (std::isfinite(v)) speed_ = v;
     else ++malformed_;
   }
-  // One epoch of fixes, all stamped t (receiver ids 0 .. receivers - 1).
+  // One epoch of fixes, all stamped t (receiver ids 0 .. receivers - 1). An epoch stamped before
+  // the filter's time (delivered late) is carried to now by the filter's motion since its stamp;
+  // one older than the filter's history (about 1.5 s) is dropped (too_late()).
   void fixes(double t, const std::vector<Fix>& epoch);
   // A pose of base_link from another estimator (the scan mapper), stamped `stamp` (earlier than
   // now: a LiDAR frame arrives a sweep late and takes its registration's time): moved to now by
@@ -69,10 +71,21 @@ class Localizer {
   std::uint64_t scan_updates() const { return scan_updates_; }
   std::uint64_t scan_refused() const { return scan_refused_; }
   std::uint64_t malformed() const { return malformed_; }
+  std::uint64_t late() const { return late_; }          // fixes carried to now
+  std::uint64_t too_late() const { return too_late_; }  // fixes dropped: older than the history
+  double late_max_s() const { return late_max_s_; }     // the latest of the carried ones
 
  private:
   void advance(double t);
-  void initialize(const std::vector<Fix>& epoch);
+  void initialize(double t, const std::vector<Fix>& epoch);
+  // The car's motion from `stamp` to now by dead reckoning, laid on the filter's pose now: where a
+  // point fixed to the car then is now. Nothing when the stamp is older than the history or ahead.
+  struct Motion {
+    Eigen::Vector2d then;  // the filter's position at the stamp, as dead reckoning puts it
+    double turn = 0;       // rad turned since
+    Eigen::Vector2d carry(const Eigen::Vector2d& p, const Eigen::Vector2d& now) const;
+  };
+  std::optional<Motion> motion_since(double stamp) const;
   void reacquire(double t, const std::vector<Fix>& epoch, EpochResult& r);
 
   LocalizerParams p_;
@@ -83,13 +96,16 @@ class Localizer {
   bool have_imu_ = false;
   UpdateCase last_case_ = UpdateCase::predict_only;
   std::vector<double> last_delta_;
-  std::uint64_t malformed_ = 0;
+  std::uint64_t malformed_ = 0, late_ = 0, too_late_ = 0;
+  double late_max_s_ = 0;
   std::uint64_t epochs_ = 0, rejected_ = 0, cases_[5] = {0, 0, 0, 0, 0}, reacquisitions_ = 0;
   Reacquisition reacquisition_;
-  // The filter's pose after each prediction, for a late pose's stamp (about 1.5 s).
+  // Dead reckoning's pose (speed and yaw rate integrated, never corrected; yaw not wrapped) now
+  // and after each prediction, for a late fix's or pose's stamp (about 1.5 s).
   struct Past {
-    double t, x, y, yaw;
+    double t = 0, x = 0, y = 0, yaw = 0;
   };
+  Past odo_;
   std::vector<Past> past_;
   std::size_t past_next_ = 0;
   double last_accepted_t_ = -1e300;

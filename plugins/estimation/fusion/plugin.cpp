@@ -191,6 +191,9 @@ template <Policy P> class Estimator : public Plugin {
     ctx.metric("epochs", static_cast<double>(loc_->epochs()));
     ctx.metric("fixes_rejected", static_cast<double>(loc_->rejected()));
     ctx.metric("malformed_samples", static_cast<double>(loc_->malformed()));
+    ctx.metric("fixes_late", static_cast<double>(loc_->late()));
+    ctx.metric("fixes_too_late", static_cast<double>(loc_->too_late()));
+    ctx.metric("fix_late_max_s", loc_->late_max_s());
     ctx.metric("epochs_single", static_cast<double>(loc_->epochs_of(UpdateCase::single)));
     ctx.metric("epochs_weighted", static_cast<double>(loc_->epochs_of(UpdateCase::weighted)));
     ctx.metric("epochs_partial", static_cast<double>(loc_->epochs_of(UpdateCase::partial)));
