@@ -8,6 +8,7 @@
 #include "common/track_compare.hpp"
 #include "common/track_extraction.hpp"
 #include "track/banking.hpp"
+#include "common/gicp.hpp"
 #include "common/vgicp.hpp"
 
 #include <Eigen/Eigenvalues>
@@ -195,6 +196,41 @@ TEST(Mapping, RegistrationFindsTheScansPose) {
   }
   const RegistrationResult alone = register_scan(scan, surfaces, coarse, Eigen::Isometry3d::Identity());
   EXPECT_GT((alone.transform.translation() - truth.translation()).norm(), 0.01);
+}
+
+// GICP with point correspondences (gicp.hpp) finds the yard's scan from two guesses, the same
+// answer from both, and ends on a fixed point: registered again from its answer it stays.
+// Nothing to match keeps the guess.
+TEST(Mapping, PointGicpFindsTheScansPoseAndStaysThere) {
+  const Points target = yard(0.15, 0.01, 1);
+  Eigen::Isometry3d truth = Eigen::Isometry3d::Identity();
+  truth.translate(Eigen::Vector3d(0.4, -0.3, 0.05));
+  truth.rotate(Eigen::AngleAxisd(3 * M_PI / 180, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(0.5 * M_PI / 180, Eigen::Vector3d::UnitX()));
+  const Points scan = moved(yard(0.2, 0.01, 2), truth.inverse());
+  const Surfaces ss = point_surfaces(scan), ts = point_surfaces(target);
+  PointRegistrationParams p;
+  p.max_correspondence_m = 1.0;
+  RegistrationResult found[2];
+  int k = 0;
+  for (const Eigen::Isometry3d& guess : {Eigen::Isometry3d::Identity(), Eigen::Isometry3d(Eigen::Translation3d(0.35, -0.25, 0))}) {
+    const RegistrationResult r = found[k++] = register_points(scan, ss, target, ts, guess, p);
+    EXPECT_TRUE(r.converged);
+    EXPECT_LT((r.transform.translation() - truth.translation()).norm(), 0.01) << r.transform.translation().transpose();
+    EXPECT_LT(angle(r.transform.linear().transpose() * truth.linear()) * 180 / M_PI, 0.05);
+    EXPECT_GT(r.matched, scan.size() * 9 / 10);
+  }
+  EXPECT_LT((found[0].transform.translation() - found[1].transform.translation()).norm(), 1e-4);
+  const RegistrationResult again = register_points(scan, ss, target, ts, found[0].transform, p);
+  EXPECT_TRUE(again.converged);
+  EXPECT_LE(again.iterations, 2);
+  EXPECT_LT((again.transform.translation() - found[0].transform.translation()).norm(), 1e-5);
+  // Nothing within reach, non-finite points, surfaces that do not fit: the guess, not converged.
+  const Eigen::Isometry3d far(Eigen::Translation3d(100, 0, 0));
+  for (const RegistrationResult& r : {register_points(scan, ss, target, ts, far, p), register_points(Points{Eigen::Vector3f(NAN, 0, 0)}, Surfaces(1, Eigen::Vector3f::Zero()), target, ts, far, p),
+                                      register_points(scan, Surfaces{}, target, ts, far, p)}) {
+    EXPECT_FALSE(r.converged);
+    EXPECT_TRUE(r.transform.isApprox(far));
+  }
 }
 
 // The registration's system is over the car's own turn and position (the step turns the scan
