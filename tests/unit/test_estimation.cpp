@@ -1,5 +1,6 @@
 // Resilient localization: every branch of the paper's update selection with numbers worked out
 // by hand, the metre-valued distance, the filter, the baselines' behaviour and the manager.
+#include "common/epoch_gather.hpp"
 #include "common/localization_manager.hpp"
 #include "common/localizer.hpp"
 #include "common/update_selection.hpp"
@@ -282,6 +283,93 @@ TEST(Localizer, ALateFixIsCarriedToNowByTheMotionSinceItsStamp) {
   loc.fixes(t - 3.0, {Fix{0, antenna(t - 3.0, 0), p.lever[0], 0.02}});
   EXPECT_EQ(loc.too_late(), 1u);  // the history is kept from the first IMU sample on
   EXPECT_EQ(loc.rejected(), rejected);
+}
+
+// The real clock's receivers stamp their fixes a few milliseconds apart and the estimator may
+// take one before the other: the gather makes them one epoch again (each fix keeping its stamp),
+// lets a lone fix go once it has waited wait_s, and keeps one receiver's two fixes apart.
+TEST(EpochGather, PairsTheReceiversFixesOfAnEpochAndLetsALoneOneGo) {
+  EpochGather g(2, 0.01, 0.05);
+  auto fix = [](int r) { return Fix{r, {0.0, 0.0}, Eigen::Vector3d::Zero(), 0.02}; };
+  g.add(1.000, fix(0));
+  EXPECT_TRUE(g.release(1.001).empty());
+  g.add(1.003, fix(1));
+  auto out = g.release(1.004);
+  ASSERT_EQ(out.size(), 1u);
+  ASSERT_EQ(out[0].fixes.size(), 2u);
+  EXPECT_DOUBLE_EQ(out[0].t, 1.003);
+  EXPECT_DOUBLE_EQ(out[0].fixes[0].stamp, 1.000);
+  EXPECT_DOUBLE_EQ(out[0].fixes[1].stamp, 1.003);
+  // A receiver alone (the other silent): handed on once it has waited 0.05 s.
+  g.add(2.000, fix(1));
+  EXPECT_TRUE(g.release(2.049).empty());
+  out = g.release(2.051);
+  ASSERT_EQ(out.size(), 1u);
+  EXPECT_EQ(out[0].fixes.size(), 1u);
+  // One receiver's two fixes are two epochs, the other's fix joins the nearer of them, and a fix
+  // from before the held ones goes first.
+  g.add(3.000, fix(0));
+  g.add(3.005, fix(0));
+  g.add(3.006, fix(1));
+  g.add(2.980, fix(1));
+  out = g.release(3.1);
+  ASSERT_EQ(out.size(), 3u);
+  EXPECT_DOUBLE_EQ(out[0].fixes[0].stamp, 2.980);
+  EXPECT_EQ(out[1].fixes.size(), 1u);  // 3.000 (0)
+  EXPECT_EQ(out[2].fixes.size(), 2u);  // 3.005 (0) with 3.006 (1)
+  EXPECT_EQ(g.held(), 0u);
+}
+
+// Issue 16's outage on the real clock: the receivers' fixes 3 ms apart and taken by the estimator
+// as they come. Epoch by epoch of one fix each, the receivers never agree with each other in one
+// epoch and the filter never comes back; gathered, it does (as on the sim clock).
+TEST(Localizer, ComesBackOnTheRealClockWithItsReceiversFixesGathered) {
+  for (bool gathered : {false, true}) {
+    LocalizerParams p;
+    p.manager.receivers = 2;
+    p.lever[0] = p.lever[1] = Eigen::Vector3d::Zero();
+    p.roll_filter_s = 0;
+    Localizer loc(p);
+    EpochGather gather(2, 0.01, 0.05);
+    double t = 0, last = 0;
+    Status status = Status::warning;
+    auto drive = [&](double until, bool fixes, double speed_factor) {
+      for (; t < until - 1e-9; t += 0.001) {
+        const int ms = static_cast<int>(std::lround(t * 1000));
+        if (ms % 10 == 0) {
+          loc.speed(20 * speed_factor);
+          loc.imu(t, 0.0, 0.0);
+          last = t;
+        }
+        const bool r0 = ms % 50 == 0, r1 = ms % 50 == 3;
+        if (fixes && (r0 || r1)) {
+          const Fix f{r0 ? 0 : 1, Eigen::Vector2d(20 * t, r0 ? 0.0 : 0.02), Eigen::Vector3d::Zero(), 0.015};
+          if (gathered) gather.add(t, f);
+          else loc.fixes(t, {f});
+        }
+        if (gathered)
+          for (auto& e : gather.release(last)) loc.fixes(e.t, e.fixes);
+        status = loc.status(t);
+      }
+    };
+    drive(10, true, 1.0);
+    ASSERT_TRUE(loc.filter().initialized());
+    EXPECT_EQ(status, Status::normal);
+    drive(20, false, 1.1);  // the outage: no fixes, the wheels read 10 % high
+    EXPECT_EQ(status, Status::emergency);
+    drive(30, true, 1.0);
+    const double error = (loc.filter().position() - Eigen::Vector2d(20 * last, 0)).norm();
+    if (gathered) {
+      EXPECT_EQ(loc.reacquisitions(), 1u);
+      EXPECT_LT(error, 0.1);
+      EXPECT_EQ(status, Status::normal);
+      EXPECT_GT(loc.epochs_of(UpdateCase::single), 0u);
+    } else {
+      EXPECT_EQ(loc.reacquisitions(), 0u);
+      EXPECT_GT(error, 15.0);
+      EXPECT_EQ(status, Status::emergency);
+    }
+  }
 }
 
 // The rule of coming back: receivers that agree with each other and move as the prediction does

@@ -111,18 +111,29 @@ void Localizer::fixes(double t, const std::vector<Fix>& epoch_in) {
   if (!std::isfinite(t)) malformed_ += epoch.size(), epoch.clear();
   if (epoch.empty()) return;
   advance(t);
-  if (filter_.initialized() && t < t_) {
-    // Delivered after IMU samples stamped later (a sample resent by DDS, a loaded host): the
-    // filter has moved on since the stamp, so each antenna is carried by the filter's motion since
-    // then. Taken as now, a fix 0.15 s late at 35 m/s is 5 m behind: past δ, rejected.
-    const auto m = motion_since(t);
-    if (!m) {  // older than the history kept: nothing to carry it by
-      too_late_ += epoch.size();
-      return;
+  if (filter_.initialized()) {
+    // Delivered after IMU samples stamped later (a sample resent by DDS, a loaded host; on the
+    // real clock, a receiver's fix that waited for the other's, epoch_gather.hpp): the filter has
+    // moved on since the stamp, so each antenna is carried by the car's motion since its own
+    // stamp. Taken as now, a fix 0.15 s late at 35 m/s is 5 m behind: past δ, rejected.
+    std::vector<Fix> kept;
+    kept.reserve(epoch.size());
+    for (auto& f : epoch) {
+      const double s = std::isfinite(f.stamp) ? f.stamp : t;
+      if (s < t_) {
+        const auto m = motion_since(s);
+        if (!m) {  // older than the history kept: nothing to carry it by
+          ++too_late_;
+          continue;
+        }
+        f.antenna = m->carry(f.antenna, filter_.position());
+        ++late_;
+        late_max_s_ = std::max(late_max_s_, t_ - s);
+      }
+      kept.push_back(f);
     }
-    for (auto& f : epoch) f.antenna = m->carry(f.antenna, filter_.position());
-    late_ += epoch.size();
-    late_max_s_ = std::max(late_max_s_, t_ - t);
+    epoch.swap(kept);
+    if (epoch.empty()) return;
   }
   if (!filter_.initialized()) {
     initialize(t, epoch);

@@ -4,6 +4,7 @@
 #include "pose_filter.hpp"
 
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 namespace brickyard::estimation {
@@ -46,6 +47,7 @@ struct Fix {
   Eigen::Vector2d antenna;  // m, map frame
   Eigen::Vector3d lever;    // m, antenna in base_link
   double sigma = 0;         // reported 1 sigma, m
+  double stamp = std::numeric_limits<double>::quiet_NaN();  // s; NaN: the epoch's (Localizer::fixes)
 };
 
 enum class Policy { resilient, naive, gated };

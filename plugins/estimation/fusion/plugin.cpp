@@ -10,6 +10,7 @@
 #include <brickyard/msgs/WheelSpeeds.h>
 #include <brickyard/plugin.hpp>
 
+#include "../common/epoch_gather.hpp"
 #include "../common/localizer.hpp"
 #include "vehicle_param.hpp"
 
@@ -42,6 +43,7 @@ struct Settings {
   std::string vehicle = plugins::default_vehicle_file;
   std::vector<double> antenna0, antenna1;  // empty: the mount's place in the vehicle file
   std::string antenna0_mount = "gnss_left", antenna1_mount = "gnss_right";
+  double epoch_pair_s = 0.01, epoch_wait_s = 0.05;
   LocalizerParams loc;
 };
 
@@ -70,6 +72,10 @@ template <Policy P> ParamBinding<Settings> bindings() {
       .doc("with scan_pose wired: its registered poses are position updates while no fix has been accepted for scan_after_s (docs/mapping.md)");
   b.bind("scan_after_s", &Settings::loc, &L::scan_after_s).in_unit("s").range(0, 3600).doc("GNSS degraded: no fix accepted for this long");
   b.bind("scan_min_sigma", &Settings::loc, &L::scan_min_sigma).in_unit("m").range(0.001, 100).doc("floor on a scan pose's spread");
+  b.bind("epoch_pair_s", &Settings::epoch_pair_s).in_unit("s").range(0, 1)
+      .doc("real clock: two receivers' fixes stamped this close are one epoch (each carried from its own stamp)");
+  b.bind("epoch_wait_s", &Settings::epoch_wait_s).in_unit("s").range(0, 1)
+      .doc("real clock: how long a receiver's fix waits for the other receiver's of its epoch");
   b.bind("init_distance", &Settings::loc, &L::init_distance).in_unit("m").range(0.5, 1000).doc("travel before the heading is taken from the fixes");
   b.bind("emergency_after_s", &Settings::loc, &L::manager, &M::emergency_after_s).in_unit("s").range(0, 3600)
       .doc("every receiver rejected or silent this long: EMERGENCY");
@@ -139,6 +145,8 @@ template <Policy P> class Estimator : public Plugin {
     gnss_[1] = ctx.input<msgs::GnssFix>("gnss1");
     scan_ = ctx.input<msgs::LocalizationEstimate>("scan_pose");
     receivers_ = gnss_[1].connected() ? 2 : 1;
+    // On the sim clock a step sees every fix stamped up to now: an epoch is whole within a step.
+    if (!ctx.sim_clock() && receivers_ == 2) gather_.emplace(receivers_, set.epoch_pair_s, set.epoch_wait_s);
     lp.manager.receivers = receivers_;
     loc_.emplace(lp);
     for (int r = 0; r < 2; ++r) lever_[r] = lp.lever[r];
@@ -153,13 +161,27 @@ template <Policy P> class Estimator : public Plugin {
     for (int r = 0; r < receivers_; ++r)
       for (auto& f : gnss_[r].take()) events.emplace(stamp_s(*f), Event{nullptr, f});
     for (auto& w : wheels_.take()) loc_->speed(0.5 * (w->rear_left() + w->rear_right()));
+    auto fix_of = [&](const msgs::GnssFix& m) {
+      Fix f;
+      f.receiver = m.receiver_id() < 2 && receivers_ == 2 ? m.receiver_id() : 0;
+      f.antenna = {m.x(), m.y()};
+      f.lever = lever_[f.receiver];
+      f.sigma = std::max(m.sigma_x(), m.sigma_y());
+      return f;
+    };
     std::vector<Fix> epoch;
-    double epoch_t = -1;
+    double epoch_t = -1, latest = -1;
     for (auto& [t, e] : events) {
+      latest = std::max(latest, t);
       if (e.imu) {
         loc_->fixes(epoch_t, epoch);
         epoch.clear();
         loc_->imu(t, e.imu->gyro_z(), e.imu->accel_y());
+        continue;
+      }
+      if (!e.fix->valid()) continue;  // "no fix": the receiver counts as silent
+      if (gather_) {  // the real clock: the epoch's other receiver may come in a later step
+        gather_->add(t, fix_of(*e.fix));
         continue;
       }
       if (t != epoch_t) {
@@ -167,15 +189,11 @@ template <Policy P> class Estimator : public Plugin {
         epoch.clear();
       }
       epoch_t = t;
-      if (!e.fix->valid()) continue;  // "no fix": the receiver counts as silent
-      Fix f;
-      f.receiver = e.fix->receiver_id() < 2 && receivers_ == 2 ? e.fix->receiver_id() : 0;
-      f.antenna = {e.fix->x(), e.fix->y()};
-      f.lever = lever_[f.receiver];
-      f.sigma = std::max(e.fix->sigma_x(), e.fix->sigma_y());
-      epoch.push_back(f);
+      epoch.push_back(fix_of(*e.fix));
     }
     loc_->fixes(epoch_t, epoch);
+    if (gather_)
+      for (auto& e : gather_->release(latest)) loc_->fixes(e.t, e.fixes);
     // The scan mapper's poses, each of a LiDAR frame a sweep and a registration ago: only those
     // it registered (update case 2), moved to now by the filter's motion since.
     for (auto& s : scan_.take()) {
@@ -257,6 +275,7 @@ template <Policy P> class Estimator : public Plugin {
   }
 
   std::optional<Localizer> loc_;
+  std::optional<EpochGather> gather_;  // the real clock only
   Eigen::Vector3d lever_[2];
   int receivers_ = 2;
   double time_in_[3] = {0, 0, 0}, last_publish_ = -1, last_mode_ = -1;
