@@ -318,6 +318,14 @@ TEST(EpochGather, PairsTheReceiversFixesOfAnEpochAndLetsALoneOneGo) {
   EXPECT_EQ(out[1].fixes.size(), 1u);  // 3.000 (0)
   EXPECT_EQ(out[2].fixes.size(), 2u);  // 3.005 (0) with 3.006 (1)
   EXPECT_EQ(g.held(), 0u);
+  // A stamp that is not finite is refused; fixes stamped far ahead of the clock (forged, or a
+  // wrong clock) are not held past kMaxHeld epochs.
+  EXPECT_FALSE(g.add(std::numeric_limits<double>::quiet_NaN(), fix(0)));
+  EXPECT_FALSE(g.add(std::numeric_limits<double>::infinity(), fix(0)));
+  EXPECT_EQ(g.held(), 0u);
+  for (int k = 0; k < 100; ++k) g.add(1e6 + k, fix(0));
+  EXPECT_EQ(g.release(4.0).size(), 100u - EpochGather::kMaxHeld);
+  EXPECT_EQ(g.held(), EpochGather::kMaxHeld);
 }
 
 // Issue 16's outage on the real clock: the receivers' fixes 3 ms apart and taken by the estimator

@@ -5,7 +5,8 @@
 
 namespace brickyard::estimation {
 
-void EpochGather::add(double stamp, Fix f) {
+bool EpochGather::add(double stamp, Fix f) {
+  if (!std::isfinite(stamp)) return false;
   f.stamp = stamp;
   // The nearest held epoch within pair_s that lacks this receiver (one that has it: f is another
   // epoch's).
@@ -18,7 +19,7 @@ void EpochGather::add(double stamp, Fix f) {
   if (best) {
     best->epoch.fixes.push_back(f);
     best->epoch.t = std::max(best->epoch.t, stamp);
-    return;
+    return true;
   }
   Held h;
   h.first = stamp;
@@ -27,12 +28,16 @@ void EpochGather::add(double stamp, Fix f) {
   // Kept in the order of first stamps (a late fix may start an epoch older than those held).
   auto at = std::upper_bound(held_.begin(), held_.end(), stamp, [](double s, const Held& x) { return s < x.first; });
   held_.insert(at, std::move(h));
+  return true;
 }
 
 std::vector<GatheredEpoch> EpochGather::release(double now) {
   std::vector<GatheredEpoch> out;
+  std::size_t excess = held_.size() > kMaxHeld ? held_.size() - kMaxHeld : 0;
   for (auto it = held_.begin(); it != held_.end();) {
-    if (static_cast<int>(it->epoch.fixes.size()) >= receivers_ || now - it->first >= wait_s_) {
+    const bool oldest_beyond_cap = excess > 0;
+    if (oldest_beyond_cap || static_cast<int>(it->epoch.fixes.size()) >= receivers_ || now - it->first >= wait_s_) {
+      if (oldest_beyond_cap) --excess;
       out.push_back(std::move(it->epoch));
       it = held_.erase(it);
     } else {

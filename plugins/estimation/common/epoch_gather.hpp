@@ -24,12 +24,14 @@ class EpochGather {
  public:
   EpochGather(int receivers, double pair_s, double wait_s) : receivers_(receivers), pair_s_(pair_s), wait_s_(wait_s) {}
   // One receiver's fix stamped `stamp`: joins the nearest held epoch within pair_s that has no
-  // fix of its receiver yet, or starts one.
-  void add(double stamp, Fix f);
+  // fix of its receiver yet, or starts one. A stamp that is not finite is refused (false).
+  bool add(double stamp, Fix f);
   // The epochs that are whole (a fix of every receiver), or whose first fix is wait_s or more
-  // before `now`, in the order of their first fix.
+  // before `now`, in the order of their first fix; and the oldest beyond kMaxHeld held (fixes
+  // stamped ahead of the clock, forged or from a wrong clock, would otherwise wait for good).
   std::vector<GatheredEpoch> release(double now);
   std::size_t held() const { return held_.size(); }
+  static constexpr std::size_t kMaxHeld = 16;
 
  private:
   int receivers_;

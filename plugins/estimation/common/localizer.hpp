@@ -46,13 +46,14 @@ class Localizer {
     if (std::isfinite(v)) speed_ = v;
     else ++malformed_;
   }
-  // One epoch of fixes, all stamped t (receiver ids 0 .. receivers - 1). An epoch stamped before
-  // the filter's time (delivered late) is carried to now by the filter's motion since its stamp;
-  // one older than the filter's history (about 1.5 s) is dropped (too_late()).
+  // One epoch of fixes stamped t (receiver ids 0 .. receivers - 1), each fix at its own stamp
+  // when it has one (Fix::stamp; EpochGather). A fix stamped before the filter's time (delivered
+  // late) is carried to now by dead reckoning's motion since its stamp; one older than that
+  // history (about 1.5 s) is dropped (too_late()).
   void fixes(double t, const std::vector<Fix>& epoch);
   // A pose of base_link from another estimator (the scan mapper), stamped `stamp` (earlier than
   // now: a LiDAR frame arrives a sweep late and takes its registration's time): moved to now by
-  // the filter's own motion since the stamp, then a position update, when GNSS is degraded (see
+  // dead reckoning's motion since the stamp, then a position update, when GNSS is degraded (see
   // LocalizerParams::scan_pose). Returns whether it was taken.
   bool scan_pose(double stamp, const Eigen::Vector2d& xy, const Eigen::Matrix2d& cov);
   // The manager's status at t (WARNING while the heading is not known yet).

@@ -181,7 +181,7 @@ template <Policy P> class Estimator : public Plugin {
       }
       if (!e.fix->valid()) continue;  // "no fix": the receiver counts as silent
       if (gather_) {  // the real clock: the epoch's other receiver may come in a later step
-        gather_->add(t, fix_of(*e.fix));
+        gather_->add(t, fix_of(*e.fix));  // finite: the stamp is whole nanoseconds
         continue;
       }
       if (t != epoch_t) {
@@ -195,7 +195,7 @@ template <Policy P> class Estimator : public Plugin {
     if (gather_)
       for (auto& e : gather_->release(latest)) loc_->fixes(e.t, e.fixes);
     // The scan mapper's poses, each of a LiDAR frame a sweep and a registration ago: only those
-    // it registered (update case 2), moved to now by the filter's motion since.
+    // it registered (update case 2), moved to now by dead reckoning's motion since.
     for (auto& s : scan_.take()) {
       if (s->update_case() != 2) continue;
       Eigen::Matrix2d cov;
