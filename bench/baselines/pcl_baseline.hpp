@@ -45,6 +45,10 @@ struct GicpResult {
   double ms = 0;
 };
 GicpResult gicp(const Points& source, const Points& target, const Eigen::Matrix4d& guess, int max_iterations = 64);
+// The same with every stopping rule of PCL's tightened: 500 rounds, transformation and rotation
+// epsilons 1e-12, BFGS gradient tolerances 1e-8 and 1,000 optimizer iterations a round (does
+// PCL's answer move when it is let run?).
+GicpResult gicp_tight(const Points& source, const Points& target, const Eigen::Matrix4d& guess);
 // pcl::NormalDistributionsTransform (pcl_gicp.cpp): voxels of `resolution` m, step 0.1, epsilon
 // 1e-3, at most 35 iterations (PCL's tutorial's settings); the wall time of align().
 GicpResult ndt(const Points& source, const Points& target, const Eigen::Matrix4d& guess, float resolution = 1.0f);

@@ -55,5 +55,18 @@ GicpResult gicp(const Points& source, const Points& target, const Eigen::Matrix4
   return timed_align(g, guess);
 }
 
+GicpResult gicp_tight(const Points& source, const Points& target, const Eigen::Matrix4d& guess) {
+  pcl::GeneralizedIterativeClosestPoint<pcl::PointXYZ, pcl::PointXYZ> g;
+  g.setInputSource(cloud(source));
+  g.setInputTarget(cloud(target));
+  g.setMaximumIterations(500);
+  g.setTransformationEpsilon(1e-12);
+  g.setRotationEpsilon(1e-12);
+  g.setTranslationGradientTolerance(1e-8);
+  g.setRotationGradientTolerance(1e-8);
+  g.setMaximumOptimizerIterations(1000);
+  return timed_align(g, guess);
+}
+
 
 }  // namespace brickyard::baseline

@@ -105,6 +105,11 @@ TEST(MappingPcl, TheShippedPairIsAFixedPointOfPclsGicp) {
               r.iterations, apart_m(mine, theirs.transform), apart_deg(mine, theirs.transform));
   EXPECT_LT(apart_deg(mine, theirs.transform), 0.1);
   EXPECT_LT(apart_m(mine, theirs.transform), 0.1);
+  // PCL's let run (every stopping rule tightened), for the record: it creeps a centimetre
+  // towards ours and stops there too.
+  const auto tight = brickyard::baseline::gicp_tight(P, Q, I);
+  std::printf("PCL GICP with every stopping rule tightened: %.5f m, %.5f deg from its defaults' answer, %.5f m, %.5f deg from ours (%.0f ms)\n",
+              apart_m(tight.transform, theirs.transform), apart_deg(tight.transform, theirs.transform), apart_m(tight.transform, mine), apart_deg(tight.transform, mine), tight.ms);
   // After one round each, with the same matches (at the identity) and weights: the round's
   // objective per match at PCL's pose and at ours.
   const auto theirs1 = brickyard::baseline::gicp(P, Q, I, 1);
@@ -155,6 +160,56 @@ TEST(MappingPcl, TheShippedPairIsAFixedPointOfPclsGicp) {
   }
   std::printf("from guesses 0.14-0.57 m off: ours within %.4f m of its answer, PCL's within %.4f m of its\n", ours_spread, pcl_spread);
   EXPECT_LT(ours_spread, 1e-3);
+}
+
+// The same pair in 27 frames (turned 0, 30 and 90 deg about z, moved up to 20 m in x and y):
+// one registration problem, each answer mapped back to the file's frame. On this pair GICP's
+// answer holds only so far (Q: 1,596 points over 140 m, matches that move by whole points):
+// ours lands within about 1 cm and 0.06 deg of itself in every frame, and PCL's GICP started at
+// ours stays there; PCL's answer from the identity moves with the frame by more than ten times
+// that (its BFGS ends its rounds with no progress, not at the round's minimum). The issue's "within
+// 1 cm / 0.1 deg of PCL's" asks more than PCL's own answer holds (docs/mapping.md).
+TEST(MappingPcl, TheShippedPairInTwentySevenFrames) {
+  const Points P = brickyard::baseline::load_pcd(lidar("cupcl_icp_P.pcd")), Qraw = brickyard::baseline::load_pcd(lidar("cupcl_icp_Q.pcd"));
+  Points Q;
+  for (const auto& q : Qraw)
+    if (std::find(Q.begin(), Q.end(), q) == Q.end()) Q.push_back(q);
+  CovarianceParams cp;
+  cp.neighbours = 20;
+  cp.radius = 500;
+  const Eigen::Matrix4d I = Eigen::Matrix4d::Identity();
+  Eigen::Matrix4d ours0 = I, pcl0 = I;
+  double ours_m = 0, ours_deg = 0, stays_m = 0, stays_deg = 0, pcl_m = 0, pcl_deg = 0, apart_worst_m = 0, apart_worst_deg = 0;
+  for (const double yaw : {0.0, 30.0, 90.0})
+    for (const double x : {0.0, -20.0, 20.0})
+      for (const double y : {0.0, -20.0, 20.0}) {
+        Eigen::Isometry3d C = Eigen::Isometry3d::Identity();  // the frame's points from the file's
+        C.rotate(Eigen::AngleAxisd(yaw * M_PI / 180, Eigen::Vector3d::UnitZ()));
+        C.pretranslate(Eigen::Vector3d(x, y, 0));
+        Points Pc, Qc;
+        for (const auto& p : P) Pc.push_back((C * p.cast<double>()).cast<float>());
+        for (const auto& q : Q) Qc.push_back((C * q.cast<double>()).cast<float>());
+        const RegistrationResult r = register_points(Pc, point_surfaces(Pc, cp), Qc, point_surfaces(Qc, cp), Eigen::Isometry3d::Identity());
+        EXPECT_TRUE(r.converged) << yaw << " deg, " << x << ", " << y;
+        const auto theirs = brickyard::baseline::gicp(Pc, Qc, I);
+        const auto stays = brickyard::baseline::gicp(Pc, Qc, r.transform.matrix());
+        stays_m = std::max(stays_m, apart_m(stays.transform, r.transform.matrix()));
+        stays_deg = std::max(stays_deg, apart_deg(stays.transform, r.transform.matrix()));
+        const Eigen::Matrix4d mine = C.inverse().matrix() * r.transform.matrix() * C.matrix();
+        const Eigen::Matrix4d pcl = C.inverse().matrix() * theirs.transform * C.matrix();
+        apart_worst_m = std::max(apart_worst_m, apart_m(pcl, mine)), apart_worst_deg = std::max(apart_worst_deg, apart_deg(pcl, mine));
+        if (yaw == 0 && x == 0 && y == 0) ours0 = mine, pcl0 = pcl;
+        ours_m = std::max(ours_m, apart_m(mine, ours0)), ours_deg = std::max(ours_deg, apart_deg(mine, ours0));
+        pcl_m = std::max(pcl_m, apart_m(pcl, pcl0)), pcl_deg = std::max(pcl_deg, apart_deg(pcl, pcl0));
+      }
+  std::printf("the shipped pair in 27 frames, worst: ours from ours in the file's frame %.4f m, %.4f deg; PCL's from PCL's %.4f m, %.4f deg; "
+              "PCL started at ours moves it %.4f m, %.4f deg; PCL's and ours from the same frame %.4f m, %.4f deg apart\n",
+              ours_m, ours_deg, pcl_m, pcl_deg, stays_m, stays_deg, apart_worst_m, apart_worst_deg);
+  EXPECT_LT(ours_m, 0.015);  // 9.8 mm on the machine docs/mapping.md names; a little room for another libm
+  EXPECT_LT(ours_deg, 0.1);
+  EXPECT_LT(stays_m, 0.01);
+  EXPECT_LT(stays_deg, 0.1);
+  EXPECT_GT(pcl_m, 0.05);  // the premise of docs/mapping.md: PCL's answer moves with the frame
 }
 
 // The map file is PCL's: pcl::io::loadPCDFile reads it, point for point.

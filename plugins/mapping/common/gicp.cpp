@@ -2,6 +2,7 @@
 
 #include <Eigen/Dense>
 
+#include <algorithm>
 #include <cmath>
 #include <unordered_map>
 
@@ -53,6 +54,12 @@ Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
   return m;
 }
 
+// Whether b is within the epsilons of a.
+bool within(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b, const PointRegistrationParams& p) {
+  const Eigen::Isometry3d d = a.inverse() * b;
+  return d.translation().norm() < p.translation_eps && Eigen::AngleAxisd(d.linear()).angle() < p.rotation_eps;
+}
+
 struct Match {
   Eigen::Vector3d a, b;  // source point (source frame), its target point
   Eigen::Matrix3d weight;  // (C_b + R0 C_a R0^T)^-1
@@ -69,6 +76,7 @@ RegistrationResult register_points(const Points& source, const Surfaces& source_
   const NearestIndex index(target, p.max_correspondence_m);
   Eigen::Isometry3d T = guess;
   std::vector<Match> matches;
+  std::vector<Eigen::Isometry3d> ends;  // where the rounds before the last ended
   using Mat6 = Eigen::Matrix<double, 6, 6>;
   using Vec6 = Eigen::Matrix<double, 6, 1>;
   // The system and cost of the held matches at T: residual d = b - T a, its Jacobian over a turn
@@ -119,12 +127,19 @@ RegistrationResult register_points(const Points& source, const Surfaces& source_
       if (step.head<3>().norm() < 0.1 * p.rotation_eps && step.tail<3>().norm() < 0.1 * p.translation_eps) break;
     }
     out.iterations = round + 1;
-    const Eigen::Isometry3d delta = before.inverse() * T;
-    const double moved = delta.translation().norm(), turned = Eigen::AngleAxisd(delta.linear()).angle();
-    if (moved < p.translation_eps && turned < p.rotation_eps) {
+    if (within(before, T, p)) {
       out.converged = true;
       break;
     }
+    // The matches can alternate: the pose comes back to where an earlier round (not the last)
+    // ended, and no round will stand still (cuICP's pair in some frames: a cycle of two or
+    // three rounds 0.4 mm apart). The loop has found its end there.
+    const bool cycled = std::any_of(ends.begin(), ends.end(), [&](const Eigen::Isometry3d& e) { return within(e, T, p); });
+    if (cycled) {
+      out.converged = true;
+      break;
+    }
+    ends.push_back(before);
   }
   Vec6 g;
   out.cost = linearize(T, out.hessian, g) / static_cast<double>(matches.size());

@@ -6,8 +6,8 @@
 //   sum_i (b_i - T a_i)^T (C_bi + R0 C_ai R0^T)^-1 (b_i - T a_i)
 // minimized with the matches and the weights (R0: the rotation when they were found) held, by
 // Gauss-Newton on SE(3); matched again from the result, until a round moves the pose less than
-// the epsilons. Its answer is a fixed point of that loop: where the matches found at T give T
-// back. Why it is here: the voxel map is the car's registration (a scan against a map of
+// the epsilons, or back to where an earlier round ended (matches that alternate). Its answer is
+// a fixed point of that loop: where the matches found at T give T back. Why it is here: the voxel map is the car's registration (a scan against a map of
 // millions of points, VGICP: one lookup per point); this one answers "the same as PCL's GICP?"
 // on sparse scans where a voxel's mean is a poor stand-in for the points (cuICP's pair,
 // docs/mapping.md), and serves scan-to-scan matching of small clouds. Framework-free; one
