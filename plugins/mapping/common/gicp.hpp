@@ -7,8 +7,9 @@
 // minimized with the matches and the weights (R0: the rotation when they were found) held, by
 // Gauss-Newton on SE(3); matched again from the result, until a round moves the pose less than
 // the epsilons, or back to where an earlier round ended (matches that alternate). Its answer is
-// a fixed point of that loop: where the matches found at T give T back. Why it is here: the voxel map is the car's registration (a scan against a map of
-// millions of points, VGICP: one lookup per point); this one answers "the same as PCL's GICP?"
+// a fixed point of that loop: where the matches found at T give T back. Why it is here: the
+// voxel map is the car's registration (a scan against a map of millions of points, VGICP: one
+// lookup per point); this one answers "the same as PCL's GICP?"
 // on sparse scans where a voxel's mean is a poor stand-in for the points (cuICP's pair,
 // docs/mapping.md), and serves scan-to-scan matching of small clouds. Framework-free; one
 // thread; the nearest neighbours by a grid of max_correspondence_m cells.
