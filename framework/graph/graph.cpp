@@ -5,6 +5,8 @@
 #include "graph/graph_args.hpp"
 #include "graph/json_scan.hpp"
 
+#include <brickyard/roles.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -175,8 +177,14 @@ void parse_processes(const json& j, GraphDecl& g, Ctx& c) {
   }
 }
 
-void apply_sets(json& root, const std::vector<std::string>& sets, Diagnostics& d,
-                std::map<std::string, std::map<std::string, std::string>>& origin, std::map<std::string, std::string>& plugin_origin) {
+// What --set changed of a node: each parameter's origin, and a plugin it swapped.
+struct SetOrigins {
+  std::map<std::string, std::map<std::string, std::string>> params;  // node -> param -> "--set ..."
+  std::map<std::string, std::string> plugin;                         // node -> "--set NODE.plugin=..."
+  std::map<std::string, std::string> replaced;                       // node -> the file's plugin
+};
+
+void apply_sets(json& root, const std::vector<std::string>& sets, Diagnostics& d, SetOrigins& origin) {
   for (const auto& s : sets) {
     // NODE.PARAM=VALUE, the two names identifiers (checked in one pass: no regex on input).
     const std::size_t eq = s.find('='), dot = s.find('.');
@@ -192,11 +200,13 @@ void apply_sets(json& root, const std::vector<std::string>& sets, Diagnostics& d
     }
     json& n = root["nodes"][node];
     if (!n.is_object()) continue;  // reported by the structural check
-    // NODE.plugin=NAME swaps the node's plugin (a planner by name, issue 21), checked like the
-    // file's; the node's params stay and must suit the new plugin.
+    // NODE.plugin=NAME swaps the node's plugin (a planner by name), checked like the file's; the
+    // node's params stay and must suit the new plugin, which must play the replaced one's roles.
     if (param == "plugin") {
+      if (n.contains("plugin") && n["plugin"].is_string() && !origin.replaced.count(node))
+        origin.replaced[node] = n["plugin"].get<std::string>();
       n["plugin"] = text;
-      plugin_origin[node] = "--set " + quoted_name(s);
+      origin.plugin[node] = "--set " + quoted_name(s);
       continue;
     }
     if (!n.contains("params")) n["params"] = json::object();
@@ -205,8 +215,47 @@ void apply_sets(json& root, const std::vector<std::string>& sets, Diagnostics& d
     json v = json::parse(text, nullptr, false);
     if (v.is_discarded()) v = text;
     n["params"][param] = v;
-    origin[node][param] = "--set " + s;
+    origin.params[node][param] = "--set " + s;
   }
+}
+
+
+// One node of /nodes, or none when it is not an object (reported).
+std::optional<NodeDecl> parse_node(const std::string& name, const json& n, SetOrigins& origin, Ctx& c) {
+  const std::string ptr = "/nodes/" + pointer_escape(name);
+  if (!c.expect(n, json::value_t::object, "object", ptr)) return std::nullopt;
+  c.only_keys(n, {"plugin", "role", "params", "process", "deadline_s", "description"}, ptr);
+  NodeDecl nd;
+  nd.name = name;
+  if (!n.contains("plugin")) c.err(ptr, "missing key \"plugin\"");
+  else if (c.expect(n["plugin"], json::value_t::string, "string", ptr + "/plugin")) nd.plugin = n["plugin"];
+  if (n.contains("role") && c.expect(n["role"], json::value_t::string, "string", ptr + "/role")) {
+    nd.role = n["role"];
+    if (!find_role(nd.role)) {
+      std::string known;
+      for (const auto& r : role_contracts()) known += (known.empty() ? "" : ", ") + r.name;
+      c.err(ptr + "/role", "unknown role \"" + quoted_name(nd.role) + "\" (roles: " + known + ")");
+    }
+  }
+  if (n.contains("params") && c.expect(n["params"], json::value_t::object, "object", ptr + "/params"))
+    nd.params = n["params"];
+  if (n.contains("process") && c.expect(n["process"], json::value_t::string, "string", ptr + "/process")) {
+    nd.process = n["process"];
+    if (!is_identifier(nd.process))
+      c.err(ptr + "/process", "process name \"" + quoted_name(nd.process) + "\" must be an identifier of at most " + std::to_string(kMaxNameLength) + " characters");
+  }
+  if (n.contains("deadline_s") && c.expect(n["deadline_s"], json::value_t::number_float, "number", ptr + "/deadline_s")) {
+    if (!(n["deadline_s"].get<double>() > 0 && n["deadline_s"].get<double>() <= 3600))
+      c.err(ptr + "/deadline_s", "expected seconds, more than 0 and at most 3600, found " + n["deadline_s"].dump());
+    else nd.deadline_s = n["deadline_s"].get<double>();
+  }
+  if (nd.process.empty()) nd.process = kDefaultProcess;
+  nd.param_origin = origin.params[nd.name];
+  if (origin.plugin.count(nd.name)) {
+    nd.plugin_origin = origin.plugin[nd.name];
+    nd.replaced_plugin = origin.replaced[nd.name];
+  }
+  return nd;
 }
 
 }  // namespace
@@ -386,9 +435,8 @@ GraphDecl parse_graph_text(const std::string& text, const std::string& file, con
   if (!c.expect(root, json::value_t::object, "object", "")) d.raise_if_any();
 
   apply_args(root, args, file, d);
-  std::map<std::string, std::map<std::string, std::string>> origin;
-  std::map<std::string, std::string> plugin_origin;
-  apply_sets(root, sets, d, origin, plugin_origin);
+  SetOrigins origin;
+  apply_sets(root, sets, d, origin);
 
   c.only_keys(root, {"name", "description", "nodes", "wires", "clock", "transport", "live", "processes", "plugin_path"}, "");
   if (root.contains("name") && c.expect(root["name"], json::value_t::string, "string", "/name"))
@@ -407,29 +455,7 @@ GraphDecl parse_graph_text(const std::string& text, const std::string& file, con
                         std::to_string(kMaxNameLength) + " characters");
         continue;
       }
-      const json& n = it.value();
-      if (!c.expect(n, json::value_t::object, "object", ptr)) continue;
-      c.only_keys(n, {"plugin", "params", "process", "deadline_s", "description"}, ptr);
-      NodeDecl nd;
-      nd.name = it.key();
-      if (!n.contains("plugin")) c.err(ptr, "missing key \"plugin\"");
-      else if (c.expect(n["plugin"], json::value_t::string, "string", ptr + "/plugin")) nd.plugin = n["plugin"];
-      if (n.contains("params") && c.expect(n["params"], json::value_t::object, "object", ptr + "/params"))
-        nd.params = n["params"];
-      if (n.contains("process") && c.expect(n["process"], json::value_t::string, "string", ptr + "/process")) {
-        nd.process = n["process"];
-        if (!is_identifier(nd.process))
-          c.err(ptr + "/process", "process name \"" + quoted_name(nd.process) + "\" must be an identifier of at most " + std::to_string(kMaxNameLength) + " characters");
-      }
-      if (n.contains("deadline_s") && c.expect(n["deadline_s"], json::value_t::number_float, "number", ptr + "/deadline_s")) {
-        if (!(n["deadline_s"].get<double>() > 0 && n["deadline_s"].get<double>() <= 3600))
-          c.err(ptr + "/deadline_s", "expected seconds, more than 0 and at most 3600, found " + n["deadline_s"].dump());
-        else nd.deadline_s = n["deadline_s"].get<double>();
-      }
-      if (nd.process.empty()) nd.process = kDefaultProcess;
-      nd.param_origin = origin[nd.name];
-      if (plugin_origin.count(nd.name)) nd.plugin_origin = plugin_origin[nd.name];
-      g.nodes.emplace(nd.name, std::move(nd));
+      if (auto nd = parse_node(it.key(), it.value(), origin, c)) g.nodes.emplace(it.key(), std::move(*nd));
     }
   }
 

@@ -17,6 +17,8 @@ struct NodeDecl {
   nlohmann::json params = nlohmann::json::object();
   std::map<std::string, std::string> param_origin;  // param -> "--set ..." when overridden on the command line
   std::string plugin_origin;                        // "--set NODE.plugin=..." when the plugin was swapped there
+  std::string replaced_plugin;                      // the file's plugin that --set swapped out
+  std::string role;                                 // "role": the role its plugin must play (brickyard/roles.hpp)
 };
 
 struct Endpoint {

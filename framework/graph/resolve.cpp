@@ -3,6 +3,7 @@
 #include "graph/diagnostics.hpp"
 
 #include <brickyard/msgs/registry.hpp>
+#include <brickyard/roles.hpp>
 
 #include <cmath>
 #include <map>
@@ -98,35 +99,82 @@ const ResolvedNode* ResolvedGraph::node(const std::string& name) const {
   return nullptr;
 }
 
-ResolvedGraph resolve_graph(const GraphDecl& g, const Registry& reg, const std::string& process) {
-  Diagnostics d;
-  auto err = [&](const std::string& ptr, const std::string& msg) { d.add(g.where(ptr), msg); };
-  ResolvedGraph rg;
-  rg.decl = &g;
+namespace {
 
-  // Libraries that failed to load are errors: a broken plugin install is never ignored.
-  for (const auto& lp : reg.problems()) {
-    std::string all;
-    for (const auto& p : lp.problems) all += (all.empty() ? "" : "; ") + p;
-    d.add(lp.library, all);
+// The steps of resolve_graph, in order, over the state they share.
+class Resolver {
+ public:
+  Resolver(const GraphDecl& g, const Registry& reg, const std::string& process) : g_(g), reg_(reg), process_(process) { rg_.decl = &g; }
+
+  ResolvedGraph run() {
+    report_library_problems();
+    for (const auto& [name, nd] : g_.nodes) resolve_node(name, nd);
+    type_outputs_by_parameter();
+    for (const auto& w : g_.wires) resolve_wire(w);
+    check_required_inputs();
+    check_zero_delay_cycles();
+    check_processes();
+    d_.raise_if_any();
+    order_schedule();
+    return std::move(rg_);
   }
 
-  std::vector<std::string> known;
-  for (const auto& p : reg.plugins()) known.push_back(p.manifest.name);
+ private:
+  void err(const std::string& ptr, const std::string& msg) { d_.add(g_.where(ptr), msg); }
 
-  std::map<std::string, ResolvedNode> by_name;
-  for (const auto& [name, nd] : g.nodes) {
+  // Libraries that failed to load are errors: a broken plugin install is never ignored.
+  void report_library_problems() {
+    for (const auto& lp : reg_.problems()) {
+      std::string all;
+      for (const auto& p : lp.problems) all += (all.empty() ? "" : "; ") + p;
+      d_.add(lp.library, all);
+    }
+  }
+
+  void resolve_node(const std::string& name, const NodeDecl& nd) {
     const std::string ptr = "/nodes/" + pointer_escape(name);
-    rg.processes.insert(nd.process);
+    rg_.processes.insert(nd.process);
     ResolvedNode rn;
     rn.decl = &nd;
-    rn.plugin = reg.find(nd.plugin);
+    rn.plugin = reg_.find(nd.plugin);
     if (!rn.plugin) {
+      std::vector<std::string> known;
+      for (const auto& p : reg_.plugins()) known.push_back(p.manifest.name);
       err(ptr + "/plugin", "unknown plugin \"" + nd.plugin + "\"" + (nd.plugin_origin.empty() ? "" : " (from " + nd.plugin_origin + ")") +
-                               " (known: " + join(known) + "; searched " + join(reg.directories()) + ")");
-      continue;
+                               " (known: " + join(known) + "; searched " + join(reg_.directories()) + ")");
+      return;
     }
+    check_roles(nd, rn.plugin->manifest, ptr);
+    resolve_params(nd, rn, ptr);
+    resolve_triggers(rn, ptr);
+    resolve_latency(rn, ptr);
+    resolve_deadline(nd, rn, ptr);
+    by_name_.emplace(name, std::move(rn));
+  }
+
+  // The roles the node's plugin must play: the graph's "role", and when --set swapped the plugin,
+  // every role the replaced one played. Each names what the plugin lacks of it.
+  void check_roles(const NodeDecl& nd, const Manifest& m, const std::string& ptr) {
+    std::vector<std::string> wanted;
+    if (!nd.role.empty()) wanted.push_back(nd.role);
+    if (const PluginEntry* old = nd.replaced_plugin.empty() ? nullptr : reg_.find(nd.replaced_plugin))
+      for (const auto& r : old->manifest.roles)
+        if (r != nd.role) wanted.push_back(r);
+    const std::string from = nd.plugin_origin.empty() ? "" : " (from " + nd.plugin_origin + ")";
+    for (const auto& r : wanted) {
+      const RoleContract* role = find_role(r);
+      if (!role || plays(m, r)) continue;  // an unknown role is the graph's error, reported with it
+      std::string why;
+      for (const auto& w : role_mismatches(m, *role)) why += (why.empty() ? ": " : "; ") + w;
+      if (why.empty()) why = " (its ports fit; the plugin does not declare it plays the role)";
+      err(ptr + (nd.role == r ? "/role" : "/plugin"),
+          "plugin " + m.name + " of node '" + nd.name + "' does not play role '" + r + "'" + why + from);
+    }
+  }
+
+  void resolve_params(const NodeDecl& nd, ResolvedNode& rn, const std::string& ptr) {
     const Manifest& m = rn.plugin->manifest;
+    const std::string& name = nd.name;
     // Params: unknown, wrong type, out of range, missing. A node whose plugin --set swapped keeps
     // the file's params the new plugin has, and leaves those it has not, said (the planner swap
     // of a race graph is one flag); a param given by --set must be the new plugin's.
@@ -147,16 +195,20 @@ ResolvedGraph resolve_graph(const GraphDecl& g, const Registry& reg, const std::
         continue;
       }
       ParamValue v;
-      if (auto e = convert_param(*spec, it.value(), v); !e.empty()) err(pptr, e + from);
-      else rn.params.set(spec->name, std::move(v));
+      if (auto e = convert_param(*spec, it.value(), v); !e.empty())
+        err(pptr, e + from);
+      else
+        rn.params.set(spec->name, std::move(v));
     }
     if (!left.empty())
-      rg.notices.push_back("node '" + name + "' runs " + m.name + " (" + nd.plugin_origin + "): the file's " + join(left) +
-                           (left.size() > 1 ? " are not its parameters" : " is not its parameter") + ", left out");
+      rg_.notices.push_back("node '" + name + "' runs " + m.name + " (" + nd.plugin_origin + "): the file's " + join(left) +
+                            (left.size() > 1 ? " are not its parameters" : " is not its parameter") + ", left out");
     for (const auto& spec : m.params) {
       if (rn.params.has(spec.name)) continue;
-      if (spec.default_value) rn.params.set(spec.name, *spec.default_value);
-      else err(ptr + "/params", "missing required parameter \"" + spec.name + "\" (" + to_string(spec.type) + ") of plugin " + m.name);
+      if (spec.default_value)
+        rn.params.set(spec.name, *spec.default_value);
+      else
+        err(ptr + "/params", "missing required parameter \"" + spec.name + "\" (" + to_string(spec.type) + ") of plugin " + m.name);
     }
     // Constraints between parameters (a minimum above its maximum), once every value is known.
     // The pointer names the one the graph set (the later of the two when both), else /params.
@@ -168,6 +220,10 @@ ResolvedGraph resolve_graph(const GraphDecl& g, const Registry& reg, const std::
       std::string from = o == nd.param_origin.end() ? "" : " (from " + o->second + ")";
       err(ptr + "/params" + (culprit.empty() ? "" : "/" + pointer_escape(culprit)), e + from);
     }
+  }
+
+  void resolve_triggers(ResolvedNode& rn, const std::string& ptr) {
+    const Manifest& m = rn.plugin->manifest;
     for (const auto& t : m.triggers) {
       if (t.kind == TriggerSpec::Kind::on_input) {
         rn.trigger_inputs.insert(t.ref);
@@ -178,12 +234,16 @@ ResolvedGraph resolve_graph(const GraphDecl& g, const Registry& reg, const std::
           continue;
         }
         // The sim clock runs in whole steps: a period is rounded to a multiple of clock.step_s.
-        double step_ns = g.clock.step_s * 1e9;
+        double step_ns = g_.clock.step_s * 1e9;
         std::int64_t steps = std::max<std::int64_t>(1, std::llround(1e9 / hz / step_ns));
-        rn.period_ns = g.clock.sim ? static_cast<std::int64_t>(std::llround(steps * step_ns))
-                                   : static_cast<std::int64_t>(std::llround(1e9 / hz));
+        rn.period_ns =
+            g_.clock.sim ? static_cast<std::int64_t>(std::llround(steps * step_ns)) : static_cast<std::int64_t>(std::llround(1e9 / hz));
       }
     }
+  }
+
+  void resolve_latency(ResolvedNode& rn, const std::string& ptr) {
+    const Manifest& m = rn.plugin->manifest;
     // A modelled latency: the sim scheduler runs the step beside what follows it and delivers its
     // outputs later, which needs inputs that no sample wakes and a step done before the next one.
     for (const auto& t : m.triggers) {
@@ -194,8 +254,8 @@ ResolvedGraph resolve_graph(const GraphDecl& g, const Registry& reg, const std::
         err(at, "latency must be zero or more seconds, found " + fmt_num(s));
         continue;
       }
-      if (s == 0 || !g.clock.sim) continue;  // the real clock's latency is the real one
-      const double step_ns = g.clock.step_s * 1e9;
+      if (s == 0 || !g_.clock.sim) continue;  // the real clock's latency is the real one
+      const double step_ns = g_.clock.step_s * 1e9;
       const std::int64_t ns = static_cast<std::int64_t>(std::llround(std::llround(s * 1e9 / step_ns) * step_ns));
       if (rn.period_ns <= 0 || !rn.trigger_inputs.empty())
         err(at, "a latency needs a node that steps on its rate alone (plugin " + m.name +
@@ -206,70 +266,70 @@ ResolvedGraph resolve_graph(const GraphDecl& g, const Registry& reg, const std::
       else
         rn.latency_ns = ns;
     }
+  }
+
+  void resolve_deadline(const NodeDecl& nd, ResolvedNode& rn, const std::string& ptr) {
+    const Manifest& m = rn.plugin->manifest;
     // The step deadline: the plugin's parameter (manifest default, graph params), unless the node's deadline_s says.
     rn.deadline_s = nd.deadline_s;
     for (const auto& t : m.triggers) {
       if (t.kind != TriggerSpec::Kind::deadline || !rn.params.has(t.ref) || nd.deadline_s > 0) continue;
       const double s = rn.params.number(t.ref);
-      if (!(s >= 0 && s <= 3600)) err(ptr + "/params/" + pointer_escape(t.ref), "a step deadline must be 0 (none) to 3600 seconds, found " + fmt_num(s));
-      else rn.deadline_s = s;
+      if (!(s >= 0 && s <= 3600))
+        err(ptr + "/params/" + pointer_escape(t.ref), "a step deadline must be 0 (none) to 3600 seconds, found " + fmt_num(s));
+      else
+        rn.deadline_s = s;
     }
-    by_name.emplace(name, std::move(rn));
   }
 
-  // Outputs of any type whose type the graph names by the parameter the plugin gives for it
-  // (Manifest::output_any(port, doc, param)): typed ports from here on.
-  std::map<std::string, PortSpec> named_type;  // "node.port" -> the port as that type
-  for (const auto& [name, rn] : by_name)
-    for (const auto& p : rn.plugin->manifest.ports) {
-      if (p.direction != PortDirection::output || !is_any_message_type(p.type_name) || p.type_name.size() == 1) continue;
-      const std::string param = p.type_name.substr(1);
-      if (!rn.params.has(param)) continue;
-      const std::string type = rn.params.string(param);
-      if (type.empty()) continue;
-      const auto* entry = msgs::find_type(type.c_str());
-      if (!entry) {
-        err("/nodes/" + pointer_escape(name) + "/params/" + pointer_escape(param), "no message type \"" + type + "\" in this build");
-        continue;
+  void type_outputs_by_parameter() {
+    // Outputs of any type whose type the graph names by the parameter the plugin gives for it
+    // (Manifest::output_any(port, doc, param)): typed ports from here on.
+    for (const auto& [name, rn] : by_name_)
+      for (const auto& p : rn.plugin->manifest.ports) {
+        if (p.direction != PortDirection::output || !is_any_message_type(p.type_name) || p.type_name.size() == 1) continue;
+        const std::string param = p.type_name.substr(1);
+        if (!rn.params.has(param)) continue;
+        const std::string type = rn.params.string(param);
+        if (type.empty()) continue;
+        const auto* entry = msgs::find_type(type.c_str());
+        if (!entry) {
+          err("/nodes/" + pointer_escape(name) + "/params/" + pointer_escape(param), "no message type \"" + type + "\" in this build");
+          continue;
+        }
+        PortSpec typed = p;
+        typed.type_name = type;
+        typed.type_hash = entry->hash;
+        named_type_[name + "." + p.name] = typed;
+        rg_.output_types[name + "." + p.name] = type;
       }
-      PortSpec typed = p;
-      typed.type_name = type;
-      typed.type_hash = entry->hash;
-      named_type[name + "." + p.name] = typed;
-      rg.output_types[name + "." + p.name] = type;
-    }
+  }
 
-  // Wires.
-  std::map<std::string, std::string> writer_of;  // "node.port" input -> pointer of its wire
-  std::map<std::string, std::set<std::string>> downstream_zero_delay;  // node -> data-triggered subscribers
-  std::map<std::string, std::set<std::string>> downstream;
-  for (const auto& w : g.wires) {
-    const std::string ptr = "/wires/" + std::to_string(w.index);
-    const PortSpec* ports[2] = {nullptr, nullptr};
-    const Endpoint* ends[2] = {&w.from, &w.to};
-    bool ok = true;
-    for (int k = 0; k < 2; ++k) {
-      auto nit = g.nodes.find(ends[k]->node);
-      if (nit == g.nodes.end()) {
-        err(k ? w.to_ptr() : ptr + "/from", "no node named \"" + ends[k]->node + "\"");
-        ok = false;
-        continue;
-      }
-      auto rit = by_name.find(ends[k]->node);
-      if (rit == by_name.end()) { ok = false; continue; }  // its plugin is unknown: reported above
-      const Manifest& m = rit->second.plugin->manifest;
-      ports[k] = m.port(ends[k]->port);
-      if (const auto nt = named_type.find(ends[k]->text()); k == 0 && nt != named_type.end()) ports[k] = &nt->second;
-      if (!ports[k]) {
-        std::vector<std::string> names;
-        for (const auto& p : m.ports)
-          names.push_back(p.name + (p.direction == PortDirection::input ? " (input)" : " (output)"));
-        err(k ? w.to_ptr() : ptr + "/from", "node \"" + ends[k]->node + "\" (" + m.name + ") has no port \"" + ends[k]->port +
-                                     "\" (ports: " + join(names) + ")");
-        ok = false;
-      }
+  // The port at one end of a wire (k 0: from, 1: to), or null when there is none (reported; a node
+  // whose plugin is unknown was reported with it).
+  const PortSpec* wire_end(const WireDecl& w, int k) {
+    const Endpoint& end = k ? w.to : w.from;
+    const std::string where = k ? w.to_ptr() : "/wires/" + std::to_string(w.index) + "/from";
+    if (!g_.nodes.count(end.node)) {
+      err(where, "no node named \"" + end.node + "\"");
+      return nullptr;
     }
-    if (!ok) continue;
+    auto rit = by_name_.find(end.node);
+    if (rit == by_name_.end()) return nullptr;
+    const Manifest& m = rit->second.plugin->manifest;
+    if (const auto nt = named_type_.find(end.text()); k == 0 && nt != named_type_.end()) return &nt->second;
+    if (const PortSpec* port = m.port(end.port)) return port;
+    std::vector<std::string> names;
+    for (const auto& p : m.ports) names.push_back(p.name + (p.direction == PortDirection::input ? " (input)" : " (output)"));
+    err(where, "node \"" + end.node + "\" (" + m.name + ") has no port \"" + end.port + "\" (ports: " + join(names) + ")");
+    return nullptr;
+  }
+
+  void resolve_wire(const WireDecl& w) {
+    const std::string ptr = "/wires/" + std::to_string(w.index);
+    const PortSpec* ports[2] = {wire_end(w, 0), wire_end(w, 1)};
+    if (!ports[0] || !ports[1]) return;
+    bool ok = true;
     if (ports[0]->direction != PortDirection::output) {
       err(ptr + "/from", "\"" + w.from.text() + "\" is an input; a wire goes from an output");
       ok = false;
@@ -278,60 +338,61 @@ ResolvedGraph resolve_graph(const GraphDecl& g, const Registry& reg, const std::
       err(w.to_ptr(), "\"" + w.to.text() + "\" is an output; a wire goes to an input");
       ok = false;
     }
-    if (!ok) continue;
+    if (!ok) return;
     // A port of any type takes the type of the port at the wire's other end: an input, its
     // writer's; an output, its readers' (one type for all of them).
     const bool any_in = ports[1]->type_name == kAnyMessageType, any_out = is_any_message_type(ports[0]->type_name);
     if (any_in && any_out) {
-      err(w.to_item.empty() ? ptr : w.to_ptr(), w.from.text() + " and " + w.to.text() + " both take any message type: nothing says which" +
-                                                     (ports[0]->type_name.size() > 1 ? " (set " + w.from.node + "'s parameter '" + ports[0]->type_name.substr(1) + "')" : ""));
-      continue;
+      err(w.to_item.empty() ? ptr : w.to_ptr(),
+          w.from.text() + " and " + w.to.text() + " both take any message type: nothing says which" +
+              (ports[0]->type_name.size() > 1 ? " (set " + w.from.node + "'s parameter '" + ports[0]->type_name.substr(1) + "')" : ""));
+      return;
     }
     if (any_out) {
-      auto [ot, fresh_type] = rg.output_types.emplace(w.from.text(), ports[1]->type_name);
+      auto [ot, fresh_type] = rg_.output_types.emplace(w.from.text(), ports[1]->type_name);
       if (!fresh_type && ot->second != ports[1]->type_name) {
-        err(w.to_item.empty() ? ptr : w.to_ptr(), "type mismatch: " + w.from.text() + " (any type) already feeds " + ot->second +
-                                                       ", " + w.to.text() + " takes " + ports[1]->type_name);
-        continue;
+        err(w.to_item.empty() ? ptr : w.to_ptr(), "type mismatch: " + w.from.text() + " (any type) already feeds " + ot->second + ", " +
+                                                      w.to.text() + " takes " + ports[1]->type_name);
+        return;
       }
     }
     const bool any = any_in || any_out;
     if (!any && (ports[0]->type_name != ports[1]->type_name || ports[0]->type_hash != ports[1]->type_hash)) {
-      err(w.to_item.empty() ? ptr : w.to_ptr(), "type mismatch: " + w.from.text() + " carries " + ports[0]->type_name + ", " + w.to.text() +
-                   " takes " + ports[1]->type_name);
-      continue;
+      err(w.to_item.empty() ? ptr : w.to_ptr(),
+          "type mismatch: " + w.from.text() + " carries " + ports[0]->type_name + ", " + w.to.text() + " takes " + ports[1]->type_name);
+      return;
     }
-    auto [it, fresh] = writer_of.emplace(w.to.text(), w.to_ptr());
+    auto [it, fresh] = writer_of_.emplace(w.to.text(), w.to_ptr());
     if (!fresh) {
       err(w.to_ptr(), "input \"" + w.to.text() + "\" already has a writer (" + it->second + "); an input takes one wire");
-      continue;
+      return;
     }
-    rg.wire_types[w.to.text()] = any_out ? ports[1]->type_name : ports[0]->type_name;
-    downstream[w.from.node].insert(w.to.node);
-    if (by_name.at(w.to.node).trigger_inputs.count(w.to.port))
-      downstream_zero_delay[w.from.node].insert(w.to.node);
+    rg_.wire_types[w.to.text()] = any_out ? ports[1]->type_name : ports[0]->type_name;
+    downstream_[w.from.node].insert(w.to.node);
+    if (by_name_.at(w.to.node).trigger_inputs.count(w.to.port)) downstream_zero_delay_[w.from.node].insert(w.to.node);
   }
 
-  // Required inputs must be wired.
-  for (const auto& [name, rn] : by_name)
-    for (const auto& p : rn.plugin->manifest.ports)
-      if (p.direction == PortDirection::input && p.required && !writer_of.count(name + "." + p.name))
-        err("/nodes/" + pointer_escape(name), "required input \"" + p.name + "\" (" + p.type_name + ") of plugin " +
-                                                  rn.plugin->manifest.name + " is not wired");
+  void check_required_inputs() {
+    for (const auto& [name, rn] : by_name_)
+      for (const auto& p : rn.plugin->manifest.ports)
+        if (p.direction == PortDirection::input && p.required && !writer_of_.count(name + "." + p.name))
+          err("/nodes/" + pointer_escape(name),
+              "required input \"" + p.name + "\" (" + p.type_name + ") of plugin " + rn.plugin->manifest.name + " is not wired");
+  }
 
-  // A cycle made only of input-triggered steps has no first step at one instant of sim time.
-  // Depth first with a stack of our own: a chain of 100 000 nodes recursed past the thread's
-  // stack (issue 20).
-  {
+  void check_zero_delay_cycles() {
+    // A cycle made only of input-triggered steps has no first step at one instant of sim time.
+    // Depth first with a stack of our own: a chain of 100 000 nodes recursed past the thread's
+    // stack (issue 20).
     static const std::set<std::string> kNone;
     auto outs = [&](const std::string& n) -> const std::set<std::string>& {
-      const auto it = downstream_zero_delay.find(n);
-      return it == downstream_zero_delay.end() ? kNone : it->second;
+      const auto it = downstream_zero_delay_.find(n);
+      return it == downstream_zero_delay_.end() ? kNone : it->second;
     };
     std::map<std::string, int> color;  // 0 unseen, 1 on the path, 2 done
     std::vector<std::pair<const std::string*, std::set<std::string>::const_iterator>> path;
     bool found = false;
-    for (const auto& [name, _] : by_name) {
+    for (const auto& [name, _] : by_name_) {
       if (found || color[name] != 0) continue;
       color[name] = 1;
       path.push_back({&name, outs(name).begin()});
@@ -353,7 +414,8 @@ ResolvedGraph resolve_graph(const GraphDecl& g, const Registry& reg, const std::
             if (on && ++len <= 8) cyc += *p + " -> ";
           }
           cyc += len <= 8 ? m : "… (" + std::to_string(len) + " nodes)";
-          err("/wires", "zero-delay cycle " + cyc + ": every node in it steps on input, so nothing can go first (make one of them periodic)");
+          err("/wires",
+              "zero-delay cycle " + cyc + ": every node in it steps on input, so nothing can go first (make one of them periodic)");
           found = true;
         } else if (color[m] == 0) {
           color[m] = 1;
@@ -363,60 +425,77 @@ ResolvedGraph resolve_graph(const GraphDecl& g, const Registry& reg, const std::
     }
   }
 
-  if (!process.empty()) {
-    if (!rg.processes.count(process)) {
-      std::vector<std::string> ps(rg.processes.begin(), rg.processes.end());
-      d.add("--process " + process, "no node of the graph runs in process \"" + process + "\" (processes: " + join(ps) + ")");
-    } else if (g.clock.sim && rg.processes.size() > 1) {
-      rg.lockstep = true;
+  void check_processes() {
+    if (!process_.empty()) {
+      if (!rg_.processes.count(process_)) {
+        std::vector<std::string> ps(rg_.processes.begin(), rg_.processes.end());
+        d_.add("--process " + process_, "no node of the graph runs in process \"" + process_ + "\" (processes: " + join(ps) + ")");
+      } else if (g_.clock.sim && rg_.processes.size() > 1) {
+        rg_.lockstep = true;
+      }
+    }
+    if (g_.clock.sim && rg_.processes.size() > 1) {
+      // One sim clock across processes (exec/lockstep.hpp): every process replays the others' steps,
+      // so none can restart or leave, and every sample must be the graph's writer's.
+      for (const auto& [name, p] : g_.processes) {
+        if (p.restart == ProcessDecl::Restart::on_failure)
+          d_.add(g_.where("/processes/" + pointer_escape(name) + "/restart"),
+                 "on-failure needs the real clock: a process of a split run on the sim clock cannot rejoin its lockstep");
+        if (p.may_die)
+          d_.add(g_.where("/processes/" + pointer_escape(name) + "/may_die"),
+                 "needs the real clock: on the sim clock every process of a split run steps in lockstep with the others");
+      }
+      if (g_.transport.accept_foreign_writers)
+        d_.add(g_.where("/transport/foreign_writers"),
+               "accept needs the real clock: a split run on the sim clock takes each sample from its graph's writer alone");
     }
   }
-  if (g.clock.sim && rg.processes.size() > 1) {
-    // One sim clock across processes (exec/lockstep.hpp): every process replays the others' steps,
-    // so none can restart or leave, and every sample must be the graph's writer's.
-    for (const auto& [name, p] : g.processes) {
-      if (p.restart == ProcessDecl::Restart::on_failure)
-        d.add(g.where("/processes/" + pointer_escape(name) + "/restart"),
-              "on-failure needs the real clock: a process of a split run on the sim clock cannot rejoin its lockstep");
-      if (p.may_die)
-        d.add(g.where("/processes/" + pointer_escape(name) + "/may_die"),
-              "needs the real clock: on the sim clock every process of a split run steps in lockstep with the others");
-    }
-    if (g.transport.accept_foreign_writers)
-      d.add(g.where("/transport/foreign_writers"),
-            "accept needs the real clock: a split run on the sim clock takes each sample from its graph's writer alone");
-  }
-  d.raise_if_any();
 
-  // Schedule order: upstream before downstream (Kahn), ties and cycles broken by name; the nodes
-  // ready kept sorted, so a graph of 100 000 nodes orders in a fraction of a second (a scan of
-  // every node per pick never finished, issue 20).
-  std::map<std::string, int> indeg;
-  for (const auto& [n, _] : by_name) indeg[n] = 0;
-  for (const auto& [n, outs] : downstream)
-    for (const auto& m : outs)
-      if (m != n) ++indeg[m];
-  std::set<std::string> ready, remaining;
-  for (const auto& [n, k] : indeg) {
-    remaining.insert(n);
-    if (k == 0) ready.insert(n);
-  }
-  while (!remaining.empty()) {
-    // A (delayed) cycle when none is ready: the first remaining by name.
-    const std::string pick = ready.empty() ? *remaining.begin() : *ready.begin();
-    ready.erase(pick);
-    remaining.erase(pick);
-    for (const auto& m : downstream[pick])
-      if (m != pick && --indeg[m] == 0 && remaining.count(m)) ready.insert(m);
-    const bool here = process.empty() || by_name.at(pick).decl->process == process;
-    if (here || rg.lockstep) {
-      ResolvedNode rn = by_name.at(pick);
-      rn.order = rg.nodes.size();
-      rn.here = here;
-      rg.nodes.push_back(std::move(rn));
+  void order_schedule() {
+    // Schedule order: upstream before downstream (Kahn), ties and cycles broken by name; the nodes
+    // ready kept sorted, so a graph of 100 000 nodes orders in a fraction of a second (a scan of
+    // every node per pick never finished, issue 20).
+    std::map<std::string, int> indeg;
+    for (const auto& [n, _] : by_name_) indeg[n] = 0;
+    for (const auto& [n, outs] : downstream_)
+      for (const auto& m : outs)
+        if (m != n) ++indeg[m];
+    std::set<std::string> ready, remaining;
+    for (const auto& [n, k] : indeg) {
+      remaining.insert(n);
+      if (k == 0) ready.insert(n);
+    }
+    while (!remaining.empty()) {
+      // A (delayed) cycle when none is ready: the first remaining by name.
+      const std::string pick = ready.empty() ? *remaining.begin() : *ready.begin();
+      ready.erase(pick);
+      remaining.erase(pick);
+      for (const auto& m : downstream_[pick])
+        if (m != pick && --indeg[m] == 0 && remaining.count(m)) ready.insert(m);
+      const bool here = process_.empty() || by_name_.at(pick).decl->process == process_;
+      if (here || rg_.lockstep) {
+        ResolvedNode rn = by_name_.at(pick);
+        rn.order = rg_.nodes.size();
+        rn.here = here;
+        rg_.nodes.push_back(std::move(rn));
+      }
     }
   }
-  return rg;
-}
+
+  const GraphDecl& g_;
+  const Registry& reg_;
+  const std::string& process_;
+  Diagnostics d_;
+  ResolvedGraph rg_;
+  std::map<std::string, ResolvedNode> by_name_;
+  std::map<std::string, PortSpec> named_type_;                          // "node.port" of any type -> the port as the type a parameter names
+  std::map<std::string, std::string> writer_of_;                        // "node.port" input -> pointer of its wire
+  std::map<std::string, std::set<std::string>> downstream_zero_delay_;  // node -> data-triggered subscribers
+  std::map<std::string, std::set<std::string>> downstream_;
+};
+
+}  // namespace
+
+ResolvedGraph resolve_graph(const GraphDecl& g, const Registry& reg, const std::string& process) { return Resolver(g, reg, process).run(); }
 
 }  // namespace brickyard::fw

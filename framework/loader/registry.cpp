@@ -40,17 +40,14 @@ bool value_matches(ParamType t, const ParamValue& v) {
 
 }  // namespace
 
-std::vector<std::string> check_manifest(const Manifest& m) {
-  std::vector<std::string> p;
-  const std::string who = "plugin '" + m.name + "'";
-  if (!is_dotted_name(m.name, 2, 64))
-    p.push_back(who + ": name must look like area.name (lower case, digits, _)");
-  if (m.version.empty()) p.push_back(who + ": empty version");
+namespace {
+
+void check_ports(const Manifest& m, const std::string& who, std::vector<std::string>& p) {
   std::set<std::string> ports;
   for (const auto& port : m.ports) {
     if (!is_identifier(port.name)) p.push_back(who + ": port name '" + port.name + "' is not an identifier");
     if (!ports.insert(port.name).second) p.push_back(who + ": port '" + port.name + "' declared twice");
-    // A port of any type (Manifest::input_any: "*"; output_any: "*" or "*PARAM", PARAM a string parameter).
+    // A port of any type (an AnyInput: "*"; an AnyOutput: "*" or "*PARAM", PARAM a string parameter).
     const bool any = is_any_message_type(port.type_name);
     if (any && port.direction == PortDirection::input && port.type_name != kAnyMessageType)
       p.push_back(who + ": input '" + port.name + "' of type " + port.type_name + ": an input of any type is \"*\"");
@@ -68,6 +65,9 @@ std::vector<std::string> check_manifest(const Manifest& m) {
     if (port.direction == PortDirection::input && port.depth == 0)
       p.push_back(who + ": input '" + port.name + "' has depth 0");
   }
+}
+
+void check_params(const Manifest& m, const std::string& who, std::vector<std::string>& p) {
   std::set<std::string> params;
   for (const auto& ps : m.params) {
     if (!is_identifier(ps.name)) p.push_back(who + ": param name '" + ps.name + "' is not an identifier");
@@ -75,6 +75,9 @@ std::vector<std::string> check_manifest(const Manifest& m) {
     if (ps.default_value && !value_matches(ps.type, *ps.default_value))
       p.push_back(who + ": default of param '" + ps.name + "' is not a " + to_string(ps.type));
   }
+}
+
+void check_constraints(const Manifest& m, const std::string& who, std::vector<std::string>& p) {
   Params defaults;
   for (const auto& ps : m.params)
     if (ps.default_value && value_matches(ps.type, *ps.default_value)) defaults.set(ps.name, *ps.default_value);
@@ -90,6 +93,9 @@ std::vector<std::string> check_manifest(const Manifest& m) {
     if (!numbers) continue;
     if (auto e = c.violation(defaults); !e.empty()) p.push_back(who + ": its defaults break its own constraint: " + e);
   }
+}
+
+void check_triggers(const Manifest& m, const std::string& who, std::vector<std::string>& p) {
   for (const auto& t : m.triggers) {
     if (t.kind == TriggerSpec::Kind::periodic || t.kind == TriggerSpec::Kind::latency || t.kind == TriggerSpec::Kind::deadline) {
       const char* what = t.kind == TriggerSpec::Kind::periodic ? "periodic trigger" : t.kind == TriggerSpec::Kind::latency ? "latency" : "step deadline";
@@ -102,6 +108,35 @@ std::vector<std::string> check_manifest(const Manifest& m) {
         p.push_back(who + ": on_input trigger names '" + t.ref + "', which is not an input port");
     }
   }
+}
+
+// A role the plugin claims must be one this host knows, and its ports must fit the role's.
+void check_roles(const Manifest& m, const std::string& who, std::vector<std::string>& p) {
+  for (const auto& r : m.roles) {
+    const RoleContract* role = find_role(r);
+    if (!role) {
+      std::string known;
+      for (const auto& c : role_contracts()) known += (known.empty() ? "" : ", ") + c.name;
+      p.push_back(who + ": plays unknown role '" + r + "' (roles: " + known + ")");
+      continue;
+    }
+    for (const auto& why : role_mismatches(m, *role)) p.push_back(who + ": plays role '" + r + "' but " + why);
+  }
+}
+
+}  // namespace
+
+std::vector<std::string> check_manifest(const Manifest& m) {
+  std::vector<std::string> p;
+  const std::string who = "plugin '" + m.name + "'";
+  if (!is_dotted_name(m.name, 2, 64))
+    p.push_back(who + ": name must look like area.name (lower case, digits, _)");
+  if (m.version.empty()) p.push_back(who + ": empty version");
+  check_ports(m, who, p);
+  check_params(m, who, p);
+  check_constraints(m, who, p);
+  check_triggers(m, who, p);
+  check_roles(m, who, p);
   return p;
 }
 
@@ -156,12 +191,13 @@ void Registry::load(const std::string& path, std::size_t folder) {
   if (!info) {
     fail(std::string(BRICKYARD_ENTRY_POINT_NAME) + " returned null");
   } else {
+    const std::string theirs = std::to_string(info->abi_major) + "." + std::to_string(info->abi_minor);
+    const std::string ours = std::to_string(BRICKYARD_ABI_MAJOR) + "." + std::to_string(BRICKYARD_ABI_MINOR);
     if (info->abi_major != BRICKYARD_ABI_MAJOR)
-      fail("ABI major version " + std::to_string(info->abi_major) + ", this host needs " +
-           std::to_string(BRICKYARD_ABI_MAJOR) + " (rebuild the plugin against this SDK)");
+      fail("built against plugin ABI " + theirs + " (SDK " + (info->sdk_version ? info->sdk_version : "?") +
+           "), this host's is " + ours + ": rebuild the plugin against this SDK");
     else if (info->abi_minor > BRICKYARD_ABI_MINOR)
-      fail("built against a newer SDK (ABI " + std::to_string(info->abi_major) + "." + std::to_string(info->abi_minor) +
-           ") than this host (" + std::to_string(BRICKYARD_ABI_MAJOR) + "." + std::to_string(BRICKYARD_ABI_MINOR) + ")");
+      fail("built against a newer SDK (ABI " + theirs + ") than this host (" + ours + ")");
     if (info->cxx_abi != BRICKYARD_CXX_ABI_TAG)
       fail("built with another C++ standard library ABI (tag " + std::to_string(info->cxx_abi) + ", host " +
            std::to_string(BRICKYARD_CXX_ABI_TAG) + ")");
@@ -179,9 +215,6 @@ void Registry::load(const std::string& path, std::size_t folder) {
     PluginEntry e;
     try {
       e.manifest = descs[i].manifest();
-      // A plugin of ABI 2.3 or older returned a manifest without the appended checker: what the
-      // host reads there is not the plugin's.
-      if (info->abi_minor < 4) e.manifest.checker = nullptr;
     } catch (const std::exception& ex) {
       fail("manifest() of plugin #" + std::to_string(i) + " threw: " + ex.what());
       continue;

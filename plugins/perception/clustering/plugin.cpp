@@ -20,25 +20,34 @@ ParamBinding<ClusterParams> bindings() {
   return b;
 }
 
+struct Ports {
+  Input<msgs::PointCloud> points;
+  Output<msgs::ClusterList> clusters;
+};
+
+PortBinding<Ports> ports() {
+  PortBinding<Ports> b;
+  b.input("points", &Ports::points).doc("points to cluster (any frame the message's sensor pose maps to the vehicle's)").depth(4).steps();
+  b.output("clusters", &Ports::clusters).doc("clusters in the vehicle frame, in order of their first point");
+  return b;
+}
+
 class ClusteringNode : public Plugin {
  public:
   static Manifest manifest() {
     return Manifest("perception.clustering", "1.0.0")
         .describe("Euclidean clustering (hash grid + union-find; the same partition as PCL's EuclideanClusterExtraction)")
-        .input<msgs::PointCloud>("points", "points to cluster (any frame the message's sensor pose maps to the vehicle's)", true, 4)
-        .output<msgs::ClusterList>("clusters", "clusters in the vehicle frame, in order of their first point")
-        .parameters(bindings())
-        .on_input("points");
+        .with_ports(ports())
+        .parameters(bindings());
   }
 
   void configure(Context& ctx) override {
     clustering_ = EuclideanClustering(bindings().read(ctx.params()));
-    in_ = ctx.input<msgs::PointCloud>("points");
-    out_ = ctx.output<msgs::ClusterList>("clusters");
+    io_ = ports().connect(ctx);
   }
 
   void step(Context& ctx) override {
-    for (auto& m : in_.take()) {
+    for (auto& m : io_.points.take()) {
       pts_.clear();
       try {
         append_vehicle_points(*m, pts_);
@@ -47,7 +56,7 @@ class ClusteringNode : public Plugin {
         continue;
       }
       clustering_.run(pts_, clusters_);
-      out_.publish(cluster_list(pts_, clusters_, m->header().stamp_ns(), seq_++));
+      io_.clusters.publish(cluster_list(pts_, clusters_, m->header().stamp_ns(), seq_++));
       ++frames_;
       total_ += clusters_.size();
     }
@@ -63,8 +72,7 @@ class ClusteringNode : public Plugin {
   EuclideanClustering clustering_;
   Points pts_;
   std::vector<std::vector<int>> clusters_;
-  Input<msgs::PointCloud> in_;
-  Output<msgs::ClusterList> out_;
+  Ports io_;
   std::uint32_t seq_ = 0;
   std::uint64_t frames_ = 0, malformed_ = 0, total_ = 0;
 };

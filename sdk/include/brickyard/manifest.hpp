@@ -14,6 +14,7 @@
 namespace brickyard {
 
 template <class S> class ParamBinding;
+template <class P> class PortBinding;
 
 enum class PortDirection { input, output };
 
@@ -128,12 +129,22 @@ struct Manifest {
   std::vector<ParamSpec> params;
   std::vector<TriggerSpec> triggers;
   std::vector<ParamConstraint> constraints;  // ABI 2: appended to the manifest
-  CheckFn checker = nullptr;                 // ABI 2.4, appended: the host ignores it for older plugins
+  CheckFn checker = nullptr;
+  std::vector<std::string> roles;            // the roles it plays (brickyard/roles.hpp)
 
   Manifest() = default;
   Manifest(std::string n, std::string v) : name(std::move(n)), version(std::move(v)) {}
 
   Manifest& describe(std::string d) { description = std::move(d); return *this; }
+
+  // Every port of a binding, and the triggers of those that step the node
+  // (brickyard/port_binding.hpp): how a plugin declares its ports.
+  template <class P> Manifest& with_ports(const PortBinding<P>& b);
+  // A role the plugin plays (brickyard/roles.hpp): the host checks its ports fit the role's.
+  Manifest& plays(std::string role) {
+    roles.push_back(std::move(role));
+    return *this;
+  }
 
   template <class T>
   Manifest& input(std::string port, std::string doc = {}, bool required = true, std::uint32_t depth = 16) {

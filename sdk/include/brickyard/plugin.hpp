@@ -6,6 +6,8 @@
 #include <brickyard/context.hpp>
 #include <brickyard/manifest.hpp>
 #include <brickyard/param_binding.hpp>
+#include <brickyard/port_binding.hpp>
+#include <brickyard/roles.hpp>
 #include <brickyard/version.hpp>
 
 namespace brickyard {
