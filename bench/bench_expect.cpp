@@ -1,4 +1,4 @@
-// What testing.expect costs per field it checks (issue 21's target: at most 2 us per decoded field
+// What testing.expect costs per field it checks (target: at most 2 us per decoded field
 // check on a Path of 300 poses), beside a baseline in the same run: the hand-written probe it
 // replaces — Fast DDS's generated type decoding the same bytes, and the same checks in C++.
 // Each sample: 300 poses, four expectations over every pose (x and y in range, speed in range,

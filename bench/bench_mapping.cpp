@@ -6,7 +6,7 @@
 // poses. The guess: the true pose moved 0.3 m and 0.5 deg. Per scan: ours = the scan's
 // surfaces + the registration (the map's voxels built once, not timed); PCL = align()
 // (which works out both clouds' covariances). Prints per-scan medians, the ratios, and the error
-// of each result against the truth (issue 17: <= 10 ms per scan, >= 10x PCL's GICP).
+// of each result against the truth (<= 10 ms per scan, >= 10x PCL's GICP).
 // usage: bench_mapping [--scans N]
 #include "common/covariances.hpp"
 #include "common/ground_filter.hpp"

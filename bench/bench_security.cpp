@@ -1,4 +1,4 @@
-// What DDS security costs (issue 20's target: at most 10 % of the split race's wall time), measured
+// What DDS security costs (target: at most 10 % of the split race's wall time), measured
 // in one run of this program: the main job split over two processes (tests/graphs/multiprocess/
 // ims_race_split.json, real clock, supervised) with `transport.security` on — every participant
 // authenticated, each wire access-controlled, every RTPS message signed (`brickyard security

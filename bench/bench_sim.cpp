@@ -9,7 +9,7 @@
 //     stepped on one thread (--threads 1: no node stepped side by side).
 //  3. The whole stack, configs/race.json on Spielberg (walls at both edges, no fault): the same
 //     factor, the executive's default threads against --threads 1 and against the simulator alone
-//     (issue 16's target: 15x).
+//     (target: 15x).
 // usage: bench_sim [--quick]
 #include "common/lidar.hpp"
 #include "common/track.hpp"
@@ -114,7 +114,7 @@ int main(int argc, char** argv) {
   std::printf("ratio ours / baseline: %.2f (one thread: %.2f)\n\n", ours_rate / base_rate, one_thread_rate / base_rate);
 
   // The full simulator graph, run by the host: the simulator alone (--no-report), and as a plain
-  // `--out` run does since issue 8, recording every wire but the clouds to SQLite (the recorder's
+  // `--out` run does, recording every wire but the clouds to SQLite (the recorder's
   // cost, shown beside). Runs alternate so that both see the same load.
   const std::string by = BRICKYARD_HOST;
   const double duration = quick ? 20 : 60;

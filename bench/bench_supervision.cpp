@@ -1,4 +1,4 @@
-// What watching a run costs (issue 19's target: the supervisor and the watchdogs at most 2 % of
+// What watching a run costs (target: the supervisor and the watchdogs at most 2 % of
 // the main job's wall time), measured in one run of this program:
 //  1. the watch around every call into a plugin (crash_guard::Running: which node runs, for the
 //     crash handler and the hang watchdog) and a step deadline's two clock reads, per call, beside

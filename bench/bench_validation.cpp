@@ -1,4 +1,4 @@
-// How long `brickyard validate` takes on large graphs (issue 20's target: 100 000 nodes in at
+// How long `brickyard validate` takes on large graphs (target: 100 000 nodes in at
 // most 2 s, and linear in the graph's size), beside reading the same JSON with nlohmann::json in
 // this process — the floor any validator pays. Chains of testing plugins (a scripted source,
 // transforms, an assert sink), 10 000 to 100 000 nodes; medians of 3.

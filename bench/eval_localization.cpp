@@ -1,4 +1,4 @@
-// The localization evaluation of issue 4: eight GNSS fault scenarios on IMS, the car driven on
+// The localization evaluation of eight GNSS fault scenarios on IMS, the car driven on
 // ground truth, the three estimators side by side on the same sensor data
 // (configs/eval/localization.json), each scored by sim.localization_scorer. Prints the table of
 // docs/results-localization.md and checks the issue's required outcomes (exit 1 if one fails).

@@ -1,4 +1,4 @@
-// A track mapped from a drive against the true one (issue 17, docs/mapping.md): configs/map_ims.json
+// A track mapped from a drive against the true one (docs/mapping.md): configs/map_ims.json
 // run on each chosen track of a folder (data/tracks by default) — the full stack driving 2 laps at
 // a moderate speed with the GNSS receivers' noise and the paper's double fault in one window — its
 // scan mapper writing the track file it extracts from the drive; that file is then compared with

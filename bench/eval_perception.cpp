@@ -1,4 +1,4 @@
-// The perception evaluation of issue 5: simulated full 3-LiDAR frames of IMS scored against the
+// The perception evaluation of simulated full 3-LiDAR frames of IMS scored against the
 // simulator's ground truth, on a straight and in a banked turn (9.2 deg, and 20 deg as at Las
 // Vegas). Prints the tables of docs/results-perception.md and checks the issue's targets: ground
 // precision and recall >= 0.98, wall distance error p95 <= 0.10 m, no false obstacles; exit 1 if

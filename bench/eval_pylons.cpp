@@ -1,4 +1,4 @@
-// Pylons anywhere (issue 16): configs/race.json on every track in a folder (data/tracks by
+// Pylons anywhere: configs/race.json on every track in a folder (data/tracks by
 // default) with one pylon, at `--places` evenly spaced places round the lap — on the centre line,
 // 2 m left of it and 2 m right, in turn — for 2 laps at the car's limit, so the car meets it
 // twice: once seen from afar, once after a lap of the line. A run is clean when the race

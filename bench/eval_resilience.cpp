@@ -1,4 +1,4 @@
-// The resilience evaluation of issue 6: the paper's headline (both GNSS receivers degraded while
+// The resilience evaluation of the paper's headline (both GNSS receivers degraded while
 // the car is in a turn at speed) on the full stack of configs/ims_resilient.json, swept over the
 // speed (40 m/s, the paper's top speed; 60; 80) and the fault's length (3, 7, 15 s), beside the
 // same graph without the system manager (the path tracker on the resilient estimate alone) and

@@ -1,4 +1,4 @@
-// The sweep of issue 16 ("race anywhere"): configs/race.json — the full stack, its racing line
+// The "race anywhere" sweep: configs/race.json — the full stack, its racing line
 // planned for the track at start — on every track in a folder (data/tracks by default), for two
 // wall layouts (the outer wall only; a wall at each edge), first without a fault, then with the
 // paper's double GNSS fault (both receivers, 7 s) at `--positions` evenly spaced times during lap

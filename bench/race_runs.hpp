@@ -1,5 +1,5 @@
 #pragma once
-// One run of configs/race.json for the sweeps of issue 16 (eval_tracks, eval_pylons): the host
+// One run of configs/race.json for the sweeps (eval_tracks, eval_pylons): the host
 // started with graph arguments and --set values, its summary read back.
 #include "track/centre_line.hpp"
 

@@ -1,4 +1,4 @@
-// PCL's generalized ICP and NDT as the baselines of our registration (mapping, issue 17): a
+// PCL's generalized ICP and NDT as the baselines of our registration (mapping): a
 // translation unit of their own, as PCL's registration headers are heavy.
 #include "pcl_baseline.hpp"
 

@@ -44,7 +44,7 @@ struct Played {
     if (sample) support->deleteData(sample);
   }
 };
-// Where a sample stops fitting its type: the IDL decoder, which counts bytes, says (issue 20).
+// Where a sample stops fitting its type: the IDL decoder, which counts bytes, says.
 std::string where_it_breaks(const std::string& type, const unsigned char* data, std::size_t size) {
   const char* idl = idl_text(type);
   if (!idl) return {};

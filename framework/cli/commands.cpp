@@ -38,6 +38,7 @@ nlohmann::json manifest_to_json(const PluginEntry& p) {
   j["description"] = m.description;
   j["library"] = p.library;
   j["sdk_version"] = p.sdk_version;
+  j["roles"] = m.roles;
   j["ports"] = nlohmann::json::array();
   for (const auto& port : m.ports) {
     nlohmann::json pj{{"name", port.name},
@@ -74,12 +75,13 @@ nlohmann::json manifest_to_json(const PluginEntry& p) {
   return j;
 }
 
-std::string plugins_text(const Registry& reg) {
+std::string plugin_text(const PluginEntry& p) {
   std::ostringstream o;
-  for (const auto& p : reg.plugins()) {
+  {
     const Manifest& m = p.manifest;
     o << m.name << " " << m.version << "  (" << p.library << ")\n";
     if (!m.description.empty()) o << "  " << m.description << "\n";
+    for (const auto& r : m.roles) o << "  plays " << r << "\n";
     for (const auto& port : m.ports)
       o << "  " << (port.direction == PortDirection::input ? "in  " : "out ") << port.name << " : " << port.type_name
         << (port.direction == PortDirection::input && !port.required ? " (optional)" : "")

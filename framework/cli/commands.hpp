@@ -8,7 +8,8 @@
 namespace brickyard::fw {
 
 nlohmann::json manifest_to_json(const PluginEntry& p);
-std::string plugins_text(const Registry& reg);
+// One plugin's manifest as text: what `brickyard plugins` prints for it.
+std::string plugin_text(const PluginEntry& p);
 std::string graph_dot(const GraphDecl& g, const Registry* reg);
 // Copies the SDK template to dir/, naming the plugin. Throws InvalidInput on bad NAME or DIR.
 void scaffold_plugin(const std::string& name, const std::string& dir, const std::string& template_dir);

@@ -43,7 +43,7 @@ const char* kUsage = R"(brickyard — plugin-based autonomy framework
 usage:
   brickyard run GRAPH.json [options]       run a graph
   brickyard validate GRAPH.json [options]  check everything, start nothing
-  brickyard plugins [--json]               list the plugins found and their manifests
+  brickyard plugins [NAME] [--json]        list the plugins found and their manifests (NAME: that one only)
   brickyard graph GRAPH.json --dot         print the graph for Graphviz
   brickyard report RUN_DIR                 write RUN_DIR/report.html from a run's recording
   brickyard bag info RECORDING [--json]    a recording's clock, span and topics (types, counts, rates,
@@ -371,7 +371,7 @@ int run_graph(const Args& a, GraphDecl g, bool validate_only);
 
 // A run replaces what an earlier run wrote into its --out folder, and nothing else: a
 // summary.json that is not a run's (it names its result, and its graph or its writer) or a
-// report.html that is not brickyard-report's is the user's, and the run refuses (issue 20).
+// report.html that is not brickyard-report's is the user's, and the run refuses.
 void refuse_foreign_files(const std::string& out) {
   const fs::path dir(out);
   std::error_code ec;
@@ -564,7 +564,7 @@ int cmd_bag(const Args& a) {
 
 int run_graph(const Args& a, GraphDecl g, bool validate_only) {
   Registry reg = load_registry(a, &g);
-  ResolvedGraph rg = resolve_graph(g, reg, a.process);
+  ResolvedGraph rg = resolve_graph(g, reg, a.process, run_node_checks);
   if (!a.quiet)
     for (const auto& n : rg.notices) std::fprintf(stderr, "notice: %s\n", n.c_str());
   // What each plugin's configure would refuse, every node's together, before anything starts.
@@ -714,17 +714,27 @@ int cmd_report(const Args& a) {
   return run_report(a.target, false);
 }
 
+// Every plugin found, or with a NAME only that one (exit 2 naming the known ones when none has it).
 int cmd_plugins(const Args& a) {
   Registry reg = load_registry(a, nullptr);
+  std::vector<const PluginEntry*> shown;
+  for (const auto& p : reg.plugins())
+    if (a.target.empty() || p.manifest.name == a.target) shown.push_back(&p);
+  if (!a.target.empty() && shown.empty()) {
+    std::string known;
+    for (const auto& p : reg.plugins()) known += (known.empty() ? "" : ", ") + p.manifest.name;
+    std::fprintf(stderr, "error: plugins %s: no plugin of that name (known: %s)\n", a.target.c_str(), known.c_str());
+    return 2;
+  }
   if (a.json) {
     nlohmann::json j;
     j["plugins"] = nlohmann::json::array();
-    for (const auto& p : reg.plugins()) j["plugins"].push_back(manifest_to_json(p));
+    for (const auto* p : shown) j["plugins"].push_back(manifest_to_json(*p));
     j["errors"] = nlohmann::json::array();
     for (const auto& lp : reg.problems()) j["errors"].push_back({{"library", lp.library}, {"problems", lp.problems}});
     std::cout << j.dump(2) << "\n";
   } else {
-    std::cout << plugins_text(reg);
+    for (const auto* p : shown) std::cout << plugin_text(*p);
   }
   for (const auto& lp : reg.problems())
     for (const auto& p : lp.problems) std::fprintf(stderr, "error: %s: %s\n", lp.library.c_str(), p.c_str());

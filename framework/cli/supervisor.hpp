@@ -1,6 +1,6 @@
 #pragma once
 // `brickyard run GRAPH` of a graph whose nodes run in several processes (real clock): the
-// supervisor (issue 19, docs/reliability.md). It starts each process as a child —
+// supervisor (docs/reliability.md). It starts each process as a child —
 // `brickyard run GRAPH --process P` — relays what it says line by line under its name, and
 // watches it. A child that dies is named with its nodes, its signal or exit code and its own
 // last word (the node that crashed, from its summary); its shared memory is removed, its summary

@@ -1,5 +1,5 @@
 #pragma once
-// What a run says and leaves when a plugin takes its process down (issue 19, docs/reliability.md):
+// What a run says and leaves when a plugin takes its process down (docs/reliability.md):
 // a segmentation fault, abort(), a bus or arithmetic fault, or exit() from a step. The process
 // cannot go on, but it does not die mute: a signal handler (async-signal-safe: write(2) and
 // preformatted text only) prints which node was running and in which phase, writes a minimal

@@ -299,7 +299,7 @@ json parse_checked(const std::string& text, const std::string& file, Diagnostics
   return root;
 }
 
-// Graphs that include graphs (issue 21): "include": ["base.json", ...], each relative to the
+// Graphs that include graphs: "include": ["base.json", ...], each relative to the
 // including file, read first and in order; the including file then overrides what they declare,
 // object by object (a node's params one by one), and appends its wires to theirs. Every value
 // keeps the file and pointer that declared it (GraphDecl::where). A cycle is refused, named.

@@ -1,6 +1,6 @@
 #pragma once
 // Names in graphs, flags and manifests, checked in one pass without std::regex: a regex match is
-// recursive in libstdc++ and overflowed the stack on a name of 20 000 characters (issue 20).
+// recursive in libstdc++ and overflowed the stack on a name of 20 000 characters.
 // Names are bounded too, and a message quotes at most the first characters of one.
 #include <cstddef>
 #include <string>

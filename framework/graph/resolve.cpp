@@ -104,7 +104,8 @@ namespace {
 // The steps of resolve_graph, in order, over the state they share.
 class Resolver {
  public:
-  Resolver(const GraphDecl& g, const Registry& reg, const std::string& process) : g_(g), reg_(reg), process_(process) { rg_.decl = &g; }
+  Resolver(const GraphDecl& g, const Registry& reg, const std::string& process, const NodeChecks& checks)
+      : g_(g), reg_(reg), process_(process), checks_(checks) { rg_.decl = &g; }
 
   ResolvedGraph run() {
     report_library_problems();
@@ -114,6 +115,7 @@ class Resolver {
     check_required_inputs();
     check_zero_delay_cycles();
     check_processes();
+    if (!d_.empty()) run_plugin_checks();
     d_.raise_if_any();
     order_schedule();
     return std::move(rg_);
@@ -132,6 +134,27 @@ class Resolver {
   }
 
   void resolve_node(const std::string& name, const NodeDecl& nd) {
+    const std::size_t errors_before = d_.items().size();
+    resolve_node_parts(name, nd);
+    if (d_.items().size() != errors_before) faulty_.insert(name);
+  }
+
+  // The plugins' own checks of the nodes that resolved cleanly, beside the graph's errors.
+  void run_plugin_checks() {
+    if (!checks_) return;
+    ResolvedGraph partial;
+    partial.decl = &g_;
+    partial.wire_types = rg_.wire_types;
+    partial.output_types = rg_.output_types;
+    for (const auto& [name, rn] : by_name_) {
+      if (faulty_.count(name)) continue;
+      partial.nodes.push_back(rn);
+      partial.nodes.back().here = process_.empty() || rn.decl->process == process_;
+    }
+    for (const auto& f : checks_(partial)) d_.add(f.where, f.message);
+  }
+
+  void resolve_node_parts(const std::string& name, const NodeDecl& nd) {
     const std::string ptr = "/nodes/" + pointer_escape(name);
     rg_.processes.insert(nd.process);
     ResolvedNode rn;
@@ -167,7 +190,7 @@ class Resolver {
       std::string why;
       for (const auto& w : role_mismatches(m, *role)) why += (why.empty() ? ": " : "; ") + w;
       if (why.empty()) why = " (its ports fit; the plugin does not declare it plays the role)";
-      err(ptr + (nd.role == r ? "/role" : "/plugin"),
+      err(ptr + (nd.plugin_origin.empty() && nd.role == r ? "/role" : "/plugin"),
           "plugin " + m.name + " of node '" + nd.name + "' does not play role '" + r + "'" + why + from);
     }
   }
@@ -383,7 +406,7 @@ class Resolver {
   void check_zero_delay_cycles() {
     // A cycle made only of input-triggered steps has no first step at one instant of sim time.
     // Depth first with a stack of our own: a chain of 100 000 nodes recursed past the thread's
-    // stack (issue 20).
+    // stack.
     static const std::set<std::string> kNone;
     auto outs = [&](const std::string& n) -> const std::set<std::string>& {
       const auto it = downstream_zero_delay_.find(n);
@@ -454,7 +477,7 @@ class Resolver {
   void order_schedule() {
     // Schedule order: upstream before downstream (Kahn), ties and cycles broken by name; the nodes
     // ready kept sorted, so a graph of 100 000 nodes orders in a fraction of a second (a scan of
-    // every node per pick never finished, issue 20).
+    // every node per pick never finished).
     std::map<std::string, int> indeg;
     for (const auto& [n, _] : by_name_) indeg[n] = 0;
     for (const auto& [n, outs] : downstream_)
@@ -485,7 +508,9 @@ class Resolver {
   const GraphDecl& g_;
   const Registry& reg_;
   const std::string& process_;
+  const NodeChecks& checks_;
   Diagnostics d_;
+  std::set<std::string> faulty_;  // nodes with an error of their own (unknown plugin, bad parameter)
   ResolvedGraph rg_;
   std::map<std::string, ResolvedNode> by_name_;
   std::map<std::string, PortSpec> named_type_;                          // "node.port" of any type -> the port as the type a parameter names
@@ -496,6 +521,8 @@ class Resolver {
 
 }  // namespace
 
-ResolvedGraph resolve_graph(const GraphDecl& g, const Registry& reg, const std::string& process) { return Resolver(g, reg, process).run(); }
+ResolvedGraph resolve_graph(const GraphDecl& g, const Registry& reg, const std::string& process, const NodeChecks& checks) {
+  return Resolver(g, reg, process, checks).run();
+}
 
 }  // namespace brickyard::fw

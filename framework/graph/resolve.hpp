@@ -1,9 +1,11 @@
 #pragma once
 // A graph checked against the plugins' manifests: every error the user can fix, before any
 // plugin object exists.
+#include "graph/diagnostics.hpp"
 #include "graph/graph.hpp"
 #include "loader/registry.hpp"
 
+#include <functional>
 #include <map>
 #include <set>
 
@@ -35,9 +37,15 @@ struct ResolvedGraph {
   const ResolvedNode* node(const std::string& name) const;
 };
 
+// The plugins' own checks of their nodes (Manifest::check; the host's are exec/node_checks.hpp).
+using NodeChecks = std::function<std::vector<Diagnostic>(const ResolvedGraph&)>;
+
 // `process`: empty to run every node here; else only that process's nodes (checked to exist), or
-// on the sim clock every node, the others' marked not `here` (the lockstep).
-ResolvedGraph resolve_graph(const GraphDecl& g, const Registry& reg, const std::string& process = {});
+// on the sim clock every node, the others' marked not `here` (the lockstep). When the graph has
+// errors, `checks` run too on every node that resolved without one of its own, and what they
+// find is thrown with the rest: validation says everything in one pass. (On a graph without
+// errors the caller runs them on the graph returned.)
+ResolvedGraph resolve_graph(const GraphDecl& g, const Registry& reg, const std::string& process = {}, const NodeChecks& checks = {});
 
 // Convert one JSON param value against its spec; returns an error text or empty.
 std::string convert_param(const ParamSpec& spec, const nlohmann::json& v, ParamValue& out);

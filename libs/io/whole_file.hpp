@@ -1,5 +1,5 @@
 #pragma once
-// A file written whole or not at all (issue 20): the bytes go to PATH.part, are written, synced
+// A file written whole or not at all: the bytes go to PATH.part, are written, synced
 // and checked, and renamed over PATH, so a reader never sees half a file and a full disk leaves
 // the old one. A PATH that exists and is not a regular file (/dev/stdout, a pipe, /dev/full) is
 // written in place — a rename would replace the device — its errors checked all the same.

@@ -3,7 +3,7 @@
 // stretches of track closer than their widths (a loop laid twice, a straight laid over another),
 // or a centre line that crosses itself at a shallow angle (two roads merged, not crossing). No
 // circuit is like that, and the lateral coordinate of every reader (the simulator's walls, the
-// planners' lattice, the referee's contact check) would be ambiguous there (issue 20).
+// planners' lattice, the referee's contact check) would be ambiguous there.
 //
 // A crossing at a steep angle is a bridge, one road over the other, as at Suzuka: it is read,
 // and said (the TUM Suzuka file crosses itself at 60 degrees; the stack races two laps there).

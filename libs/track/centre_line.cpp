@@ -36,7 +36,7 @@ std::vector<double> parse_row(const std::string& row, std::size_t want, std::siz
   return v;
 }
 
-// What a file of a real track can hold (issue 20: a point at x = 1e308 was read as a track "of
+// What a file of a real track can hold (a point at x = 1e308 was read as a track "of
 // length inf", and the road graph on it allocated until bad_alloc). Bounds far beyond any circuit.
 constexpr double kMaxCoordinate_m = 1e6;  // 1000 km from the file's origin
 constexpr double kMaxWidth_m = 100;       // from the centre line to an edge

@@ -22,14 +22,15 @@ template <class S, class... M> ParamSpec& bind_vehicle(ParamBinding<S>& b, M... 
 
 // Loads the file a `vehicle` parameter names. Throws BadInput naming the parameter and the file
 // (and the JSON pointer) when it cannot be read.
-inline vehicle::Vehicle read_vehicle(Context& ctx, const std::string& file) {
-  const std::string path = ctx.find_file(file);
+// `path` is where the file was found (Context::find_file, CheckView::find_file).
+inline vehicle::Vehicle read_vehicle_file(const std::string& path) {
   try {
     return vehicle::load_vehicle(path);
   } catch (const vehicle::VehicleFileError& e) {
     throw BadInput(std::string("parameter 'vehicle': ") + e.what());
   }
 }
+inline vehicle::Vehicle read_vehicle(Context& ctx, const std::string& file) { return read_vehicle_file(ctx.find_file(file)); }
 
 // Where a sensor sits on the car: `given` (the graph's numbers: exactly 3) or, when it is empty,
 // the vehicle file's mount named `mount` — its xyz (m), or with `rpy` its roll, pitch, yaw (deg).

@@ -58,7 +58,7 @@ ParamBinding<Settings> bindings() {
 }
 
 // Decodes one recorded sample as Fast DDS would; when the bytes do not fit the type, says how many
-// did (issue 20: a damaged sample was "Cdr::read_encapsulation", with no place).
+// did (a damaged sample was "Cdr::read_encapsulation", with no place).
 template <class T> std::string decode(const std::vector<unsigned char>& data, T& m) {
   std::vector<char> bytes(data.begin(), data.end());  // fastcdr reads through a mutable buffer
   eprosima::fastcdr::FastBuffer buffer(bytes.data(), bytes.size());
@@ -73,13 +73,23 @@ template <class T> std::string decode(const std::vector<unsigned char>& data, T&
   return {};
 }
 
+template <class T> struct Ports {
+  Output<T> out;
+};
+
+template <class T> PortBinding<Ports<T>> ports() {
+  PortBinding<Ports<T>> b;
+  b.output("out", &Ports<T>::out).doc("the recorded samples, each at its recorded time");
+  return b;
+}
+
 template <class T, class PubSub, const char* Name>
 class Replay : public Plugin {
  public:
   static Manifest manifest() {
     return Manifest(std::string("replay.") + Name, "1.0.0")
         .describe(std::string("republishes a recorded topic of ") + message_traits<T>::name + " at the times it was published")
-        .template output<T>("out", "the recorded samples, each at its recorded time")
+        .with_ports(ports<T>())
         .parameters(bindings())
         .periodic("rate_hz");
   }
@@ -149,13 +159,13 @@ class Replay : public Plugin {
     } catch (const replay::RecordingError& e) {
       throw BadInput(std::string("parameter 'file': ") + e.what());
     }
-    out_ = ctx.output<T>("out");
+    io_ = ports<T>().connect(ctx);
   }
 
   void step(Context& ctx) override {
     const std::int64_t now = ctx.now_ns();
     for (; next_ < samples_.size() && samples_[next_].stamp_ns <= now; ++next_)
-      out_.publish(std::move(samples_[next_].message));  // published: this node lets go of it
+      io_.out.publish(std::move(samples_[next_].message));  // published: this node lets go of it
   }
 
   void deactivate(Context& ctx) override {
@@ -171,7 +181,7 @@ class Replay : public Plugin {
   Settings s_;
   std::vector<Sample> samples_;
   std::size_t next_ = 0;
-  Output<T> out_;
+  Ports<T> io_;
 };
 
 constexpr char kBlob[] = "blob", kClusterList[] = "cluster_list", kControlCommand[] = "control_command",

@@ -212,7 +212,7 @@ TEST(Localizer, HeadingFromTravelThenRollFromTheImu) {
   EXPECT_NEAR(loc.filter().roll(), roll, 1e-6);
 }
 
-// A receiver that sends NaN (broken, or forged) costs nothing but its own fixes (issue 20: NaN
+// A receiver that sends NaN (broken, or forged) costs nothing but its own fixes (NaN
 // fixes made the fusion reject the healthy receiver too, EMERGENCY for 15 of 16 s).
 TEST(Localizer, AMalformedFixCostsOnlyItself) {
   LocalizerParams p;

@@ -1,4 +1,4 @@
-// testing.expect's parts (issue 21): field paths checked against a type's IDL, and the checker
+// testing.expect's parts: field paths checked against a type's IDL, and the checker
 // fed decoded samples directly.
 #include "cdr/cdr_json.hpp"
 #include "cdr/field_path.hpp"

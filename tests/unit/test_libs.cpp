@@ -150,7 +150,7 @@ TEST(RacingLine, LeavesTrackNamesThePoint) {
   EXPECT_NE(e.find("point 1 (106.00, 0.00) is 1.00 m beyond the track's right edge"), std::string::npos) << e;
 }
 
-// ---- compact clouds for recordings (libs/cloud/quantized_cloud.hpp, issue 18) ----
+// ---- compact clouds for recordings (libs/cloud/quantized_cloud.hpp) ----
 
 TEST(QuantizedCloud, RoundTripWithinHalfThePrecision) {
   std::mt19937 rng(7);

@@ -1,4 +1,4 @@
-// Mapping's algorithms (issue 17): point covariances, the voxel map, scan-to-map registration by
+// Mapping's algorithms: point covariances, the voxel map, scan-to-map registration by
 // voxelized GICP. Beside PCL's GICP: test_mapping_pcl.cpp.
 #include "common/covariances.hpp"
 #include "common/gravity_tilt.hpp"

@@ -1,5 +1,4 @@
-// Our registration beside PCL's GICP on real scans (data/lidar, MIT, see data/lidar/LICENSE.cupcl),
-// issue 17.
+// Our registration beside PCL's GICP on real scans (data/lidar, MIT, see data/lidar/LICENSE.cupcl).
 #include "common/covariances.hpp"
 #include "common/gicp.hpp"
 #include "common/pcd.hpp"

@@ -255,7 +255,7 @@ TEST(CdrJson, AnIdlThatCouldRecurseForeverIsRefused) {
 }
 
 // --record-only patterns: '*' any run of characters; matched in at most |pattern| x |topic| steps
-// (issue 20: a recursive match took 73 s on 40 stars; this test would hang on it).
+// (a recursive match took 73 s on 40 stars; this test would hang on it).
 TEST(RecordOnly, PatternsMatchInLinearSteps) {
   using brickyard::fw::topic_selected;
   EXPECT_TRUE(topic_selected("car.truth", {"car.truth"}));

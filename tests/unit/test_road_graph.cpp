@@ -157,7 +157,7 @@ TEST(RoadGraph, SavesAndLoadsAndRejectsBrokenFiles) {
     EXPECT_NE(std::string(e.what()).find(cut), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("damaged or cut short"), std::string::npos) << e.what();
   }
-  // One bit flipped anywhere: refused by the digest (issue 20: 14 of 53 such files loaded before).
+  // One bit flipped anywhere: refused by the digest (14 of 53 such files loaded before).
   for (std::size_t at : {std::size_t{9}, bytes.size() / 3, bytes.size() / 2, bytes.size() - 20, bytes.size() - 1}) {
     std::string flipped = bytes;
     flipped[at] = static_cast<char>(flipped[at] ^ 0x10);

@@ -82,7 +82,7 @@ TEST(TrackFile, BadRowNamesFileAndLine) {
   EXPECT_THROW(parse_centerline_csv(neg, "n.csv"), TrackFileError);
 }
 
-// Values no circuit has are refused naming the line (issue 20: x = 1e308 made a track "of length inf").
+// Values no circuit has are refused naming the line (x = 1e308 made a track "of length inf").
 TEST(TrackFile, ValuesNoCircuitHasAreRefused) {
   auto error = [](const std::string& text) {
     std::istringstream in(text);
@@ -110,7 +110,7 @@ TEST(TrackFile, ValuesNoCircuitHasAreRefused) {
   EXPECT_NE(error(c_shape).find("more than 4 times its points' usual spacing (8.4 m)"), std::string::npos) << error(c_shape);
 }
 
-// A track whose band runs over itself is refused naming two lines where it does (issue 20: figure
+// A track whose band runs over itself is refused naming two lines where it does (figure
 // 8s and self-overlapping tracks were read, and every lateral coordinate was ambiguous there); a
 // steep crossing is a bridge, read and said (Suzuka's, at 60 degrees, races: docs/security.md).
 TEST(TrackFile, ABandOverItselfIsRefused) {

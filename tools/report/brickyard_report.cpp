@@ -159,7 +159,7 @@ int run(const fs::path& dir) {
   }
   for (const auto& n : data.notes) h << "<p class=\"bad\">" << esc(n) << "</p>\n";
   h << "<p>Written by brickyard-report from " << esc(recording.string()) << " (docs/report.md).</p>\n</body></html>\n";
-  // Whole or not at all: a full disk leaves the old report, never half of a new one (issue 20).
+  // Whole or not at all: a full disk leaves the old report, never half of a new one.
   brickyard::io::write_whole_file((dir / "report.html").string(), h.str());
   std::printf("%s: %zu figures\n", (dir / "report.html").string().c_str(), figs.size());
   return 0;

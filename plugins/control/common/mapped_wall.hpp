@@ -1,5 +1,5 @@
 #pragma once
-// The wall's shape ahead from the map (issue 16, wall following on road courses), framework-free.
+// The wall's shape ahead from the map (wall following on road courses), framework-free.
 //
 // A LiDAR wall fit is a polynomial y(x) over the 20 m it sees well: it cannot bend through a
 // hairpin (a wall that turns 90° within view is no function of x) and it does not see the corner

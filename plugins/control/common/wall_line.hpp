@@ -1,5 +1,5 @@
 #pragma once
-// Wall following on road courses (issue 16), framework-free: the line a gap inward of a fitted
+// Wall following on road courses, framework-free: the line a gap inward of a fitted
 // wall, as a path in the vehicle frame that the car stack's path tracker (libs/control) follows.
 //
 // Why not the paper's law alone: u_w = w_θ y′(L) + w_d (d_w − d_gap) keeps 8 m from one wall with

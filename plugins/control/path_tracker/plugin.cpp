@@ -35,16 +35,28 @@ ParamBinding<Settings> bindings() {
   return b;
 }
 
+struct Ports {
+  Input<msgs::Path> path;
+  Input<msgs::LocalizationEstimate> estimate;
+  Output<msgs::ControlCommand> command;
+};
+
+PortBinding<Ports> ports() {
+  PortBinding<Ports> b;
+  b.input("path", &Ports::path).doc("the path to follow (the newest replaces the last)").depth(2);
+  b.input("estimate", &Ports::estimate).doc("where the car is: x, y, yaw, speed of base_link").depth(8).steps();
+  b.output("command", &Ports::command).doc("steer and pedals, source \"path_tracker\"");
+  return b;
+}
+
 class PathTrackerNode : public Plugin {
  public:
   static Manifest manifest() {
     return Manifest("control.path_tracker", "1.0.0")
         .describe("follows the path: pure pursuit or the single-track model's LQR; speed from the path, braking ahead of slower stretches")
-        .input<msgs::Path>("path", "the path to follow (the newest replaces the last)", true, 2)
-        .input<msgs::LocalizationEstimate>("estimate", "where the car is: x, y, yaw, speed of base_link", true, 8)
-        .output<msgs::ControlCommand>("command", "steer and pedals, source \"path_tracker\"")
-        .parameters(bindings())
-        .on_input("estimate");
+        .with_ports(ports())
+        .plays(roles::path_tracker)
+        .parameters(bindings());
   }
 
   void configure(Context& ctx) override {
@@ -53,13 +65,11 @@ class PathTrackerNode : public Plugin {
     control::apply_vehicle(tp, plugins::read_vehicle(ctx, s.vehicle));
     if (s.max_steer) tp.max_steer = *s.max_steer;
     tracker_ = PathTracker(tp);
-    path_ = ctx.input<msgs::Path>("path");
-    estimate_ = ctx.input<msgs::LocalizationEstimate>("estimate");
-    out_ = ctx.output<msgs::ControlCommand>("command");
+    io_ = ports().connect(ctx);
   }
 
   void step(Context& ctx) override {
-    auto paths = path_.take();
+    auto paths = io_.path.take();
     if (!paths.empty()) {
       const msgs::Path& m = *paths.back();
       std::vector<PathPoint> pts;
@@ -69,9 +79,9 @@ class PathTrackerNode : public Plugin {
       tracker_.set_path(std::move(pts));
       ++paths_;
     }
-    for (auto& e : estimate_.take()) {
+    for (auto& e : io_.estimate.take()) {
       const Command c = tracker_.control(CarState{e->x(), e->y(), e->yaw(), e->speed(), e->yaw_rate(), 0.0});
-      out_.publish(command_message(c, "path_tracker", e->header().stamp_ns(), seq_++));
+      io_.command.publish(command_message(c, "path_tracker", e->header().stamp_ns(), seq_++));
       cte_max_ = std::max(cte_max_, std::abs(tracker_.cross_track()));
     }
   }
@@ -84,9 +94,7 @@ class PathTrackerNode : public Plugin {
 
  private:
   PathTracker tracker_;
-  Input<msgs::Path> path_;
-  Input<msgs::LocalizationEstimate> estimate_;
-  Output<msgs::ControlCommand> out_;
+  Ports io_;
   std::uint32_t seq_ = 0;
   std::uint64_t paths_ = 0;
   double cte_max_ = 0;

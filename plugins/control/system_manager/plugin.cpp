@@ -48,18 +48,33 @@ ParamBinding<Settings> bindings() {
   return b;
 }
 
+struct Ports {
+  Input<msgs::ModeStatus> localization;
+  Input<msgs::WallEstimate> wall;
+  Input<msgs::ControlCommand> path_command, wall_command;
+  Output<msgs::ControlCommand> command;
+  Output<msgs::ModeStatus> mode;
+};
+
+PortBinding<Ports> ports() {
+  PortBinding<Ports> b;
+  b.input("localization", &Ports::localization).doc("the localization manager's status (the estimator's mode output)");
+  b.input("wall", &Ports::wall).doc("the wall detector's estimate: is there a wall to follow").depth(8);
+  b.input("path_command", &Ports::path_command).doc("the path tracker's command").depth(8);
+  b.input("wall_command", &Ports::wall_command).doc("the wall follower's command").depth(8);
+  b.output("command", &Ports::command).doc("to the car");
+  b.output("mode", &Ports::mode).doc("PATH / WALL_FOLLOW / SAFE_STOP, on change and every step");
+  return b;
+}
+
 class SystemManagerNode : public Plugin {
  public:
   static Manifest manifest() {
     return Manifest("control.system_manager", "1.0.0")
         .describe("localization EMERGENCY hands steering to the wall follower; back to the path tracker once NORMAL has held; "
                   "a safe stop when the wall is lost too")
-        .input<msgs::ModeStatus>("localization", "the localization manager's status (the estimator's mode output)", true, 16)
-        .input<msgs::WallEstimate>("wall", "the wall detector's estimate: is there a wall to follow", true, 8)
-        .input<msgs::ControlCommand>("path_command", "the path tracker's command", true, 8)
-        .input<msgs::ControlCommand>("wall_command", "the wall follower's command", true, 8)
-        .output<msgs::ControlCommand>("command", "to the car")
-        .output<msgs::ModeStatus>("mode", "PATH / WALL_FOLLOW / SAFE_STOP, on change and every step")
+        .with_ports(ports())
+        .plays(roles::system_manager)
         .parameters(bindings())
         .periodic("rate_hz")
         .step_deadline("step_deadline_s");
@@ -67,23 +82,19 @@ class SystemManagerNode : public Plugin {
 
   void configure(Context& ctx) override {
     manager_ = SystemManager(bindings().read(ctx.params()).manager);
-    loc_ = ctx.input<msgs::ModeStatus>("localization");
-    wall_ = ctx.input<msgs::WallEstimate>("wall");
-    path_cmd_ = ctx.input<msgs::ControlCommand>("path_command");
-    wall_cmd_ = ctx.input<msgs::ControlCommand>("wall_command");
-    out_ = ctx.output<msgs::ControlCommand>("command");
-    mode_out_ = ctx.output<msgs::ModeStatus>("mode");
+    io_ = ports().connect(ctx);
   }
 
   void step(Context& ctx) override {
     const double t = ctx.now_s();
-    for (auto& s : loc_.take()) manager_.status(stamp(s->header().stamp_ns()), static_cast<LocStatus>(std::min<int>(s->mode(), 2)));
-    for (auto& w : wall_.take()) manager_.wall(stamp(w->header().stamp_ns()), w->valid());
-    for (auto& c : path_cmd_.take()) {
+    for (auto& s : io_.localization.take())
+      manager_.status(stamp(s->header().stamp_ns()), static_cast<LocStatus>(std::min<int>(s->mode(), 2)));
+    for (auto& w : io_.wall.take()) manager_.wall(stamp(w->header().stamp_ns()), w->valid());
+    for (auto& c : io_.path_command.take()) {
       last_path_ = c;
       manager_.path_command(stamp(c->header().stamp_ns()));
     }
-    for (auto& c : wall_cmd_.take()) {
+    for (auto& c : io_.wall_command.take()) {
       last_wall_ = c;
       manager_.wall_command(stamp(c->header().stamp_ns()));
     }
@@ -130,7 +141,7 @@ class SystemManagerNode : public Plugin {
     c.header().stamp_ns(ctx.now_ns());
     c.header().seq(seq_);
     c.source(manager_.mode() == Mode::path ? "path_tracker" : manager_.mode() == Mode::wall ? "wall_follower" : "safe_stop");
-    out_.publish(std::move(c));
+    io_.command.publish(std::move(c));
     msgs::ModeStatus m;
     m.header().stamp_ns(ctx.now_ns());
     m.header().seq(seq_++);
@@ -138,7 +149,7 @@ class SystemManagerNode : public Plugin {
     m.mode_name(mode_name(manager_.mode()));
     m.reason(reason_);
     m.active_controller(manager_.mode() == Mode::path ? "path_tracker" : manager_.mode() == Mode::wall ? "wall_follower" : "safe_stop");
-    mode_out_.publish(std::move(m));
+    io_.mode.publish(std::move(m));
   }
 
   void deactivate(Context& ctx) override {
@@ -153,11 +164,7 @@ class SystemManagerNode : public Plugin {
  private:
   static double stamp(std::int64_t ns) { return static_cast<double>(ns) * 1e-9; }
   SystemManager manager_;
-  Input<msgs::ModeStatus> loc_;
-  Input<msgs::WallEstimate> wall_;
-  Input<msgs::ControlCommand> path_cmd_, wall_cmd_;
-  Output<msgs::ControlCommand> out_;
-  Output<msgs::ModeStatus> mode_out_;
+  Ports io_;
   std::shared_ptr<const msgs::ControlCommand> last_path_, last_wall_;
   std::map<std::string, std::uint64_t> into_;
   std::map<std::string, double> time_in_;

@@ -80,28 +80,52 @@ ParamBinding<Settings> bindings() {
   return b;
 }
 
+struct Ports {
+  Input<msgs::WallEstimate> wall, wall_left, wall_right;
+  Input<msgs::WheelSpeeds> wheels;
+  Input<msgs::Imu> imu;
+  Input<msgs::ModeStatus> mode;
+  Input<msgs::TrackMap> map;
+  Input<msgs::LocalizationEstimate> estimate;
+  Input<msgs::Path> path;
+  Output<msgs::ControlCommand> command;
+  Output<msgs::WallEstimate> followed;
+};
+
+PortBinding<Ports> ports() {
+  PortBinding<Ports> b;
+  b.input("wall", &Ports::wall)
+      .doc("the wall detector's estimate of the wall on 'side' (law paper: required)").optional().depth(4).steps();
+  b.input("wall_left", &Ports::wall_left).doc("offset_line: the left wall's estimate").optional().depth(4).steps();
+  b.input("wall_right", &Ports::wall_right).doc("offset_line: the right wall's estimate").optional().depth(4).steps();
+  b.input("wheels", &Ports::wheels).doc("speed, independent of GNSS");
+  b.input("imu", &Ports::imu).doc("offset_line: the yaw rate that carries the car along the line between wall frames (optional)")
+      .optional().depth(32).steps();
+  b.input("mode", &Ports::mode).doc("the system manager's mode: taking over starts the speed policy (optional)")
+      .optional().depth(8);
+  b.input("map", &Ports::map).doc("offset_line: the track, whose edge on the wall's side gives the wall's shape ahead (optional)")
+      .optional().depth(1);
+  b.input("estimate", &Ports::estimate)
+      .doc("offset_line with a map: the pose that places the map's edge round the car (optional)")
+      .optional().depth(8);
+  b.input("path", &Ports::path)
+      .doc("offset_line with a map: the planner's path; where the wall and the map agree, the car follows it, "
+           "placed by the wall (optional)")
+      .optional().depth(2);
+  b.output("command", &Ports::command).doc("steer and pedals, source \"wall_follower\"");
+  b.output("followed", &Ports::followed)
+      .doc("offset_line: the wall followed, every wall frame (valid while there is a line to follow, a held one included)");
+  return b;
+}
+
 class WallFollowerNode : public Plugin {
  public:
   static Manifest manifest() {
     return Manifest("control.wall_follower", "1.0.0")
         .describe("the paper's wall-following command u_w = w_theta y'(L) + w_d (d_w - d_gap), holding or reducing speed")
-        .input<msgs::WallEstimate>("wall", "the wall detector's estimate of the wall on 'side' (law paper: required)", false, 4)
-        .input<msgs::WallEstimate>("wall_left", "offset_line: the left wall's estimate", false, 4)
-        .input<msgs::WallEstimate>("wall_right", "offset_line: the right wall's estimate", false, 4)
-        .input<msgs::WheelSpeeds>("wheels", "speed, independent of GNSS", true, 16)
-        .input<msgs::Imu>("imu", "offset_line: the yaw rate that carries the car along the line between wall frames (optional)", false, 32)
-        .input<msgs::ModeStatus>("mode", "the system manager's mode: taking over starts the speed policy (optional)", false, 8)
-        .input<msgs::TrackMap>("map", "offset_line: the track, whose edge on the wall's side gives the wall's shape ahead (optional)", false, 1)
-        .input<msgs::LocalizationEstimate>("estimate", "offset_line with a map: the pose that places the map's edge round the car (optional)", false, 8)
-        .input<msgs::Path>("path", "offset_line with a map: the planner's path; where the wall and the map agree, the car follows it, "
-                           "placed by the wall (optional)", false, 2)
-        .output<msgs::ControlCommand>("command", "steer and pedals, source \"wall_follower\"")
-        .output<msgs::WallEstimate>("followed", "offset_line: the wall followed, every wall frame (valid while there is a line to follow, a held one included)")
-        .parameters(bindings())
-        .on_input("wall")
-        .on_input("wall_left")
-        .on_input("wall_right")
-        .on_input("imu");
+        .with_ports(ports())
+        .plays(roles::fallback_controller)
+        .parameters(bindings());
   }
 
   void configure(Context& ctx) override {
@@ -111,17 +135,10 @@ class WallFollowerNode : public Plugin {
     law.max_steer = s.max_steer.value_or(car.max_steer);
     follower_ = WallFollower(law);
     line_mode_ = s.offset_line;
-    wall_ = ctx.input<msgs::WallEstimate>("wall");
-    sides_[0] = ctx.input<msgs::WallEstimate>("wall_left");
-    sides_[1] = ctx.input<msgs::WallEstimate>("wall_right");
-    imu_ = ctx.input<msgs::Imu>("imu");
-    map_ = ctx.input<msgs::TrackMap>("map");
-    estimate_ = ctx.input<msgs::LocalizationEstimate>("estimate");
-    path_ = ctx.input<msgs::Path>("path");
-    followed_ = ctx.output<msgs::WallEstimate>("followed");
-    if (!line_mode_ && !wall_.connected())
+    io_ = ports().connect(ctx);
+    if (!line_mode_ && !io_.wall.connected())
       throw BadInput("law paper follows the wall wired to input 'wall', which is not wired");
-    if (line_mode_ && !wall_.connected() && !sides_[0].connected() && !sides_[1].connected())
+    if (line_mode_ && !io_.wall.connected() && !io_.wall_left.connected() && !io_.wall_right.connected())
       throw BadInput("law offset_line needs a wall: wire 'wall_left', 'wall_right' or 'wall'");
     if (line_mode_) {
       TrackerParams tp;
@@ -138,15 +155,12 @@ class WallFollowerNode : public Plugin {
       line_ = WallLineFollower(line, law, tp);
       line_params_ = line;
     }
-    wheels_ = ctx.input<msgs::WheelSpeeds>("wheels");
-    mode_ = ctx.input<msgs::ModeStatus>("mode");
-    out_ = ctx.output<msgs::ControlCommand>("command");
   }
 
   void step(Context& ctx) override {
-    for (auto& w : wheels_.take()) speed_ = 0.5 * (w->rear_left() + w->rear_right());
+    for (auto& w : io_.wheels.take()) speed_ = 0.5 * (w->rear_left() + w->rear_right());
     const double t = ctx.now_s();
-    for (auto& m : mode_.take()) {
+    for (auto& m : io_.mode.take()) {
       path_mode_ = m->active_controller() == "path_tracker";
       const bool active = m->active_controller() == "wall_follower";
       if (active && !active_) {
@@ -157,16 +171,16 @@ class WallFollowerNode : public Plugin {
       active_ = active;
     }
     if (line_mode_) return step_line(ctx, t);
-    for (auto& w : wall_.take()) {
-      if (!mode_.connected() && !engaged_) {  // no manager to say when: from the first estimate
+    for (auto& w : io_.wall.take()) {
+      if (!io_.mode.connected() && !engaged_) {  // no manager to say when: from the first estimate
         follower_.engage(t, speed_);
         ++engaged_;
       }
       // Not driving yet: the speed policy starts from now, so the command the manager forwards at
       // the handover holds the car's speed instead of braking for a stale target.
-      if (mode_.connected() && !active_) follower_.engage(t, speed_);
+      if (io_.mode.connected() && !active_) follower_.engage(t, speed_);
       const Command c = follower_.control(t, seen(*w), speed_);
-      out_.publish(command_message(c, "wall_follower", w->header().stamp_ns(), seq_++));
+      io_.command.publish(command_message(c, "wall_follower", w->header().stamp_ns(), seq_++));
       invalid_ += !w->valid();
     }
   }
@@ -192,7 +206,7 @@ class WallFollowerNode : public Plugin {
 
   // law offset_line: the newest estimate of each side; the IMU carries the car between frames.
   void step_line(Context& ctx, double t) {
-    for (auto& m : map_.take()) {
+    for (auto& m : io_.map.take()) {
       // The map source republishes the same map every second: a track is built again only for
       // another one.
       if (track_) {
@@ -206,13 +220,13 @@ class WallFollowerNode : public Plugin {
         ctx.log(LogLevel::warn, std::string("map ignored: ") + e.what());
       }
     }
-    for (auto& e : estimate_.take()) {
+    for (auto& e : io_.estimate.take()) {
       pose_ = e;
       poses_.push_back(e);
       if (poses_.size() > kHistory) poses_.pop_front();
     }
-    for (auto& p : path_.take()) planned_path_ = p;
-    for (auto& m : imu_.take()) {
+    for (auto& p : io_.path.take()) planned_path_ = p;
+    for (auto& m : io_.imu.take()) {
       const double ts = static_cast<double>(m->header().stamp_ns()) * 1e-9;
       if (imu_t_ >= 0 && ts > imu_t_) {
         line_.moved(ts - imu_t_, speed_, m->gyro_z());
@@ -225,7 +239,8 @@ class WallFollowerNode : public Plugin {
     std::int64_t stamp = 0;
     const int single = follower_.params().side > 0 ? 0 : 1;  // where 'wall' stands in
     for (int i = 0; i < 2; ++i) {
-      auto& in = sides_[i].connected() ? sides_[i] : (i == single ? wall_ : sides_[i]);
+      auto& side = i == 0 ? io_.wall_left : io_.wall_right;
+      auto& in = side.connected() ? side : (i == single ? io_.wall : side);
       for (auto& w : in.take()) {
         last_[i] = seen(*w);
         last_[i].valid = last_[i].valid && std::isfinite(w->distance());
@@ -257,7 +272,7 @@ class WallFollowerNode : public Plugin {
       // The car's place along the map, and whether localization is good (the manager drives the
       // path): the follower learns there where the walls stand from the edges.
       const double s_car = mapped ? track_->project(pose->x(), pose->y(), hint_).s : 0.0;
-      const bool calibrating = mapped && mode_.connected() && !active_ && path_mode_;
+      const bool calibrating = mapped && io_.mode.connected() && !active_ && path_mode_;
       line_.walls(t, last_[0], last_[1], mapped ? &edges[0] : nullptr, mapped ? &edges[1] : nullptr,
                   planned.size() >= 2 ? &planned : nullptr, s_car, calibrating);
       motion_.since(static_cast<double>(stamp) * 1e-9, [&](double dt, double v, double w) { line_.moved(dt, v, w); });
@@ -272,17 +287,17 @@ class WallFollowerNode : public Plugin {
       if (line_.side() != 0) f.coefficients(last_[line_.side() > 0 ? 0 : 1].coefficients);
       f.distance(line_.side() == 0 ? NAN : line_.side() * line_.gap());
       f.valid(line);
-      followed_.publish(std::move(f));
+      io_.followed.publish(std::move(f));
     }
     // Drive at the IMU's rate while taking part, at the walls' otherwise.
-    if (fresh || (imu_t_ >= 0 && (active_ || !mode_.connected()))) {
-      if (!mode_.connected() && !engaged_) {
+    if (fresh || (imu_t_ >= 0 && (active_ || !io_.mode.connected()))) {
+      if (!io_.mode.connected() && !engaged_) {
         line_.engage(t, speed_);
         ++engaged_;
       }
-      if (mode_.connected() && !active_) line_.engage(t, speed_);
+      if (io_.mode.connected() && !active_) line_.engage(t, speed_);
       const Command c = line_.control(t, speed_, yaw_rate_);
-      out_.publish(command_message(c, "wall_follower", ctx.now_ns(), seq_++));
+      io_.command.publish(command_message(c, "wall_follower", ctx.now_ns(), seq_++));
     }
   }
 
@@ -300,24 +315,15 @@ class WallFollowerNode : public Plugin {
   WallFollower follower_;
   WallLineFollower line_;
   bool line_mode_ = false;
-  Input<msgs::WallEstimate> sides_[2];  // left, right
-  Input<msgs::Imu> imu_;
-  Input<msgs::TrackMap> map_;
-  Input<msgs::LocalizationEstimate> estimate_;
   std::unique_ptr<track::Track> track_;
   std::shared_ptr<const msgs::LocalizationEstimate> pose_;
-  Input<msgs::Path> path_;
   std::shared_ptr<const msgs::Path> planned_path_;
   WallLineParams line_params_;
   int hint_ = -1;
-  Output<msgs::WallEstimate> followed_;
   WallView last_[2];
   double imu_t_ = -1, yaw_rate_ = 0;
   std::uint64_t frames_[2] = {0, 0}, held_ = 0;
-  Input<msgs::WallEstimate> wall_;
-  Input<msgs::WheelSpeeds> wheels_;
-  Input<msgs::ModeStatus> mode_;
-  Output<msgs::ControlCommand> out_;
+  Ports io_;
   double speed_ = 0;
   bool active_ = false;
   bool path_mode_ = false;  // the manager drives the path: localization is good

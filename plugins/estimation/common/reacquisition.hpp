@@ -1,5 +1,5 @@
 #pragma once
-// Coming back after a long outage (issue 16): when dead reckoning has drifted past δ, the
+// Coming back after a long outage: when dead reckoning has drifted past δ, the
 // resilient selection rejects every fix, healthy or not, for good. The rule that ends it: the
 // receivers agree with each other (their base_link positions within `agree_m`) and with the
 // motion model over `window_s` of consecutive rejected epochs: the path the fixes trace is the

@@ -15,6 +15,7 @@
 #include "vehicle_param.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -27,14 +28,27 @@ using namespace brickyard::estimation;
 
 template <class T> double stamp_s(const T& m) { return static_cast<double>(m.header().stamp_ns()) * 1e-9; }
 
-Manifest common_ports(Manifest m) {
-  return m.input<msgs::Imu>("imu", "IMU: the yaw rate drives the prediction", true, 256)
-      .input<msgs::WheelSpeeds>("wheels", "wheel speeds: the rear axle's speed drives the prediction", true, 256)
-      .input<msgs::GnssFix>("gnss0", "fixes of the first receiver", true, 64)
-      .input<msgs::GnssFix>("gnss1", "fixes of the second receiver (optional)", false, 64)
-      .input<msgs::LocalizationEstimate>("scan_pose", "a second estimate of the pose (the scan mapper's), taken while GNSS is degraded (optional)", false, 16)
-      .output<msgs::LocalizationEstimate>("estimate", "pose, covariance, the update case, delta per receiver, status")
-      .output<msgs::ModeStatus>("mode", "the localization manager's status, on change and at 10 Hz");
+// One binding for the three estimators: their ports are the same.
+struct Ports {
+  Input<msgs::Imu> imu;
+  Input<msgs::WheelSpeeds> wheels;
+  std::array<Input<msgs::GnssFix>, 2> gnss;
+  Input<msgs::LocalizationEstimate> scan_pose;
+  Output<msgs::LocalizationEstimate> estimate;
+  Output<msgs::ModeStatus> mode;
+};
+
+PortBinding<Ports> ports() {
+  PortBinding<Ports> b;
+  b.input("imu", &Ports::imu).doc("IMU: the yaw rate drives the prediction").depth(256).steps();
+  b.input("wheels", &Ports::wheels).doc("wheel speeds: the rear axle's speed drives the prediction").depth(256);
+  b.inputs("gnss", &Ports::gnss).doc("fixes of one receiver each: gnss0 the first, gnss1 the second (optional)")
+      .required_first(1).depth(64);
+  b.input("scan_pose", &Ports::scan_pose)
+      .doc("a second estimate of the pose (the scan mapper's), taken while GNSS is degraded (optional)").optional();
+  b.output("estimate", &Ports::estimate).doc("pose, covariance, the update case, delta per receiver, status");
+  b.output("mode", &Ports::mode).doc("the localization manager's status, on change and at 10 Hz");
+  return b;
 }
 
 // What the graph says: the car's file and where on it the antennas sit, and the filter's own
@@ -112,19 +126,23 @@ template <Policy P> class Estimator : public Plugin {
  public:
   static Manifest manifest() {
     if constexpr (P == Policy::resilient)
-      return common_ports(Manifest("estimation.resilient_fusion", "1.0.0")
-                              .describe("multi-GNSS Kalman filter with the paper's Bayesian update selection (eps, delta) and the localization manager"))
-          .parameters(bindings<P>())
-          .on_input("imu");
+      return Manifest("estimation.resilient_fusion", "1.0.0")
+          .describe("multi-GNSS Kalman filter with the paper's Bayesian update selection (eps, delta) and the localization manager")
+          .with_ports(ports())
+          .plays(roles::estimator)
+          .parameters(bindings<P>());
     else if constexpr (P == Policy::gated)
-      return common_ports(Manifest("estimation.ekf_gated", "1.0.0")
-                              .describe("baseline: the same filter with a per-receiver chi-square gate (robot_localization style)"))
-          .parameters(bindings<P>())
-          .on_input("imu");
+      return Manifest("estimation.ekf_gated", "1.0.0")
+          .describe("baseline: the same filter with a per-receiver chi-square gate (robot_localization style)")
+          .with_ports(ports())
+          .plays(roles::estimator)
+          .parameters(bindings<P>());
     else
-      return common_ports(Manifest("estimation.ekf_naive", "1.0.0").describe("baseline: the same filter fusing every fix"))
-          .parameters(bindings<P>())
-          .on_input("imu");
+      return Manifest("estimation.ekf_naive", "1.0.0")
+          .describe("baseline: the same filter fusing every fix")
+          .with_ports(ports())
+          .plays(roles::estimator)
+          .parameters(bindings<P>());
   }
 
   void configure(Context& ctx) override {
@@ -139,28 +157,22 @@ template <Policy P> class Estimator : public Plugin {
     }
     epsilon_ = lp.selection.epsilon;
     delta_ = lp.selection.delta;
-    imu_ = ctx.input<msgs::Imu>("imu");
-    wheels_ = ctx.input<msgs::WheelSpeeds>("wheels");
-    gnss_[0] = ctx.input<msgs::GnssFix>("gnss0");
-    gnss_[1] = ctx.input<msgs::GnssFix>("gnss1");
-    scan_ = ctx.input<msgs::LocalizationEstimate>("scan_pose");
-    receivers_ = gnss_[1].connected() ? 2 : 1;
+    io_ = ports().connect(ctx);
+    receivers_ = io_.gnss[1].connected() ? 2 : 1;
     // On the sim clock a step sees every fix stamped up to now: an epoch is whole within a step.
     if (!ctx.sim_clock() && receivers_ == 2) gather_.emplace(receivers_, set.epoch_pair_s, set.epoch_wait_s);
     lp.manager.receivers = receivers_;
     loc_.emplace(lp);
     for (int r = 0; r < 2; ++r) lever_[r] = lp.lever[r];
-    estimate_ = ctx.output<msgs::LocalizationEstimate>("estimate");
-    mode_ = ctx.output<msgs::ModeStatus>("mode");
   }
 
   void step(Context& ctx) override {
     // Events in time order: IMU samples and epochs of fixes (one stamp each).
     std::multimap<double, Event> events;
-    for (auto& m : imu_.take()) events.emplace(stamp_s(*m), Event{m, {}});
+    for (auto& m : io_.imu.take()) events.emplace(stamp_s(*m), Event{m, {}});
     for (int r = 0; r < receivers_; ++r)
-      for (auto& f : gnss_[r].take()) events.emplace(stamp_s(*f), Event{nullptr, f});
-    for (auto& w : wheels_.take()) loc_->speed(0.5 * (w->rear_left() + w->rear_right()));
+      for (auto& f : io_.gnss[r].take()) events.emplace(stamp_s(*f), Event{nullptr, f});
+    for (auto& w : io_.wheels.take()) loc_->speed(0.5 * (w->rear_left() + w->rear_right()));
     auto fix_of = [&](const msgs::GnssFix& m) {
       Fix f;
       f.receiver = m.receiver_id() < 2 && receivers_ == 2 ? m.receiver_id() : 0;
@@ -196,7 +208,7 @@ template <Policy P> class Estimator : public Plugin {
       for (auto& e : gather_->release(latest)) loc_->fixes(e.t, e.fixes);
     // The scan mapper's poses, each of a LiDAR frame a sweep and a registration ago: only those
     // it registered (update case 2), moved to now by dead reckoning's motion since.
-    for (auto& s : scan_.take()) {
+    for (auto& s : io_.scan_pose.take()) {
       if (s->update_case() != 2) continue;
       Eigen::Matrix2d cov;
       cov << s->covariance()[0], s->covariance()[1], s->covariance()[3], s->covariance()[4];
@@ -219,7 +231,7 @@ template <Policy P> class Estimator : public Plugin {
     ctx.metric("time_warning_s", time_in_[1]);
     ctx.metric("time_emergency_s", time_in_[2]);
     if constexpr (P == Policy::resilient) ctx.metric("reacquisitions", static_cast<double>(loc_->reacquisitions()));
-    if (scan_.connected()) {
+    if (io_.scan_pose.connected()) {
       ctx.metric("scan_updates", static_cast<double>(loc_->scan_updates()));
       ctx.metric("scan_refused", static_cast<double>(loc_->scan_refused()));
     }
@@ -249,7 +261,7 @@ template <Policy P> class Estimator : public Plugin {
       m.mode_name(status_name(s));
       if (s != last_status_ || mode_seq_ == 1) ctx.status("localization", status_name(s));
       m.reason(filter.initialized() ? loc_->manager().reason() : "initializing: waiting for the car to move");
-      mode_.publish(std::move(m));
+      io_.mode.publish(std::move(m));
       last_mode_ = now;
       last_status_ = s;
     }
@@ -271,7 +283,7 @@ template <Policy P> class Estimator : public Plugin {
     e.update_case(static_cast<std::uint8_t>(which));
     e.delta(delta);
     e.status(static_cast<std::uint8_t>(s));
-    estimate_.publish(std::move(e));
+    io_.estimate.publish(std::move(e));
   }
 
   std::optional<Localizer> loc_;
@@ -282,12 +294,7 @@ template <Policy P> class Estimator : public Plugin {
   Status last_status_ = Status::normal;
   double epsilon_ = 0, delta_ = 0;
   std::uint32_t seq_ = 0, mode_seq_ = 0;
-  Input<msgs::Imu> imu_;
-  Input<msgs::WheelSpeeds> wheels_;
-  Input<msgs::GnssFix> gnss_[2];
-  Input<msgs::LocalizationEstimate> scan_;
-  Output<msgs::LocalizationEstimate> estimate_;
-  Output<msgs::ModeStatus> mode_;
+  Ports io_;
 };
 
 using ResilientFusion = Estimator<Policy::resilient>;

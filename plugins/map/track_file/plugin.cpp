@@ -9,6 +9,7 @@
 #include "map_msg.hpp"
 #include "track/banking.hpp"
 #include "track/centre_line.hpp"
+#include "track/narrow_place.hpp"
 #include "track/track.hpp"
 #include "vehicle_param.hpp"
 
@@ -30,20 +31,41 @@ struct Settings {
   std::string vehicle = plugins::default_vehicle_file;
 };
 
-// The first place where the track is narrower than the car, as "s = X m: W m wide"; empty when
-// the car fits everywhere. A map the car cannot drive is bad input, refused before anything runs.
-std::string narrower_than(const track::CenterLine& c, double car_width) {
-  double s = 0;
-  for (std::size_t i = 0; i < c.x.size(); ++i) {
-    if (i > 0) s += std::hypot(c.x[i] - c.x[i - 1], c.y[i] - c.y[i - 1]);
-    const double w = c.width_left[i] + c.width_right[i];
-    if (w < car_width) {
-      char buf[96];
-      std::snprintf(buf, sizeof buf, "at s = %.1f m (point %zu) it is %.2f m wide", s, i + 1, w);
-      return buf;
-    }
+struct LoadedMap {
+  track::TrackGeometry geometry;
+  double length = 0;
+  std::string path;  // where the track file was found
+};
+
+// The map the parameters name, refused as configure would refuse it: the file read, the car fits
+// it, its banking and its geometry built. `find` finds a file a parameter names.
+template <class Find> LoadedMap load_map(const Settings& s, Find find) {
+  LoadedMap m;
+  m.path = find(s.track);
+  track::TrackGeometry& g = m.geometry;
+  try {
+    g.line = track::load_centerline_csv(m.path);
+  } catch (const track::TrackFileError& e) {
+    throw BadInput(std::string("track file ") + e.what());
   }
-  return {};
+  const vehicle::Vehicle car = plugins::read_vehicle_file(find(s.vehicle));
+  if (const std::string where = track::narrower_than(g.line, 2 * car.half_width); !where.empty()) {
+    char width[32];
+    std::snprintf(width, sizeof width, "%.2f", 2 * car.half_width);
+    throw BadInput("track file " + m.path + ": " + where + ", narrower than the car (" + width + " m, " + s.vehicle + ")");
+  }
+  g.name = s.name.empty() ? std::filesystem::path(m.path).stem().string() : s.name;
+  try {
+    g.bank = track::bank_profile(g.line, s.bank);
+  } catch (const std::invalid_argument& e) {
+    throw BadInput(std::string("parameter 'bank_mode': ") + e.what());
+  }
+  try {
+    m.length = track::Track(g).length();  // the geometry the readers will build: refused here, not downstream
+  } catch (const std::invalid_argument& e) {
+    throw BadInput("track file " + m.path + ": " + e.what());
+  }
+  return m;
 }
 
 ParamBinding<Settings> bindings() {
@@ -56,48 +78,43 @@ ParamBinding<Settings> bindings() {
   return b;
 }
 
+struct Ports {
+  Output<msgs::TrackMap> map;
+};
+
+PortBinding<Ports> ports() {
+  PortBinding<Ports> b;
+  b.output("map", &Ports::map).doc("the map, republished at rate_hz for late joiners");
+  return b;
+}
+
 class TrackFileMap : public Plugin {
  public:
   static Manifest manifest() {
     return Manifest("map.track_file", "1.0.0")
         .describe("the car's map of the track from a track file: centre line, widths and banking (no obstacles)")
-        .output<msgs::TrackMap>("map", "the map, republished at rate_hz for late joiners")
+        .with_ports(ports())
         .parameters(bindings())
-        .periodic("rate_hz");
+        .periodic("rate_hz")
+        .check(&check);
+  }
+
+  // At validation, every file the parameters name read and checked, as configure will.
+  static void check(const CheckView& v) {
+    load_map(bindings().read(v.params()), [&](const std::string& f) { return v.find_file(f); });
   }
 
   void configure(Context& ctx) override {
     const Settings s = bindings().read(ctx.params());
-    const std::string path = ctx.find_file(s.track);
-    track::TrackGeometry g;
-    try {
-      g.line = track::load_centerline_csv(path);
-    } catch (const track::TrackFileError& e) {
-      throw BadInput(std::string("track file ") + e.what());
-    }
+    const LoadedMap m = load_map(s, [&](const std::string& f) { return ctx.find_file(f); });
+    const track::TrackGeometry& g = m.geometry;
     for (const auto& note : g.line.notes) ctx.log(LogLevel::info, note);  // a bridge
-    const vehicle::Vehicle car = plugins::read_vehicle(ctx, s.vehicle);
-    if (const std::string where = narrower_than(g.line, 2 * car.half_width); !where.empty()) {
-      char width[32];
-      std::snprintf(width, sizeof width, "%.2f", 2 * car.half_width);
-      throw BadInput("track file " + path + ": " + where + ", narrower than the car (" + width + " m, " + s.vehicle + ")");
-    }
-    g.name = s.name.empty() ? std::filesystem::path(path).stem().string() : s.name;
-    try {
-      g.bank = track::bank_profile(g.line, s.bank);
-    } catch (const std::invalid_argument& e) {
-      throw BadInput(std::string("parameter 'bank_mode': ") + e.what());
-    }
-    try {
-      const track::Track t(g);  // the geometry the readers will build: refused here, not downstream
-      length_ = t.length();
-    } catch (const std::invalid_argument& e) {
-      throw BadInput("track file " + path + ": " + e.what());
-    }
+    length_ = m.length;
+    const std::string& path = m.path;
     points_ = g.line.x.size();
     msg_ = std::make_shared<msgs::TrackMap>(plugins::to_message(g));
     msg_->header().frame_id("map");
-    out_ = ctx.output<msgs::TrackMap>("map");
+    io_ = ports().connect(ctx);
     ctx.log(LogLevel::info, "map '" + g.name + "' from " + path + ": " + std::to_string(points_) + " points, " +
                                 std::to_string(length_) + " m");
   }
@@ -105,7 +122,7 @@ class TrackFileMap : public Plugin {
   void step(Context& ctx) override {
     // The map is static: the same object every time (readers in this process share it).
     if (published_ == 0) msg_->header().stamp_ns(ctx.now_ns());
-    out_.publish(std::shared_ptr<const msgs::TrackMap>(msg_));
+    io_.map.publish(std::shared_ptr<const msgs::TrackMap>(msg_));
     ++published_;
   }
 
@@ -116,7 +133,7 @@ class TrackFileMap : public Plugin {
 
  private:
   std::shared_ptr<msgs::TrackMap> msg_;
-  Output<msgs::TrackMap> out_;
+  Ports io_;
   std::uint64_t published_ = 0;
   double length_ = 0;
   std::size_t points_ = 0;

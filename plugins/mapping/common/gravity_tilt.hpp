@@ -1,5 +1,5 @@
 #pragma once
-// Gravity as the map's level (issue 17, docs/mapping.md "Gravity's level"). The roll and pitch
+// Gravity as the map's level (docs/mapping.md "Gravity's level"). The roll and pitch
 // the mapper takes from the ground (scan_mapper.hpp, level_on_ground) have no reference but the
 // map's first frames: the ground ahead joins the map on frames levelled on the ground behind, and
 // a small bias a frame adds up (IMS: the roll and the pitch about half a degree off within a lap,

@@ -16,6 +16,7 @@
 #include "math/planar_pose.hpp"
 #include "../../perception/messages.hpp"
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -80,6 +81,27 @@ ParamBinding<Settings> bindings() {
   return b;
 }
 
+struct Ports {
+  Input<msgs::PointCloud> points, ground;
+  Input<msgs::LocalizationEstimate> estimate;
+  std::array<Input<msgs::PointCloud>, kScans> scan;
+  Input<msgs::Imu> imu;
+  Output<msgs::LocalizationEstimate> pose;
+};
+
+PortBinding<Ports> ports() {
+  PortBinding<Ports> b;
+  b.input("points", &Ports::points).doc("the ground filter's vertical features, vehicle frame").depth(8);
+  b.input("ground", &Ports::ground).doc("the ground filter's ground, vehicle frame, the same frames").depth(8).steps();
+  b.input("estimate", &Ports::estimate).doc("the pose estimate (the fusion's), its covariance the prior").depth(64);
+  b.inputs("scan", &Ports::scan)
+      .doc("a LiDAR's raw returns with their intensities (sensor frame): the road surface").optional().depth(8);
+  b.input("imu", &Ports::imu).doc("the IMU (specific force, yaw rate): gravity, the map's level (with level_on_ground)")
+      .optional().depth(64);
+  b.output("pose", &Ports::pose).doc("the pose found, stamped with the frame; covariance over (x, y, yaw)");
+  return b;
+}
+
 using CloudPtr = std::shared_ptr<const msgs::PointCloud>;
 using EstimatePtr = std::shared_ptr<const msgs::LocalizationEstimate>;
 
@@ -89,17 +111,8 @@ class ScanMapperNode : public Plugin {
     return Manifest("mapping.scan_mapper", "1.0.0")
         .describe("each frame registered onto the map so far (voxelized GICP, the pose estimate as prior) and added to it; "
                   "the pose found published as a second estimate; the map written as a PCD file at the end")
-        .input<msgs::PointCloud>("points", "the ground filter's vertical features, vehicle frame", true, 8)
-        .input<msgs::PointCloud>("ground", "the ground filter's ground, vehicle frame, the same frames", true, 8)
-        .input<msgs::LocalizationEstimate>("estimate", "the pose estimate (the fusion's), its covariance the prior", true, 64)
-        .input<msgs::PointCloud>("scan0", "a LiDAR's raw returns with their intensities (sensor frame): the road surface", false, 8)
-        .input<msgs::PointCloud>("scan1", "another LiDAR's", false, 8)
-        .input<msgs::PointCloud>("scan2", "another LiDAR's", false, 8)
-        .input<msgs::PointCloud>("scan3", "another LiDAR's", false, 8)
-        .input<msgs::Imu>("imu", "the IMU (specific force, yaw rate): gravity, the map's level (with level_on_ground)", false, 64)
-        .output<msgs::LocalizationEstimate>("pose", "the pose found, stamped with the frame; covariance over (x, y, yaw)")
-        .parameters(bindings())
-        .on_input("ground");
+        .with_ports(ports())
+        .parameters(bindings());
   }
 
   void configure(Context& ctx) override {
@@ -111,11 +124,9 @@ class ScanMapperNode : public Plugin {
     writable("track_file", track_file_);
     surface_ = RoadSurface(s.surface);
     extraction_ = s.extraction;
+    io_ = ports().connect(ctx);
     bool any_scan = false;
-    for (int k = 0; k < kScans; ++k) {
-      scans_in_[k] = ctx.input<msgs::PointCloud>("scan" + std::to_string(k));
-      any_scan = any_scan || scans_in_[k].connected();
-    }
+    for (const auto& in : io_.scan) any_scan = any_scan || in.connected();
     // The track comes from the LiDARs' raw returns: without them a whole drive would end in "no
     // edge found"; said now.
     if (!track_file_.empty() && !any_scan)
@@ -124,31 +135,26 @@ class ScanMapperNode : public Plugin {
     level_on_ground_ = s.level_on_ground;
     tilt_ = GravityTilt(s.level_window);
     level_time_ = s.level_time;
-    imu_ = ctx.input<msgs::Imu>("imu");
-    points_ = ctx.input<msgs::PointCloud>("points");
-    ground_ = ctx.input<msgs::PointCloud>("ground");
-    estimate_ = ctx.input<msgs::LocalizationEstimate>("estimate");
-    out_ = ctx.output<msgs::LocalizationEstimate>("pose");
   }
 
   void step(Context& ctx) override {
-    for (auto& e : estimate_.take()) {
+    for (auto& e : io_.estimate.take()) {
       estimates_.push_back(e);
       if (estimates_.size() > 256) estimates_.pop_front();
     }
-    for (auto& m : imu_.take())
+    for (auto& m : io_.imu.take())
       if (!estimates_.empty())  // with the newest estimate's speed (both come at 125 Hz)
         tilt_.add_imu(m->header().stamp_ns(), m->accel_x(), m->accel_y(), m->gyro_z(), estimates_.back()->speed());
-    for (auto& p : points_.take()) {
+    for (auto& p : io_.points.take()) {
       features_.push_back(p);
       if (features_.size() > 8) features_.pop_front();
     }
-    for (auto& in : scans_in_)
+    for (auto& in : io_.scan)
       for (auto& c : in.take()) {
         scans_.push_back(c);
         if (scans_.size() > 4 * kScans) scans_.pop_front();
       }
-    for (auto& g : ground_.take()) frame(ctx, *g);
+    for (auto& g : io_.ground.take()) frame(ctx, *g);
   }
 
   void deactivate(Context& ctx) override {
@@ -259,7 +265,7 @@ class ScanMapperNode : public Plugin {
     const Points ground_pts(pts.begin(), pts.begin() + static_cast<long>(n_ground));
     // Gravity's level: a part of the attitude's drift turned out each frame (GravityTilt).
     Tilt tilt;
-    if (level_on_ground_ && imu_.connected() && tilt_.correction(stamp, level_time_, tilt)) ++levelled_;
+    if (level_on_ground_ && io_.imu.connected() && tilt_.correction(stamp, level_time_, tilt)) ++levelled_;
     const ScanResult r = mapper_.add(pts, guess, planar_information(cov), level_on_ground_ ? &ground_pts : nullptr, tilt,
                                      est->status() == 0);  // NORMAL: its GNSS's
     if (r.registered) {
@@ -288,7 +294,7 @@ class ScanMapperNode : public Plugin {
       for (int b = 0; b < 3; ++b) m.covariance()[3 * a + b] = pc(a, b);
     m.update_case(r.registered ? 2 : 0);
     m.status(est->status());
-    out_.publish(std::move(m));
+    io_.pose.publish(std::move(m));
   }
 
   ScanMapper mapper_;
@@ -297,17 +303,13 @@ class ScanMapperNode : public Plugin {
   TrackExtractionParams extraction_;
   std::vector<Eigen::Vector2d> driven_;
   std::vector<double> driven_roll_;
-  Input<msgs::PointCloud> scans_in_[kScans];
   std::deque<CloudPtr> scans_;
   std::int64_t max_age_ns_ = 0;
   bool level_on_ground_ = true;
   GravityTilt tilt_;
   double level_time_ = 5.0;
   std::uint64_t levelled_ = 0;
-  Input<msgs::Imu> imu_;
-  Input<msgs::PointCloud> points_, ground_;
-  Input<msgs::LocalizationEstimate> estimate_;
-  Output<msgs::LocalizationEstimate> out_;
+  Ports io_;
   std::deque<EstimatePtr> estimates_;
   std::deque<CloudPtr> features_;
   double roll_ = 0, pitch_ = 0, z_ = 0;

@@ -36,35 +36,42 @@ ParamBinding<Settings> bindings() {
   return b;
 }
 
+struct Ports {
+  std::array<Input<msgs::PointCloud>, 3> lidar;
+  Output<msgs::PointCloud> points, ground;
+};
+
+PortBinding<Ports> ports() {
+  PortBinding<Ports> b;
+  b.inputs("lidar", &Ports::lidar)
+      .doc("a LiDAR's cloud (sensor frame, its pose in the message); lidar1 and lidar2 optional")
+      .required_first(1)
+      .depth(4)
+      .steps();
+  b.output("points", &Ports::points).doc("vertical features: the non-ground voxel centroids, vehicle frame");
+  b.output("ground", &Ports::ground).doc("the ground voxel centroids, vehicle frame");
+  return b;
+}
+
 class GroundFilterNode : public Plugin {
  public:
   static Manifest manifest() {
     return Manifest("perception.ground_filter", "1.0.0")
         .describe("merges up to 3 LiDARs into the vehicle frame, voxel filter, then the paper's hashed z-vote: "
                   "cells of few voxels or little height are ground (no slope limit: holds on banked turns)")
-        .input<msgs::PointCloud>("lidar0", "a LiDAR's cloud (sensor frame, its pose in the message)", true, 4)
-        .input<msgs::PointCloud>("lidar1", "a second LiDAR (optional)", false, 4)
-        .input<msgs::PointCloud>("lidar2", "a third LiDAR (optional)", false, 4)
-        .output<msgs::PointCloud>("points", "vertical features: the non-ground voxel centroids, vehicle frame")
-        .output<msgs::PointCloud>("ground", "the ground voxel centroids, vehicle frame")
-        .parameters(bindings())
-        .on_input("lidar0")
-        .on_input("lidar1")
-        .on_input("lidar2");
+        .with_ports(ports())
+        .parameters(bindings());
   }
 
   void configure(Context& ctx) override {
     const Settings s = bindings().read(ctx.params());
     const GroundParams& g = s.filter;
     filter_ = GroundFilter(g);
+    io_ = ports().connect(ctx);
     int sensors = 0;
-    for (int i = 0; i < 3; ++i) {
-      in_[i] = ctx.input<msgs::PointCloud>("lidar" + std::to_string(i));
-      if (in_[i].connected()) slot_[i] = sensors++;
-    }
+    for (int i = 0; i < 3; ++i)
+      if (io_.lidar[i].connected()) slot_[i] = sensors++;
     sets_.emplace(sensors, static_cast<std::int64_t>(s.sync_window_s * 1e9));
-    points_ = ctx.output<msgs::PointCloud>("points");
-    ground_ = ctx.output<msgs::PointCloud>("ground");
   }
 
   void step(Context& ctx) override {
@@ -72,7 +79,7 @@ class GroundFilterNode : public Plugin {
     std::vector<std::tuple<std::int64_t, int, CloudPtr>> arrived;
     for (int i = 0; i < 3; ++i) {
       if (slot_[i] < 0) continue;
-      for (auto& c : in_[i].take()) arrived.emplace_back(c->header().stamp_ns(), slot_[i], c);
+      for (auto& c : io_.lidar[i].take()) arrived.emplace_back(c->header().stamp_ns(), slot_[i], c);
     }
     std::stable_sort(arrived.begin(), arrived.end(),
                      [](const auto& a, const auto& b) { return std::get<0>(a) < std::get<0>(b) || (std::get<0>(a) == std::get<0>(b) && std::get<1>(a) < std::get<1>(b)); });
@@ -102,8 +109,8 @@ class GroundFilterNode : public Plugin {
     }
     filter_.run(merged_, result_);
     const std::int64_t stamp = set.front()->header().stamp_ns();
-    points_.publish(vehicle_cloud(result_.voxels, &result_.ground, 0, stamp, seq_));
-    ground_.publish(vehicle_cloud(result_.voxels, &result_.ground, 1, stamp, seq_));
+    io_.points.publish(vehicle_cloud(result_.voxels, &result_.ground, 0, stamp, seq_));
+    io_.ground.publish(vehicle_cloud(result_.voxels, &result_.ground, 1, stamp, seq_));
     ++seq_;
     ++frames_;
     points_in_ += merged_.size();
@@ -114,10 +121,9 @@ class GroundFilterNode : public Plugin {
   GroundFilter filter_;
   GroundResult result_;
   Points merged_;
-  std::array<Input<msgs::PointCloud>, 3> in_;
+  Ports io_;
   std::array<int, 3> slot_{-1, -1, -1};
   std::optional<FrameSet<CloudPtr>> sets_;
-  Output<msgs::PointCloud> points_, ground_;
   std::uint32_t seq_ = 0;
   std::uint64_t frames_ = 0, malformed_ = 0, points_in_ = 0, voxels_ = 0, features_ = 0;
 };

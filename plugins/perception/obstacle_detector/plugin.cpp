@@ -45,33 +45,39 @@ ParamBinding<ObstacleParams> bindings() {
   return b;
 }
 
+struct Ports {
+  Input<msgs::ClusterList> clusters;
+  Input<msgs::WallEstimate> wall_right, wall_left;
+  Output<msgs::ObstacleList> obstacles;
+};
+
+PortBinding<Ports> ports() {
+  PortBinding<Ports> b;
+  b.input("clusters", &Ports::clusters).doc("clusters, vehicle frame").depth(8).steps();
+  b.input("wall_right", &Ports::wall_right).doc("the right wall fit of the same frames (optional)").optional().depth(8).steps();
+  b.input("wall_left", &Ports::wall_left).doc("the left wall fit of the same frames (optional)").optional().depth(8).steps();
+  b.output("obstacles", &Ports::obstacles).doc("obstacles, vehicle frame, every frame");
+  return b;
+}
+
 class ObstacleDetectorNode : public Plugin {
  public:
   static Manifest manifest() {
     return Manifest("perception.obstacle_detector", "1.0.0")
         .describe("clusters inside the drivable corridor (|y| limit, cut by the fitted walls) that are not wall -> obstacles")
-        .input<msgs::ClusterList>("clusters", "clusters, vehicle frame", true, 8)
-        .input<msgs::WallEstimate>("wall_right", "the right wall fit of the same frames (optional)", false, 8)
-        .input<msgs::WallEstimate>("wall_left", "the left wall fit of the same frames (optional)", false, 8)
-        .output<msgs::ObstacleList>("obstacles", "obstacles, vehicle frame, every frame")
-        .parameters(bindings())
-        .on_input("clusters")
-        .on_input("wall_right")
-        .on_input("wall_left");
+        .with_ports(ports())
+        .parameters(bindings());
   }
 
   void configure(Context& ctx) override {
     op_ = bindings().read(ctx.params());
-    in_ = ctx.input<msgs::ClusterList>("clusters");
-    walls_in_[0] = ctx.input<msgs::WallEstimate>("wall_right");
-    walls_in_[1] = ctx.input<msgs::WallEstimate>("wall_left");
-    out_ = ctx.output<msgs::ObstacleList>("obstacles");
+    io_ = ports().connect(ctx);
   }
 
   void step(Context& ctx) override {
-    for (auto& m : in_.take()) pending_.push_back(m);
+    for (auto& m : io_.clusters.take()) pending_.push_back(m);
     for (int s = 0; s < 2; ++s)
-      for (auto& w : walls_in_[s].take()) {
+      for (auto& w : wall_in(s).take()) {
         walls_[s].push_back(w);
         if (walls_[s].size() > 16) walls_[s].pop_front();
       }
@@ -80,7 +86,7 @@ class ObstacleDetectorNode : public Plugin {
       std::vector<std::pair<WallFit, int>> walls;
       bool wait = false;
       for (int s = 0; s < 2; ++s) {
-        if (!walls_in_[s].connected()) continue;
+        if (!wall_in(s).connected()) continue;
         WallPtr same;
         bool newer = false;
         for (auto& w : walls_[s]) {
@@ -126,17 +132,18 @@ class ObstacleDetectorNode : public Plugin {
     }
     total_ += out.obstacles().size();
     ++frames_;
-    out_.publish(std::move(out));
+    io_.obstacles.publish(std::move(out));
   }
+
+  // Side s of walls_: 0 right, 1 left.
+  Input<msgs::WallEstimate>& wall_in(int s) { return s == 0 ? io_.wall_right : io_.wall_left; }
 
   ObstacleParams op_;
   Points pts_;
   std::vector<std::vector<int>> clusters_;
   std::deque<std::shared_ptr<const msgs::ClusterList>> pending_;
   std::array<std::deque<WallPtr>, 2> walls_;
-  Input<msgs::ClusterList> in_;
-  std::array<Input<msgs::WallEstimate>, 2> walls_in_;
-  Output<msgs::ObstacleList> out_;
+  Ports io_;
   std::uint32_t seq_ = 0;
   std::uint64_t frames_ = 0, unmatched_ = 0, malformed_ = 0, total_ = 0;
 };

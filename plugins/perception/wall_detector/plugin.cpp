@@ -32,26 +32,35 @@ ParamBinding<WallParams> bindings() {
   return b;
 }
 
+struct Ports {
+  Input<msgs::ClusterList> clusters;
+  Output<msgs::WallEstimate> wall;
+};
+
+PortBinding<Ports> ports() {
+  PortBinding<Ports> b;
+  b.input("clusters", &Ports::clusters).doc("clusters, vehicle frame").depth(4).steps();
+  b.output("wall", &Ports::wall).doc("the fitted wall, every frame (valid: false when there is none)");
+  return b;
+}
+
 class WallDetectorNode : public Plugin {
  public:
   static Manifest manifest() {
     return Manifest("perception.wall_detector", "1.0.0")
         .describe("the longest cluster on the configured side is the wall, grown through the clusters that continue it; "
                   "least-squares polynomial y(x) at z = 0 (Eigen), d_w = y(0), heading and curvature at a look-ahead")
-        .input<msgs::ClusterList>("clusters", "clusters, vehicle frame", true, 4)
-        .output<msgs::WallEstimate>("wall", "the fitted wall, every frame (valid: false when there is none)")
-        .parameters(bindings())
-        .on_input("clusters");
+        .with_ports(ports())
+        .parameters(bindings());
   }
 
   void configure(Context& ctx) override {
     wp_ = bindings().read(ctx.params());
-    in_ = ctx.input<msgs::ClusterList>("clusters");
-    out_ = ctx.output<msgs::WallEstimate>("wall");
+    io_ = ports().connect(ctx);
   }
 
   void step(Context& ctx) override {
-    for (auto& m : in_.take()) {
+    for (auto& m : io_.clusters.take()) {
       try {
         read_clusters(*m, pts_, clusters_);
       } catch (const std::runtime_error& e) {
@@ -59,7 +68,7 @@ class WallDetectorNode : public Plugin {
         continue;
       }
       const WallFit w = fit_wall(pts_, clusters_, wp_);
-      out_.publish(wall_message(w, wp_.lookahead, m->header().stamp_ns(), seq_++));
+      io_.wall.publish(wall_message(w, wp_.lookahead, m->header().stamp_ns(), seq_++));
       ++frames_;
       if (w.valid) {
         ++valid_;
@@ -79,8 +88,7 @@ class WallDetectorNode : public Plugin {
   WallParams wp_;
   Points pts_;
   std::vector<std::vector<int>> clusters_;
-  Input<msgs::ClusterList> in_;
-  Output<msgs::WallEstimate> out_;
+  Ports io_;
   std::uint32_t seq_ = 0;
   std::uint64_t frames_ = 0, valid_ = 0, malformed_ = 0;
   double residual_sum_ = 0;

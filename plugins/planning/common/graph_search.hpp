@@ -34,7 +34,7 @@ struct SearchParams {
   double k_curvature = 2e4;     // per 1/m of ∫κ² dl
   double k_deviation = 0.05;    // per m² of ∫|d| ds
   double k_proximity = 10;      // per m² short of soft_clearance
-  // The car's speed limits the curvature (issue 16): with lateral_accel > 0, an edge that leaves
+  // The car's speed limits the curvature: with lateral_accel > 0, an edge that leaves
   // the line's offset (a lane change) is taken only when the car, braking at `brake` from `speed`
   // over the `ahead` metres to the start node and on to the edge, can be slow enough for its
   // sharpest point: max κ · v² <= lateral_accel. 0: off (the graph's max_curvature alone).

@@ -38,16 +38,33 @@ ParamBinding<Settings> bindings() {
   return b;
 }
 
+struct Ports {
+  Input<msgs::TrackMap> map;
+  Input<msgs::LocalizationEstimate> estimate;
+  Input<msgs::ObstacleList> obstacles;
+  Output<msgs::Path> path;
+};
+
+PortBinding<Ports> ports() {
+  PortBinding<Ports> b;
+  b.input("map", &Ports::map)
+      .doc("the track: the line is planned for it, or a file's line kept edge_margin inside it (needed with raceline plan)")
+      .optional()
+      .depth(1);
+  // The planner role's: read by planning.road_graph, accepted here so the two planners swap by the plugin's name.
+  b.input("estimate", &Ports::estimate).doc("not used: this planner ignores where the car is").optional().depth(1);
+  b.input("obstacles", &Ports::obstacles).doc("not used: this planner does not avoid obstacles").optional().depth(1);
+  b.output("path", &Ports::path).doc("the line: poses, curvature, speed, s (a closed loop); sent at rate_hz");
+  return b;
+}
+
 class RacingLineNode : public Plugin {
  public:
   static Manifest manifest() {
     return Manifest("planning.racing_line", "1.0.0")
         .describe("the racing line (planned for the map, or a file's) as a Path with a speed profile")
-        .input<msgs::TrackMap>("map", "the track: the line is planned for it, or a file's line kept edge_margin inside it (needed with raceline plan)", false, 1)
-        // Read by planning.road_graph; accepted here so the two planners swap by the plugin's name.
-        .input<msgs::LocalizationEstimate>("estimate", "not used: this planner ignores where the car is", false, 1)
-        .input<msgs::ObstacleList>("obstacles", "not used: this planner does not avoid obstacles", false, 1)
-        .output<msgs::Path>("path", "the line: poses, curvature, speed, s (a closed loop); sent at rate_hz")
+        .with_ports(ports())
+        .plays(roles::planner)
         .parameters(bindings())
         .periodic("rate_hz");
   }
@@ -55,20 +72,17 @@ class RacingLineNode : public Plugin {
   void configure(Context& ctx) override {
     const Settings s = bindings().read(ctx.params());
     src_ = planning::load_line(ctx, s.line, plugins::read_vehicle(ctx, s.vehicle));
-    map_ = ctx.input<msgs::TrackMap>("map");
-    if (src_.plan && !map_.connected()) throw BadInput("raceline plan: input 'map' must be wired (the line is planned for its track)");
-    estimate_ = ctx.input<msgs::LocalizationEstimate>("estimate");
-    obstacles_ = ctx.input<msgs::ObstacleList>("obstacles");
-    out_ = ctx.output<msgs::Path>("path");
+    io_ = ports().connect(ctx);
+    if (src_.plan && !io_.map.connected()) throw BadInput("raceline plan: input 'map' must be wired (the line is planned for its track)");
   }
 
   void step(Context& ctx) override {
-    estimate_.take();  // drained, unused
-    obstacles_.take();
+    io_.estimate.take();  // drained, unused
+    io_.obstacles.take();
     if (!path_) {
       track::CenterLine line = src_.file_line;
-      if (map_.connected()) {
-        auto w = plugins::newest(map_);
+      if (io_.map.connected()) {
+        auto w = plugins::newest(io_.map);
         if (!w) return;
         try {
           line = planning::line_points(src_, std::make_unique<track::Track>(plugins::from_message(*w)).get());
@@ -102,17 +116,14 @@ class RacingLineNode : public Plugin {
     auto m = std::make_shared<msgs::Path>(*path_);
     m->header().stamp_ns(ctx.now_ns());
     m->header().seq(seq_++);
-    out_.publish(std::shared_ptr<const msgs::Path>(m));
+    io_.path.publish(std::shared_ptr<const msgs::Path>(m));
   }
 
  private:
   LineSource src_;
   std::shared_ptr<const msgs::Path> path_;
   std::uint32_t seq_ = 0;
-  Input<msgs::TrackMap> map_;
-  Input<msgs::LocalizationEstimate> estimate_;
-  Input<msgs::ObstacleList> obstacles_;
-  Output<msgs::Path> out_;
+  Ports io_;
 };
 
 }  // namespace

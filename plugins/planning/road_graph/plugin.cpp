@@ -103,15 +103,29 @@ ParamBinding<Settings> bindings() {
   return b;
 }
 
+struct Ports {
+  Input<msgs::TrackMap> map;
+  Input<msgs::LocalizationEstimate> estimate;
+  Input<msgs::ObstacleList> obstacles;
+  Output<msgs::Path> path;
+};
+
+PortBinding<Ports> ports() {
+  PortBinding<Ports> b;
+  b.input("map", &Ports::map).doc("the track: the graph's room and the line's edge margin (must be wired)").optional().depth(1);
+  b.input("estimate", &Ports::estimate).doc("where the car is (base_link, map frame)").optional().depth(64);
+  b.input("obstacles", &Ports::obstacles).doc("obstacles in the vehicle frame, placed with the estimate of their stamp").optional();
+  b.output("path", &Ports::path).doc("horizon m of path from just behind the car, with speeds (open)");
+  return b;
+}
+
 class RoadGraphNode : public Plugin {
  public:
   static Manifest manifest() {
     return Manifest("planning.road_graph", "1.0.0")
         .describe("obstacle avoidance on a road graph (Frenet lattice) along the racing line; a Path with speeds, replanned at rate_hz")
-        .input<msgs::TrackMap>("map", "the track: the graph's room and the line's edge margin (must be wired)", false, 1)
-        .input<msgs::LocalizationEstimate>("estimate", "where the car is (base_link, map frame)", false, 64)
-        .input<msgs::ObstacleList>("obstacles", "obstacles in the vehicle frame, placed with the estimate of their stamp", false, 16)
-        .output<msgs::Path>("path", "horizon m of path from just behind the car, with speeds (open)")
+        .with_ports(ports())
+        .plays(roles::planner)
         .parameters(bindings())
         .periodic("rate_hz");
   }
@@ -149,17 +163,14 @@ class RoadGraphNode : public Plugin {
       if (loaded_->source_digest() != reference_digest(src_.file_line, src_.edge_margin, gp_))
         throw BadInput("graph_file " + graph_file_ + " was built for another racing line, edge_margin or graph parameters (rebuild it with brickyard-plan graph)");
     }
-    map_ = ctx.input<msgs::TrackMap>("map");
+    io_ = ports().connect(ctx);
     // The line is kept inside the track's edges as the graph was built: the map is needed even
     // with a graph file, or the nodes would sit on another line.
-    if (!map_.connected()) throw BadInput("input 'map' must be wired: the racing line is kept inside its edges");
-    estimate_ = ctx.input<msgs::LocalizationEstimate>("estimate");
-    obstacles_ = ctx.input<msgs::ObstacleList>("obstacles");
-    out_ = ctx.output<msgs::Path>("path");
+    if (!io_.map.connected()) throw BadInput("input 'map' must be wired: the racing line is kept inside its edges");
   }
 
   void step(Context& ctx) override {
-    for (auto& e : estimate_.take()) {
+    for (auto& e : io_.estimate.take()) {
       poses_.push_back(e);
       if (poses_.size() > 256) poses_.pop_front();
     }
@@ -168,7 +179,7 @@ class RoadGraphNode : public Plugin {
     // Obstacles into the map frame with the estimate at their stamp.
     std::vector<MapObstacle> seen;
     std::vector<StampedPose> poses;
-    for (auto& list : obstacles_.take()) {
+    for (auto& list : io_.obstacles.take()) {
       if (poses.empty())
         for (const auto& e : poses_) {
           const auto& cov = e->covariance();  // row-major over (x, y, yaw)
@@ -238,7 +249,7 @@ class RoadGraphNode : public Plugin {
     m->s(g.s);
     max_offset_ = std::max(max_offset_, g.max_offset);
     m->speed(plan.speed);
-    out_.publish(std::shared_ptr<const msgs::Path>(m));
+    io_.path.publish(std::shared_ptr<const msgs::Path>(m));
   }
 
   void deactivate(Context& ctx) override {
@@ -278,8 +289,8 @@ class RoadGraphNode : public Plugin {
   // The racing line, the graph and the planner, once the map is known.
   bool setup(Context& ctx) {
     std::shared_ptr<const msgs::TrackMap> w;
-    if (map_.connected()) {
-      w = plugins::newest(map_);
+    if (io_.map.connected()) {
+      w = plugins::newest(io_.map);
       if (!w) return false;
     }
     try {
@@ -320,10 +331,7 @@ class RoadGraphNode : public Plugin {
   bool stopping_ = false;
   double max_offset_ = 0;
   std::set<int> shown_layers_;
-  Input<msgs::TrackMap> map_;
-  Input<msgs::LocalizationEstimate> estimate_;
-  Input<msgs::ObstacleList> obstacles_;
-  Output<msgs::Path> out_;
+  Ports io_;
 };
 
 }  // namespace

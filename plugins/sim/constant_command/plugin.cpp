@@ -21,12 +21,22 @@ ParamBinding<Settings> bindings() {
   return b;
 }
 
+struct Ports {
+  Output<msgs::ControlCommand> command;
+};
+
+PortBinding<Ports> ports() {
+  PortBinding<Ports> b;
+  b.output("command", &Ports::command).doc("the command");
+  return b;
+}
+
 class ConstantCommand : public Plugin {
  public:
   static Manifest manifest() {
     return Manifest("sim.constant_command", "1.0.0")
         .describe("Open-loop command for tests: constant steer, throttle and brake")
-        .output<msgs::ControlCommand>("command", "the command")
+        .with_ports(ports())
         .parameters(bindings())
         .periodic("rate_hz");
   }
@@ -36,7 +46,7 @@ class ConstantCommand : public Plugin {
     throttle_ = s.throttle;
     brake_ = s.brake;
     start_ = s.start_s;
-    out_ = ctx.output<msgs::ControlCommand>("command");
+    io_ = ports().connect(ctx);
   }
   void step(Context& ctx) override {
     if (ctx.now_s() < start_) return;
@@ -47,13 +57,13 @@ class ConstantCommand : public Plugin {
     m.throttle(throttle_);
     m.brake(brake_);
     m.source(ctx.node_name());
-    out_.publish(std::move(m));
+    io_.command.publish(std::move(m));
   }
 
  private:
   double steer_ = 0, throttle_ = 0, brake_ = 0, start_ = 0;
   std::uint32_t seq_ = 0;
-  Output<msgs::ControlCommand> out_;
+  Ports io_;
 };
 
 }  // namespace

@@ -47,13 +47,25 @@ ParamBinding<Settings> bindings() {
   return b;
 }
 
+struct Ports {
+  Input<msgs::VehicleState> truth;
+  Output<msgs::GnssFix> fix;
+};
+
+PortBinding<Ports> ports() {
+  PortBinding<Ports> b;
+  b.input("truth", &Ports::truth).doc("ground truth").depth(1);
+  b.output("fix", &Ports::fix).doc("position fixes in the map frame");
+  return b;
+}
+
 class Gnss : public Plugin {
  public:
   static Manifest manifest() {
     return Manifest("sim.gnss", "1.0.0")
         .describe("GNSS receiver (NovAtel PwrPak7 on the AV-21): antenna position with RTK noise and fault windows")
-        .input<msgs::VehicleState>("truth", "ground truth", true, 1)
-        .output<msgs::GnssFix>("fix", "position fixes in the map frame")
+        .with_ports(ports())
+        .plays(roles::gnss_driver)
         .parameters(bindings())
         .periodic("rate_hz");
   }
@@ -70,12 +82,11 @@ class Gnss : public Plugin {
     fix_type_ = s.fix_type;
     faults_ = s.faults;
     rng_ = Rng(ctx.seed());
-    truth_ = ctx.input<msgs::VehicleState>("truth");
-    out_ = ctx.output<msgs::GnssFix>("fix");
+    io_ = ports().connect(ctx);
   }
 
   void step(Context& ctx) override {
-    auto s = newest(truth_);
+    auto s = newest(io_.truth);
     if (!s) return;
     // The position at the fix's stamp. On the sim clock the newest truth is of this instant; on
     // the real clock it is a millisecond or two old (the car's step ran before), and the car moves
@@ -99,7 +110,7 @@ class Gnss : public Plugin {
       msgs::GnssFix m = *last_;
       m.header().stamp_ns(stamp_ns);
       m.header().seq(seq_++);
-      out_.publish(std::move(m));
+      io_.fix.publish(std::move(m));
       return;
     }
     const Eigen::Vector3d p = body_pose(*s) * antenna_;
@@ -120,7 +131,7 @@ class Gnss : public Plugin {
     for (double v : {m.x(), m.y(), m.z(), m.sigma_x()}) digest_.add(v);
     last_ = std::make_shared<msgs::GnssFix>(m);
     ++fixes_;
-    out_.publish(std::move(m));
+    io_.fix.publish(std::move(m));
   }
 
   void deactivate(Context& ctx) override {
@@ -139,8 +150,7 @@ class Gnss : public Plugin {
   Rng rng_;
   std::uint32_t seq_ = 0;
   std::shared_ptr<msgs::GnssFix> last_;
-  Input<msgs::VehicleState> truth_;
-  Output<msgs::GnssFix> out_;
+  Ports io_;
 };
 
 }  // namespace

@@ -43,15 +43,25 @@ ParamBinding<Settings> bindings() {
   return b;
 }
 
+struct Ports {
+  Input<msgs::VehicleState> truth;
+  Input<msgs::GnssFix> fix;
+};
+
+PortBinding<Ports> ports() {
+  PortBinding<Ports> b;
+  b.input("truth", &Ports::truth).doc("ground truth").depth(4096);
+  b.input("fix", &Ports::fix).doc("fixes to check").depth(64).steps();
+  return b;
+}
+
 class GnssChecker : public Plugin {
  public:
   static Manifest manifest() {
     return Manifest("sim.gnss_checker", "1.0.0")
         .describe("Test assertion: GNSS fixes equal the antenna's true position plus the expected fault offset")
-        .input<msgs::VehicleState>("truth", "ground truth", true, 4096)
-        .input<msgs::GnssFix>("fix", "fixes to check", true, 64)
-        .parameters(bindings())
-        .on_input("fix");
+        .with_ports(ports())
+        .parameters(bindings());
   }
 
   void configure(Context& ctx) override {
@@ -62,16 +72,15 @@ class GnssChecker : public Plugin {
     expect_ = s.faults;
     tol_ = s.tolerance_m;
     min_checked_ = s.min_checked;
-    truth_ = ctx.input<msgs::VehicleState>("truth");
-    fix_ = ctx.input<msgs::GnssFix>("fix");
+    io_ = ports().connect(ctx);
   }
 
   void step(Context& ctx) override {
-    for (const auto& s : truth_.take()) {
+    for (const auto& s : io_.truth.take()) {
       truth_at_[stamp(*s)] = s;
       if (truth_at_.size() > 512) truth_at_.erase(truth_at_.begin());
     }
-    for (const auto& f : fix_.take()) {
+    for (const auto& f : io_.fix.take()) {
       auto it = truth_at_.find(f->header().stamp_ns());
       if (it == truth_at_.end()) continue;
       const double t = static_cast<double>(f->header().stamp_ns()) * 1e-9;
@@ -106,8 +115,7 @@ class GnssChecker : public Plugin {
   double tol_ = 1e-9, max_err_ = 0;
   std::int64_t min_checked_ = 1, checked_ = 0, in_window_ = 0;
   std::map<std::int64_t, std::shared_ptr<const msgs::VehicleState>> truth_at_;
-  Input<msgs::VehicleState> truth_;
-  Input<msgs::GnssFix> fix_;
+  Ports io_;
 };
 
 }  // namespace

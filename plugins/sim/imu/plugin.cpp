@@ -36,13 +36,25 @@ ParamBinding<Settings> bindings() {
   return b;
 }
 
+struct Ports {
+  Input<msgs::VehicleState> truth;
+  Output<msgs::Imu> imu;
+};
+
+PortBinding<Ports> ports() {
+  PortBinding<Ports> b;
+  b.input("truth", &Ports::truth).doc("ground truth").depth(1);
+  b.output("imu", &Ports::imu).doc("measurements in the vehicle frame (x forward, y left, z up)");
+  return b;
+}
+
 class ImuSensor : public Plugin {
  public:
   static Manifest manifest() {
     return Manifest("sim.imu", "1.0.0")
         .describe("IMU: specific force (accelerometer) and angular rate (gyro) with noise, bias and fault windows")
-        .input<msgs::VehicleState>("truth", "ground truth", true, 1)
-        .output<msgs::Imu>("imu", "measurements in the vehicle frame (x forward, y left, z up)")
+        .with_ports(ports())
+        .plays(roles::imu_driver)
         .parameters(bindings())
         .periodic("rate_hz");
   }
@@ -59,12 +71,11 @@ class ImuSensor : public Plugin {
     }
     faults_ = s.faults;
     rng_ = Rng(ctx.seed());
-    truth_ = ctx.input<msgs::VehicleState>("truth");
-    out_ = ctx.output<msgs::Imu>("imu");
+    io_ = ports().connect(ctx);
   }
 
   void step(Context& ctx) override {
-    auto s = newest(truth_);
+    auto s = newest(io_.truth);
     if (!s) return;
     double n[6];
     for (double& v : n) v = rng_.normal();
@@ -88,7 +99,7 @@ class ImuSensor : public Plugin {
     m.header().frame_id("vehicle");
     for (double v : {m.accel_x(), m.accel_y(), m.accel_z(), m.gyro_z()}) digest_.add(v);
     last_ = std::make_shared<msgs::Imu>(m);
-    out_.publish(std::move(m));
+    io_.imu.publish(std::move(m));
   }
 
   void deactivate(Context& ctx) override { ctx.metric("digest", digest_.hex()); }
@@ -100,8 +111,7 @@ class ImuSensor : public Plugin {
   Rng rng_;
   std::uint32_t seq_ = 0;
   std::shared_ptr<msgs::Imu> last_;
-  Input<msgs::VehicleState> truth_;
-  Output<msgs::Imu> out_;
+  Ports io_;
 };
 
 }  // namespace

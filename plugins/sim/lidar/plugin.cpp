@@ -72,14 +72,27 @@ ParamBinding<Settings> bindings() {
   return b;
 }
 
+struct Ports {
+  Input<msgs::TrackWorld> world;
+  Input<msgs::VehicleState> truth;
+  Output<msgs::PointCloud> cloud;
+};
+
+PortBinding<Ports> ports() {
+  PortBinding<Ports> b;
+  b.input("world", &Ports::world).doc("the world to scan").depth(1);
+  b.input("truth", &Ports::truth).doc("vehicle pose").depth(1);
+  b.output("cloud", &Ports::cloud).doc("points in the sensor frame");
+  return b;
+}
+
 class Lidar : public Plugin {
  public:
   static Manifest manifest() {
     return Manifest("sim.lidar", "1.0.0")
         .describe("LiDAR by ray casting against the banked road, walls and pylons; range noise, dropout, frame loss")
-        .input<msgs::TrackWorld>("world", "the world to scan", true, 1)
-        .input<msgs::VehicleState>("truth", "vehicle pose", true, 1)
-        .output<msgs::PointCloud>("cloud", "points in the sensor frame")
+        .with_ports(ports())
+        .plays(roles::lidar_driver)
         .parameters(bindings())
         .periodic("rate_hz")
         .delivered_after("latency_s");
@@ -104,19 +117,17 @@ class Lidar : public Plugin {
     }
     faults_ = s.faults;
     rng_ = Rng(ctx.seed());
-    world_ = ctx.input<msgs::TrackWorld>("world");
-    truth_ = ctx.input<msgs::VehicleState>("truth");
-    out_ = ctx.output<msgs::PointCloud>("cloud");
+    io_ = ports().connect(ctx);
   }
 
   void step(Context& ctx) override {
     if (!caster_) {
-      auto w = newest(world_);
+      auto w = newest(io_.world);
       if (!w) return;
       track_ = std::make_unique<Track>(from_message(*w));
       caster_ = std::make_unique<LidarCaster>(*track_, spec_);
     }
-    auto s = newest(truth_);
+    auto s = newest(io_.truth);
     if (!s) return;
     FaultEffect e = faults_.at(ctx.now_s(), rng_);
     if (e.drop) { ++lost_; return; }
@@ -124,7 +135,7 @@ class Lidar : public Plugin {
       auto m = std::make_shared<msgs::PointCloud>(*last_);
       m->header().stamp_ns(ctx.now_ns());
       m->header().seq(seq_++);
-      out_.publish(std::shared_ptr<const msgs::PointCloud>(m));
+      io_.cloud.publish(std::shared_ptr<const msgs::PointCloud>(m));
       return;
     }
     auto m = std::make_shared<msgs::PointCloud>();
@@ -143,7 +154,7 @@ class Lidar : public Plugin {
     m->x(std::move(buf_.x)); m->y(std::move(buf_.y)); m->z(std::move(buf_.z)); m->intensity(std::move(buf_.intensity));
     ++frames_;
     last_ = m;
-    out_.publish(std::shared_ptr<const msgs::PointCloud>(m));
+    io_.cloud.publish(std::shared_ptr<const msgs::PointCloud>(m));
   }
 
   void deactivate(Context& ctx) override {
@@ -167,9 +178,7 @@ class Lidar : public Plugin {
   std::uint32_t seq_ = 0;
   std::uint64_t frames_ = 0, lost_ = 0, rays_ = 0, points_ = 0;
   std::shared_ptr<const msgs::PointCloud> last_;
-  Input<msgs::TrackWorld> world_;
-  Input<msgs::VehicleState> truth_;
-  Output<msgs::PointCloud> out_;
+  Ports io_;
 };
 
 }  // namespace

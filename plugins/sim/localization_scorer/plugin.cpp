@@ -52,15 +52,25 @@ ParamBinding<Settings> bindings() {
   return b;
 }
 
+struct Ports {
+  Input<msgs::VehicleState> truth;
+  Input<msgs::LocalizationEstimate> estimate;
+};
+
+PortBinding<Ports> ports() {
+  PortBinding<Ports> b;
+  b.input("truth", &Ports::truth).doc("ground truth").depth(4096);
+  b.input("estimate", &Ports::estimate).doc("the estimate to score").depth(4096).steps();
+  return b;
+}
+
 class Scorer : public Plugin {
  public:
   static Manifest manifest() {
     return Manifest("sim.localization_scorer", "1.0.0")
         .describe("scores a localization estimate against ground truth around fault windows")
-        .input<msgs::VehicleState>("truth", "ground truth", true, 4096)
-        .input<msgs::LocalizationEstimate>("estimate", "the estimate to score", true, 4096)
-        .parameters(bindings())
-        .on_input("estimate");
+        .with_ports(ports())
+        .parameters(bindings());
   }
 
   void configure(Context& ctx) override {
@@ -69,8 +79,7 @@ class Scorer : public Plugin {
     max_error_ = s.require_max_error_m;
     emergency_within_ = s.require_emergency_within_s;
     normal_below_ = s.require_normal_error_below_m;
-    truth_ = ctx.input<msgs::VehicleState>("truth");
-    est_ = ctx.input<msgs::LocalizationEstimate>("estimate");
+    io_ = ports().connect(ctx);
   }
 
   void step(Context&) override { drain(); }
@@ -106,14 +115,14 @@ class Scorer : public Plugin {
 
  private:
   void drain() {
-    for (const auto& s : truth_.take()) score_->truth(static_cast<double>(s->header().stamp_ns()) * 1e-9, s->x(), s->y());
-    for (const auto& e : est_.take()) score_->estimate(static_cast<double>(e->header().stamp_ns()) * 1e-9, e->x(), e->y(), e->status());
+    for (const auto& s : io_.truth.take()) score_->truth(static_cast<double>(s->header().stamp_ns()) * 1e-9, s->x(), s->y());
+    for (const auto& e : io_.estimate.take())
+      score_->estimate(static_cast<double>(e->header().stamp_ns()) * 1e-9, e->x(), e->y(), e->status());
   }
 
   std::optional<LocalizationScore> score_;
   double max_error_ = -1, emergency_within_ = -1, normal_below_ = -1;
-  Input<msgs::VehicleState> truth_;
-  Input<msgs::LocalizationEstimate> est_;
+  Ports io_;
 };
 
 }  // namespace

@@ -42,18 +42,29 @@ ParamBinding<Settings> bindings() {
   return b;
 }
 
+struct Ports {
+  Input<msgs::TrackWorld> world;
+  Input<msgs::VehicleState> truth;
+  Input<msgs::WallEstimate> wall;
+  Input<msgs::ObstacleList> obstacles;
+};
+
+PortBinding<Ports> ports() {
+  PortBinding<Ports> b;
+  b.input("world", &Ports::world).doc("the world (walls, pylons)").depth(1);
+  b.input("truth", &Ports::truth).doc("ground truth").depth(4096);
+  b.input("wall", &Ports::wall).doc("a wall detector's output (optional)").optional().depth(256).steps();
+  b.input("obstacles", &Ports::obstacles).doc("an obstacle detector's output (optional)").optional().depth(256).steps();
+  return b;
+}
+
 class PerceptionScorer : public Plugin {
  public:
   static Manifest manifest() {
     return Manifest("sim.perception_scorer", "1.0.0")
         .describe("scores wall and obstacle detection against ground truth: d_w error, false obstacles, pylon detection range")
-        .input<msgs::TrackWorld>("world", "the world (walls, pylons)", true, 1)
-        .input<msgs::VehicleState>("truth", "ground truth", true, 4096)
-        .input<msgs::WallEstimate>("wall", "a wall detector's output (optional)", false, 256)
-        .input<msgs::ObstacleList>("obstacles", "an obstacle detector's output (optional)", false, 256)
-        .parameters(bindings())
-        .on_input("wall")
-        .on_input("obstacles");
+        .with_ports(ports())
+        .parameters(bindings());
   }
 
   void configure(Context& ctx) override {
@@ -63,10 +74,7 @@ class PerceptionScorer : public Plugin {
     wall_valid_ = s.require_wall_valid_fraction;
     max_false_ = s.require_max_false_obstacles;
     pylon_range_ = s.require_pylon_range_m;
-    world_ = ctx.input<msgs::TrackWorld>("world");
-    truth_ = ctx.input<msgs::VehicleState>("truth");
-    wall_ = ctx.input<msgs::WallEstimate>("wall");
-    obstacles_ = ctx.input<msgs::ObstacleList>("obstacles");
+    io_ = ports().connect(ctx);
   }
 
   void step(Context&) override { drain(); }
@@ -106,21 +114,22 @@ class PerceptionScorer : public Plugin {
         std::snprintf(b, sizeof b, "pylon %zu reliably detected only from %.0f m (required %.0f m)", k, ranges[k], pylon_range_);
         ctx.fail(b);
       }
-    if ((wall_.connected() && s.wall_frames() == 0) || (obstacles_.connected() && s.obstacle_frames() == 0))
+    if ((io_.wall.connected() && s.wall_frames() == 0) ||
+        (io_.obstacles.connected() && s.obstacle_frames() == 0))
       ctx.fail("no perception output was scored");
   }
 
  private:
   void drain() {
     if (!score_) {
-      auto w = newest(world_);
+      auto w = newest(io_.world);
       if (!w) return;
       track_ = std::make_unique<Track>(from_message(*w));
       score_.emplace(*track_, sp_);
     }
-    for (const auto& s : truth_.take()) score_->truth(s->header().stamp_ns(), body_pose(*s));
-    for (const auto& w : wall_.take()) score_->wall(w->header().stamp_ns(), w->distance(), w->valid());
-    for (const auto& o : obstacles_.take()) {
+    for (const auto& s : io_.truth.take()) score_->truth(s->header().stamp_ns(), body_pose(*s));
+    for (const auto& w : io_.wall.take()) score_->wall(w->header().stamp_ns(), w->distance(), w->valid());
+    for (const auto& o : io_.obstacles.take()) {
       std::vector<Eigen::Vector2d> xy;
       for (const auto& ob : o->obstacles()) xy.emplace_back(ob.x(), ob.y());
       score_->obstacles(o->header().stamp_ns(), xy);
@@ -132,10 +141,7 @@ class PerceptionScorer : public Plugin {
   std::optional<PerceptionScore> score_;
   double wall_p95_ = -1, wall_valid_ = -1, pylon_range_ = -1;
   std::int64_t max_false_ = -1;
-  Input<msgs::TrackWorld> world_;
-  Input<msgs::VehicleState> truth_;
-  Input<msgs::WallEstimate> wall_;
-  Input<msgs::ObstacleList> obstacles_;
+  Ports io_;
 };
 
 }  // namespace

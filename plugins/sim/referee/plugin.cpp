@@ -45,16 +45,27 @@ ParamBinding<Settings> bindings() {
   return b;
 }
 
+struct Ports {
+  Input<msgs::TrackWorld> world;
+  Input<msgs::VehicleState> truth;
+  Input<msgs::LocalizationEstimate> estimate;
+};
+
+PortBinding<Ports> ports() {
+  PortBinding<Ports> b;
+  b.input("world", &Ports::world).doc("the world").depth(1);
+  b.input("truth", &Ports::truth).doc("ground truth").depth(1024).steps();
+  b.input("estimate", &Ports::estimate).doc("a localization estimate to score (optional)").optional().depth(1024);
+  return b;
+}
+
 class RefereeNode : public Plugin {
  public:
   static Manifest manifest() {
     return Manifest("sim.referee", "1.0.0")
         .describe("Laps, lap times, speed, wall contacts, track limits, clearances and localization error")
-        .input<msgs::TrackWorld>("world", "the world", true, 1)
-        .input<msgs::VehicleState>("truth", "ground truth", true, 1024)
-        .input<msgs::LocalizationEstimate>("estimate", "a localization estimate to score (optional)", false, 1024)
-        .parameters(bindings())
-        .on_input("truth");
+        .with_ports(ports())
+        .parameters(bindings());
   }
 
   void configure(Context& ctx) override {
@@ -67,19 +78,17 @@ class RefereeNode : public Plugin {
     fp_.front = s.car_front.value_or(car.front);
     fp_.rear = s.car_rear.value_or(car.rear);
     fp_.half_width = s.car_half_width.value_or(car.half_width);
-    world_ = ctx.input<msgs::TrackWorld>("world");
-    truth_ = ctx.input<msgs::VehicleState>("truth");
-    est_ = ctx.input<msgs::LocalizationEstimate>("estimate");
+    io_ = ports().connect(ctx);
   }
 
   void step(Context& ctx) override {
     if (!ref_) {
-      auto w = newest(world_);
+      auto w = newest(io_.world);
       if (!w) return;
       track_ = std::make_unique<Track>(from_message(*w));
       ref_ = std::make_unique<Referee>(*track_, fp_);
     }
-    for (const auto& s : truth_.take()) {
+    for (const auto& s : io_.truth.take()) {
       TruthSample t{static_cast<double>(stamp(*s)) * 1e-9, s->x(), s->y(), s->yaw(), std::hypot(s->vx(), s->vy())};
       auto ev = ref_->update(t);
       char buf[160];
@@ -157,7 +166,8 @@ class RefereeNode : public Plugin {
   }
 
   void score_estimates() {
-    for (const auto& e : est_.take()) ref_->localization(static_cast<double>(e->header().stamp_ns()) * 1e-9, e->x(), e->y());
+    for (const auto& e : io_.estimate.take())
+      ref_->localization(static_cast<double>(e->header().stamp_ns()) * 1e-9, e->x(), e->y());
   }
 
   bool crash_ends_ = true;
@@ -169,9 +179,7 @@ class RefereeNode : public Plugin {
   Footprint fp_;
   std::unique_ptr<Track> track_;
   std::unique_ptr<Referee> ref_;
-  Input<msgs::TrackWorld> world_;
-  Input<msgs::VehicleState> truth_;
-  Input<msgs::LocalizationEstimate> est_;
+  Ports io_;
 };
 
 }  // namespace

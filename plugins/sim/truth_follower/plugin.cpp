@@ -59,14 +59,26 @@ ParamBinding<Settings> bindings() {
   return b;
 }
 
+struct Ports {
+  Input<msgs::VehicleState> truth;
+  Input<msgs::TrackWorld> world;
+  Output<msgs::ControlCommand> command;
+};
+
+PortBinding<Ports> ports() {
+  PortBinding<Ports> b;
+  b.input("truth", &Ports::truth).doc("ground truth").depth(1);
+  b.input("world", &Ports::world).doc("when wired, the line is kept edge_margin inside the track").optional().depth(1);
+  b.output("command", &Ports::command).doc("steer, throttle, brake");
+  return b;
+}
+
 class TruthFollower : public Plugin {
  public:
   static Manifest manifest() {
     return Manifest("sim.truth_follower", "1.0.0")
         .describe("Drives a racing line from ground truth with the car stack's path tracker (libs/control): a stand-in driver for simulator graphs")
-        .input<msgs::VehicleState>("truth", "ground truth", true, 1)
-        .input<msgs::TrackWorld>("world", "when wired, the line is kept edge_margin inside the track", false, 1)
-        .output<msgs::ControlCommand>("command", "steer, throttle, brake")
+        .with_ports(ports())
         .parameters(bindings())
         .periodic("rate_hz");
   }
@@ -92,17 +104,15 @@ class TruthFollower : public Plugin {
     smooth_m_ = s.curvature_smooth_m;
     tracker_params_ = s.tracker;
     control::apply_vehicle(tracker_params_, car);
-    world_ = ctx.input<msgs::TrackWorld>("world");
-    truth_ = ctx.input<msgs::VehicleState>("truth");
-    out_ = ctx.output<msgs::ControlCommand>("command");
+    io_ = ports().connect(ctx);
   }
 
   void step(Context& ctx) override {
     if (!tracker_) {
       // With a world wired, wait for it and keep the line inside the track; without, use the file.
       CenterLine line = line_;
-      if (world_.connected()) {
-        auto w = newest(world_);
+      if (io_.world.connected()) {
+        auto w = newest(io_.world);
         if (!w) return;
         Track t(from_message(*w));
         line = motion::keep_inside(line_, t, margin_);
@@ -121,7 +131,7 @@ class TruthFollower : public Plugin {
       ctx.metric("planned_lap_s", motion::profile_time(ds, r.speed, true));
       ctx.metric("line_length_m", r.length);
     }
-    auto s = newest(truth_);
+    auto s = newest(io_.truth);
     if (!s) return;
     const motion::Command c = tracker_->control(control::CarState{s->x(), s->y(), s->yaw(), s->vx(), s->yaw_rate(), s->vy()});
     const double target = c.target_speed;
@@ -133,7 +143,7 @@ class TruthFollower : public Plugin {
     m.brake(c.brake);
     m.target_speed(target);
     m.source("truth_follower");
-    out_.publish(std::move(m));
+    io_.command.publish(std::move(m));
   }
 
  private:
@@ -142,10 +152,8 @@ class TruthFollower : public Plugin {
   motion::VehicleLimits limits_;
   control::TrackerParams tracker_params_;
   std::unique_ptr<control::PathTracker> tracker_;
-  Input<msgs::TrackWorld> world_;
   std::uint32_t seq_ = 0;
-  Input<msgs::VehicleState> truth_;
-  Output<msgs::ControlCommand> out_;
+  Ports io_;
 };
 
 }  // namespace

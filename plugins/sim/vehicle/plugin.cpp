@@ -39,14 +39,30 @@ ParamBinding<Settings> bindings() {
   return b;
 }
 
+struct Ports {
+  Input<msgs::TrackWorld> world;
+  Input<msgs::ControlCommand> command;
+  Output<msgs::VehicleState> truth;
+};
+
+PortBinding<Ports> ports() {
+  PortBinding<Ports> b;
+  b.input("world", &Ports::world).doc("the world to drive in").depth(1);
+  b.input("command", &Ports::command)
+      .doc("steer, throttle, brake (the latest holds until it is command_timeout old: then the car brakes to a stop)")
+      .optional()
+      .depth(1);
+  b.output("truth", &Ports::truth).doc("ground truth at base_link (rear-axle centre), every step");
+  return b;
+}
+
 class Vehicle : public Plugin {
  public:
   static Manifest manifest() {
     return Manifest("sim.vehicle", "1.0.0")
         .describe("Dynamic single-track race car (the vehicle file's, AV-21 by default) on the world's banked road; publishes ground truth")
-        .input<msgs::TrackWorld>("world", "the world to drive in", true, 1)
-        .input<msgs::ControlCommand>("command", "steer, throttle, brake (the latest holds until it is command_timeout old: then the car brakes to a stop)", false, 1)
-        .output<msgs::VehicleState>("truth", "ground truth at base_link (rear-axle centre), every step")
+        .with_ports(ports())
+        .plays(roles::vehicle_interface)
         .parameters(bindings())
         .periodic("rate_hz");
   }
@@ -60,14 +76,12 @@ class Vehicle : public Plugin {
     start_d_ = s.start_d;
     start_speed_ = s.start_speed;
     watchdog_ = CommandWatchdog(s.watchdog);
-    world_in_ = ctx.input<msgs::TrackWorld>("world");
-    cmd_in_ = ctx.input<msgs::ControlCommand>("command");
-    out_ = ctx.output<msgs::VehicleState>("truth");
+    io_ = ports().connect(ctx);
   }
 
   void step(Context& ctx) override {
     if (!track_) {
-      auto w = newest(world_in_);
+      auto w = newest(io_.world);
       if (!w) return;  // no world yet: the car does not exist
       track_ = std::make_unique<Track>(from_message(*w));
       Frenet f = track_->at(start_s_, start_d_);
@@ -83,14 +97,14 @@ class Vehicle : public Plugin {
       return;
     }
     Command c;
-    auto fresh = cmd_in_.take();
-    if (auto m = fresh.empty() ? cmd_in_.latest() : fresh.back()) {
+    auto fresh = io_.command.take();
+    if (auto m = fresh.empty() ? io_.command.latest() : fresh.back()) {
       c.steer = m->steer();
       c.throttle = m->throttle();
       c.brake = m->brake();
     }
     // An unwired command input is a fixture (a car that coasts); a wired one is the stack's.
-    if (cmd_in_.connected()) {
+    if (io_.command.connected()) {
       const bool was = watchdog_.stopping();
       c = watchdog_.apply(ctx.now_s(), !fresh.empty(), c);
       if (watchdog_.stopping() && !was)
@@ -137,7 +151,7 @@ class Vehicle : public Plugin {
     m.steer(s.steer);
     m.s(f.s);
     m.d(f.d);
-    out_.publish(std::move(m));
+    io_.truth.publish(std::move(m));
   }
 
   std::unique_ptr<VehicleModel> model_;
@@ -146,9 +160,7 @@ class Vehicle : public Plugin {
   double dt_ = 0.002, start_s_ = 0, start_d_ = 0, start_speed_ = 0;
   int hint_ = -1;
   std::uint32_t seq_ = 0;
-  Input<msgs::TrackWorld> world_in_;
-  Input<msgs::ControlCommand> cmd_in_;
-  Output<msgs::VehicleState> out_;
+  Ports io_;
 };
 
 }  // namespace

@@ -38,13 +38,25 @@ ParamBinding<Settings> bindings() {
   return b;
 }
 
+struct Ports {
+  Input<msgs::VehicleState> truth;
+  Output<msgs::WheelSpeeds> speeds;
+};
+
+PortBinding<Ports> ports() {
+  PortBinding<Ports> b;
+  b.input("truth", &Ports::truth).doc("ground truth").depth(1);
+  b.output("speeds", &Ports::speeds).doc("m/s at the tyre");
+  return b;
+}
+
 class Wheels : public Plugin {
  public:
   static Manifest manifest() {
     return Manifest("sim.wheels", "1.0.0")
         .describe("Wheel speed sensors: speed of each wheel centre along the wheel's heading, with noise and faults")
-        .input<msgs::VehicleState>("truth", "ground truth", true, 1)
-        .output<msgs::WheelSpeeds>("speeds", "m/s at the tyre")
+        .with_ports(ports())
+        .plays(roles::wheel_speed_driver)
         .parameters(bindings())
         .periodic("rate_hz");
   }
@@ -58,12 +70,11 @@ class Wheels : public Plugin {
     half_track_ = car.track_width / 2;
     faults_ = s.faults;
     rng_ = Rng(ctx.seed());
-    truth_ = ctx.input<msgs::VehicleState>("truth");
-    out_ = ctx.output<msgs::WheelSpeeds>("speeds");
+    io_ = ports().connect(ctx);
   }
 
   void step(Context& ctx) override {
-    auto s = newest(truth_);
+    auto s = newest(io_.truth);
     if (!s) return;
     double n[4];
     for (double& v : n) v = rng_.normal();
@@ -90,7 +101,7 @@ class Wheels : public Plugin {
     m.header().frame_id("vehicle");
     for (double v : {m.front_left(), m.front_right(), m.rear_left(), m.rear_right()}) digest_.add(v);
     last_ = std::make_shared<msgs::WheelSpeeds>(m);
-    out_.publish(std::move(m));
+    io_.speeds.publish(std::move(m));
   }
 
   void deactivate(Context& ctx) override { ctx.metric("digest", digest_.hex()); }
@@ -102,8 +113,7 @@ class Wheels : public Plugin {
   Rng rng_;
   std::uint32_t seq_ = 0;
   std::shared_ptr<msgs::WheelSpeeds> last_;
-  Input<msgs::VehicleState> truth_;
-  Output<msgs::WheelSpeeds> out_;
+  Ports io_;
 };
 
 }  // namespace

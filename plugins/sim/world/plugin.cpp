@@ -76,12 +76,22 @@ ParamBinding<Settings> bindings() {
   return b;
 }
 
+struct Ports {
+  Output<msgs::TrackWorld> world;
+};
+
+PortBinding<Ports> ports() {
+  PortBinding<Ports> b;
+  b.output("world", &Ports::world).doc("the static world, republished at rate_hz for late joiners");
+  return b;
+}
+
 class World : public Plugin {
  public:
   static Manifest manifest() {
     return Manifest("sim.world", "1.0.0")
         .describe("The simulated world: a track file (TUM racetrack-database format), banking, walls and pylons")
-        .output<msgs::TrackWorld>("world", "the static world, republished at rate_hz for late joiners")
+        .with_ports(ports())
         .parameters(bindings())
         .periodic("rate_hz");
   }
@@ -121,7 +131,7 @@ class World : public Plugin {
     }
     msg_ = std::make_shared<msgs::TrackWorld>(to_message(*track_));
     msg_->header().frame_id("map");
-    out_ = ctx.output<msgs::TrackWorld>("world");
+    io_ = ports().connect(ctx);
     ctx.log(LogLevel::info, "track '" + track_->spec().name + "' from " + path + ": " + std::to_string(track_->size()) +
                                 " points, " + std::to_string(track_->length()) + " m");
   }
@@ -129,7 +139,7 @@ class World : public Plugin {
   void step(Context& ctx) override {
     // The world is static: the same object every time (readers in this process share it).
     if (published_ == 0) msg_->header().stamp_ns(ctx.now_ns());
-    out_.publish(std::shared_ptr<const msgs::TrackWorld>(msg_));
+    io_.world.publish(std::shared_ptr<const msgs::TrackWorld>(msg_));
     ++published_;
   }
 
@@ -141,7 +151,7 @@ class World : public Plugin {
  private:
   std::unique_ptr<Track> track_;
   std::shared_ptr<msgs::TrackWorld> msg_;
-  Output<msgs::TrackWorld> out_;
+  Ports io_;
   std::uint64_t published_ = 0;
 };
 

@@ -43,14 +43,23 @@ ParamBinding<Settings> bindings() {
   return b;
 }
 
+struct Ports {
+  Input<msgs::Scalar> in;
+};
+
+PortBinding<Ports> ports() {
+  PortBinding<Ports> b;
+  b.input("in", &Ports::in).doc("the stream under test").depth(1024).steps();
+  return b;
+}
+
 class AssertSink : public Plugin {
  public:
   static Manifest manifest() {
     return Manifest("testing.assert_sink", "1.0.0")
         .describe("Asserts count, rate, value range, ordering and exact values of a Scalar stream; fails the run when violated")
-        .input<msgs::Scalar>("in", "the stream under test", true, 1024)
-        .parameters(bindings())
-        .on_input("in");
+        .with_ports(ports())
+        .parameters(bindings());
   }
 
   void configure(Context& ctx) override {
@@ -59,11 +68,11 @@ class AssertSink : public Plugin {
     min_age_ = s.min_age_s;
     max_age_ = s.max_age_s;
     checker_.emplace(std::move(s.expect));
-    in_ = ctx.input<msgs::Scalar>("in");
+    io_ = ports().connect(ctx);
   }
 
   void step(Context& ctx) override {
-    for (const auto& s : in_.take()) {
+    for (const auto& s : io_.in.take()) {
       if (auto v = checker_->observe(s->header().stamp_ns(), s->value())) {
         violations_.push_back(*v);
         ctx.fail(*v);
@@ -83,7 +92,7 @@ class AssertSink : public Plugin {
   }
 
   void deactivate(Context& ctx) override {
-    for (const auto& s : in_.take()) checker_->observe(s->header().stamp_ns(), s->value());
+    for (const auto& s : io_.in.take()) checker_->observe(s->header().stamp_ns(), s->value());
     auto end = checker_->finish();
     ctx.metric("count", static_cast<double>(checker_->count()));
     ctx.metric("rate_hz", checker_->rate_hz());
@@ -101,7 +110,7 @@ class AssertSink : public Plugin {
   std::int64_t finish_after_ = 0;
   double min_age_ = NAN, max_age_ = NAN, max_seen_age_ = 0;
   std::vector<std::string> violations_;
-  Input<msgs::Scalar> in_;
+  Ports io_;
 };
 
 }  // namespace

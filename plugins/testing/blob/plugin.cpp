@@ -29,31 +29,51 @@ ParamBinding<SinkSettings> sink_bindings() {
   return b;
 }
 
+struct SourcePorts {
+  Output<msgs::Blob> out;
+};
+
+PortBinding<SourcePorts> source_ports() {
+  PortBinding<SourcePorts> b;
+  b.output("out", &SourcePorts::out);
+  return b;
+}
+
+struct SinkPorts {
+  Input<msgs::Blob> in;
+};
+
+PortBinding<SinkPorts> sink_ports() {
+  PortBinding<SinkPorts> b;
+  b.input("in", &SinkPorts::in).steps();
+  return b;
+}
+
 class BlobSource : public Plugin {
  public:
   static Manifest manifest() {
     return Manifest("testing.blob_source", "1.0.0")
         .describe("Publishes Blob messages of size_bytes at rate_hz")
-        .output<msgs::Blob>("out")
+        .with_ports(source_ports())
         .parameters(source_bindings())
         .periodic("rate_hz");
   }
   void configure(Context& ctx) override {
     size_ = source_bindings().read(ctx.params()).size_bytes;
-    out_ = ctx.output<msgs::Blob>("out");
+    io_ = source_ports().connect(ctx);
   }
   void step(Context& ctx) override {
     msgs::Blob b;
     b.header().stamp_ns(ctx.now_ns());
     b.header().seq(seq_++);
     b.data().assign(size_, static_cast<std::uint8_t>(seq_));
-    out_.publish(std::move(b));
+    io_.out.publish(std::move(b));
   }
 
  private:
   std::size_t size_ = 0;
   std::uint32_t seq_ = 0;
-  Output<msgs::Blob> out_;
+  SourcePorts io_;
 };
 
 class BlobSink : public Plugin {
@@ -61,16 +81,15 @@ class BlobSink : public Plugin {
   static Manifest manifest() {
     return Manifest("testing.blob_sink", "1.0.0")
         .describe("Counts Blob messages and bytes; fails when fewer than min_count arrive")
-        .input<msgs::Blob>("in")
-        .parameters(sink_bindings())
-        .on_input("in");
+        .with_ports(sink_ports())
+        .parameters(sink_bindings());
   }
   void configure(Context& ctx) override {
     min_count_ = sink_bindings().read(ctx.params()).min_count;
-    in_ = ctx.input<msgs::Blob>("in");
+    io_ = sink_ports().connect(ctx);
   }
   void step(Context&) override {
-    for (const auto& b : in_.take()) {
+    for (const auto& b : io_.in.take()) {
       ++count_;
       bytes_ += b->data().size();
     }
@@ -84,7 +103,7 @@ class BlobSink : public Plugin {
  private:
   std::int64_t min_count_ = 0, count_ = 0;
   std::uint64_t bytes_ = 0;
-  Input<msgs::Blob> in_;
+  SinkPorts io_;
 };
 
 }  // namespace

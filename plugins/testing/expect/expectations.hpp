@@ -1,8 +1,8 @@
 #pragma once
 // What testing.expect checks on a stream of any message type, decoded by its IDL: each
 // expectation a field (by path), a predicate and a time window, or the stream's count or rate;
-// every failed one reported at the end, each with its field, sample and time (issue 21,
-// docs/testing.md). Framework-free: unit tests feed it decoded samples directly.
+// every failed one reported at the end, each with its field, sample and time
+// (docs/testing.md). Framework-free: unit tests feed it decoded samples directly.
 #include "cdr/cdr_json.hpp"
 #include "cdr/field_path.hpp"
 

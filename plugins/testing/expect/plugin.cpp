@@ -26,37 +26,48 @@ ParamBinding<Settings> bindings() {
   return b;
 }
 
+// Named once: check() asks the validator about the same ports.
+constexpr char kIn[] = "in", kRef[] = "ref";
+
+struct Ports {
+  AnyInput in, ref;
+};
+
+PortBinding<Ports> ports() {
+  PortBinding<Ports> b;
+  b.input(kIn, &Ports::in).doc("the stream under test: any message type").depth(1024).steps();
+  b.input(kRef, &Ports::ref).doc("a second stream to compare with (near): its newest sample").optional().depth(64);
+  return b;
+}
+
 class Expect : public Plugin {
  public:
   static Manifest manifest() {
     return Manifest("testing.expect", "1.0.0")
         .describe("Checks fields of any message type by path (range, equals, order, near a second wire; always or "
                   "eventually in a time window; count, rate) and reports every failed expectation at the end")
-        .input_any("in", "the stream under test: any message type", true, 1024)
-        .input_any("ref", "a second stream to compare with (near): its newest sample", false, 64)
+        .with_ports(ports())
         .parameters(bindings())
-        .on_input("in")
         .check(&Expect::check);
   }
 
   void configure(Context& ctx) override {
     const Settings s = bindings().read(ctx.params());
     finish_after_ = s.finish_after;
-    in_ = ctx.input_any("in");
-    ref_ = ctx.input_any("ref");
-    idl_.emplace(in_.idl() ? in_.idl() : "");
-    if (ref_.connected() && ref_.idl()) ref_idl_.emplace(ref_.idl());
-    checker_.emplace(parse(s, *idl_, in_.type_name(), ref_idl_ ? &*ref_idl_ : nullptr, ref_.type_name()));
+    io_ = ports().connect(ctx);
+    idl_.emplace(io_.in.idl() ? io_.in.idl() : "");
+    if (io_.ref.connected() && io_.ref.idl()) ref_idl_.emplace(io_.ref.idl());
+    checker_.emplace(parse(s, *idl_, io_.in.type_name(), ref_idl_ ? &*ref_idl_ : nullptr, io_.ref.type_name()));
   }
 
   // At validation: the same parse, on the types the wires will carry.
   static void check(const CheckView& v) {
     const Settings s = bindings().read(v.params());
-    const char* ref = v.port_type("ref").empty() ? nullptr : v.port_idl("ref");
-    const cdr::CdrJson idl(v.port_idl("in") ? v.port_idl("in") : "");
+    const char* ref = v.port_type(kRef).empty() ? nullptr : v.port_idl(kRef);
+    const cdr::CdrJson idl(v.port_idl(kIn) ? v.port_idl(kIn) : "");
     std::optional<cdr::CdrJson> ref_idl;
     if (ref) ref_idl.emplace(ref);
-    parse(s, idl, v.port_type("in"), ref_idl ? &*ref_idl : nullptr, v.port_type("ref"));
+    parse(s, idl, v.port_type(kIn), ref_idl ? &*ref_idl : nullptr, v.port_type(kRef));
   }
 
   void step(Context& ctx) override { read(ctx); }
@@ -93,17 +104,17 @@ class Expect : public Plugin {
   }
 
   void read(Context& ctx) {
-    for (const auto& r : ref_.take()) {
+    for (const auto& r : io_.ref.take()) {
       try {
-        checker_->reference(ref_idl_->decode(ref_.type_name(), r->cdr.data(), r->cdr.size()));
+        checker_->reference(ref_idl_->decode(io_.ref.type_name(), r->cdr.data(), r->cdr.size()));
       } catch (const std::exception& e) {
         if (decode_errors_.size() < 8) decode_errors_.push_back("ref: a sample does not decode: " + std::string(e.what()));
       }
     }
-    for (const auto& m : in_.take()) {
+    for (const auto& m : io_.in.take()) {
       checker_->feed(ctx.now_s(), m->cdr.data(), m->cdr.size());
       try {
-        checker_->observe(ctx.now_s(), idl_->decode(in_.type_name(), m->cdr.data(), m->cdr.size()));
+        checker_->observe(ctx.now_s(), idl_->decode(io_.in.type_name(), m->cdr.data(), m->cdr.size()));
       } catch (const std::exception& e) {
         if (decode_errors_.size() < 8) decode_errors_.push_back("in: a sample does not decode: " + std::string(e.what()));
       }
@@ -113,7 +124,7 @@ class Expect : public Plugin {
   }
 
   std::int64_t finish_after_ = 0;
-  AnyInput in_, ref_;
+  Ports io_;
   std::optional<cdr::CdrJson> idl_, ref_idl_;
   std::optional<testing::ExpectationChecker> checker_;
   std::vector<std::string> decode_errors_;

@@ -41,19 +41,29 @@ ParamBinding<Settings> bindings() {
   return b;
 }
 
+struct Ports {
+  Output<msgs::Scalar> out;
+};
+
+PortBinding<Ports> ports() {
+  PortBinding<Ports> b;
+  b.output("out", &Ports::out).doc("the step count, until the fault");
+  return b;
+}
+
 class Fault : public Plugin {
  public:
   static Manifest manifest() {
     return Manifest("testing.fault", "1.0.0")
         .describe("Publishes a counter each step, then fails as told at a chosen step (fault injection)")
-        .output<msgs::Scalar>("out", "the step count, until the fault")
+        .with_ports(ports())
         .parameters(bindings())
         .periodic("rate_hz")
         .step_deadline("step_deadline_s");
   }
   void configure(Context& ctx) override {
     s_ = bindings().read(ctx.params());
-    out_ = ctx.output<msgs::Scalar>("out");
+    io_ = ports().connect(ctx);
   }
   void step(Context& ctx) override {
     if (steps_ == s_.at_step) {
@@ -76,13 +86,13 @@ class Fault : public Plugin {
     m.header().stamp_ns(ctx.now_ns());
     m.header().seq(static_cast<std::uint32_t>(steps_));
     m.value(static_cast<double>(steps_));
-    out_.publish(std::move(m));
+    io_.out.publish(std::move(m));
   }
 
  private:
   Settings s_;
   std::int64_t steps_ = 0;
-  Output<msgs::Scalar> out_;
+  Ports io_;
 };
 
 }  // namespace

@@ -1,6 +1,6 @@
 #pragma once
 // testing.json_source's script: samples of any message type written as JSON, each with the time
-// it is published, encoded by the type's IDL once, before the run (issue 21, docs/testing.md).
+// it is published, encoded by the type's IDL once, before the run (docs/testing.md).
 // Framework-free: unit tests call it directly.
 #include "cdr/cdr_json.hpp"
 

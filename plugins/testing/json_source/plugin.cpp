@@ -34,30 +34,44 @@ ParamBinding<Settings> bindings() {
   return b;
 }
 
+// Named once: check() asks the validator about the same port.
+constexpr char kOut[] = "out";
+
+struct Ports {
+  AnyOutput out;
+};
+
+PortBinding<Ports> ports() {
+  PortBinding<Ports> b;
+  b.output(kOut, &Ports::out).doc("the samples: the type parameter's, or that of the input this is wired to").type_from("type");
+  return b;
+}
+
 class JsonSource : public Plugin {
  public:
   static Manifest manifest() {
     return Manifest("testing.json_source", "1.0.0")
         .describe("publishes samples of any message type written as JSON, each at its time, as the type of the input it feeds")
-        .output_any("out", "the samples: the type parameter's, or that of the input this is wired to", "type")
+        .with_ports(ports())
         .parameters(bindings())
         .periodic("rate_hz")
         .check(&JsonSource::check);
   }
 
   void configure(Context& ctx) override {
-    out_ = ctx.output_any("out");
-    samples_ = load(bindings().read(ctx.params()), out_.type_name(), out_.idl(),
+    io_ = ports().connect(ctx);
+    samples_ = load(bindings().read(ctx.params()), io_.out.type_name(), io_.out.idl(),
                     [&](const std::string& f) { return ctx.find_file(f); });
   }
 
   // At validation: the script read and encoded as configure will, on the type the wire carries.
   static void check(const CheckView& v) {
-    load(bindings().read(v.params()), v.port_type("out"), v.port_idl("out"), [&](const std::string& f) { return v.find_file(f); });
+    load(bindings().read(v.params()), v.port_type(kOut), v.port_idl(kOut), [&](const std::string& f) { return v.find_file(f); });
   }
 
   void step(Context& ctx) override {
-    for (; next_ < samples_.size() && samples_[next_].t_ns <= ctx.now_ns(); ++next_) out_.publish(SerializedSample{samples_[next_].cdr});
+    for (; next_ < samples_.size() && samples_[next_].t_ns <= ctx.now_ns(); ++next_)
+      io_.out.publish(SerializedSample{samples_[next_].cdr});
   }
 
   void deactivate(Context& ctx) override {
@@ -69,7 +83,8 @@ class JsonSource : public Plugin {
   template <class FindFile>
   static std::vector<testing::ScriptedSample> load(const Settings& s, const std::string& type, const char* idl_text,
                                                    FindFile find_file) {
-    if (type.empty()) throw BadInput("output 'out' feeds no input: it takes its readers' type, so it needs one");
+    if (type.empty())
+      throw BadInput(std::string("output '") + kOut + "' feeds no input: it takes its readers' type, so it needs one");
     const cdr::CdrJson idl(idl_text ? idl_text : "");
     const bool inline_given = s.samples != "[]";
     if (inline_given == !s.file.empty()) throw BadInput("parameter 'samples': give samples or file, one of them");
@@ -99,7 +114,7 @@ class JsonSource : public Plugin {
     }
   }
 
-  AnyOutput out_;
+  Ports io_;
   std::vector<testing::ScriptedSample> samples_;
   std::size_t next_ = 0;
 };

@@ -35,12 +35,22 @@ ParamBinding<Settings> bindings() {
   return b;
 }
 
+struct Ports {
+  Output<msgs::Scalar> out;
+};
+
+PortBinding<Ports> ports() {
+  PortBinding<Ports> b;
+  b.output("out", &Ports::out).doc("one value per step");
+  return b;
+}
+
 class ScriptedSource : public Plugin {
  public:
   static Manifest manifest() {
     return Manifest("testing.scripted_source", "1.0.0")
         .describe("Publishes a scripted sequence of values: a list, or a ramp start + k*step")
-        .output<msgs::Scalar>("out", "one value per step")
+        .with_ports(ports())
         .parameters(bindings())
         .periodic("rate_hz")
         .delivered_after("latency_s");
@@ -49,7 +59,7 @@ class ScriptedSource : public Plugin {
   void configure(Context& ctx) override {
     const Settings s = bindings().read(ctx.params());
     script_.emplace(s.values, s.loop, s.start, s.step, s.count);
-    out_ = ctx.output<msgs::Scalar>("out");
+    io_ = ports().connect(ctx);
     noise_std_ = s.noise_std;
     rng_.seed(ctx.seed());
   }
@@ -61,14 +71,14 @@ class ScriptedSource : public Plugin {
     m.header().stamp_ns(ctx.now_ns());
     m.header().seq(seq_++);
     m.value(noise_std_ > 0 ? *v + noise_std_ * normal_(rng_) : *v);
-    out_.publish(std::move(m));
+    io_.out.publish(std::move(m));
   }
 
   void deactivate(Context& ctx) override { ctx.metric("published", static_cast<double>(script_->emitted())); }
 
  private:
   std::optional<testing::ScalarScript> script_;
-  Output<msgs::Scalar> out_;
+  Ports io_;
   std::uint32_t seq_ = 0;
   double noise_std_ = 0;
   std::mt19937_64 rng_;

@@ -27,15 +27,25 @@ ParamBinding<Settings> bindings() {
   return b;
 }
 
+struct Ports {
+  Input<msgs::Scalar> in;
+  Output<msgs::Scalar> out;
+};
+
+PortBinding<Ports> ports() {
+  PortBinding<Ports> b;
+  b.input("in", &Ports::in).doc("samples to transform").steps();
+  b.output("out", &Ports::out).doc("transformed samples, same stamps");
+  return b;
+}
+
 class Transform : public Plugin {
  public:
   static Manifest manifest() {
     return Manifest("testing.transform", "1.0.0")
         .describe("Affine transform of Scalar samples: y = gain * x + offset")
-        .input<msgs::Scalar>("in", "samples to transform")
-        .output<msgs::Scalar>("out", "transformed samples, same stamps")
-        .parameters(bindings())
-        .on_input("in");
+        .with_ports(ports())
+        .parameters(bindings());
   }
 
   void configure(Context& ctx) override {
@@ -45,17 +55,16 @@ class Transform : public Plugin {
     offset_ = s.offset;
     fault_step_ = s.fault == Fault::step;
     fault_at_ = s.fault_at;
-    in_ = ctx.input<msgs::Scalar>("in");
-    out_ = ctx.output<msgs::Scalar>("out");
+    io_ = ports().connect(ctx);
   }
 
   void step(Context& ctx) override {
-    for (const auto& s : in_.take()) {
+    for (const auto& s : io_.in.take()) {
       if (fault_step_ && handled_ == fault_at_) throw std::runtime_error("configured to fail at sample " + std::to_string(fault_at_));
       ++handled_;
       msgs::Scalar m = *s;
       m.value(gain_ * s->value() + offset_);
-      out_.publish(std::move(m));
+      io_.out.publish(std::move(m));
     }
   }
 
@@ -65,8 +74,7 @@ class Transform : public Plugin {
   double gain_ = 1, offset_ = 0;
   bool fault_step_ = false;
   std::int64_t fault_at_ = 0, handled_ = 0;
-  Input<msgs::Scalar> in_;
-  Output<msgs::Scalar> out_;
+  Ports io_;
 };
 
 }  // namespace

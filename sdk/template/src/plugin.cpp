@@ -22,28 +22,39 @@ ParamBinding<Settings> bindings() {
   return b;
 }
 
+// Ports the same way: each is a typed member bound once to its name; the manifest declares them
+// from the binding and configure() connects them all with ports().connect().
+struct Ports {
+  Input<msgs::Scalar> in;
+  Output<msgs::Scalar> out;
+};
+
+PortBinding<Ports> ports() {
+  PortBinding<Ports> b;
+  b.input("in", &Ports::in).doc("raw samples").steps();
+  b.output("out", &Ports::out).doc("filtered samples, same stamps");
+  return b;
+}
+
 class MyPlugin : public Plugin {
  public:
   static Manifest manifest() {
     return Manifest("example.my_plugin", "0.1.0")
         .describe("Low-pass filters a Scalar stream")
-        .input<msgs::Scalar>("in", "raw samples")
-        .output<msgs::Scalar>("out", "filtered samples, same stamps")
-        .parameters(bindings())
-        .on_input("in");
+        .with_ports(ports())
+        .parameters(bindings());
   }
 
   void configure(Context& ctx) override {
     filter_.emplace(bindings().read(ctx.params()).alpha);
-    in_ = ctx.input<msgs::Scalar>("in");
-    out_ = ctx.output<msgs::Scalar>("out");
+    io_ = ports().connect(ctx);
   }
 
   void step(Context& ctx) override {
-    for (const auto& s : in_.take()) {
+    for (const auto& s : io_.in.take()) {
       msgs::Scalar m = *s;
       m.value(filter_->update(s->value()));
-      out_.publish(std::move(m));
+      io_.out.publish(std::move(m));
       ++count_;
     }
   }
@@ -52,8 +63,7 @@ class MyPlugin : public Plugin {
 
  private:
   std::optional<LowPass> filter_;
-  Input<msgs::Scalar> in_;
-  Output<msgs::Scalar> out_;
+  Ports io_;
   long count_ = 0;
 };
 
