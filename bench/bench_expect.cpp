@@ -4,7 +4,7 @@
 // Each sample: 300 poses, four expectations over every pose (x and y in range, speed in range,
 // s increasing): 1200 field checks. Medians of 7 rounds of 200 samples.
 // usage: bench_expect
-#include "expect/expectations.hpp"
+#include "testing/expect/expectations.hpp"
 #include "record/recorder.hpp"           // idl_text, omgidl_schema
 #include "record/sample_serializer.hpp"
 

@@ -1,6 +1,6 @@
 // Nanoseconds per predict and per update of the pose filter under each update policy. The
 // baseline beside ours is the naive filter's update (every fix fused, no selection).
-#include "common/update_selection.hpp"
+#include "estimation/common/update_selection.hpp"
 
 #include <benchmark/benchmark.h>
 

@@ -8,10 +8,10 @@
 // (which works out both clouds' covariances). Prints per-scan medians, the ratios, and the error
 // of each result against the truth (<= 10 ms per scan, >= 10x PCL's GICP).
 // usage: bench_mapping [--scans N]
-#include "common/covariances.hpp"
-#include "common/ground_filter.hpp"
-#include "common/scan_mapper.hpp"
-#include "common/vgicp.hpp"
+#include "mapping/common/covariances.hpp"
+#include "perception/common/ground_filter.hpp"
+#include "mapping/common/scan_mapper.hpp"
+#include "mapping/common/vgicp.hpp"
 #include "pcl_baseline.hpp"
 #include "perception_scenes.hpp"
 

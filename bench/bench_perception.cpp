@@ -7,7 +7,7 @@
 // medians over the frames and the speed-ups, each the median of the per-frame ratios
 // (docs/performance.md). One thread.
 // usage: bench_perception [--frames N] [--runs N]
-#include "common/pipeline.hpp"
+#include "perception/common/pipeline.hpp"
 #include "pcl_baseline.hpp"
 #include "perception_scenes.hpp"
 

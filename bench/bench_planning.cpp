@@ -7,11 +7,11 @@
 //    must choose the same nodes;
 //  - graph build, save and load times, and the minimum-curvature QP for IMS.
 // One thread; medians.
-#include "common/graph_search.hpp"
-#include "common/line_setup.hpp"
-#include "common/track.hpp"
-#include "common/min_curvature.hpp"
-#include "common/road_graph_planner.hpp"
+#include "planning/common/graph_search.hpp"
+#include "planning/common/line_setup.hpp"
+#include "sim/common/track.hpp"
+#include "planning/common/min_curvature.hpp"
+#include "planning/common/road_graph_planner.hpp"
 
 #include <nlohmann/json.hpp>
 

@@ -11,8 +11,8 @@
 //     factor, the executive's default threads against --threads 1 and against the simulator alone
 //     (target: 15x).
 // usage: bench_sim [--quick]
-#include "common/lidar.hpp"
-#include "common/track.hpp"
+#include "sim/common/lidar.hpp"
+#include "sim/common/track.hpp"
 
 #include <nlohmann/json.hpp>
 

@@ -18,9 +18,9 @@
 //                       does with a perfect localization)
 // The mapped files stay in --out (default /tmp/eval_map_track): NAME/track.csv, NAME/map.pcd.
 // Exit 1 when a run failed or a target was missed.
-#include "common/scan_mapper.hpp"
-#include "common/track_compare.hpp"
-#include "common/track_extraction.hpp"
+#include "mapping/common/scan_mapper.hpp"
+#include "mapping/common/track_compare.hpp"
+#include "mapping/common/track_extraction.hpp"
 #include "perception_scenes.hpp"
 #include "race_runs.hpp"
 #include "track/banking.hpp"

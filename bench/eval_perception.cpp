@@ -4,10 +4,10 @@
 // precision and recall >= 0.98, wall distance error p95 <= 0.10 m, no false obstacles; exit 1 if
 // one is missed. The pylon detection range is reported (goal >= 80 m).
 // usage: eval_perception [--seed N]
-#include "common/pipeline.hpp"
+#include "perception/common/pipeline.hpp"
 #include "pcl_baseline.hpp"
 #include "perception_scenes.hpp"
-#include "common/perception_score.hpp"
+#include "sim/common/perception_score.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -4,9 +4,9 @@
 // refinement (min_time.hpp). TUM's lines put the car's centre 0.6 m from the edges, so the
 // comparison gives ours the same room (margin 0.6 m); the default margin for driving (1.5 m: half
 // the AV-21's width and a margin) is shown beside it. Prints the tables of docs/planning.md.
-#include "common/min_curvature.hpp"
-#include "common/line_setup.hpp"
-#include "common/min_time.hpp"
+#include "planning/common/min_curvature.hpp"
+#include "planning/common/line_setup.hpp"
+#include "planning/common/min_time.hpp"
 #include "motion/speed_profile.hpp"
 #include "motion/vehicle_limits.hpp"
 #include "track/centre_line.hpp"

@@ -1,6 +1,6 @@
 #include "perception_scenes.hpp"
 
-#include "common/perception_score.hpp"
+#include "sim/common/perception_score.hpp"
 #include "vehicle/vehicle.hpp"
 
 #include <cmath>

@@ -3,8 +3,8 @@
 // the car on the track at (s, d), its three Luminar Hydras (AV-21 mounts, as configs/
 // sim_truth_lap.json) cast against the banked road, both walls and the pylons; every point
 // carries the surface it hit.
-#include "common/lidar.hpp"
-#include "common/points.hpp"
+#include "sim/common/lidar.hpp"
+#include "perception/common/points.hpp"
 
 #include <memory>
 #include <string>

@@ -3,8 +3,8 @@
 // each message type; what encodes must decode again, by the IDL, to the same JSON's values. The
 // first byte picks the type; the rest is JSON text. Bad input must end in std::invalid_argument
 // (or the JSON parser's exception), never a crash.
-#include "expect/expectations.hpp"
-#include "json_source/json_samples.hpp"
+#include "testing/expect/expectations.hpp"
+#include "testing/json_source/json_samples.hpp"
 #include "message_types.hpp"
 
 #include <cstdint>

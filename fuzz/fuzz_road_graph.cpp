@@ -2,7 +2,7 @@
 // through RoadGraph::load, as planning.road_graph loads one. Bad input must end in a
 // runtime_error naming the file and what is wrong, never a crash or an allocation it cannot make.
 #include "fuzz_input.hpp"
-#include "common/road_graph.hpp"
+#include "planning/common/road_graph.hpp"
 
 #include <cstdint>
 #include <stdexcept>

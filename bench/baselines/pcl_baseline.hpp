@@ -2,7 +2,7 @@
 // PCL as the baseline of our perception (tests and benchmarks only; no plugin links PCL). The
 // interface speaks our types so that PCL headers stay inside pcl_baseline.cpp, the one
 // translation unit that pays for them.
-#include "common/points.hpp"
+#include "perception/common/points.hpp"
 
 #include <Eigen/Core>
 

@@ -56,10 +56,12 @@ std::string where_it_breaks(const std::string& type, const unsigned char* data, 
   return {};
 }
 
-}  // namespace
+using Clock = std::chrono::steady_clock;
+using Players = std::map<std::string, std::unique_ptr<Played>>;
 
-int bag_play(const BagPlayOptions& o) {
-  RecordingInfo info;
+// The recording's summary, `info`: 0, or 2 (said on stderr) when it cannot be read, is damaged or
+// holds no sample.
+int read_recording(const BagPlayOptions& o, RecordingInfo& info) {
   try {
     info = read_recording_info(o.file);
   } catch (const std::exception& e) {
@@ -69,16 +71,22 @@ int bag_play(const BagPlayOptions& o) {
   // A damaged file is refused: what it lacks is unknown (bag info reads up to the damage).
   if (!info.damage.empty()) return std::fprintf(stderr, "error: %s: %s\n", o.file.c_str(), info.damage.c_str()), 2;
   if (info.messages == 0) return std::fprintf(stderr, "error: %s: the recording holds no samples\n", o.file.c_str()), 2;
-  std::signal(SIGINT, on_signal);
-  std::signal(SIGTERM, on_signal);
+  return 0;
+}
+
+DdsSettings player_settings(const BagPlayOptions& o) {
   DdsSettings ds;
   ds.domain = o.domain;
   if (!o.security.empty()) {
     if (o.identity.empty()) throw InvalidInput("--security " + o.security, "bag play writes topics: it needs --identity NAME, a process of the graph allowed to write them");
     ds.security = security::security_identity(o.security, o.identity);
   }
-  DdsTransport dds(ds);
-  std::map<std::string, std::unique_ptr<Played>> topics;
+  return ds;
+}
+
+// A writer for each recorded topic --only selects: 0, or 2 (said on stderr) for a type this build
+// does not know.
+int make_players(const BagPlayOptions& o, const RecordingInfo& info, DdsTransport& dds, Players& topics) {
   for (const auto& [name, type] : info.topics) {
     if (!o.only.empty() && !topic_selected(name, o.only)) continue;
     const auto* entry = msgs::find_type(type.c_str());
@@ -94,13 +102,35 @@ int bag_play(const BagPlayOptions& o) {
     p->writer = dds.make_writer(topic_name(name.substr(0, dot), name.substr(dot + 1)), p->packed ? message_traits<msgs::PointCloud>::name : type);
     topics[name] = std::move(p);
   }
-  if (topics.empty()) return std::fprintf(stderr, "error: %s: no recorded topic matches --only\n", o.file.c_str()), 2;
-  // Readers elsewhere need a moment to match the new writers before the first sample.
-  std::this_thread::sleep_for(std::chrono::duration<double>(o.preroll_s));
-  using Clock = std::chrono::steady_clock;
-  const auto start = Clock::now();
+  return 0;
+}
+
+// One sample of `topic`, decoded into its message and written: empty, or why it could not be.
+std::string play_sample(Played& p, const std::string& topic, const unsigned char* data, std::size_t size) {
+  if (p.payload.max_size < size) p.payload.reserve(static_cast<std::uint32_t>(size));
+  std::memcpy(p.payload.data, data, size);
+  p.payload.length = static_cast<std::uint32_t>(size);
+  p.payload.pos = 0;
+  if (!p.support->deserialize(&p.payload, p.sample))
+    return "sample " + std::to_string(p.count) + " of " + topic + " does not decode as " + p.support->getName() +
+           where_it_breaks(p.support->getName(), data, size);
+  if (p.packed) {
+    try {
+      p.cloud = cloud::unpack<msgs::PointCloud>(*static_cast<const msgs::QuantizedPointCloud*>(p.sample));
+    } catch (const std::invalid_argument& e) {
+      return "sample " + std::to_string(p.count) + " of " + topic + ": " + e.what();
+    }
+    p.writer->write(&p.cloud);
+  } else {
+    p.writer->write(p.sample);
+  }
+  return {};
+}
+
+// Every sample of the played topics at its recorded time from `start` (`rate` times as fast),
+// until the end or Ctrl-C: empty, or what went wrong. `played` counts them.
+std::string play_samples(const BagPlayOptions& o, Players& topics, Clock::time_point start, std::uint64_t& played) {
   std::int64_t first = -1;
-  std::uint64_t played = 0;
   std::string error;
   try {
     for_each_sample(o.file, [&](const std::string& topic, const std::string&, std::int64_t stamp, const unsigned char* data, std::size_t size) {
@@ -109,35 +139,35 @@ int bag_play(const BagPlayOptions& o) {
       if (it == topics.end()) return;
       Played& p = *it->second;
       if (first < 0) first = stamp;
-      // At the recorded time, `rate` times as fast.
       const auto due = start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(static_cast<double>(stamp - first) * 1e-9 / o.rate));
       while (!g_interrupt && Clock::now() < due) std::this_thread::sleep_until(std::min(due, Clock::now() + std::chrono::milliseconds(50)));
-      if (p.payload.max_size < size) p.payload.reserve(static_cast<std::uint32_t>(size));
-      std::memcpy(p.payload.data, data, size);
-      p.payload.length = static_cast<std::uint32_t>(size);
-      p.payload.pos = 0;
-      if (!p.support->deserialize(&p.payload, p.sample)) {
-        error = "sample " + std::to_string(p.count) + " of " + topic + " does not decode as " + p.support->getName() +
-                where_it_breaks(p.support->getName(), data, size);
-        return;
-      }
-      if (p.packed) {
-        try {
-          p.cloud = cloud::unpack<msgs::PointCloud>(*static_cast<const msgs::QuantizedPointCloud*>(p.sample));
-        } catch (const std::invalid_argument& e) {
-          error = "sample " + std::to_string(p.count) + " of " + topic + ": " + e.what();
-          return;
-        }
-        p.writer->write(&p.cloud);
-      } else {
-        p.writer->write(p.sample);
-      }
+      error = play_sample(p, topic, data, size);
+      if (!error.empty()) return;
       ++p.count;
       ++played;
     });
   } catch (const std::exception& e) {
     error = e.what();
   }
+  return error;
+}
+
+}  // namespace
+
+int bag_play(const BagPlayOptions& o) {
+  RecordingInfo info;
+  if (const int rc = read_recording(o, info)) return rc;
+  std::signal(SIGINT, on_signal);
+  std::signal(SIGTERM, on_signal);
+  DdsTransport dds(player_settings(o));
+  Players topics;
+  if (const int rc = make_players(o, info, dds, topics)) return rc;
+  if (topics.empty()) return std::fprintf(stderr, "error: %s: no recorded topic matches --only\n", o.file.c_str()), 2;
+  // Readers elsewhere need a moment to match the new writers before the first sample.
+  std::this_thread::sleep_for(std::chrono::duration<double>(o.preroll_s));
+  const auto start = Clock::now();
+  std::uint64_t played = 0;
+  const std::string error = play_samples(o, topics, start, played);
   if (!error.empty()) return std::fprintf(stderr, "error: %s: %s\n", o.file.c_str(), error.c_str()), 2;
   const double wall = std::chrono::duration<double>(Clock::now() - start).count();
   std::fprintf(stderr, "bag play: %llu samples of %zu topics in %.2f s%s\n", static_cast<unsigned long long>(played), topics.size(), wall,

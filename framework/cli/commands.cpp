@@ -3,10 +3,14 @@
 
 #include "graph/diagnostics.hpp"
 
+#include <brickyard/roles.hpp>
+
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <cmath>
 #include <sstream>
+#include <vector>
 
 namespace fs = std::filesystem;
 
@@ -145,6 +149,31 @@ std::string find_template_dir() {
   if (fs::is_directory(BRICKYARD_SOURCE_TEMPLATE_DIR, ec)) return BRICKYARD_SOURCE_TEMPLATE_DIR;
 #endif
   return {};
+}
+
+namespace {
+std::string comma_list(const std::vector<std::string>& names) {
+  std::string out;
+  for (const auto& n : names) out += (out.empty() ? "" : ", ") + n;
+  return out;
+}
+}  // namespace
+
+std::string find_role_template_dir(const std::string& template_dir, const std::string& role) {
+  const fs::path roles_dir = fs::path(template_dir).parent_path() / "role_templates";
+  std::error_code ec;
+  std::vector<std::string> with_template;
+  for (const auto& r : role_contracts())
+    if (!template_dir.empty() && fs::is_directory(roles_dir / r.name, ec)) with_template.push_back(r.name);
+  const std::string have = "roles with one: " + (with_template.empty() ? std::string("none") : comma_list(with_template));
+  if (!find_role(role)) {
+    std::vector<std::string> all;
+    for (const auto& r : role_contracts()) all.push_back(r.name);
+    throw InvalidInput("--role " + role, "unknown role (roles: " + comma_list(all) + "; " + have + ")");
+  }
+  if (std::find(with_template.begin(), with_template.end(), role) == with_template.end())
+    throw InvalidInput("--role " + role, "no template for this role yet (" + have + ")");
+  return (roles_dir / role).string();
 }
 
 void scaffold_plugin(const std::string& name, const std::string& dir, const std::string& template_dir) {

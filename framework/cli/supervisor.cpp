@@ -67,6 +67,57 @@ struct Child {
   nlohmann::json runs = nlohmann::json::array();
 };
 
+// The child's summary.json, when it wrote one.
+nlohmann::json own_summary(const Child& c) {
+  nlohmann::json own;
+  std::ifstream f(fs::path(c.dir) / "summary.json");
+  try {
+    if (f) own = nlohmann::json::parse(f);
+  } catch (...) {
+  }
+  return own;
+}
+
+// How it ended, for people: its signal (with what its black box says it was running: it could
+// not say) or its exit code.
+std::string how_it_ended(const Child& c, int code, int sig) {
+  std::string how = sig ? "was killed by " + signal_name(sig) : code == 127 ? "could not be started (exit 127)" : "exited with code " + std::to_string(code);
+  if (sig) {
+    std::string running;
+    crash_guard::BlackBox box{};
+    std::ifstream f(c.black_box, std::ios::binary);
+    if (f.read(reinterpret_cast<char*>(&box), sizeof box)) {
+      for (auto& s : box.slots) {
+        s.node[sizeof s.node - 1] = s.phase[sizeof s.phase - 1] = '\0';
+        if (s.node[0]) running += std::string(running.empty() ? "" : ", ") + "node '" + s.node + "' was in its " + s.phase;
+      }
+      how += running.empty() ? " (no node was in a plugin call)" : " while " + running;
+    }
+  }
+  return how;
+}
+
+// The run that just ended, added to the child's runs (the supervisor's summary lists them).
+void add_run(Child& c, const nlohmann::json& own, const std::string& reason, int code, int sig, double at) {
+  nlohmann::json run = {{"out", fs::path(c.dir).filename().string()}, {"pid", c.pid}, {"started_s", c.started_s}, {"ended_s", at},
+                        {"result", own.is_object() ? own.value("result", "") : "failed"}, {"reason", reason}};
+  if (sig) run["signal"] = signal_name(sig);
+  else run["exit_code"] = code;
+  if (c.stopped) run["stopped_by_supervisor"] = true;
+  c.runs.push_back(run);
+}
+
+// SIGINT and SIGTERM count (the watch loop acts on them), SIGCHLD wakes its poll.
+void install_signal_handlers() {
+  struct sigaction sa {};
+  sa.sa_handler = on_signal;  // no SA_RESTART: poll returns at once
+  sigemptyset(&sa.sa_mask);
+  sigaction(SIGINT, &sa, nullptr);
+  sigaction(SIGTERM, &sa, nullptr);
+  sa.sa_handler = on_child;
+  sigaction(SIGCHLD, &sa, nullptr);
+}
+
 class Supervisor {
  public:
   Supervisor(const GraphDecl& g, const SuperviseOptions& o) : g_(g), o_(o), t0_(Clock::now()) {}
@@ -81,11 +132,21 @@ class Supervisor {
   void spawn(Child& c);
   void relay(Child& c, bool to_end);
   void ended(Child& c, int status);
+  void collect_shared_memory(const Child& c, bool clean);
+  void write_child_summary(const Child& c, const std::string& how, double at);
+  void ended_cleanly(const Child& c, const std::string& reason);
+  void apply_restart_policy(Child& c, const std::string& what, double at);
   void stop_all(int sig);
   void fail(const std::string& why) {
     if (!failed_) failed_ = why;
   }
   void write_summary(const std::string& result, const std::string& reason);
+  void prepare_folders();
+  void make_children();
+  void watch();
+  void wait_for_children();
+  void kill_overdue();
+  int conclude();
 
   const GraphDecl& g_;
   const SuperviseOptions& o_;
@@ -204,60 +265,13 @@ void Supervisor::ended(Child& c, int status) {
   int code = -1, sig = 0;
   if (WIFEXITED(status)) code = WEXITSTATUS(status);
   else if (WIFSIGNALED(status)) sig = WTERMSIG(status);
-  nlohmann::json own;  // the child's summary.json, when it wrote one
-  {
-    std::ifstream f(fs::path(c.dir) / "summary.json");
-    try {
-      if (f) own = nlohmann::json::parse(f);
-    } catch (...) {
-    }
-  }
+  const nlohmann::json own = own_summary(c);
   const std::string reason = own.is_object() ? own.value("reason", "") : "";
   const bool clean = code == 0 || (c.stopped && code == 130);
-  {
-    // What its participant made in /dev/shm (it listed the files). A dead one's segment goes now
-    // (a crash handler may have removed it already). Port files stay until every process has
-    // ended: a peer still has them mapped and sends to them, and a restarted process opens the
-    // same ports (were they unlinked now, it would never hear that peer). Then they all go, a clean
-    // process's too: a dead peer's reference keeps Fast DDS from removing them at its exit.
-    std::ifstream list(c.shm_list);
-    for (std::string file; std::getline(list, file);)
-      if (file.rfind("/dev/shm/", 0) == 0) {
-        std::error_code ec;
-        if (!clean && file.find("fastrtps_port") == std::string::npos) fs::remove(file, ec);
-        shm_files_.push_back(file);
-      }
-  }
-  std::string how = sig ? "was killed by " + signal_name(sig) : code == 127 ? "could not be started (exit 127)" : "exited with code " + std::to_string(code);
-  if (sig) {
-    // What it was running when it died, from its black box (it could not say).
-    std::string running;
-    crash_guard::BlackBox box{};
-    std::ifstream f(c.black_box, std::ios::binary);
-    if (f.read(reinterpret_cast<char*>(&box), sizeof box)) {
-      for (auto& s : box.slots) {
-        s.node[sizeof s.node - 1] = s.phase[sizeof s.phase - 1] = '\0';
-        if (s.node[0]) running += std::string(running.empty() ? "" : ", ") + "node '" + s.node + "' was in its " + s.phase;
-      }
-      how += running.empty() ? " (no node was in a plugin call)" : " while " + running;
-    }
-  }
-  if (!own.is_object()) {
-    // It could not say anything (SIGKILL, or dead before its run began): the supervisor writes its summary.
-    nlohmann::json s = {{"graph", g_.name}, {"graph_file", g_.file}, {"process", c.name}, {"result", "failed"},
-                        {"reason", "process '" + c.name + "' " + how + " and left no summary (written by its supervisor)"},
-                        {"clock", g_.clock.sim ? "sim" : "real"}, {"wall_time_s", at - c.started_s}, {"nodes", nlohmann::json::object()}};
-    for (const auto& n : c.nodes) s["nodes"][n] = {{"plugin", g_.nodes.at(n).plugin}};
-    std::error_code ec;
-    fs::create_directories(c.dir, ec);
-    std::ofstream(fs::path(c.dir) / "summary.json") << s.dump(2) << "\n";
-  }
-  nlohmann::json run = {{"out", fs::path(c.dir).filename().string()}, {"pid", c.pid}, {"started_s", c.started_s}, {"ended_s", at},
-                        {"result", own.is_object() ? own.value("result", "") : "failed"}, {"reason", reason}};
-  if (sig) run["signal"] = signal_name(sig);
-  else run["exit_code"] = code;
-  if (c.stopped) run["stopped_by_supervisor"] = true;
-  c.runs.push_back(run);
+  collect_shared_memory(c, clean);
+  const std::string how = how_it_ended(c, code, sig);
+  if (!own.is_object()) write_child_summary(c, how, at);
+  add_run(c, own, reason, code, sig, at);
   c.pid = -1;
 
   if (code == 2) {
@@ -267,23 +281,59 @@ void Supervisor::ended(Child& c, int status) {
     return;
   }
   if (clean) {
-    say("process '" + c.name + "' ended" + (reason.empty() ? "" : ": " + reason));
-    // The first process to end on its own ends the run (its referee, its sink, its duration). On
-    // the sim clock the others end at the same event by themselves, perhaps later in wall time.
-    if (!c.stopped && !stopping_ && g_.clock.sim) {
-      if (!finished_by_) finished_by_ = "process '" + c.name + "': " + reason;
-    } else if (!c.stopped && !stopping_) {
-      finished_by_ = "process '" + c.name + "': " + reason;
-      if (std::any_of(children_.begin(), children_.end(), [](const Child& o) { return o.state != Child::State::done; }))
-        say("stopping the other processes");
-      stop_all(SIGINT);
-    }
+    ended_cleanly(c, reason);
     return;
   }
   const std::string what = "process '" + c.name + "' (nodes " + join(c.nodes) + ") " + how + (reason.empty() ? "" : ": " + reason);
   say(what, true);
   if (!c.policy.may_die) fail(what);
   if (c.stopped || stopping_) return;
+  apply_restart_policy(c, what, at);
+}
+
+// What its participant made in /dev/shm (it listed the files). A dead one's segment goes now
+// (a crash handler may have removed it already). Port files stay until every process has
+// ended: a peer still has them mapped and sends to them, and a restarted process opens the
+// same ports (were they unlinked now, it would never hear that peer). Then they all go, a clean
+// process's too: a dead peer's reference keeps Fast DDS from removing them at its exit.
+void Supervisor::collect_shared_memory(const Child& c, bool clean) {
+  std::ifstream list(c.shm_list);
+  for (std::string file; std::getline(list, file);)
+    if (file.rfind("/dev/shm/", 0) == 0) {
+      std::error_code ec;
+      if (!clean && file.find("fastrtps_port") == std::string::npos) fs::remove(file, ec);
+      shm_files_.push_back(file);
+    }
+}
+
+// It could not say anything (SIGKILL, or dead before its run began): the supervisor writes its summary.
+void Supervisor::write_child_summary(const Child& c, const std::string& how, double at) {
+  nlohmann::json s = {{"graph", g_.name}, {"graph_file", g_.file}, {"process", c.name}, {"result", "failed"},
+                      {"reason", "process '" + c.name + "' " + how + " and left no summary (written by its supervisor)"},
+                      {"clock", g_.clock.sim ? "sim" : "real"}, {"wall_time_s", at - c.started_s}, {"nodes", nlohmann::json::object()}};
+  for (const auto& n : c.nodes) s["nodes"][n] = {{"plugin", g_.nodes.at(n).plugin}};
+  std::error_code ec;
+  fs::create_directories(c.dir, ec);
+  std::ofstream(fs::path(c.dir) / "summary.json") << s.dump(2) << "\n";
+}
+
+void Supervisor::ended_cleanly(const Child& c, const std::string& reason) {
+  say("process '" + c.name + "' ended" + (reason.empty() ? "" : ": " + reason));
+  // The first process to end on its own ends the run (its referee, its sink, its duration). On
+  // the sim clock the others end at the same event by themselves, perhaps later in wall time.
+  if (!c.stopped && !stopping_ && g_.clock.sim) {
+    if (!finished_by_) finished_by_ = "process '" + c.name + "': " + reason;
+  } else if (!c.stopped && !stopping_) {
+    finished_by_ = "process '" + c.name + "': " + reason;
+    if (std::any_of(children_.begin(), children_.end(), [](const Child& o) { return o.state != Child::State::done; }))
+      say("stopping the other processes");
+    stop_all(SIGINT);
+  }
+}
+
+// A child that failed, not stopped by the supervisor: restarted after its backoff when its policy
+// says so and it has restarts and the run time left.
+void Supervisor::apply_restart_policy(Child& c, const std::string& what, double at) {
   // The others go on whatever died: a car interface among them keeps its car safe (it brakes on
   // its command watchdog) rather than being stopped; the verdict is kept.
   if (c.policy.restart != ProcessDecl::Restart::on_failure) {
@@ -333,7 +383,8 @@ void Supervisor::write_summary(const std::string& result, const std::string& rea
   }
 }
 
-int Supervisor::run() {
+// What the folder's last supervised run made goes (its summary lists its processes' folders).
+void Supervisor::prepare_folders() {
   std::error_code ec;
   self_ = fs::read_symlink("/proc/self/exe", ec).string();
   if (ec) throw std::runtime_error("cannot find this executable (/proc/self/exe)");
@@ -342,7 +393,6 @@ int Supervisor::run() {
   tmp_ = tmpl;
   base_ = o_.out.empty() ? tmp_ : o_.out;
   if (!o_.out.empty()) {
-    // What the folder's last supervised run made goes (its summary lists its processes' folders).
     std::ifstream old(fs::path(o_.out) / "summary.json");
     try {
       const auto j = nlohmann::json::parse(old);
@@ -356,6 +406,10 @@ int Supervisor::run() {
     }
     fs::remove(fs::path(o_.out) / "summary.json", ec);
   }
+}
+
+// A child per process the graph's nodes name, in the order of their names.
+void Supervisor::make_children() {
   std::map<std::string, std::vector<std::string>> nodes;
   for (const auto& [name, n] : g_.nodes) nodes[n.process].push_back(name);
   for (const auto& [p, names] : nodes) {
@@ -366,17 +420,37 @@ int Supervisor::run() {
     c.start_at = t0_;
     children_.push_back(std::move(c));
   }
-  struct sigaction sa {};
-  sa.sa_handler = on_signal;  // no SA_RESTART: poll returns at once
-  sigemptyset(&sa.sa_mask);
-  sigaction(SIGINT, &sa, nullptr);
-  sigaction(SIGTERM, &sa, nullptr);
-  sa.sa_handler = on_child;
-  sigaction(SIGCHLD, &sa, nullptr);
-  std::string plan;
-  for (const auto& c : children_) plan += (plan.empty() ? "" : "; ") + c.name + " (" + join(c.nodes) + ")";
-  say("supervising " + std::to_string(children_.size()) + " processes: " + plan);
+}
 
+// Asleep until a child speaks or ends (SIGCHLD), a signal comes, or a restart or a stop is due:
+// watching costs next to nothing (cpu_s in the summary). What the children said is relayed.
+void Supervisor::wait_for_children() {
+  std::vector<pollfd> fds;
+  std::vector<Child*> who;
+  for (auto& c : children_)
+    if (c.out_fd >= 0) fds.push_back({c.out_fd, POLLIN, 0}), who.push_back(&c);
+  auto wake = Clock::now() + std::chrono::milliseconds(250);
+  for (const auto& c : children_)
+    if (c.state == Child::State::waiting) wake = std::min(wake, c.start_at);
+  if (stopping_) wake = std::min(wake, stop_deadline_);
+  const auto ms = std::chrono::duration_cast<std::chrono::milliseconds>(wake - Clock::now()).count();
+  poll(fds.data(), fds.size(), static_cast<int>(std::clamp<long long>(ms + 1, 0, 250)));
+  for (std::size_t i = 0; i < fds.size(); ++i)
+    if (fds[i].revents) relay(*who[i], false);
+}
+
+// The children still running past the stop's grace are killed.
+void Supervisor::kill_overdue() {
+  for (auto& c : children_)
+    if (c.state == Child::State::running) {
+      say("process '" + c.name + "' did not end within " + std::to_string(static_cast<int>(kStopGrace_s)) + " s of being stopped: killed", true);
+      kill(c.pid, SIGKILL);
+    }
+  stop_deadline_ = Clock::now() + std::chrono::hours(1);
+}
+
+// Until every child is done: signals acted on, children started when due, their ends handled.
+void Supervisor::watch() {
   int signals_seen = 0;
   for (;;) {
     if (g_signals > signals_seen) {
@@ -388,38 +462,22 @@ int Supervisor::run() {
     }
     for (auto& c : children_)
       if (c.state == Child::State::waiting && !stopping_ && Clock::now() >= c.start_at) spawn(c);
-    std::vector<pollfd> fds;
-    std::vector<Child*> who;
-    for (auto& c : children_)
-      if (c.out_fd >= 0) fds.push_back({c.out_fd, POLLIN, 0}), who.push_back(&c);
-    // Asleep until a child speaks or ends (SIGCHLD), a signal comes, or a restart or a stop is due:
-    // watching costs next to nothing (cpu_s in the summary).
-    auto wake = Clock::now() + std::chrono::milliseconds(250);
-    for (const auto& c : children_)
-      if (c.state == Child::State::waiting) wake = std::min(wake, c.start_at);
-    if (stopping_) wake = std::min(wake, stop_deadline_);
-    const auto ms = std::chrono::duration_cast<std::chrono::milliseconds>(wake - Clock::now()).count();
-    poll(fds.data(), fds.size(), static_cast<int>(std::clamp<long long>(ms + 1, 0, 250)));
-    for (std::size_t i = 0; i < fds.size(); ++i)
-      if (fds[i].revents) relay(*who[i], false);
+    wait_for_children();
     for (auto& c : children_) {
       if (c.state != Child::State::running) continue;
       int status = 0;
       if (waitpid(c.pid, &status, WNOHANG) == c.pid) ended(c, status);
     }
-    if (stopping_ && Clock::now() > stop_deadline_) {
-      for (auto& c : children_)
-        if (c.state == Child::State::running) {
-          say("process '" + c.name + "' did not end within " + std::to_string(static_cast<int>(kStopGrace_s)) + " s of being stopped: killed", true);
-          kill(c.pid, SIGKILL);
-        }
-      stop_deadline_ = Clock::now() + std::chrono::hours(1);
-    }
+    if (stopping_ && Clock::now() > stop_deadline_) kill_overdue();
     if (std::all_of(children_.begin(), children_.end(), [](const Child& c) { return c.state == Child::State::done; })) break;
   }
+}
+
+// Every process is accounted for: what is left of them goes, and the verdict (the exit code).
+int Supervisor::conclude() {
+  std::error_code ec;
   fs::remove_all(tmp_, ec);
   for (const auto& file : shm_files_) fs::remove(file, ec);
-  // Every process is accounted for: the verdict.
   for (const auto& c : children_)
     if (!c.runs.empty() && c.runs.back().value("result", "") == "failed" && !c.policy.may_die)
       fail("process '" + c.name + "': " + c.runs.back().value("reason", std::string("failed")));
@@ -431,6 +489,17 @@ int Supervisor::run() {
   write_summary(result, reason);
   std::fprintf(stderr, "[brickyard] %s: %s (supervised %zu processes, wall %.3f s)\n", result.c_str(), reason.c_str(), children_.size(), elapsed());
   return rc;
+}
+
+int Supervisor::run() {
+  prepare_folders();
+  make_children();
+  install_signal_handlers();
+  std::string plan;
+  for (const auto& c : children_) plan += (plan.empty() ? "" : "; ") + c.name + " (" + join(c.nodes) + ")";
+  say("supervising " + std::to_string(children_.size()) + " processes: " + plan);
+  watch();
+  return conclude();
 }
 
 }  // namespace

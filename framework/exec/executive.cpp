@@ -206,7 +206,7 @@ void Executive::request_stop(RunResult r, std::string reason) {
     t_deferred->emplace_back([this, r, reason = std::move(reason)]() mutable { request_stop(r, std::move(reason)); });
     return;
   }
-  if (deactivate_log_) {  // a lockstep run's deactivation: applied with the other processes' (run())
+  if (deactivate_log_) {  // a lockstep run's deactivation: applied with the other processes' (finish_lockstep)
     LockRecord d;
     d.node = static_cast<std::uint32_t>(deactivating_);
     d.result = static_cast<std::uint8_t>(r);
@@ -274,8 +274,38 @@ RunSummary Executive::run() {
   const auto wall0 = std::chrono::steady_clock::now();
   console_.start(opt_.quiet, opt_.progress_s, wall0);
   real_start_ns_ = wall_ns();
+  open_record_and_live();
+  const bool built = !stop_ && try_build();
+  if (live_ && built) {
+    live_->start();
+    host_log("live: ws://" + opt_.live_address + ":" + std::to_string(live_->port()) + " (Foxglove: Open connection, Foxglove WebSocket)");
+  }
+  // A lockstep run meets its peers before anything of its nodes runs: from construction on,
+  // every lifecycle call is an event of its process, so every process stops at the same node.
+  if (lock_) lockstep_start();
+  const std::vector<NodeRuntime*> active = bring_up(built);
+  if (!stop_ && !sim() && !await_peers() && g_interrupt) request_stop(RunResult::interrupted, "interrupted");
+  if (!stop_) {
+    host_log("running");
+    if (sim()) run_sim();
+    else run_real();
+    progress(true);
+  }
+  if (transport_ && !lock_) transport_->close_readers();
+  // The run loop's wake-up hooks refer to its own state: samples published from here on (in
+  // deactivate) are queued, and step nothing. The other processes' phantoms too: a sample a
+  // node publishes to another process in deactivate arrives at one.
+  for (auto* group : {&nodes_, &phantoms_})
+    for (auto& n : *group)
+      for (auto& in : n->inputs) in->on_arrival = nullptr;
+  deactivate(active);
+  const nlohmann::json live = live_summary();
+  const nlohmann::json recording = recording_summary();
+  return summarize(wall0, live, recording);
+}
+
+void Executive::open_record_and_live() {
   const GraphDecl& g = *graph_.decl;
-  bool built = false;
   if (!opt_.record.empty()) {
     try {
       recorder_ = open_recording(opt_, g, sim());
@@ -297,67 +327,61 @@ RunSummary Executive::run() {
       request_stop(RunResult::invalid_input, e.what());
     }
   }
-  if (!stop_) {
-    try {
-      build();
-      built = true;
-    } catch (const std::exception& e) {
-      request_stop(RunResult::failed, std::string("transport: ") + e.what());
-    }
+}
+
+bool Executive::try_build() {
+  try {
+    build();
+    return true;
+  } catch (const std::exception& e) {
+    request_stop(RunResult::failed, std::string("transport: ") + e.what());
+    return false;
   }
-  if (live_ && built) {
-    live_->start();
-    host_log("live: ws://" + opt_.live_address + ":" + std::to_string(live_->port()) + " (Foxglove: Open connection, Foxglove WebSocket)");
-  }
-  // A lockstep run meets its peers before anything of its nodes runs: from construction on,
-  // every lifecycle call is an event of its process, so every process stops at the same node.
-  if (lock_) lockstep_start();
-  // The lifecycle, node by node in schedule order, up to the first call that fails.
-  auto phase = [&](std::int64_t tag, const std::vector<NodeRuntime*>& over, const std::function<bool(NodeRuntime&)>& one) {
-    std::vector<NodeRuntime*> done;
-    for (std::size_t i = 0; i < over.size(); ++i) {
-      NodeRuntime& n = *over[i];
-      if (n.phantom) {
-        remote_event(i, tag);
-        if (stop_) break;
-        continue;
-      }
-      bool ok = false;
-      local_event(i, tag, [&] { ok = one(n); });
-      if (!ok) break;
-      done.push_back(&n);
+}
+
+std::vector<NodeRuntime*> Executive::lifecycle_phase(std::int64_t tag, const std::vector<NodeRuntime*>& over,
+                                                     const std::function<bool(NodeRuntime&)>& one) {
+  std::vector<NodeRuntime*> done;
+  for (std::size_t i = 0; i < over.size(); ++i) {
+    NodeRuntime& n = *over[i];
+    if (n.phantom) {
+      remote_event(i, tag);
+      if (stop_) break;
+      continue;
     }
-    return done;
-  };
+    bool ok = false;
+    local_event(i, tag, [&] { ok = one(n); });
+    if (!ok) break;
+    done.push_back(&n);
+  }
+  return done;
+}
+
+std::vector<NodeRuntime*> Executive::bring_up(bool built) {
   std::vector<NodeRuntime*> every;  // this process's nodes, or with lockstep every process's
   if (lock_) every = sched_;
   else
     for (auto& n : nodes_) every.push_back(n.get());
   if (built && !stop_)
-    phase(kConstruction, every, [&](NodeRuntime& n) { return call(n, "construction", [&] { n.instance = n.rn->plugin->descriptor->create(); }); });
+    lifecycle_phase(kConstruction, every,
+                    [&](NodeRuntime& n) { return call(n, "construction", [&] { n.instance = n.rn->plugin->descriptor->create(); }); });
   std::vector<NodeRuntime*> configured;
   if (!stop_) {
-    host_log("graph '" + g.name + "': " + std::to_string(nodes_.size()) + " nodes, " + (sim() ? "sim" : "real") + " clock");
-    configured = phase(kConfigure, every, [&](NodeRuntime& n) { return call(n, "configure", [&] { n.instance->configure(*n.ctx); }); });
+    host_log("graph '" + graph_.decl->name + "': " + std::to_string(nodes_.size()) + " nodes, " + (sim() ? "sim" : "real") + " clock");
+    configured =
+        lifecycle_phase(kConfigure, every, [&](NodeRuntime& n) { return call(n, "configure", [&] { n.instance->configure(*n.ctx); }); });
   }
   std::vector<NodeRuntime*> active;
   if (!stop_)
-    active = phase(kActivate, lock_ ? every : configured, [&](NodeRuntime& n) { return call(n, "activate", [&] { n.instance->activate(*n.ctx); }); });
-  if (!stop_ && !sim() && !await_peers() && g_interrupt) request_stop(RunResult::interrupted, "interrupted");
-  if (!stop_) {
-    host_log("running");
-    if (sim()) run_sim();
-    else run_real();
-    progress(true);
-  }
-  if (transport_ && !lock_) transport_->close_readers();
-  // The run loop's wake-up hooks refer to its own state: samples published from here on (in
-  // deactivate) are queued, and step nothing.
-  for (auto& n : nodes_)
-    for (auto& in : n->inputs) in->on_arrival = nullptr;
-  // Every node that was activated is deactivated, in reverse order, even after a failure:
-  // sinks report their verdicts there. In a lockstep run what each asks is kept, and applied
-  // with the other processes' in the one order of the schedule (below).
+    active = lifecycle_phase(kActivate, lock_ ? every : configured,
+                             [&](NodeRuntime& n) { return call(n, "activate", [&] { n.instance->activate(*n.ctx); }); });
+  return active;
+}
+
+// Every node that was activated is deactivated, in reverse order, even after a failure: sinks
+// report their verdicts there. In a lockstep run what each asks is kept, and applied with the
+// other processes' in the one order of the schedule (finish_lockstep).
+void Executive::deactivate(const std::vector<NodeRuntime*>& active) {
   std::vector<LockRecord> asked;
   if (lock_) deactivate_log_ = &asked;
   for (auto it = active.rbegin(); it != active.rend(); ++it) {
@@ -365,37 +389,46 @@ RunSummary Executive::run() {
     call(**it, "deactivate", [&] { (*it)->instance->deactivate(*(*it)->ctx); });
   }
   deactivate_log_ = nullptr;
-  if (lock_) {
-    // The peers may be behind: this process's last records and samples reach them before it goes.
-    std::vector<DdsWriter*> writers;
-    for (auto& n : nodes_)
-      for (auto& o : n->outputs)
-        if (o->writer) writers.push_back(o->writer);
-    RunResult result = RunResult::success;
-    std::string reason = "sim clock reached the end", why;
-    {
-      std::lock_guard<std::mutex> l(stop_m_);
-      if (stop_result_) result = *stop_result_, reason = stop_reason_;
-    }
-    std::vector<LockRecord> all = lock_->finish(result, reason, writers, asked, why);
-    all.insert(all.end(), asked.begin(), asked.end());
-    // Deactivation runs downstream first (reverse schedule order): the same requests in the same
-    // order as in one process, so the same verdict.
-    std::stable_sort(all.begin(), all.end(), [](const LockRecord& a, const LockRecord& b) { return a.node > b.node; });
-    for (const auto& r : all) request_stop(static_cast<RunResult>(r.result), r.reason);
-    if (!why.empty()) request_stop(RunResult::failed, why);
-    transport_->close_readers();
-  }
+  if (lock_) finish_lockstep(asked);
+}
 
+void Executive::finish_lockstep(const std::vector<LockRecord>& asked) {
+  // The peers may be behind: this process's last records and samples reach them before it goes.
+  std::vector<DdsWriter*> writers;
+  for (auto& n : nodes_)
+    for (auto& o : n->outputs)
+      if (o->writer) writers.push_back(o->writer);
+  RunResult result = RunResult::success;
+  std::string reason = "sim clock reached the end", why;
+  {
+    std::lock_guard<std::mutex> l(stop_m_);
+    if (stop_result_) result = *stop_result_, reason = stop_reason_;
+  }
+  std::vector<LockRecord> all = lock_->finish(result, reason, writers, asked, why);
+  all.insert(all.end(), asked.begin(), asked.end());
+  // Deactivation runs downstream first (reverse schedule order): the same requests in the same
+  // order as in one process, so the same verdict.
+  std::stable_sort(all.begin(), all.end(), [](const LockRecord& a, const LockRecord& b) { return a.node > b.node; });
+  for (const auto& r : all) request_stop(static_cast<RunResult>(r.result), r.reason);
+  if (!why.empty()) request_stop(RunResult::failed, why);
+  transport_->close_readers();
+}
+
+nlohmann::json Executive::live_summary() const {
   nlohmann::json live;
   if (live_) {
     const LiveStats st = live_->stats();
     live = {{"port", live_->port()}, {"clients", st.clients}, {"sent", st.sent}, {"dropped", st.dropped},
             {"refused_requests", st.refused_requests}, {"disconnected", st.disconnected}, {"clouds_thinned", st.clouds_thinned},
-            {"cloud_hz", opt_.live_cloud_hz}, {"server_cpu_s", st.server_cpu_s}, {"taps_s", 1e-9 * static_cast<double>(live_tap_ns_.load())}};
+            {"cloud_hz", opt_.live_cloud_hz}, {"server_cpu_s", st.server_cpu_s},
+            {"taps_s", 1e-9 * static_cast<double>(live_tap_ns_.load())}};
     // The server and the scene stay until the executive goes (taps may publish until the plugins
     // are destroyed); its clients are closed then.
   }
+  return live;
+}
+
+nlohmann::json Executive::recording_summary() {
   nlohmann::json recording;
   if (recorder_) {
     try {
@@ -404,6 +437,10 @@ RunSummary Executive::run() {
       request_stop(RunResult::failed, e.what());
     }
   }
+  return recording;
+}
+
+RunSummary Executive::summarize(std::chrono::steady_clock::time_point wall0, const nlohmann::json& live, const nlohmann::json& recording) {
   RunSummary s;
   s.result = stop_result_.value_or(RunResult::success);
   s.reason = stop_result_ ? stop_reason_ : (sim() ? "sim clock reached the end" : "duration reached");
@@ -417,7 +454,7 @@ RunSummary Executive::run() {
   s.sim_time_s = sim() ? static_cast<double>(sim_now_ns_) / 1e9 : 0.0;
   s.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   if (!sim()) s.sim_time_s = s.wall_time_s;
-  s.json = summary_json(s, g, opt_, sim(), recording, nodes_, now_ns());
+  s.json = summary_json(s, *graph_.decl, opt_, sim(), recording, nodes_, now_ns());
   if (!live.is_null()) s.json["live"] = live;
   {
     std::lock_guard<std::mutex> l(stop_m_);

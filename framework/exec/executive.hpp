@@ -2,9 +2,12 @@
 // Runs a resolved graph: builds the nodes of this process, wires them, steps them on the sim
 // clock (one thread, ordered, reproducible) or the real clock (a thread per node).
 // executive.cpp: a run's lifecycle; wiring.cpp: the nodes and wires; sim_scheduler.cpp and
-// real_scheduler.cpp: the two clocks; console, summary, recording, file_search, seeding: the rest.
+// real_scheduler.cpp: the two clocks; run_types.hpp: what a run is given and gives back; console,
+// summary, recording, file_search, seeding: the rest.
 #include "exec/channels.hpp"
 #include "exec/console.hpp"
+#include "exec/node_context.hpp"
+#include "exec/run_types.hpp"
 #include "graph/resolve.hpp"
 #include "live/live_server.hpp"
 #include "live/scene.hpp"
@@ -16,63 +19,31 @@
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
+#include <functional>
 #include <map>
 #include <optional>
+#include <string>
+#include <vector>
 
 namespace brickyard::fw {
-
-struct RunOptions {
-  std::optional<double> duration_s;  // overrides the graph's clock.duration_s
-  std::uint64_t seed = 0;
-  std::string process;               // empty: every node
-  std::optional<int> domain;         // overrides transport.domain
-  bool quiet = false;
-  double progress_s = -1;                // seconds of wall time between progress lines; 0: none;
-                                         // < 0: 0.25 on a terminal (one updating line), 5 otherwise
-  std::string record;                    // --record FILE: every wire's samples (docs/recording.md)
-  std::string record_compression = "zstd";  // --record-compression: an MCAP recording's chunks
-  std::vector<std::string> record_only;  // --record-only: "node.port" patterns ('*' any); empty: all
-  std::vector<std::string> record_skip_types;  // message types not recorded (the --out default skips clouds)
-  std::optional<int> live_port;          // --live PORT: the Foxglove WebSocket server (docs/live.md)
-  std::string live_address = "127.0.0.1";  // --live-address: loopback unless said otherwise
-  double record_cloud_precision = 0;      // --record-cloud-precision: clouds recorded to this many metres, compact (0: exact)
-  double live_cloud_hz = 20;             // --live-cloud-hz: a cloud channel's most clouds a second, wall time (0: all)
-  double pace = 0;                       // --pace X: sim clock at most X times real time (0: as fast as it goes)
-  int threads = 0;        // sim clock: threads that step nodes (0: the machine's cores, at most 4)
-  bool profile = false;  // --profile: each node's wall time in step, in the summary ("step_wall_s")
-  DdsSecurity security;  // transport.security: this process's identity's files (checked readable before the run)
-};
-
-enum class RunResult { success, failed, interrupted, invalid_input };
-const char* to_string(RunResult r);
-
-struct RunSummary {
-  RunResult result = RunResult::success;
-  std::string reason;
-  double sim_time_s = 0, wall_time_s = 0;
-  nlohmann::json json;  // what summary.json holds
-};
-
-// Set from a signal handler: the running executive stops cleanly at the next event.
-extern std::atomic<bool> g_interrupt;
 
 class NodeRuntime;
 class Lockstep;
 struct LockRecord;
 
-class Executive {
+class Executive final : public NodeHost {
  public:
   Executive(const ResolvedGraph& g, RunOptions opt);
   ~Executive();
   RunSummary run();
 
-  // For NodeContext.
-  std::int64_t now_ns() const;
-  std::string find_file(std::string_view path) const;
-  bool sim() const { return graph_.decl->clock.sim; }
+  // For NodeContext (NodeHost).
+  std::int64_t now_ns() const override;
+  std::string find_file(std::string_view path) const override;
+  bool sim() const override { return graph_.decl->clock.sim; }
   std::uint64_t seed() const { return opt_.seed; }
-  void log(const NodeRuntime& n, LogLevel level, std::string_view msg);
-  void request_stop(RunResult r, std::string reason);
+  void log(const NodeRuntime& n, LogLevel level, std::string_view msg) override;
+  void request_stop(RunResult r, std::string reason) override;
   // An input whose writer runs in another process (a split run).
   struct RemoteInput {
     std::string input, writer, process;  // "node.port", "node.port", the writer's process
@@ -86,13 +57,39 @@ class Executive {
   void peer_liveliness(RemoteInput& in, bool alive);
   // A writer the graph does not name sent to the input (a participant not the writer's process).
   void foreign_writer(RemoteInput& in, const std::string& participant, const std::string& writer);
-  void set_status(const std::string& node, std::string_view field, std::string_view value);
+  void set_status(const std::string& node, std::string_view field, std::string_view value) override;
 
  private:
+  // A run's steps (executive.cpp), in order.
+  void open_record_and_live();  // --record's file and --live's server, before any node exists
+  bool try_build();             // build(), its failure the run's: whether it was built
+  // Construction, configuration and activation, node by node in schedule order: the nodes activated.
+  std::vector<NodeRuntime*> bring_up(bool built);
+  // One lifecycle phase over `over`, up to the first call that fails: the nodes it was done for.
+  std::vector<NodeRuntime*> lifecycle_phase(std::int64_t tag, const std::vector<NodeRuntime*>& over,
+                                            const std::function<bool(NodeRuntime&)>& one);
+  void deactivate(const std::vector<NodeRuntime*>& active);
+  void finish_lockstep(const std::vector<LockRecord>& asked);  // `asked`: this process's deactivations' requests
+  nlohmann::json live_summary() const;  // summary.json's "live" (null without --live)
+  nlohmann::json recording_summary();   // the recording closed: summary.json's "recording" (null without one)
+  RunSummary summarize(std::chrono::steady_clock::time_point wall0, const nlohmann::json& live, const nlohmann::json& recording);
+
+  // The nodes and wires (wiring.cpp).
+  struct NodesByName {
+    std::map<std::string, NodeRuntime*> here, phantom;  // this process's; another's, in a lockstep run
+  };
   void build();
+  void make_transport();
+  NodeRuntime* add_node(const ResolvedNode& rn);  // this process's node: its ports, context and status fields
+  void add_output(NodeRuntime& n, const PortSpec& p);  // its DDS writer and tap
+  void make_lockstep();
+  void wire(const WireDecl& w, const NodesByName& by_name);
+  void connect_remote_input(const WireDecl& w, const NodeRuntime& to, InputQueue* in, const std::string& wire_type,
+                            OutputPort* by_phantom);
   // Records an output's samples, serves them live and draws them in the scene (exec/output_tap.cpp).
   void tap_output(OutputPort& out, const std::string& topic, const std::string& type);
   bool call(NodeRuntime& n, const char* phase, const std::function<void()>& f);
+  class SimRun;  // one run of the sim clock (sim_scheduler.cpp)
   void run_sim();
   std::int64_t sim_end_ns() const;  // the sim clock's end (INT64_MAX: none)
   void run_real();
@@ -107,6 +104,9 @@ class Executive {
   void lockstep_start();
   template <class Effects>
   void local_event(std::size_t i, std::int64_t t_ns, Effects&& effects);
+  // Its record queued for the others: the outputs it published on, and the stop it asked for
+  // (`stopped_before`: the run had stopped before it).
+  void record_local_event(std::size_t i, std::int64_t t_ns, std::vector<std::uint16_t> pubs, bool stopped_before);
   void remote_event(std::size_t i, std::int64_t t_ns);
   // The lifecycle's events, told apart from steps by their time (no step is at a negative time).
   static constexpr std::int64_t kConstruction = -3, kConfigure = -2, kActivate = -1;
@@ -143,5 +143,21 @@ class Executive {
   std::optional<std::chrono::steady_clock::time_point> pace_start_;
   Console console_;  // log lines and the progress line
 };
+
+// An event of this process in a lockstep run: done, and its record queued for the others.
+// Without lockstep just done.
+template <class Effects>
+void Executive::local_event(std::size_t i, std::int64_t t_ns, Effects&& effects) {
+  if (!lock_) {
+    effects();
+    return;
+  }
+  std::vector<std::uint16_t> pubs;
+  const bool was = stop_;
+  t_publog = &pubs;
+  effects();
+  t_publog = nullptr;
+  record_local_event(i, t_ns, std::move(pubs), was);
+}
 
 }  // namespace brickyard::fw

@@ -17,12 +17,14 @@
 // instant, and at the end. Every event's owner has the records of the events before it once it
 // gets there, so no two processes wait on each other. A peer whose clock topic's liveliness
 // lapses (it died) or that ended its run is said, and the run stops.
-#include "exec/executive.hpp"
+#include "exec/run_types.hpp"
+#include "graph/resolve.hpp"
 #include "transport/dds.hpp"
 
 #include <condition_variable>
 #include <cstdint>
 #include <deque>
+#include <functional>
 #include <map>
 #include <optional>
 #include <memory>
@@ -119,31 +121,5 @@ class Lockstep {
   std::vector<LockRecord> outbox_;
   std::uint64_t seq_ = 0;
 };
-
-// An event of this process in a lockstep run: done, and its record (the outputs it published on,
-// in order; the stop it asked for) queued for the others. Without lockstep just done.
-template <class Effects>
-void Executive::local_event(std::size_t i, std::int64_t t_ns, Effects&& effects) {
-  if (!lock_) {
-    effects();
-    return;
-  }
-  std::vector<std::uint16_t> pubs;
-  const bool was = stop_;
-  t_publog = &pubs;
-  effects();
-  t_publog = nullptr;
-  LockRecord r;
-  r.node = static_cast<std::uint32_t>(i);
-  r.t_ns = t_ns;
-  r.pubs = std::move(pubs);
-  if (!was && stop_) {
-    std::lock_guard<std::mutex> l(stop_m_);
-    r.stop = true;
-    r.result = static_cast<std::uint8_t>(stop_result_.value_or(RunResult::failed));
-    r.reason = stop_reason_;
-  }
-  lock_->done(std::move(r));
-}
 
 }  // namespace brickyard::fw

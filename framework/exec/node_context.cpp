@@ -1,5 +1,4 @@
 #include "exec/node_context.hpp"
-#include "exec/executive.hpp"
 #include "exec/node_runtime.hpp"
 
 #include <cmath>

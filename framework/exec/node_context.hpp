@@ -1,17 +1,36 @@
 #pragma once
 // The Context a node's plugin is handed: its name, parameters, seed, trigger and ports, and the
-// run's clock, logs, metrics, status fields, file search and end requests, served by the
-// Executive.
+// run's clock, logs, metrics, status fields, file search and end requests, served by its host
+// (the Executive).
+#include "exec/run_types.hpp"
+
 #include <brickyard/context.hpp>
+
+#include <cstdint>
+#include <string>
+#include <string_view>
 
 namespace brickyard::fw {
 
-class Executive;
 class NodeRuntime;
+
+// What a node's context asks of the run that hosts it.
+class NodeHost {
+ public:
+  virtual std::int64_t now_ns() const = 0;
+  virtual bool sim() const = 0;
+  virtual std::string find_file(std::string_view path) const = 0;
+  virtual void log(const NodeRuntime& n, LogLevel level, std::string_view msg) = 0;
+  virtual void request_stop(RunResult r, std::string reason) = 0;
+  virtual void set_status(const std::string& node, std::string_view field, std::string_view value) = 0;
+
+ protected:
+  ~NodeHost() = default;
+};
 
 class NodeContext final : public Context {
  public:
-  NodeContext(Executive& e, NodeRuntime& n) : e_(e), n_(n) {}
+  NodeContext(NodeHost& e, NodeRuntime& n) : e_(e), n_(n) {}
   std::int64_t now_ns() const override;
   bool sim_clock() const override;
   const std::string& node_name() const override;
@@ -32,7 +51,7 @@ class NodeContext final : public Context {
   detail::OutputChannel* output_channel(std::string_view port) override;
 
  private:
-  Executive& e_;
+  NodeHost& e_;
   NodeRuntime& n_;
 };
 

@@ -1,7 +1,8 @@
 #pragma once
 // The run's recording (--record FILE, docs/recording.md) at both ends of a run: the file with the
 // run's metadata before the first sample, and after the last its entry in summary.json.
-#include "exec/executive.hpp"
+#include "exec/run_types.hpp"
+#include "graph/graph.hpp"
 #include "record/recorder.hpp"
 
 #include <nlohmann/json.hpp>

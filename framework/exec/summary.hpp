@@ -1,14 +1,19 @@
 #pragma once
 // summary.json (RunSummary::json): the run's result, clock and times, its recording, and every
 // node's steps, metrics and port counters.
-#include "exec/executive.hpp"
+#include "exec/run_types.hpp"
+#include "graph/graph.hpp"
 
 #include <nlohmann/json.hpp>
 
+#include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 namespace brickyard::fw {
+
+class NodeRuntime;
 
 // s: the run's result, reason and times; recording: close_recording's entry, or null when the
 // run kept none; end_ns: the run's clock at its end (inputs stale then).

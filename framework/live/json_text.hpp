@@ -1,5 +1,5 @@
 #pragma once
-// JSON written as text as it goes, for the live scene's messages (scene.cpp). Why not
+// JSON written as text as it goes, for the live scene's messages (scene_*.cpp). Why not
 // nlohmann::json objects: a scene message built as objects (a std::map and a string per key,
 // copied into its parent, then dumped) cost the run 20 to 50 us, and the scene sends a hundred
 // and fifty a second of sim time (docs/live.md, "Cost"). Commas are placed from the last character written:

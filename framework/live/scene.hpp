@@ -10,7 +10,8 @@
 //   /scene/wall        the fitted wall (WallEstimate), in the vehicle frame
 //   /scene/obstacles   the obstacles (ObstacleList), boxes in the vehicle frame
 //   /lidar/NODE.PORT   foxglove.PointCloud: each LiDAR's cloud, placed by its mount
-// Made only while a client is subscribed to the channel.
+// Made only while a client is subscribed to the channel. Each message type's picture is its
+// converter's (scene_converter.hpp), found by the type's name.
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -19,6 +20,9 @@
 namespace brickyard::fw {
 
 class LiveServer;
+namespace live_scene {
+struct SceneState;
+}
 
 class LiveScene {
  public:
@@ -29,8 +33,7 @@ class LiveScene {
   std::function<void(const void*, std::uint64_t)> handler(const std::string& topic, const std::string& type);
 
  private:
-  struct Impl;
-  std::shared_ptr<Impl> impl_;
+  std::shared_ptr<live_scene::SceneState> state_;  // shared with the handlers, which may outlive the scene
 };
 
 }  // namespace brickyard::fw

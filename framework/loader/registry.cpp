@@ -157,6 +157,51 @@ void Registry::add_directory(const std::string& dir) {
 
 void Registry::load_library(const std::string& path) { load(path, folders_++); }
 
+namespace {
+
+// The library opened and its entry point called: its info, or null with the reason in `problems`.
+const brickyard_library_info* open_library(const std::string& path, std::vector<std::string>& problems) {
+  if (!is_elf(path)) {
+    problems.push_back("not a shared object (no ELF header)");
+    return nullptr;
+  }
+  // RTLD_NOW: an unresolved symbol is an error now, not a crash mid-race. RTLD_LOCAL: plugins'
+  // symbols never interpose on each other.
+  void* h = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+  if (!h) {
+    const char* e = dlerror();
+    problems.push_back(std::string("dlopen failed: ") + (e ? e : "unknown error"));
+    return nullptr;
+  }
+  // Never dlclose: see the header.
+  auto entry = reinterpret_cast<brickyard_entry_point>(dlsym(h, BRICKYARD_ENTRY_POINT_NAME));
+  if (!entry) {
+    problems.push_back(std::string("missing entry point ") + BRICKYARD_ENTRY_POINT_NAME + " (export it with BRICKYARD_PLUGINS(...))");
+    return nullptr;
+  }
+  const brickyard_library_info* info = entry();
+  if (!info) problems.push_back(std::string(BRICKYARD_ENTRY_POINT_NAME) + " returned null");
+  return info;
+}
+
+// The library's plugin ABI and C++ standard library against this host's, and its plugin table.
+void check_library_info(const brickyard_library_info& info, std::vector<std::string>& problems) {
+  const std::string theirs = std::to_string(info.abi_major) + "." + std::to_string(info.abi_minor);
+  const std::string ours = std::to_string(BRICKYARD_ABI_MAJOR) + "." + std::to_string(BRICKYARD_ABI_MINOR);
+  if (info.abi_major != BRICKYARD_ABI_MAJOR)
+    problems.push_back("built against plugin ABI " + theirs + " (SDK " + (info.sdk_version ? info.sdk_version : "?") +
+                       "), this host's is " + ours + ": rebuild the plugin against this SDK");
+  else if (info.abi_minor > BRICKYARD_ABI_MINOR)
+    problems.push_back("built against a newer SDK (ABI " + theirs + ") than this host (" + ours + ")");
+  if (info.cxx_abi != BRICKYARD_CXX_ABI_TAG)
+    problems.push_back("built with another C++ standard library ABI (tag " + std::to_string(info.cxx_abi) + ", host " +
+                       std::to_string(BRICKYARD_CXX_ABI_TAG) + ")");
+  if (info.plugin_count == 0) problems.push_back("declares no plugins");
+  if (!info.plugins && info.plugin_count) problems.push_back("plugin table is null");
+}
+
+}  // namespace
+
 void Registry::load(const std::string& path, std::size_t folder) {
   std::error_code ec;
   std::string canon = fs::weakly_canonical(path, ec).string();
@@ -164,76 +209,14 @@ void Registry::load(const std::string& path, std::size_t folder) {
   loaded_.push_back(canon);
 
   LibraryProblem lp{path, {}};
-  auto fail = [&](std::string msg) { lp.problems.push_back(std::move(msg)); };
-  if (!is_elf(path)) {
-    fail("not a shared object (no ELF header)");
-    problems_.push_back(lp);
-    return;
-  }
-  // RTLD_NOW: an unresolved symbol is an error now, not a crash mid-race. RTLD_LOCAL: plugins'
-  // symbols never interpose on each other.
-  void* h = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
-  if (!h) {
-    const char* e = dlerror();
-    fail(std::string("dlopen failed: ") + (e ? e : "unknown error"));
-    problems_.push_back(lp);
-    return;
-  }
-  // Never dlclose: see the header.
-  auto entry = reinterpret_cast<brickyard_entry_point>(dlsym(h, BRICKYARD_ENTRY_POINT_NAME));
-  if (!entry) {
-    fail(std::string("missing entry point ") + BRICKYARD_ENTRY_POINT_NAME +
-         " (export it with BRICKYARD_PLUGINS(...))");
-    problems_.push_back(lp);
-    return;
-  }
-  const brickyard_library_info* info = entry();
-  if (!info) {
-    fail(std::string(BRICKYARD_ENTRY_POINT_NAME) + " returned null");
-  } else {
-    const std::string theirs = std::to_string(info->abi_major) + "." + std::to_string(info->abi_minor);
-    const std::string ours = std::to_string(BRICKYARD_ABI_MAJOR) + "." + std::to_string(BRICKYARD_ABI_MINOR);
-    if (info->abi_major != BRICKYARD_ABI_MAJOR)
-      fail("built against plugin ABI " + theirs + " (SDK " + (info->sdk_version ? info->sdk_version : "?") +
-           "), this host's is " + ours + ": rebuild the plugin against this SDK");
-    else if (info->abi_minor > BRICKYARD_ABI_MINOR)
-      fail("built against a newer SDK (ABI " + theirs + ") than this host (" + ours + ")");
-    if (info->cxx_abi != BRICKYARD_CXX_ABI_TAG)
-      fail("built with another C++ standard library ABI (tag " + std::to_string(info->cxx_abi) + ", host " +
-           std::to_string(BRICKYARD_CXX_ABI_TAG) + ")");
-    if (info->plugin_count == 0) fail("declares no plugins");
-    if (!info->plugins && info->plugin_count) fail("plugin table is null");
-  }
+  const brickyard_library_info* info = open_library(path, lp.problems);
+  if (info) check_library_info(*info, lp.problems);
   if (!lp.problems.empty()) {
     problems_.push_back(lp);
     return;
   }
-  const auto* descs = static_cast<const PluginDescriptor*>(info->plugins);
-  std::vector<PluginEntry> found;
   std::vector<std::string> overridden;  // by a plugin of an earlier folder: notices, not entries
-  for (std::uint32_t i = 0; i < info->plugin_count; ++i) {
-    PluginEntry e;
-    try {
-      e.manifest = descs[i].manifest();
-    } catch (const std::exception& ex) {
-      fail("manifest() of plugin #" + std::to_string(i) + " threw: " + ex.what());
-      continue;
-    }
-    for (auto& m : check_manifest(e.manifest)) fail(m);
-    auto same_folder = std::find_if(providers_.begin(), providers_.end(), [&](const Provider& p) {
-      return p.folder == folder && p.name == e.manifest.name;
-    });
-    if (same_folder != providers_.end())
-      fail("plugin '" + e.manifest.name + "' is also provided by " + same_folder->library);
-    else if (const PluginEntry* earlier = find(e.manifest.name))
-      overridden.push_back("plugin '" + e.manifest.name + "' from " + earlier->library + " overrides the one in " + path);
-    for (const auto& f : found)
-      if (f.manifest.name == e.manifest.name) fail("plugin '" + e.manifest.name + "' declared twice");
-    e.descriptor = &descs[i];
-    e.library = path;
-    e.sdk_version = info->sdk_version ? info->sdk_version : "";
-    found.push_back(std::move(e));
-  }
+  std::vector<PluginEntry> found = read_plugins(*info, path, folder, lp.problems, overridden);
   if (!lp.problems.empty()) {
     problems_.push_back(lp);
     return;
@@ -243,6 +226,36 @@ void Registry::load(const std::string& path, std::size_t folder) {
     providers_.push_back({e.manifest.name, e.library, folder});
     if (!find(e.manifest.name)) plugins_.push_back(std::move(e));
   }
+}
+
+std::vector<PluginEntry> Registry::read_plugins(const brickyard_library_info& info, const std::string& path, std::size_t folder,
+                                                std::vector<std::string>& problems, std::vector<std::string>& overridden) const {
+  const auto* descs = static_cast<const PluginDescriptor*>(info.plugins);
+  std::vector<PluginEntry> found;
+  for (std::uint32_t i = 0; i < info.plugin_count; ++i) {
+    PluginEntry e;
+    try {
+      e.manifest = descs[i].manifest();
+    } catch (const std::exception& ex) {
+      problems.push_back("manifest() of plugin #" + std::to_string(i) + " threw: " + ex.what());
+      continue;
+    }
+    for (auto& m : check_manifest(e.manifest)) problems.push_back(m);
+    auto same_folder = std::find_if(providers_.begin(), providers_.end(), [&](const Provider& p) {
+      return p.folder == folder && p.name == e.manifest.name;
+    });
+    if (same_folder != providers_.end())
+      problems.push_back("plugin '" + e.manifest.name + "' is also provided by " + same_folder->library);
+    else if (const PluginEntry* earlier = find(e.manifest.name))
+      overridden.push_back("plugin '" + e.manifest.name + "' from " + earlier->library + " overrides the one in " + path);
+    for (const auto& f : found)
+      if (f.manifest.name == e.manifest.name) problems.push_back("plugin '" + e.manifest.name + "' declared twice");
+    e.descriptor = &descs[i];
+    e.library = path;
+    e.sdk_version = info.sdk_version ? info.sdk_version : "";
+    found.push_back(std::move(e));
+  }
+  return found;
 }
 
 const PluginEntry* Registry::find(const std::string& name) const {

@@ -46,6 +46,10 @@ class Registry {
     std::size_t folder;
   };
   void load(const std::string& path, std::size_t folder);
+  // The plugins of a library whose info checked out, each manifest checked: their problems, and
+  // the plugins an earlier folder's override (notices), added to `problems` and `overridden`.
+  std::vector<PluginEntry> read_plugins(const brickyard_library_info& info, const std::string& path, std::size_t folder,
+                                        std::vector<std::string>& problems, std::vector<std::string>& overridden) const;
 
   std::vector<PluginEntry> plugins_;
   std::vector<LibraryProblem> problems_;

@@ -97,38 +97,72 @@ struct Reader {
   }
 };
 
-}  // namespace
+using Type = CdrJson::Type;
+using Member = CdrJson::Member;
+using StructMap = std::map<std::string, std::shared_ptr<std::vector<Member>>>;
 
-CdrJson::CdrJson(const std::string& idl) {
-  const std::vector<Token> t = tokenize(idl);
-  std::size_t i = 0;
-  std::vector<std::string> scope;
-  auto fail = [&](const std::string& what) {
-    const int line = i < t.size() ? t[i].line : (t.empty() ? 1 : t.back().line);
+// Reads the IDL's tokens front to back into `structs`; each error names the line of the token it
+// stopped at (the last line at the end of the text).
+class IdlParser {
+ public:
+  IdlParser(std::vector<Token> tokens, StructMap& structs) : t_(std::move(tokens)), structs_(structs) {}
+
+  void parse() {
+    while (i_ < t_.size()) {
+      if (t_[i_].text == "module") {
+        open_module();
+      } else if (t_[i_].text == "}" && !scope_.empty()) {
+        close_module();
+      } else if (t_[i_].text == "struct") {
+        struct_definition();
+      } else {
+        fail("expected module, struct or the end of a module, found '" + t_[i_].text + "'");
+      }
+    }
+    if (!scope_.empty()) fail("module '" + scope_.back() + "' is not closed");
+  }
+
+ private:
+  [[noreturn]] void fail(const std::string& what) const {
+    const int line = i_ < t_.size() ? t_[i_].line : (t_.empty() ? 1 : t_.back().line);
     throw std::invalid_argument("IDL line " + std::to_string(line) + ": " + what);
-  };
-  auto expect = [&](const std::string& s) {
-    if (i >= t.size() || t[i].text != s) fail("expected '" + s + "'" + (i < t.size() ? ", found '" + t[i].text + "'" : ""));
-    ++i;
-  };
-  auto number = [&]() -> std::size_t {
-    if (i >= t.size() || t[i].text.empty() || t[i].text.size() > 9 || t[i].text.find_first_not_of("0123456789") != std::string::npos)
+  }
+  void expect(const std::string& s) {
+    if (i_ >= t_.size() || t_[i_].text != s) fail("expected '" + s + "'" + (i_ < t_.size() ? ", found '" + t_[i_].text + "'" : ""));
+    ++i_;
+  }
+  std::size_t number() {
+    if (i_ >= t_.size() || t_[i_].text.empty() || t_[i_].text.size() > 9 ||
+        t_[i_].text.find_first_not_of("0123456789") != std::string::npos)
       fail("expected a number (at most 9 digits)");
-    return static_cast<std::size_t>(std::stoul(t[i++].text));
-  };
-  std::function<Type()> type = [&]() -> Type {
-    if (i >= t.size()) fail("expected a type");
-    const std::string name = t[i++].text;
+    return static_cast<std::size_t>(std::stoul(t_[i_++].text));
+  }
+
+  void open_module() {
+    ++i_;
+    if (i_ >= t_.size()) fail("expected a module name");
+    scope_.push_back(t_[i_++].text);
+    expect("{");
+  }
+  void close_module() {
+    ++i_;
+    expect(";");
+    scope_.pop_back();
+  }
+
+  Type type() {
+    if (i_ >= t_.size()) fail("expected a type");
+    const std::string name = t_[i_++].text;
     Type ty;
     if (name == "sequence") {
       expect("<");
       ty.kind = Type::Sequence;
       ty.of = std::make_shared<Type>(type());
-      if (i < t.size() && t[i].text == ",") ++i, number();  // a bound: not checked
+      if (i_ < t_.size() && t_[i_].text == ",") ++i_, number();  // a bound: not checked
       expect(">");
     } else if (name == "string") {
       ty.kind = Type::String;
-      if (i < t.size() && t[i].text == "<") ++i, number(), expect(">");
+      if (i_ < t_.size() && t_[i_].text == "<") ++i_, number(), expect(">");
     } else if (const std::size_t k = primitive_size(name)) {
       ty.kind = Type::Primitive, ty.name = name, ty.size = k;
     } else {
@@ -136,57 +170,56 @@ CdrJson::CdrJson(const std::string& idl) {
       ty.kind = Type::Struct, ty.name = bare(name);
     }
     return ty;
-  };
-  while (i < t.size()) {
-    if (t[i].text == "module") {
-      ++i;
-      if (i >= t.size()) fail("expected a module name");
-      scope.push_back(t[i++].text);
-      expect("{");
-    } else if (t[i].text == "}" && !scope.empty()) {
-      ++i;
-      expect(";");
-      scope.pop_back();
-    } else if (t[i].text == "struct") {
-      ++i;
-      if (i >= t.size()) fail("expected a struct name");
-      const std::string name = t[i++].text;
-      expect("{");
-      std::vector<Member> members;
-      while (i < t.size() && t[i].text != "}") {
-        Member m;
-        m.type = type();
-        if (i >= t.size()) fail("expected a member name");
-        m.name = t[i++].text;
-        if (i < t.size() && t[i].text == "[") {
-          ++i;
-          auto el = std::make_shared<Type>(m.type);
-          m.type = Type{};
-          m.type.kind = Type::Array;
-          m.type.size = number();
-          m.type.of = el;
-          expect("]");
-        }
-        expect(";");
-        members.push_back(std::move(m));
-      }
-      expect("}");
-      expect(";");
-      std::string qualified;
-      for (const auto& s : scope) qualified += s + "::";
-      // An IDL is untrusted input (a recording's schema): a struct defined twice could make a
-      // cycle, one with no members an endless count of nothing.
-      if (structs_.count(qualified + name)) fail("struct '" + qualified + name + "' is defined twice");
-      if (members.empty()) fail("struct '" + name + "' has no members");
-      auto def = std::make_shared<std::vector<Member>>(std::move(members));
-      structs_[qualified + name] = def;
-      structs_[name] = def;
-    } else {
-      fail("expected module, struct or the end of a module, found '" + t[i].text + "'");
-    }
   }
-  if (!scope.empty()) fail("module '" + scope.back() + "' is not closed");
-}
+
+  // A member: its type, its name, then a fixed array's length when it has one.
+  Member member() {
+    Member m;
+    m.type = type();
+    if (i_ >= t_.size()) fail("expected a member name");
+    m.name = t_[i_++].text;
+    if (i_ < t_.size() && t_[i_].text == "[") {
+      ++i_;
+      auto el = std::make_shared<Type>(m.type);
+      m.type = Type{};
+      m.type.kind = Type::Array;
+      m.type.size = number();
+      m.type.of = el;
+      expect("]");
+    }
+    expect(";");
+    return m;
+  }
+
+  void struct_definition() {
+    ++i_;
+    if (i_ >= t_.size()) fail("expected a struct name");
+    const std::string name = t_[i_++].text;
+    expect("{");
+    std::vector<Member> members;
+    while (i_ < t_.size() && t_[i_].text != "}") members.push_back(member());
+    expect("}");
+    expect(";");
+    std::string qualified;
+    for (const auto& s : scope_) qualified += s + "::";
+    // An IDL is untrusted input (a recording's schema): a struct defined twice could make a
+    // cycle, one with no members an endless count of nothing.
+    if (structs_.count(qualified + name)) fail("struct '" + qualified + name + "' is defined twice");
+    if (members.empty()) fail("struct '" + name + "' has no members");
+    auto def = std::make_shared<std::vector<Member>>(std::move(members));
+    structs_[qualified + name] = def;
+    structs_[name] = def;
+  }
+
+  const std::vector<Token> t_;
+  std::size_t i_ = 0;
+  std::vector<std::string> scope_;
+  StructMap& structs_;
+};
+
+}  // namespace
+
+CdrJson::CdrJson(const std::string& idl) { IdlParser(tokenize(idl), structs_).parse(); }
 
 nlohmann::json CdrJson::decode(const std::string& type, const unsigned char* data, std::size_t size) const {
   Reader r{data, size};
@@ -259,93 +292,120 @@ struct Writer {
   }
 };
 
-}  // namespace
+// Writes one sample from JSON, member by member in the IDL's order; `where` is the JSON pointer of
+// the value at hand, for the errors.
+class Encoder {
+ public:
+  explicit Encoder(const StructMap& structs) : structs_(structs) {}
 
-std::vector<unsigned char> CdrJson::encode(const std::string& type, const nlohmann::json& sample) const {
-  Writer w;
-  int depth = 0;
-  auto bad = [](const std::string& where, const std::string& what, const nlohmann::json* v) {
+  std::vector<unsigned char> encode(const std::string& type, const nlohmann::json& sample) {
+    object(bare(type), &sample, "");
+    return w_.out;
+  }
+
+ private:
+  [[noreturn]] static void bad(const std::string& where, const std::string& what, const nlohmann::json* v) {
     throw std::invalid_argument((where.empty() ? "/" : where) + ": " + what + (v ? ", found " + v->dump().substr(0, 60) : ""));
-  };
-  std::function<void(const Type&, const nlohmann::json*, const std::string&)> value;
-  std::function<void(const std::string&, const nlohmann::json*, const std::string&)> object =
-      [&](const std::string& name, const nlohmann::json* v, const std::string& where) {
-        if (++depth > 64) bad(where, "structs nested more than 64 deep", nullptr);
-        const auto it = structs_.find(name);
-        if (it == structs_.end()) throw std::invalid_argument("no struct '" + name + "' in the IDL");
-        if (v && !v->is_object()) bad(where, "expected an object (" + name + ")", v);
-        if (v)
-          for (const auto& [key, x] : v->items()) {
-            bool known = false;
-            for (const Member& m : *it->second) known = known || m.name == key;
-            if (!known) {
-              std::string have;
-              for (const Member& m : *it->second) have += (have.empty() ? "" : ", ") + m.name;
-              bad(where + "/" + key, "no member '" + key + "' in " + name + " (members: " + have + ")", nullptr);
-            }
-          }
-        for (const Member& m : *it->second) {
-          const nlohmann::json* x = v && v->contains(m.name) ? &(*v)[m.name] : nullptr;
-          value(m.type, x, where + "/" + m.name);
-        }
-        --depth;
-      };
-  value = [&](const Type& ty, const nlohmann::json* v, const std::string& where) {
+  }
+
+  void object(const std::string& name, const nlohmann::json* v, const std::string& where) {
+    if (++depth_ > 64) bad(where, "structs nested more than 64 deep", nullptr);
+    const auto it = structs_.find(name);
+    if (it == structs_.end()) throw std::invalid_argument("no struct '" + name + "' in the IDL");
+    if (v && !v->is_object()) bad(where, "expected an object (" + name + ")", v);
+    if (v) reject_unknown_members(name, *it->second, *v, where);
+    for (const Member& m : *it->second) {
+      const nlohmann::json* x = v && v->contains(m.name) ? &(*v)[m.name] : nullptr;
+      value(m.type, x, where + "/" + m.name);
+    }
+    --depth_;
+  }
+
+  static void reject_unknown_members(const std::string& name, const std::vector<Member>& members, const nlohmann::json& v,
+                                     const std::string& where) {
+    for (const auto& [key, x] : v.items()) {
+      bool known = false;
+      for (const Member& m : members) known = known || m.name == key;
+      if (!known) {
+        std::string have;
+        for (const Member& m : members) have += (have.empty() ? "" : ", ") + m.name;
+        bad(where + "/" + key, "no member '" + key + "' in " + name + " (members: " + have + ")", nullptr);
+      }
+    }
+  }
+
+  void value(const Type& ty, const nlohmann::json* v, const std::string& where) {
     switch (ty.kind) {
-      case Type::Primitive: {
-        const std::string& n = ty.name;
-        if (n == "boolean") {
-          if (v && !v->is_boolean()) bad(where, "expected true or false", v);
-          return w.num<std::uint8_t>(v && v->get<bool>() ? 1 : 0);
-        }
-        if (v && !v->is_number()) bad(where, "expected a number", v);
-        const double d = v ? v->get<double>() : 0.0;
-        if (n == "double") return w.num<double>(d);
-        if (n == "float") return w.num<float>(static_cast<float>(d));
-        // Integers: whole, and within the type's range (int64 and uint64 from JSON's integers).
-        auto whole = [&](double lo, double hi) {
-          if (v && !(v->is_number_integer() || (d == std::floor(d) && d >= lo && d <= hi))) bad(where, "expected a whole number", v);
-          if (d < lo || d > hi) bad(where, "out of " + n + "'s range", v);
-        };
-        if (n == "int64") {
-          if (v && !v->is_number_integer()) bad(where, "expected an integer", v);
-          return w.num<std::int64_t>(v ? v->get<std::int64_t>() : 0);
-        }
-        if (n == "uint64") {
-          if (v && !v->is_number_unsigned() && !(v->is_number_integer() && v->get<std::int64_t>() >= 0)) bad(where, "expected an integer >= 0", v);
-          return w.num<std::uint64_t>(v ? v->get<std::uint64_t>() : 0);
-        }
-        if (n == "int8") return whole(-128, 127), w.num<std::int8_t>(static_cast<std::int8_t>(d));
-        if (n == "uint8" || n == "octet" || n == "char") return whole(0, 255), w.num<std::uint8_t>(static_cast<std::uint8_t>(d));
-        if (n == "int16" || n == "short") return whole(-32768, 32767), w.num<std::int16_t>(static_cast<std::int16_t>(d));
-        if (n == "uint16") return whole(0, 65535), w.num<std::uint16_t>(static_cast<std::uint16_t>(d));
-        if (n == "int32" || n == "long") return whole(-2147483648.0, 2147483647.0), w.num<std::int32_t>(static_cast<std::int32_t>(d));
-        return whole(0, 4294967295.0), w.num<std::uint32_t>(static_cast<std::uint32_t>(d));
-      }
-      case Type::String: {
-        if (v && !v->is_string()) bad(where, "expected a string", v);
-        const std::string text = v ? v->get<std::string>() : std::string();
-        w.num<std::uint32_t>(static_cast<std::uint32_t>(text.size() + 1));
-        w.out.insert(w.out.end(), text.begin(), text.end());
-        w.out.push_back(0);
-        return;
-      }
+      case Type::Primitive:
+        return primitive(ty.name, v, where);
+      case Type::String:
+        return string_value(v, where);
       case Type::Struct:
         return object(ty.name, v, where);
       case Type::Sequence:
-      case Type::Array: {
-        if (v && !v->is_array()) bad(where, "expected a list", v);
-        const std::size_t count = v ? v->size() : 0;
-        if (ty.kind == Type::Array && v && count != ty.size) bad(where, "expected " + std::to_string(ty.size) + " elements", v);
-        if (ty.kind == Type::Sequence) w.num<std::uint32_t>(static_cast<std::uint32_t>(count));
-        const std::size_t n = ty.kind == Type::Array ? ty.size : count;
-        for (std::size_t k = 0; k < n; ++k) value(*ty.of, v ? &(*v)[k] : nullptr, where + "/" + std::to_string(k));
-        return;
-      }
+      case Type::Array:
+        return elements(ty, v, where);
     }
-  };
-  object(bare(type), &sample, "");
-  return w.out;
+  }
+
+  void primitive(const std::string& n, const nlohmann::json* v, const std::string& where) {
+    if (n == "boolean") {
+      if (v && !v->is_boolean()) bad(where, "expected true or false", v);
+      return w_.num<std::uint8_t>(v && v->get<bool>() ? 1 : 0);
+    }
+    if (v && !v->is_number()) bad(where, "expected a number", v);
+    const double d = v ? v->get<double>() : 0.0;
+    if (n == "double") return w_.num<double>(d);
+    if (n == "float") return w_.num<float>(static_cast<float>(d));
+    // Integers: whole, and within the type's range (int64 and uint64 from JSON's integers).
+    auto whole = [&](double lo, double hi) {
+      if (v && !(v->is_number_integer() || (d == std::floor(d) && d >= lo && d <= hi))) bad(where, "expected a whole number", v);
+      if (d < lo || d > hi) bad(where, "out of " + n + "'s range", v);
+    };
+    if (n == "int64") {
+      if (v && !v->is_number_integer()) bad(where, "expected an integer", v);
+      return w_.num<std::int64_t>(v ? v->get<std::int64_t>() : 0);
+    }
+    if (n == "uint64") {
+      if (v && !v->is_number_unsigned() && !(v->is_number_integer() && v->get<std::int64_t>() >= 0))
+        bad(where, "expected an integer >= 0", v);
+      return w_.num<std::uint64_t>(v ? v->get<std::uint64_t>() : 0);
+    }
+    if (n == "int8") return whole(-128, 127), w_.num<std::int8_t>(static_cast<std::int8_t>(d));
+    if (n == "uint8" || n == "octet" || n == "char") return whole(0, 255), w_.num<std::uint8_t>(static_cast<std::uint8_t>(d));
+    if (n == "int16" || n == "short") return whole(-32768, 32767), w_.num<std::int16_t>(static_cast<std::int16_t>(d));
+    if (n == "uint16") return whole(0, 65535), w_.num<std::uint16_t>(static_cast<std::uint16_t>(d));
+    if (n == "int32" || n == "long") return whole(-2147483648.0, 2147483647.0), w_.num<std::int32_t>(static_cast<std::int32_t>(d));
+    return whole(0, 4294967295.0), w_.num<std::uint32_t>(static_cast<std::uint32_t>(d));
+  }
+
+  void string_value(const nlohmann::json* v, const std::string& where) {
+    if (v && !v->is_string()) bad(where, "expected a string", v);
+    const std::string text = v ? v->get<std::string>() : std::string();
+    w_.num<std::uint32_t>(static_cast<std::uint32_t>(text.size() + 1));
+    w_.out.insert(w_.out.end(), text.begin(), text.end());
+    w_.out.push_back(0);
+  }
+
+  // A sequence (its count first) or a fixed array (its length from the type).
+  void elements(const Type& ty, const nlohmann::json* v, const std::string& where) {
+    if (v && !v->is_array()) bad(where, "expected a list", v);
+    const std::size_t count = v ? v->size() : 0;
+    if (ty.kind == Type::Array && v && count != ty.size) bad(where, "expected " + std::to_string(ty.size) + " elements", v);
+    if (ty.kind == Type::Sequence) w_.num<std::uint32_t>(static_cast<std::uint32_t>(count));
+    const std::size_t n = ty.kind == Type::Array ? ty.size : count;
+    for (std::size_t k = 0; k < n; ++k) value(*ty.of, v ? &(*v)[k] : nullptr, where + "/" + std::to_string(k));
+  }
+
+  const StructMap& structs_;
+  Writer w_;
+  int depth_ = 0;
+};
+
+}  // namespace
+
+std::vector<unsigned char> CdrJson::encode(const std::string& type, const nlohmann::json& sample) const {
+  return Encoder(structs_).encode(type, sample);
 }
 
 std::string CdrJson::field_kind(const std::string& type, const FieldPath& path) const {

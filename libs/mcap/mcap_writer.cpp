@@ -217,81 +217,18 @@ void Writer::close() {
     std::uint64_t start, length;
   };
   std::vector<Group> groups;
-  std::string c;
-  auto group = [&](Op op, auto&& each) {
+  auto group = [&](Op op, void (Writer::*each)()) {
     const std::uint64_t start = offset_;
-    each();
+    (this->*each)();
     if (offset_ > start) groups.push_back({op, start, offset_ - start});
   };
-  group(Op::Schema, [&] {
-    for (std::size_t i = 0; i < schemas_.size(); ++i) {
-      c.clear();
-      Packer pk{c};
-      pk.num(static_cast<std::uint16_t>(i + 1));
-      pk.str(schemas_[i].name);
-      pk.str(schemas_[i].encoding);
-      pk.str(schemas_[i].data);
-      record(Op::Schema, c);
-    }
-  });
-  group(Op::Channel, [&] {
-    for (std::size_t i = 0; i < channels_.size(); ++i) {
-      c.clear();
-      Packer pk{c};
-      pk.num(static_cast<std::uint16_t>(i));
-      pk.num(channels_[i].schema);
-      pk.str(channels_[i].topic);
-      pk.str(channels_[i].encoding);
-      pack_map(pk, channels_[i].metadata);
-      record(Op::Channel, c);
-    }
-  });
-  group(Op::Statistics, [&] {
-    c.clear();
-    Packer pk{c};
-    pk.num(messages_);
-    pk.num(static_cast<std::uint16_t>(schemas_.size()));
-    pk.num(static_cast<std::uint32_t>(channels_.size()));
-    pk.num(std::uint32_t{0});  // attachments
-    pk.num(static_cast<std::uint32_t>(metadata_indexes_.size()));
-    pk.num(static_cast<std::uint32_t>(chunk_indexes_.size()));
-    pk.num(first_);
-    pk.num(last_);
-    std::string counts;
-    Packer cp{counts};
-    for (std::size_t i = 0; i < channel_counts_.size(); ++i) cp.num(static_cast<std::uint16_t>(i)), cp.num(channel_counts_[i]);
-    pk.num(static_cast<std::uint32_t>(counts.size()));
-    c += counts;
-    record(Op::Statistics, c);
-  });
-  group(Op::ChunkIndex, [&] {
-    for (const auto& ci : chunk_indexes_) {
-      c.clear();
-      Packer pk{c};
-      pk.num(ci.start);
-      pk.num(ci.end);
-      pk.num(ci.offset);
-      pk.num(ci.length);
-      pk.num(static_cast<std::uint32_t>(ci.index_offsets.size() * 10));
-      for (const auto& [ch, at] : ci.index_offsets) pk.num(ch), pk.num(at);
-      pk.num(ci.index_length);
-      pk.str(compression_name(opt_.compression));
-      pk.num(ci.compressed);
-      pk.num(ci.uncompressed);
-      record(Op::ChunkIndex, c);
-    }
-  });
-  group(Op::MetadataIndex, [&] {
-    for (const auto& mi : metadata_indexes_) {
-      c.clear();
-      Packer pk{c};
-      pk.num(mi.offset);
-      pk.num(mi.length);
-      pk.str(mi.name);
-      record(Op::MetadataIndex, c);
-    }
-  });
+  group(Op::Schema, &Writer::write_summary_schemas);
+  group(Op::Channel, &Writer::write_summary_channels);
+  group(Op::Statistics, &Writer::write_statistics);
+  group(Op::ChunkIndex, &Writer::write_chunk_indexes);
+  group(Op::MetadataIndex, &Writer::write_metadata_indexes);
   const std::uint64_t summary_offset_start = offset_;
+  std::string c;
   for (const auto& g : groups) {
     c.clear();
     Packer pk{c};
@@ -310,6 +247,83 @@ void Writer::close() {
   std::FILE* f = f_;
   f_ = nullptr;
   if (std::fclose(f) != 0) throw std::runtime_error(path_ + ": closing (" + std::strerror(errno) + ")");
+}
+
+void Writer::write_summary_schemas() {
+  std::string c;
+  for (std::size_t i = 0; i < schemas_.size(); ++i) {
+    c.clear();
+    Packer pk{c};
+    pk.num(static_cast<std::uint16_t>(i + 1));
+    pk.str(schemas_[i].name);
+    pk.str(schemas_[i].encoding);
+    pk.str(schemas_[i].data);
+    record(Op::Schema, c);
+  }
+}
+
+void Writer::write_summary_channels() {
+  std::string c;
+  for (std::size_t i = 0; i < channels_.size(); ++i) {
+    c.clear();
+    Packer pk{c};
+    pk.num(static_cast<std::uint16_t>(i));
+    pk.num(channels_[i].schema);
+    pk.str(channels_[i].topic);
+    pk.str(channels_[i].encoding);
+    pack_map(pk, channels_[i].metadata);
+    record(Op::Channel, c);
+  }
+}
+
+void Writer::write_statistics() {
+  std::string c;
+  Packer pk{c};
+  pk.num(messages_);
+  pk.num(static_cast<std::uint16_t>(schemas_.size()));
+  pk.num(static_cast<std::uint32_t>(channels_.size()));
+  pk.num(std::uint32_t{0});  // attachments
+  pk.num(static_cast<std::uint32_t>(metadata_indexes_.size()));
+  pk.num(static_cast<std::uint32_t>(chunk_indexes_.size()));
+  pk.num(first_);
+  pk.num(last_);
+  std::string counts;
+  Packer cp{counts};
+  for (std::size_t i = 0; i < channel_counts_.size(); ++i) cp.num(static_cast<std::uint16_t>(i)), cp.num(channel_counts_[i]);
+  pk.num(static_cast<std::uint32_t>(counts.size()));
+  c += counts;
+  record(Op::Statistics, c);
+}
+
+void Writer::write_chunk_indexes() {
+  std::string c;
+  for (const auto& ci : chunk_indexes_) {
+    c.clear();
+    Packer pk{c};
+    pk.num(ci.start);
+    pk.num(ci.end);
+    pk.num(ci.offset);
+    pk.num(ci.length);
+    pk.num(static_cast<std::uint32_t>(ci.index_offsets.size() * 10));
+    for (const auto& [ch, at] : ci.index_offsets) pk.num(ch), pk.num(at);
+    pk.num(ci.index_length);
+    pk.str(compression_name(opt_.compression));
+    pk.num(ci.compressed);
+    pk.num(ci.uncompressed);
+    record(Op::ChunkIndex, c);
+  }
+}
+
+void Writer::write_metadata_indexes() {
+  std::string c;
+  for (const auto& mi : metadata_indexes_) {
+    c.clear();
+    Packer pk{c};
+    pk.num(mi.offset);
+    pk.num(mi.length);
+    pk.str(mi.name);
+    record(Op::MetadataIndex, c);
+  }
 }
 
 }  // namespace brickyard::mcap

@@ -54,6 +54,12 @@ class Writer {
   void record(Op op, const std::string& content);  // to the file
   void put(const void* p, std::size_t n);
   [[noreturn]] void fail(const std::string& what);
+  // The summary's groups of records, written by close() in this order.
+  void write_summary_schemas();
+  void write_summary_channels();
+  void write_statistics();
+  void write_chunk_indexes();
+  void write_metadata_indexes();
   struct Schema {
     std::string name, encoding, data;
   };

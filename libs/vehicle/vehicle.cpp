@@ -68,6 +68,102 @@ class Section {
   std::set<std::string> seen_;
 };
 
+// Each read_* step reads one section of the file into v; its Section refuses unknown keys as the
+// step ends, before the next section is read.
+void read_geometry(Section& top, const std::string& file, Vehicle& v) {
+  Section g(top.at("geometry"), "/geometry", file);
+  v.wheelbase = g.number("wheelbase_m", 0.5, 10);
+  v.lf = g.number("lf_m", 0.1, 10);
+  v.lr = g.number("lr_m", 0.1, 10);
+  if (std::abs(v.lf + v.lr - v.wheelbase) > 1e-6) g.fail("/geometry", "lf_m + lr_m must equal wheelbase_m");
+  v.track_width = g.number("track_width_m", 0.3, 5);
+  v.front = g.number("front_m", 0, 20);
+  v.rear = g.number("rear_m", 0, 20);
+  v.half_width = g.number("half_width_m", 0.1, 5);
+}
+
+void read_mass(Section& top, const std::string& file, Vehicle& v) {
+  Section m(top.at("mass"), "/mass", file);
+  v.mass = m.number("mass_kg", 1, 1e5);
+  v.yaw_inertia = m.number("yaw_inertia_kgm2", 1, 1e7);
+}
+
+void read_steering(Section& top, const std::string& file, Vehicle& v) {
+  Section s(top.at("steering"), "/steering", file);
+  v.steering_ratio = s.number("ratio", 1, 100);
+  v.max_steer = s.number("max_steer_rad", 0.01, 1.5);
+  v.max_steer_rate = s.number("max_steer_rate_radps", 0.01, 100);
+  v.steer_delay = s.number("delay_s", 0, 1);
+}
+
+void read_tyres(Section& top, const std::string& file, Vehicle& v) {
+  Section t(top.at("tyres"), "/tyres", file);
+  v.tyre = t.string("model");
+  if (v.tyre != "linear" && v.tyre != "pacejka") t.fail("/tyres/model", "expected \"linear\" or \"pacejka\", found \"" + v.tyre + "\"");
+  v.cornering_front = t.number("cornering_front_npr", 1, 1e8);
+  v.cornering_rear = t.number("cornering_rear_npr", 1, 1e8);
+  v.mu = t.number("mu", 0.1, 5);
+  v.pacejka_c = t.number("pacejka_c", 0.1, 5);
+  v.pacejka_e = t.number("pacejka_e", -10, 1);
+}
+
+void read_aero(Section& top, const std::string& file, Vehicle& v) {
+  Section a(top.at("aero"), "/aero", file);
+  v.drag_area = a.number("drag_area_m2", 0, 20);
+  v.lift_area = a.number("lift_area_m2", 0, 50);
+  v.downforce_front = a.number("downforce_front", 0, 1);
+  v.air_density = a.number("air_density_kgpm3", 0.1, 5);
+}
+
+void read_powertrain(Section& top, const std::string& file, Vehicle& v) {
+  Section p(top.at("powertrain"), "/powertrain", file);
+  v.max_power = p.number("max_power_w", 0, 1e7);
+  v.max_drive_force = p.number("max_drive_force_n", 0, 1e6);
+  v.max_brake_force = p.number("max_brake_force_n", 0, 1e6);
+  v.brake_front = p.number("brake_front", 0, 1);
+  v.rolling_resistance = p.number("rolling_resistance", 0, 1);
+}
+
+// Needs the tyres and the powertrain read first.
+void read_limits(Section& top, const std::string& file, Vehicle& v) {
+  Section l(top.at("limits"), "/limits", file);
+  v.v_max = l.number("v_max_mps", 1, 200);
+  v.a_lat = l.number("a_lat_mps2", 0.5, 100);
+  v.a_decel = l.number("a_decel_mps2", 0.1, 100);
+  // The envelope is what the car can do without downforce: never more grip than its tyres have,
+  // never more braking than its tyres or its brakes give. A car file that promises more would
+  // have every planner drive it off the road.
+  char why[160];
+  const double grip = v.mu * gravity, brakes = v.max_brake_force / v.mass;
+  if (v.a_lat > grip) {
+    std::snprintf(why, sizeof why, "%g m/s^2 is more than the tyres' grip (mu %g x g = %.2f m/s^2)", v.a_lat, v.mu, grip);
+    l.fail("/limits/a_lat_mps2", why);
+  }
+  if (v.a_decel > std::min(grip, brakes)) {
+    std::snprintf(why, sizeof why, "%g m/s^2 is more than the car can brake (tyres %.2f, brakes %.2f m/s^2)", v.a_decel,
+                  grip, brakes);
+    l.fail("/limits/a_decel_mps2", why);
+  }
+}
+
+// Each mount is [x, y, z], or {"xyz": [...], "rpy_deg": [...]}.
+void read_mounts(Section& top, const std::string& file, Vehicle& v) {
+  const json& mounts = top.at("mounts");
+  if (!mounts.is_object()) top.fail("/mounts", "expected an object");
+  for (auto it = mounts.begin(); it != mounts.end(); ++it) {
+    const std::string ptr = "/mounts/" + it.key();
+    Mount m;
+    if (it->is_array()) {
+      m.xyz = top.triple(*it, ptr);
+    } else {
+      Section s(*it, ptr, file);
+      m.xyz = s.triple(s.at("xyz"), ptr + "/xyz");
+      m.rpy_deg = s.triple(s.at("rpy_deg"), ptr + "/rpy_deg");
+    }
+    v.mounts[it.key()] = m;
+  }
+}
+
 }  // namespace
 
 const Mount& Vehicle::mount(const std::string& n) const {
@@ -87,90 +183,14 @@ Vehicle parse_vehicle(const std::string& text, const std::string& file) {
   Section top(j, "", file);
   v.name = top.string("name");
   if (j.contains("source")) v.source = top.string("source");
-  {
-    Section g(top.at("geometry"), "/geometry", file);
-    v.wheelbase = g.number("wheelbase_m", 0.5, 10);
-    v.lf = g.number("lf_m", 0.1, 10);
-    v.lr = g.number("lr_m", 0.1, 10);
-    if (std::abs(v.lf + v.lr - v.wheelbase) > 1e-6) g.fail("/geometry", "lf_m + lr_m must equal wheelbase_m");
-    v.track_width = g.number("track_width_m", 0.3, 5);
-    v.front = g.number("front_m", 0, 20);
-    v.rear = g.number("rear_m", 0, 20);
-    v.half_width = g.number("half_width_m", 0.1, 5);
-  }
-  {
-    Section m(top.at("mass"), "/mass", file);
-    v.mass = m.number("mass_kg", 1, 1e5);
-    v.yaw_inertia = m.number("yaw_inertia_kgm2", 1, 1e7);
-  }
-  {
-    Section s(top.at("steering"), "/steering", file);
-    v.steering_ratio = s.number("ratio", 1, 100);
-    v.max_steer = s.number("max_steer_rad", 0.01, 1.5);
-    v.max_steer_rate = s.number("max_steer_rate_radps", 0.01, 100);
-    v.steer_delay = s.number("delay_s", 0, 1);
-  }
-  {
-    Section t(top.at("tyres"), "/tyres", file);
-    v.tyre = t.string("model");
-    if (v.tyre != "linear" && v.tyre != "pacejka") t.fail("/tyres/model", "expected \"linear\" or \"pacejka\", found \"" + v.tyre + "\"");
-    v.cornering_front = t.number("cornering_front_npr", 1, 1e8);
-    v.cornering_rear = t.number("cornering_rear_npr", 1, 1e8);
-    v.mu = t.number("mu", 0.1, 5);
-    v.pacejka_c = t.number("pacejka_c", 0.1, 5);
-    v.pacejka_e = t.number("pacejka_e", -10, 1);
-  }
-  {
-    Section a(top.at("aero"), "/aero", file);
-    v.drag_area = a.number("drag_area_m2", 0, 20);
-    v.lift_area = a.number("lift_area_m2", 0, 50);
-    v.downforce_front = a.number("downforce_front", 0, 1);
-    v.air_density = a.number("air_density_kgpm3", 0.1, 5);
-  }
-  {
-    Section p(top.at("powertrain"), "/powertrain", file);
-    v.max_power = p.number("max_power_w", 0, 1e7);
-    v.max_drive_force = p.number("max_drive_force_n", 0, 1e6);
-    v.max_brake_force = p.number("max_brake_force_n", 0, 1e6);
-    v.brake_front = p.number("brake_front", 0, 1);
-    v.rolling_resistance = p.number("rolling_resistance", 0, 1);
-  }
-  {
-    Section l(top.at("limits"), "/limits", file);
-    v.v_max = l.number("v_max_mps", 1, 200);
-    v.a_lat = l.number("a_lat_mps2", 0.5, 100);
-    v.a_decel = l.number("a_decel_mps2", 0.1, 100);
-    // The envelope is what the car can do without downforce: never more grip than its tyres have,
-    // never more braking than its tyres or its brakes give. A car file that promises more would
-    // have every planner drive it off the road.
-    char why[160];
-    const double grip = v.mu * gravity, brakes = v.max_brake_force / v.mass;
-    if (v.a_lat > grip) {
-      std::snprintf(why, sizeof why, "%g m/s^2 is more than the tyres' grip (mu %g x g = %.2f m/s^2)", v.a_lat, v.mu, grip);
-      l.fail("/limits/a_lat_mps2", why);
-    }
-    if (v.a_decel > std::min(grip, brakes)) {
-      std::snprintf(why, sizeof why, "%g m/s^2 is more than the car can brake (tyres %.2f, brakes %.2f m/s^2)", v.a_decel,
-                    grip, brakes);
-      l.fail("/limits/a_decel_mps2", why);
-    }
-  }
-  {
-    const json& mounts = top.at("mounts");
-    if (!mounts.is_object()) top.fail("/mounts", "expected an object");
-    for (auto it = mounts.begin(); it != mounts.end(); ++it) {
-      const std::string ptr = "/mounts/" + it.key();
-      Mount m;
-      if (it->is_array()) {
-        m.xyz = top.triple(*it, ptr);
-      } else {
-        Section s(*it, ptr, file);
-        m.xyz = s.triple(s.at("xyz"), ptr + "/xyz");
-        m.rpy_deg = s.triple(s.at("rpy_deg"), ptr + "/rpy_deg");
-      }
-      v.mounts[it.key()] = m;
-    }
-  }
+  read_geometry(top, file, v);
+  read_mass(top, file, v);
+  read_steering(top, file, v);
+  read_tyres(top, file, v);
+  read_aero(top, file, v);
+  read_powertrain(top, file, v);
+  read_limits(top, file, v);
+  read_mounts(top, file, v);
   return v;
 }
 

@@ -32,6 +32,14 @@ inline vehicle::Vehicle read_vehicle_file(const std::string& path) {
 }
 inline vehicle::Vehicle read_vehicle(Context& ctx, const std::string& file) { return read_vehicle_file(ctx.find_file(file)); }
 
+// At validation (Manifest::check), the vehicle file a plugin's settings name, read and checked as
+// configure will read it: a missing or broken file is refused before anything runs, naming the
+// node. `Bindings` is the plugin's bindings function, `File` its settings' vehicle member:
+//   .check(&plugins::check_vehicle_file<&bindings, &Settings::vehicle>)
+template <auto Bindings, auto File> void check_vehicle_file(const CheckView& v) {
+  read_vehicle_file(v.find_file(Bindings().read(v.params()).*File));
+}
+
 // Where a sensor sits on the car: `given` (the graph's numbers: exactly 3) or, when it is empty,
 // the vehicle file's mount named `mount` — its xyz (m), or with `rpy` its roll, pitch, yaw (deg).
 // Throws BadInput naming `param` (not 3 numbers) or `mount_param` (a mount the car lacks).

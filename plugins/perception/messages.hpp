@@ -4,7 +4,7 @@
 #include <brickyard/msgs/ClusterList.h>
 #include <brickyard/msgs/PointCloud.h>
 
-#include "common/frame_set.hpp"
+#include "perception/common/frame_set.hpp"
 
 #include <cmath>
 #include <cstdint>

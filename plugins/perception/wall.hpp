@@ -2,7 +2,7 @@
 // WallFit <-> WallEstimate, shared by the wall and obstacle detectors.
 #include <brickyard/msgs/WallEstimate.h>
 
-#include "common/wall_fit.hpp"
+#include "perception/common/wall_fit.hpp"
 
 #include <cmath>
 

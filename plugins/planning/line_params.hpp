@@ -3,7 +3,7 @@
 // swap by the plugin's name: bound once, loaded once. Plugin-side (SDK), used by plugin.cpp files.
 #include <brickyard/plugin.hpp>
 
-#include "common/line_setup.hpp"
+#include "planning/common/line_setup.hpp"
 #include "motion/racing_line.hpp"
 #include "motion/vehicle_limits.hpp"
 #include "track/centre_line.hpp"
@@ -51,12 +51,12 @@ template <class S, class... M> void bind_line(ParamBinding<S>& b, M... path) {
 }
 
 // The settings with the file read and the car's limits applied. Throws BadInput naming the file
-// when it cannot be read.
-inline LineSource load_line(Context& ctx, const LineSettings& s, const vehicle::Vehicle& car) {
+// when it cannot be read. `files` finds it: the Context in configure, the CheckView at validation.
+template <class Files> LineSource load_line(const Files& files, const LineSettings& s, const vehicle::Vehicle& car) {
   LineSource out;
   out.plan = s.raceline == "plan";
   if (!out.plan) {
-    const std::string file = ctx.find_file(s.raceline);
+    const std::string file = files.find_file(s.raceline);
     try {
       out.file_line = track::load_xy_csv(file);
     } catch (const track::TrackFileError& e) {

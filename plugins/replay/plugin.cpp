@@ -21,18 +21,14 @@
 #include <brickyard/msgs/WallEstimatePubSubTypes.h>
 #include <brickyard/msgs/WheelSpeedsPubSubTypes.h>
 
-#include <fastcdr/Cdr.h>
-#include <fastcdr/FastBuffer.h>
-#include <fastcdr/exceptions/Exception.h>
+#include "replay/common/recording.hpp"
+#include "replay/common/replay_checks.hpp"
+#include "replay/common/sample_queue.hpp"
+#include "sample_decode.hpp"
 
-#include "common/recording.hpp"
-
-#include "cloud/quantized_cloud.hpp"
-
-#include <cstring>
 #include <memory>
+#include <optional>
 #include <type_traits>
-#include <vector>
 
 namespace {
 
@@ -57,22 +53,6 @@ ParamBinding<Settings> bindings() {
   return b;
 }
 
-// Decodes one recorded sample as Fast DDS would; when the bytes do not fit the type, says how many
-// did (a damaged sample was "Cdr::read_encapsulation", with no place).
-template <class T> std::string decode(const std::vector<unsigned char>& data, T& m) {
-  std::vector<char> bytes(data.begin(), data.end());  // fastcdr reads through a mutable buffer
-  eprosima::fastcdr::FastBuffer buffer(bytes.data(), bytes.size());
-  eprosima::fastcdr::Cdr cdr(buffer, eprosima::fastcdr::Cdr::DEFAULT_ENDIAN, eprosima::fastcdr::Cdr::DDS_CDR);
-  try {
-    cdr.read_encapsulation();
-    m.deserialize(cdr);
-  } catch (const eprosima::fastcdr::exception::Exception& e) {
-    return "its first " + std::to_string(cdr.getSerializedDataLength()) + " of " + std::to_string(data.size()) +
-           " bytes decode, the next do not (" + e.what() + ")";
-  }
-  return {};
-}
-
 template <class T> struct Ports {
   Output<T> out;
 };
@@ -89,73 +69,16 @@ class Replay : public Plugin {
   static Manifest manifest() {
     return Manifest(std::string("replay.") + Name, "1.0.0")
         .describe(std::string("republishes a recorded topic of ") + message_traits<T>::name + " at the times it was published")
-        .with_ports(ports<T>())
-        .parameters(bindings())
-        .periodic("rate_hz");
+        .with_ports(ports<T>()).parameters(bindings()).periodic("rate_hz");
   }
 
   void configure(Context& ctx) override {
     s_ = bindings().read(ctx.params());
-    const Settings& s = s_;
-    const std::string& topic = s.topic;
-    if (s.file.empty()) throw BadInput("parameter 'file': the recording to replay is required");
-    if (topic.empty()) throw BadInput("parameter 'topic': the recorded topic (NODE.PORT) is required");
-    const std::string file = ctx.find_file(s.file);
+    if (s_.file.empty()) throw BadInput("parameter 'file': the recording to replay is required");
+    if (s_.topic.empty()) throw BadInput("parameter 'topic': the recorded topic (NODE.PORT) is required");
+    const std::string file = ctx.find_file(s_.file);
     try {
-      replay::Recording rec(file);
-      // Stamps are the recording run's clock: sim time from 0, or the epoch on the real clock.
-      const std::string clock = rec.metadata("clock");
-      const bool retime = s.retime_from_ns >= 0;
-      if (retime && !(clock == "real" && ctx.sim_clock()))
-        throw BadInput("parameter 'retime_from_ns': re-times a real-clock recording onto the sim clock; " + file + " was made on the " +
-                       (clock.empty() ? "unknown" : clock) + " clock and this run is on the " + (ctx.sim_clock() ? "sim" : "real") + " clock");
-      if (!retime && clock != (ctx.sim_clock() ? "sim" : "real"))
-        throw BadInput("recording " + file + " was made on the " + (clock.empty() ? "unknown" : clock) + " clock, this run is on the " +
-                       (ctx.sim_clock() ? "sim" : "real") + " clock: its samples' times would not line up");
-      const replay::RecordedTopic* t = rec.topic(topic);
-      if (!t) {
-        std::string have;
-        for (const auto& x : rec.topics()) have += (have.empty() ? "" : ", ") + x.name;
-        throw BadInput("recording " + file + " has no topic '" + topic + "' (it has: " + have + ")");
-      }
-      // A cloud recorded compact (--record-cloud-precision) is replayed as the PointCloud it was.
-      bool packed = false;
-      if constexpr (std::is_same_v<T, msgs::PointCloud>) packed = t->type == message_traits<msgs::QuantizedPointCloud>::name;
-      const std::string& want = packed ? message_traits<msgs::QuantizedPointCloud>::name : message_traits<T>::name;
-      const std::string& want_hash = packed ? message_traits<msgs::QuantizedPointCloud>::hash : message_traits<T>::hash;
-      if (t->type != want)
-        throw BadInput("recording " + file + ": topic '" + topic + "' holds " + t->type + ", this node replays " +
-                       message_traits<T>::name + " (use the replay plugin of that type)");
-      if (t->type_hash != want_hash)
-        throw BadInput("recording " + file + ": topic '" + topic + "' was recorded with another definition of " + t->type +
-                       " (IDL hash " + t->type_hash + ", this build " + want_hash + ")");
-      // Every sample decoded now: a bad one is bad input, found before the run starts.
-      for (auto& s : rec.samples(*t)) {
-        auto m = std::make_shared<T>();
-        std::string e;
-        if constexpr (std::is_same_v<T, msgs::PointCloud>) {
-          if (packed) {
-            msgs::QuantizedPointCloud q;
-            e = decode(s.data, q);
-            try {
-              if (e.empty()) *m = cloud::unpack<msgs::PointCloud>(q);
-            } catch (const std::invalid_argument& x) {
-              e = x.what();
-            }
-          }
-        }
-        if (!packed) e = decode(s.data, *m);
-        if (!e.empty())
-          throw BadInput("recording " + file + ": sample " + std::to_string(samples_.size()) + " of '" + topic + "' does not decode as " +
-                         want + ": " + e);
-        std::int64_t stamp = s.stamp_ns;
-        if (retime) {  // the drive from 0: the sample's time and its measurement's stamp alike
-          if (stamp < s_.retime_from_ns) continue;
-          stamp -= s_.retime_from_ns;
-          m->header().stamp_ns(m->header().stamp_ns() - s_.retime_from_ns);
-        }
-        samples_.push_back({stamp, std::move(m)});
-      }
+      load(ctx, file);
     } catch (const replay::RecordingError& e) {
       throw BadInput(std::string("parameter 'file': ") + e.what());
     }
@@ -163,24 +86,44 @@ class Replay : public Plugin {
   }
 
   void step(Context& ctx) override {
-    const std::int64_t now = ctx.now_ns();
-    for (; next_ < samples_.size() && samples_[next_].stamp_ns <= now; ++next_)
-      io_.out.publish(std::move(samples_[next_].message));  // published: this node lets go of it
+    samples_.release(ctx.now_ns(), [&](auto&& m) { io_.out.publish(std::move(m)); });  // published: this node lets go of it
   }
 
   void deactivate(Context& ctx) override {
-    ctx.metric("replayed", static_cast<double>(next_));
-    ctx.metric("left", static_cast<double>(samples_.size() - next_));
+    ctx.metric("replayed", static_cast<double>(samples_.sent()));
+    ctx.metric("left", static_cast<double>(samples_.left()));
   }
 
  private:
-  struct Sample {
-    std::int64_t stamp_ns;
-    std::shared_ptr<const T> message;
-  };
+  using Packed = msgs::QuantizedPointCloud;
+
+  void load(Context& ctx, const std::string& file) {
+    replay::Recording rec(file);
+    const bool retime = s_.retime_from_ns >= 0;
+    if (const std::string e = replay::clock_problem(file, rec.metadata("clock"), ctx.sim_clock(), retime); !e.empty()) throw BadInput(e);
+    const replay::RecordedTopic* t = rec.topic(s_.topic);
+    if (!t) throw BadInput(replay::missing_topic(file, rec, s_.topic));
+    // A cloud recorded compact (--record-cloud-precision) is replayed as the PointCloud it was.
+    const bool packed = std::is_same_v<T, msgs::PointCloud> && t->type == message_traits<Packed>::name;
+    const std::string want = packed ? message_traits<Packed>::name : message_traits<T>::name;
+    const std::string want_hash = packed ? message_traits<Packed>::hash : message_traits<T>::hash;
+    if (const std::string e = replay::type_problem(file, s_.topic, *t, want, want_hash, message_traits<T>::name); !e.empty())
+      throw BadInput(e);
+    // Every sample decoded now: a bad one is bad input, found before the run starts.
+    for (auto& s : rec.samples(*t)) {
+      auto m = std::make_shared<T>();
+      if (const std::string e = replay::decode_sample(s.data, packed, *m); !e.empty())
+        throw BadInput("recording " + file + ": sample " + std::to_string(samples_.size()) + " of '" + s_.topic + "' does not decode as " +
+                       want + ": " + e);
+      const std::optional<std::int64_t> stamp = replay::retimed(s.stamp_ns, s_.retime_from_ns);
+      if (!stamp) continue;  // before the drive's start
+      if (retime) m->header().stamp_ns(m->header().stamp_ns() - s_.retime_from_ns);  // the measurement's stamp alike
+      samples_.push(*stamp, std::move(m));
+    }
+  }
+
   Settings s_;
-  std::vector<Sample> samples_;
-  std::size_t next_ = 0;
+  replay::SampleQueue<std::shared_ptr<const T>> samples_;
   Ports<T> io_;
 };
 

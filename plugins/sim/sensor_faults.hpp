@@ -3,7 +3,7 @@
 // turns its errors into BadInput naming the parameter.
 #include <brickyard/context.hpp>
 
-#include "common/faults.hpp"
+#include "sim/common/faults.hpp"
 
 namespace brickyard::sim {
 

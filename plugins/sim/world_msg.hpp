@@ -7,7 +7,7 @@
 
 #include <Eigen/Geometry>
 
-#include "common/track.hpp"
+#include "sim/common/track.hpp"
 #include "map_msg.hpp"
 #include "newest.hpp"
 

@@ -20,7 +20,11 @@ function(brickyard_add_plugin target)
   if(BRICKYARD_PLUGIN_OUTPUT_DIR)
     set_target_properties(${target} PROPERTIES LIBRARY_OUTPUT_DIRECTORY ${BRICKYARD_PLUGIN_OUTPUT_DIR})
   endif()
-  if(BRICKYARD_PLUGIN_INSTALL_DIR)
+  if(BRICKYARD_PLUGIN_INSTALL_DIR AND BRICKYARD_PLUGIN_INSTALL_COMPONENT)
+    # A component of its own, left out of a plain install (the simulator's plugins).
+    install(TARGETS ${target} LIBRARY DESTINATION ${BRICKYARD_PLUGIN_INSTALL_DIR}
+            COMPONENT ${BRICKYARD_PLUGIN_INSTALL_COMPONENT} EXCLUDE_FROM_ALL)
+  elseif(BRICKYARD_PLUGIN_INSTALL_DIR)
     install(TARGETS ${target} LIBRARY DESTINATION ${BRICKYARD_PLUGIN_INSTALL_DIR})
   endif()
 endfunction()

@@ -3,7 +3,9 @@
 # against it (find_package(brickyard)), run its own CTest suite (unit tests and graph tests) and a
 # graph that loads the result; check the plugin does not link Fast DDS and that the installed SDK
 # holds no host-only header; then scaffold a new plugin with `brickyard new-plugin`, build and test
-# it the same way.
+# it the same way; then a planner from `new-plugin --role planner`, raced in configs/race.json with
+# --set planner.plugin= and no other edit. A plain install leaves the simulator's plugins out (their
+# own component, installed next for the race).
 set -eu
 build=$1; template=$2; work=$3; domain=$4
 rm -rf "$work"; mkdir -p "$work"
@@ -67,4 +69,27 @@ ctest --test-dir "$work/smoother/build" -N | grep -q 'smoother.lags_a_step' || {
 "$by" plugins --plugin-path "$work/smoother/build" | grep -q '^acme.smoother 0.1.0'
 "$by" run "$work/smoother/graph.json" --domain "$domain" --out "$work/smoother_run"
 grep -q '"passed": 1.0' "$work/smoother_run/summary.json"
+
+echo "--- a plain install: the SDK and the car stack, not the simulator"
+ls "$prefix/lib/brickyard/plugins" > "$work/plugins_plain.txt"
+grep -q '^libtesting_assert_sink\.so$' "$work/plugins_plain.txt" || { echo "FAIL: testing plugins not installed"; exit 1; }
+grep -q '^libplanning_road_graph\.so$' "$work/plugins_plain.txt" || { echo "FAIL: the car stack's plugins not installed"; exit 1; }
+if grep -q '^libsim_' "$work/plugins_plain.txt"; then echo "FAIL: a plain install holds the simulator's plugins:"; grep '^libsim_' "$work/plugins_plain.txt"; exit 1; fi
+du -sm "$prefix" | awk '{ print "installed, plain: " $1 " MiB" }'
+cmake --install "$build" --prefix "$prefix" --component sim > "$work/install_sim.log"
+[ -e "$prefix/lib/brickyard/plugins/libsim_world.so" ] || { echo "FAIL: --component sim did not install the simulator"; exit 1; }
+du -sm "$prefix" | awk '{ print "installed, with the simulator: " $1 " MiB" }'
+
+echo "--- new-plugin acme.centre_line --role planner, raced in configs/race.json"
+if "$by" new-plugin acme.nope --role no_such_role --dir "$work/nope" > "$work/nope.log" 2>&1; then echo "FAIL: an unknown role scaffolded"; exit 1; fi
+"$by" new-plugin acme.centre_line --role planner --dir "$work/centre"
+grep -q 'Manifest("acme.centre_line"' "$work/centre/src/plugin.cpp"
+grep -q 'plays(roles::planner)' "$work/centre/src/plugin.cpp"
+build_and_test "$work/centre" c libcentre_line.so
+"$by" plugins acme.centre_line --plugin-path "$work/centre/build" | grep -q '^  plays planner$' || { echo "FAIL: acme.centre_line does not play planner"; exit 1; }
+src=$(cd "$template/../.." && pwd)
+"$by" run "$src/configs/race.json" --plugin-path "$work/centre/build" --set planner.plugin=acme.centre_line \
+  --domain "$domain" --quiet --out "$work/centre_race" > "$work/centre_race.log" 2>&1 || { tail -20 "$work/centre_race.log"; echo "FAIL: the race with acme.centre_line"; exit 1; }
+grep 'success' "$work/centre_race.log"
+grep -q "node 'referee' finished the run: 2 laps completed" "$work/centre_race.log" || { echo "FAIL: the race did not finish its laps"; exit 1; }
 echo "installed SDK builds and tests third-party plugins"

@@ -10,7 +10,7 @@
 
 #include <fastdds/rtps/common/SerializedPayload.h>
 
-#include "common/recording.hpp"
+#include "replay/common/recording.hpp"
 
 #include <brickyard/message_traits.hpp>
 

@@ -4,7 +4,7 @@
 #include <brickyard/msgs/Path.h>
 #include <brickyard/plugin.hpp>
 
-#include "../command_msg.hpp"
+#include "control/command_msg.hpp"
 #include "control/path_tracker.hpp"
 #include "control/vehicle_tracking.hpp"
 #include "tracker_params.hpp"
@@ -56,7 +56,8 @@ class PathTrackerNode : public Plugin {
         .describe("follows the path: pure pursuit or the single-track model's LQR; speed from the path, braking ahead of slower stretches")
         .with_ports(ports())
         .plays(roles::path_tracker)
-        .parameters(bindings());
+        .parameters(bindings())
+        .check(&plugins::check_vehicle_file<&bindings, &Settings::vehicle>);
   }
 
   void configure(Context& ctx) override {

@@ -6,9 +6,12 @@
 #include <brickyard/msgs/WallEstimate.h>
 #include <brickyard/plugin.hpp>
 
-#include "common/system_manager.hpp"
+#include "control/command_msg.hpp"
+#include "control/common/mode_command.hpp"
+#include "control/common/mode_stats.hpp"
+#include "control/common/system_manager.hpp"
 
-#include <map>
+#include <optional>
 
 namespace {
 
@@ -73,11 +76,8 @@ class SystemManagerNode : public Plugin {
     return Manifest("control.system_manager", "1.0.0")
         .describe("localization EMERGENCY hands steering to the wall follower; back to the path tracker once NORMAL has held; "
                   "a safe stop when the wall is lost too")
-        .with_ports(ports())
-        .plays(roles::system_manager)
-        .parameters(bindings())
-        .periodic("rate_hz")
-        .step_deadline("step_deadline_s");
+        .with_ports(ports()).plays(roles::system_manager).parameters(bindings())
+        .periodic("rate_hz").step_deadline("step_deadline_s");
   }
 
   void configure(Context& ctx) override {
@@ -87,6 +87,27 @@ class SystemManagerNode : public Plugin {
 
   void step(Context& ctx) override {
     const double t = ctx.now_s();
+    take_inputs();
+    const Transition tr = manager_.update(t);
+    if (tr.happened) ctx.log(LogLevel::info, transition_line(tr, t));
+    if (stats_.step(t, tr, manager_.mode())) ctx.status("mode", mode_name(manager_.mode()));
+    publish(ctx, t);
+  }
+
+  void deactivate(Context& ctx) override {
+    for (const auto& [name, value] : stats_.metrics()) ctx.metric(name, value);
+    ctx.metric("final_mode", std::string(mode_name(manager_.mode())));
+  }
+
+ private:
+  using CommandPtr = std::shared_ptr<const msgs::ControlCommand>;
+  static double stamp(std::int64_t ns) { return static_cast<double>(ns) * 1e-9; }
+  static std::optional<ControllerCommand> plain(const CommandPtr& c) {
+    if (!c) return std::nullopt;
+    return ControllerCommand{stamp(c->header().stamp_ns()), {c->steer(), c->throttle(), c->brake(), c->target_speed()}};
+  }
+
+  void take_inputs() {
     for (auto& s : io_.localization.take())
       manager_.status(stamp(s->header().stamp_ns()), static_cast<LocStatus>(std::min<int>(s->mode(), 2)));
     for (auto& w : io_.wall.take()) manager_.wall(stamp(w->header().stamp_ns()), w->valid());
@@ -98,80 +119,30 @@ class SystemManagerNode : public Plugin {
       last_wall_ = c;
       manager_.wall_command(stamp(c->header().stamp_ns()));
     }
-    const Transition tr = manager_.update(t);
-    if (tr.happened) {
-      ++transitions_;
-      ++into_[mode_name(tr.to)];
-      reason_ = tr.reason;
-      ctx.log(LogLevel::info, std::string(mode_name(tr.from)) + " -> " + mode_name(tr.to) + " at t = " + std::to_string(t) +
-                                  " s: " + tr.reason);
-    }
-    if (tr.happened || last_t_ < 0) ctx.status("mode", mode_name(manager_.mode()));
-    time_in_[mode_name(manager_.mode())] += last_t_ < 0 ? 0.0 : t - last_t_;
-    last_t_ = t;
-    msgs::ControlCommand c;
-    switch (manager_.mode()) {
-      case Mode::path:
-        if (last_path_) c = *last_path_;
-        else c.brake(1.0);  // nothing to forward yet
-        break;
-      case Mode::wall:
-        if (last_wall_) {
-          c = *last_wall_;
-          if (manager_.params().cautious_pedals && last_path_) {
-            const bool fresh = t - stamp(last_path_->header().stamp_ns()) <= manager_.params().command_timeout_s;
-            const Pedals p = cautious({c.throttle(), c.brake(), c.target_speed()},
-                                      {last_path_->throttle(), last_path_->brake(), last_path_->target_speed()}, fresh);
-            c.throttle(p.throttle);
-            c.brake(p.brake);
-            c.target_speed(p.target_speed);
-          }
-        } else {
-          c.brake(1.0);
-        }
-        break;
-      case Mode::safe_stop:
-        // Full brake; keep following the wall's line while it is seen (a command of the last
-        // wall_timeout_s), else a straight wheel.
-        c.steer(last_wall_ && t - stamp(last_wall_->header().stamp_ns()) <= manager_.params().wall_timeout_s ? last_wall_->steer() : 0.0);
-        c.brake(1.0);
-        break;
-    }
-    c.throttle(manager_.mode() == Mode::safe_stop ? 0.0 : c.throttle());
-    c.header().stamp_ns(ctx.now_ns());
-    c.header().seq(seq_);
-    c.source(manager_.mode() == Mode::path ? "path_tracker" : manager_.mode() == Mode::wall ? "wall_follower" : "safe_stop");
+  }
+
+  void publish(Context& ctx, double t) {
+    const Mode mode = manager_.mode();
+    const ModeCommand out = command_for(mode, t, plain(last_path_), plain(last_wall_), manager_.params());
+    const CommandPtr from = out.forward == Forwarded::path ? last_path_ : out.forward == Forwarded::wall ? last_wall_ : nullptr;
+    msgs::ControlCommand c = command_message(out.command, controller_name(mode), ctx.now_ns(), seq_);
+    c.header().frame_id(from ? from->header().frame_id() : "");  // a forwarded command keeps its frame
     io_.command.publish(std::move(c));
     msgs::ModeStatus m;
     m.header().stamp_ns(ctx.now_ns());
     m.header().seq(seq_++);
-    m.mode(manager_.mode() == Mode::path ? 0 : manager_.mode() == Mode::wall ? 2 : 3);
-    m.mode_name(mode_name(manager_.mode()));
-    m.reason(reason_);
-    m.active_controller(manager_.mode() == Mode::path ? "path_tracker" : manager_.mode() == Mode::wall ? "wall_follower" : "safe_stop");
+    m.mode(mode_number(mode));
+    m.mode_name(mode_name(mode));
+    m.reason(stats_.reason());
+    m.active_controller(controller_name(mode));
     io_.mode.publish(std::move(m));
   }
 
-  void deactivate(Context& ctx) override {
-    ctx.metric("transitions", static_cast<double>(transitions_));
-    for (const char* m : {"PATH", "WALL_FOLLOW", "SAFE_STOP"}) {
-      ctx.metric(std::string("entered_") + m, static_cast<double>(into_[m]));
-      ctx.metric(std::string("time_s_") + m, time_in_[m]);
-    }
-    ctx.metric("final_mode", std::string(mode_name(manager_.mode())));
-  }
-
- private:
-  static double stamp(std::int64_t ns) { return static_cast<double>(ns) * 1e-9; }
   SystemManager manager_;
+  ModeStats stats_;
   Ports io_;
-  std::shared_ptr<const msgs::ControlCommand> last_path_, last_wall_;
-  std::map<std::string, std::uint64_t> into_;
-  std::map<std::string, double> time_in_;
-  std::string reason_;
-  double last_t_ = -1;
+  CommandPtr last_path_, last_wall_;
   std::uint32_t seq_ = 0;
-  std::uint64_t transitions_ = 0;
 };
 
 }  // namespace

@@ -2,7 +2,7 @@
 // Each point's local shape as a covariance, from its k nearest neighbours: the per-point
 // distributions of generalized ICP (Segal, Haehnel and Thrun, 2009) that the voxel map and the
 // registration use. Framework-free.
-#include "common/points.hpp"
+#include "perception/common/points.hpp"
 
 #include <Eigen/Core>
 

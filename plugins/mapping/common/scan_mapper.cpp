@@ -2,7 +2,7 @@
 
 #include <Eigen/Eigenvalues>
 
-#include "common/cell_map.hpp"
+#include "perception/common/cell_map.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -4,7 +4,7 @@
 // to one voxel by a hash lookup instead of a nearest-neighbour search. Points are added frame by
 // frame (a map grows). Framework-free.
 #include "covariances.hpp"
-#include "common/cell_map.hpp"
+#include "perception/common/cell_map.hpp"
 
 #include <cstdint>
 #include <vector>

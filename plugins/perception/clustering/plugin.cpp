@@ -3,8 +3,8 @@
 #include <brickyard/msgs/PointCloud.h>
 #include <brickyard/plugin.hpp>
 
-#include "../messages.hpp"
-#include "common/clustering.hpp"
+#include "perception/messages.hpp"
+#include "perception/common/clustering.hpp"
 
 namespace {
 

@@ -92,25 +92,31 @@ double walls_lean(const std::vector<std::pair<WallFit, int>>& walls, int side) {
   return 0;
 }
 
-}  // namespace
+// A candidate obstacle: one cluster, or clusters stacked at one place; `n` 0 once merged into another.
+struct Part {
+  Eigen::Vector3f lo, hi, sum;
+  std::size_t n;
+  std::vector<int> clusters;
+};
 
-std::vector<Obstacle> find_obstacles(const Points& points, const std::vector<std::vector<int>>& clusters,
-                                     const std::vector<std::pair<WallFit, int>>& walls, const ObstacleParams& p) {
-  std::vector<Obstacle> out;
-  std::vector<char> wall_member(clusters.size(), 0);
-  std::vector<std::pair<WallProfile, int>> profiles;  // the valid walls
-  for (const auto& [w, side] : walls) {
-    if (!w.valid) continue;
-    profiles.emplace_back(WallProfile(w, points, clusters), side);
-    for (int m : w.members)
-      if (m >= 0 && static_cast<std::size_t>(m) < clusters.size()) wall_member[m] = 1;
+// Whether q lies within wall_margin of a fitted wall or beyond it, where that counts as wall.
+bool at_or_beyond_wall(const Point& q, const std::vector<std::pair<WallProfile, int>>& profiles,
+                       const std::vector<std::pair<WallFit, int>>& walls, const ObstacleParams& p) {
+  for (std::size_t v = 0; v < profiles.size(); ++v) {
+    // Signed distance inward from the wall at the point's height (the fitted lean included).
+    const auto& [profile, side] = profiles[v];
+    const double wall_y = profile.y(q.x()) + walls_lean(walls, side) * q.z();
+    const double inward = (wall_y - q.y()) * side;  // negative: beyond the wall
+    if (inward < p.wall_margin && (profile.covers(q.x(), p.wall_reach) || inward > -p.wall_depth)) return true;
   }
-  // Candidates: the clusters that are neither wall nor beyond it.
-  struct Part {
-    Eigen::Vector3f lo, hi, sum;
-    std::size_t n;
-    std::vector<int> clusters;
-  };
+  return false;
+}
+
+// Candidates: the clusters that are neither wall nor beyond it.
+std::vector<Part> candidate_parts(const Points& points, const std::vector<std::vector<int>>& clusters,
+                                  const std::vector<std::pair<WallFit, int>>& walls,
+                                  const std::vector<std::pair<WallProfile, int>>& profiles, const std::vector<char>& wall_member,
+                                  const ObstacleParams& p) {
   std::vector<Part> parts;
   for (std::size_t k = 0; k < clusters.size(); ++k) {
     const auto& c = clusters[k];
@@ -122,19 +128,17 @@ std::vector<Obstacle> find_obstacles(const Points& points, const std::vector<std
       part.lo = part.lo.cwiseMin(q);
       part.hi = part.hi.cwiseMax(q);
       part.sum += q;
-      for (std::size_t v = 0; v < profiles.size() && !wall; ++v) {
-        // Signed distance inward from the wall at the point's height (the fitted lean included).
-        const auto& [profile, side] = profiles[v];
-        const double wall_y = profile.y(q.x()) + walls_lean(walls, side) * q.z();
-        const double inward = (wall_y - q.y()) * side;  // negative: beyond the wall
-        if (inward < p.wall_margin && (profile.covers(q.x(), p.wall_reach) || inward > -p.wall_depth)) wall = true;
-      }
+      if (!wall) wall = at_or_beyond_wall(q, profiles, walls, p);
     }
     if (!wall) parts.push_back(std::move(part));
   }
-  // Far off, the rows a thing is cut by land further apart than the clustering tolerance: a
-  // pylon at 60 m comes as two or three one-row streaks stacked at one place. Parts whose
-  // footprints overlap (within stack_gap) are one object.
+  return parts;
+}
+
+// Far off, the rows a thing is cut by land further apart than the clustering tolerance: a
+// pylon at 60 m comes as two or three one-row streaks stacked at one place. Parts whose
+// footprints overlap (within stack_gap) are one object: merged into the first of them.
+void merge_stacked(std::vector<Part>& parts, const ObstacleParams& p) {
   std::vector<int> group(parts.size());
   for (std::size_t a = 0; a < parts.size(); ++a) group[a] = static_cast<int>(a);
   auto root = [&](int a) {
@@ -161,19 +165,37 @@ std::vector<Obstacle> find_obstacles(const Points& points, const std::vector<std
     into.clusters.insert(into.clusters.end(), parts[a].clusters.begin(), parts[a].clusters.end());
     parts[a].n = 0;
   }
+}
+
+// The corridor: within corridor_width of a fitted wall (it follows the wall round a turn),
+// or within max_lateral of the car's axis when no wall is fitted.
+bool in_corridor(const Eigen::Vector3f& centroid, const std::vector<std::pair<WallProfile, int>>& profiles, const ObstacleParams& p) {
+  if (profiles.empty()) return !(std::abs(centroid.y()) > p.max_lateral);
+  const auto& [profile, side] = profiles.front();
+  return !((profile.y(centroid.x()) - centroid.y()) * side > p.corridor_width);
+}
+
+}  // namespace
+
+std::vector<Obstacle> find_obstacles(const Points& points, const std::vector<std::vector<int>>& clusters,
+                                     const std::vector<std::pair<WallFit, int>>& walls, const ObstacleParams& p) {
+  std::vector<Obstacle> out;
+  std::vector<char> wall_member(clusters.size(), 0);
+  std::vector<std::pair<WallProfile, int>> profiles;  // the valid walls
+  for (const auto& [w, side] : walls) {
+    if (!w.valid) continue;
+    profiles.emplace_back(WallProfile(w, points, clusters), side);
+    for (int m : w.members)
+      if (m >= 0 && static_cast<std::size_t>(m) < clusters.size()) wall_member[m] = 1;
+  }
+  std::vector<Part> parts = candidate_parts(points, clusters, walls, profiles, wall_member, p);
+  merge_stacked(parts, p);
   std::vector<int> members;
   for (const Part& part : parts) {
     if (part.n == 0 || static_cast<int>(part.n) < p.min_points) continue;
     const Eigen::Vector3f centroid = part.sum / static_cast<float>(part.n), size = part.hi - part.lo;
     if (centroid.x() > p.max_range || centroid.x() < -p.max_behind) continue;
-    // The corridor: within corridor_width of a fitted wall (it follows the wall round a turn),
-    // or within max_lateral of the car's axis when no wall is fitted.
-    if (profiles.empty()) {
-      if (std::abs(centroid.y()) > p.max_lateral) continue;
-    } else {
-      const auto& [profile, side] = profiles.front();
-      if ((profile.y(centroid.x()) - centroid.y()) * side > p.corridor_width) continue;
-    }
+    if (!in_corridor(centroid, profiles, p)) continue;
     if (size.x() > p.max_length || size.y() > p.max_length || size.z() < p.min_height) continue;
     members.clear();
     for (int c : part.clusters) members.insert(members.end(), clusters[c].begin(), clusters[c].end());

@@ -148,131 +148,153 @@ void add_sampled(const std::vector<int>& cluster, std::vector<int>& out) {
   for (std::size_t k = 0; k < cluster.size(); k += stride) out.push_back(cluster[k]);
 }
 
-}  // namespace
-
-WallFit fit_wall(const Points& points, const std::vector<std::vector<int>>& clusters, const WallParams& p) {
-  WallFit w;
-  w.cluster = longest_cluster_on_side(points, clusters, p.side, static_cast<float>(p.fit_range));
-  if (w.cluster < 0) return w;
+// The x extent of each cluster.
+std::vector<Extent> cluster_extents(const Points& points, const std::vector<std::vector<int>>& clusters) {
   std::vector<Extent> ext(clusters.size());
   for (std::size_t c = 0; c < clusters.size(); ++c)
     for (int i : clusters[c]) {
       ext[c].lo = std::min(ext[c].lo, points[i].x());
       ext[c].hi = std::max(ext[c].hi, points[i].x());
     }
-  std::vector<char> member(clusters.size(), 0);
-  member[w.cluster] = 1;
-  w.members = {w.cluster};
-  float lo = ext[w.cluster].lo, hi = ext[w.cluster].hi;
-  // Grow forward (+1) and backward (-1), one join_gap at a time, refitting the end each time. The
-  // lean is the car's roll, one value for the whole wall: taken from the longest cluster near the
-  // car and held fixed, so the short local fits need not find it (extrapolated up a wall seen
-  // from afar, a poorly found lean throws the fit off by metres).
-  const int local_degree = std::min(2, p.degree);
-  std::vector<int> sel;
-  double lean = 0;
-  if (p.lean) {
-    for (int i : clusters[w.cluster])
-      if (std::abs(points[i].x()) <= p.fit_range) sel.push_back(i);
-    if (static_cast<int>(sel.size()) < 20) sel = clusters[w.cluster];
-    const LocalFit seed = least_squares(points, sel, local_degree, true);
-    if (seed.ok) lean = seed.lean_value();
-  }
-  // The members' samples, in member order. Each growing pass fits those within 30 m of the end;
-  // the end only moves outwards, so a sample left behind stays behind: `live` drops it for good
-  // (in order) and takes a new member's samples at its back, so a pass costs the wall's last
-  // 30 m, not its whole length.
-  std::vector<int> samples, live;
-  add_sampled(clusters[w.cluster], samples);
-  std::vector<std::pair<float, int>> candidates;
-  for (int dir : {1, -1}) {
-    const float sgn = static_cast<float>(dir);
-    live = samples;
-    for (int pass = 0; pass < 1000; ++pass) {
-      float end = dir > 0 ? hi : lo;
-      const float fitted_end = end;
-      live.erase(std::remove_if(live.begin(), live.end(), [&](int i) { return !((points[i].x() - end) * sgn >= -30.0f); }), live.end());
-      const LocalFit f = least_squares(points, live, local_degree, false, lean);
-      if (!f.ok) break;
-      // Candidates nearest first, each judged from the end as it stands then, so a stripe is
-      // measured from the stripe before it, not from where the fit was made.
-      candidates.clear();
-      for (std::size_t c = 0; c < clusters.size(); ++c) {
-        if (member[c]) continue;  // any side: far round a turn the wall crosses the car's axis
-        const float near_end = dir > 0 ? ext[c].lo : ext[c].hi, far_end = dir > 0 ? ext[c].hi : ext[c].lo;
-        if ((far_end - end) * sgn <= 0 || (near_end - end) * sgn > p.join_gap) continue;
-        candidates.emplace_back((near_end - end) * sgn, static_cast<int>(c));
-      }
-      std::sort(candidates.begin(), candidates.end());
-      bool added = false;
-      for (const auto& [gap, c] : candidates) {
-        if (member[c] || (far_end_of(ext[c], dir) - end) * sgn <= 0) continue;
-        const float near_end = dir > 0 ? std::max(ext[c].lo, end) : std::min(ext[c].hi, end);
-        if ((near_end - end) * sgn > p.join_gap) break;
-        // Judged on its first 2 m past the end, against the local fit extrapolated there, which
-        // is trusted less the further it reaches: nine in ten points within join_margin +
-        // join_slope * (distance past the fit's end).
-        int near = 0, on = 0;
-        for (int i : clusters[c]) {
-          const float x = points[i].x();
-          if ((x - near_end) * sgn > 2.0f || (x - end) * sgn < 0) continue;
-          ++near;
-          const float past = (x - fitted_end) * sgn;
-          on += std::abs(points[i].y() - f.y(x, points[i].z())) <= p.join_margin + p.join_slope * past;
-        }
-        if (near == 0 || on * 10 < near * 9) continue;
-        member[c] = 1;
-        w.members.push_back(c);
-        add_sampled(clusters[c], samples);
-        add_sampled(clusters[c], live);
-        lo = std::min(lo, ext[c].lo);
-        hi = std::max(hi, ext[c].hi);
-        end = dir > 0 ? hi : lo;
-        added = true;
-        if ((end - fitted_end) * sgn > 5.0f) break;  // refit before reaching further
-      }
-      if (!added) break;
+  return ext;
+}
+
+// The wall grown from its longest cluster (w.cluster): the clusters that continue it past its
+// ends, then those along it that were not joined. The lean is the car's roll, one value for the
+// whole wall: taken from the longest cluster near the car and held fixed, so the short local fits
+// need not find it (extrapolated up a wall seen from afar, a poorly found lean throws the fit off
+// by metres).
+class WallGrower {
+ public:
+  WallGrower(const Points& points, const std::vector<std::vector<int>>& clusters, const WallParams& p, WallFit& w)
+      : points_(points), clusters_(clusters), p_(p), w_(w), ext_(cluster_extents(points, clusters)), member_(clusters.size(), 0),
+        local_degree_(std::min(2, p.degree)) {
+    member_[w.cluster] = 1;
+    w.members = {w.cluster};
+    lo_ = ext_[w.cluster].lo, hi_ = ext_[w.cluster].hi;
+    if (p.lean) {
+      std::vector<int> sel;
+      for (int i : clusters[w.cluster])
+        if (std::abs(points[i].x()) <= p.fit_range) sel.push_back(i);
+      if (static_cast<int>(sel.size()) < 20) sel = clusters[w.cluster];
+      const LocalFit seed = least_squares(points, sel, local_degree_, true);
+      if (seed.ok) lean_ = seed.lean_value();
     }
+    add_sampled(clusters[w.cluster], samples_);
   }
+
+  // Grows the wall forward (+1) or backward (-1), one join_gap at a time, refitting the end each time.
+  void grow(int dir) {
+    // Each growing pass fits the samples within 30 m of the end; the end only moves outwards, so
+    // a sample left behind stays behind: `live` drops it for good (in order) and takes a new
+    // member's samples at its back, so a pass costs the wall's last 30 m, not its whole length.
+    std::vector<int> live = samples_;
+    for (int pass = 0; pass < 1000; ++pass)
+      if (!grow_pass(dir, live)) break;
+  }
+
   // Clusters within the wall's extent but not joined to it (a row's streak along the wall's foot
   // far round a turn): judged against the wall's piece where they are, fitted over 30 m.
-  const int pieces = static_cast<int>(std::min(std::ceil((hi - lo) / 20.0f), 2000.0f));  // bounded: points are within 10 km
-  for (int piece = 0; piece < pieces; ++piece) {
-    const float b = lo + 20.0f * static_cast<float>(piece);
-    sel.clear();
-    for (int i : samples)
-      if (points[i].x() >= b - 5.0f && points[i].x() < b + 25.0f) sel.push_back(i);
-    const LocalFit f = least_squares(points, sel, local_degree, false, lean);
-    if (!f.ok) continue;
-    for (std::size_t c = 0; c < clusters.size(); ++c) {
-      if (member[c] || ext[c].hi < b || ext[c].lo >= b + 20.0f || ext[c].lo < lo || ext[c].hi > hi) continue;
-      int on = 0;
-      for (int i : clusters[c]) on += std::abs(points[i].y() - f.y(points[i].x(), points[i].z())) <= p.join_margin;
-      if (on * 10 < static_cast<int>(clusters[c].size()) * 9) continue;
-      member[c] = 1;
-      w.members.push_back(static_cast<int>(c));
-      add_sampled(clusters[c], samples);  // later pieces fit it too
+  void join_within_extent() {
+    const int pieces = static_cast<int>(std::min(std::ceil((hi_ - lo_) / 20.0f), 2000.0f));  // bounded: points are within 10 km
+    std::vector<int> sel;
+    for (int piece = 0; piece < pieces; ++piece) {
+      const float b = lo_ + 20.0f * static_cast<float>(piece);
+      sel.clear();
+      for (int i : samples_)
+        if (points_[i].x() >= b - 5.0f && points_[i].x() < b + 25.0f) sel.push_back(i);
+      const LocalFit f = least_squares(points_, sel, local_degree_, false, lean_);
+      if (!f.ok) continue;
+      for (std::size_t c = 0; c < clusters_.size(); ++c) {
+        if (member_[c] || ext_[c].hi < b || ext_[c].lo >= b + 20.0f || ext_[c].lo < lo_ || ext_[c].hi > hi_) continue;
+        int on = 0;
+        for (int i : clusters_[c]) on += std::abs(points_[i].y() - f.y(points_[i].x(), points_[i].z())) <= p_.join_margin;
+        if (on * 10 < static_cast<int>(clusters_[c].size()) * 9) continue;
+        member_[c] = 1;
+        w_.members.push_back(static_cast<int>(c));
+        add_sampled(clusters_[c], samples_);  // later pieces fit it too
+      }
     }
   }
-  // The published fit: the wall's points near the car.
-  sel.clear();
-  for (int c : w.members)
-    for (int i : clusters[c])
-      if (points[i].x() <= p.fit_range && points[i].x() >= -p.fit_behind) sel.push_back(i);
-  w.points = sel.size();
-  const int terms = p.degree + 1 + (p.lean ? 1 : 0);
-  if (static_cast<int>(sel.size()) < std::max(p.min_points, terms)) return w;
-  const LocalFit f = least_squares(points, sel, p.degree, p.lean);
-  if (!f.ok) return w;
-  w.x_min = f.mid - f.half;
-  w.x_max = f.mid + f.half;
-  w.residual = f.rms;
-  w.lean = p.lean ? f.sol(p.degree + 1) : 0.0;
-  // sum_k s_k ((x - mid)/half)^k expanded into powers of x.
-  w.coefficients.assign(p.degree + 1, 0.0);
+
+ private:
+  // One growing pass from the end as it stands; whether it joined a cluster.
+  bool grow_pass(int dir, std::vector<int>& live) {
+    const float sgn = static_cast<float>(dir);
+    float end = dir > 0 ? hi_ : lo_;
+    const float fitted_end = end;
+    live.erase(std::remove_if(live.begin(), live.end(), [&](int i) { return !((points_[i].x() - end) * sgn >= -30.0f); }), live.end());
+    const LocalFit f = least_squares(points_, live, local_degree_, false, lean_);
+    if (!f.ok) return false;
+    // Candidates nearest first, each judged from the end as it stands then, so a stripe is
+    // measured from the stripe before it, not from where the fit was made.
+    find_candidates(dir, end);
+    bool added = false;
+    for (const auto& [gap, c] : candidates_) {
+      if (member_[c] || (far_end_of(ext_[c], dir) - end) * sgn <= 0) continue;
+      const float near_end = dir > 0 ? std::max(ext_[c].lo, end) : std::min(ext_[c].hi, end);
+      if ((near_end - end) * sgn > p_.join_gap) break;
+      if (!continues_wall(c, f, sgn, near_end, end, fitted_end)) continue;
+      member_[c] = 1;
+      w_.members.push_back(c);
+      add_sampled(clusters_[c], samples_);
+      add_sampled(clusters_[c], live);
+      lo_ = std::min(lo_, ext_[c].lo);
+      hi_ = std::max(hi_, ext_[c].hi);
+      end = dir > 0 ? hi_ : lo_;
+      added = true;
+      if ((end - fitted_end) * sgn > 5.0f) break;  // refit before reaching further
+    }
+    return added;
+  }
+
+  // The clusters, not members, that reach past `end` and start within join_gap of it, nearest first.
+  void find_candidates(int dir, float end) {
+    const float sgn = static_cast<float>(dir);
+    candidates_.clear();
+    for (std::size_t c = 0; c < clusters_.size(); ++c) {
+      if (member_[c]) continue;  // any side: far round a turn the wall crosses the car's axis
+      const float near_end = dir > 0 ? ext_[c].lo : ext_[c].hi, far_end = dir > 0 ? ext_[c].hi : ext_[c].lo;
+      if ((far_end - end) * sgn <= 0 || (near_end - end) * sgn > p_.join_gap) continue;
+      candidates_.emplace_back((near_end - end) * sgn, static_cast<int>(c));
+    }
+    std::sort(candidates_.begin(), candidates_.end());
+  }
+
+  // Cluster c judged on its first 2 m past the end, against the local fit extrapolated there,
+  // which is trusted less the further it reaches: nine in ten points within join_margin +
+  // join_slope * (distance past the fit's end).
+  bool continues_wall(int c, const LocalFit& f, float sgn, float near_end, float end, float fitted_end) const {
+    int near = 0, on = 0;
+    for (int i : clusters_[c]) {
+      const float x = points_[i].x();
+      if ((x - near_end) * sgn > 2.0f || (x - end) * sgn < 0) continue;
+      ++near;
+      const float past = (x - fitted_end) * sgn;
+      on += std::abs(points_[i].y() - f.y(x, points_[i].z())) <= p_.join_margin + p_.join_slope * past;
+    }
+    return !(near == 0 || on * 10 < near * 9);
+  }
+
+  const Points& points_;
+  const std::vector<std::vector<int>>& clusters_;
+  const WallParams& p_;
+  WallFit& w_;
+  const std::vector<Extent> ext_;
+  std::vector<char> member_;
+  float lo_, hi_;  // the wall's x extent
+  const int local_degree_;
+  double lean_ = 0;
+  std::vector<int> samples_;  // the members' samples, in member order
+  std::vector<std::pair<float, int>> candidates_;
+};
+
+// The coefficients of sum_k sol_k ((x - mid)/half)^k expanded into powers of x.
+std::vector<double> power_coefficients(const LocalFit& f, int degree) {
+  std::vector<double> coefficients(degree + 1, 0.0);
   std::vector<double> term(1, 1.0);  // coefficients of ((x - mid)/half)^k in powers of x
-  for (int k = 0; k <= p.degree; ++k) {
-    for (std::size_t j = 0; j < term.size(); ++j) w.coefficients[j] += f.sol(k) * term[j];
+  for (int k = 0; k <= degree; ++k) {
+    for (std::size_t j = 0; j < term.size(); ++j) coefficients[j] += f.sol(k) * term[j];
     std::vector<double> next(term.size() + 1, 0.0);
     for (std::size_t j = 0; j < term.size(); ++j) {
       next[j + 1] += term[j] / f.half;
@@ -280,11 +302,42 @@ WallFit fit_wall(const Points& points, const std::vector<std::vector<int>>& clus
     }
     term = std::move(next);
   }
+  return coefficients;
+}
+
+// The published fit: the wall's points near the car.
+void fit_near_car(const Points& points, const std::vector<std::vector<int>>& clusters, const WallParams& p, WallFit& w) {
+  std::vector<int> sel;
+  for (int c : w.members)
+    for (int i : clusters[c])
+      if (points[i].x() <= p.fit_range && points[i].x() >= -p.fit_behind) sel.push_back(i);
+  w.points = sel.size();
+  const int terms = p.degree + 1 + (p.lean ? 1 : 0);
+  if (static_cast<int>(sel.size()) < std::max(p.min_points, terms)) return;
+  const LocalFit f = least_squares(points, sel, p.degree, p.lean);
+  if (!f.ok) return;
+  w.x_min = f.mid - f.half;
+  w.x_max = f.mid + f.half;
+  w.residual = f.rms;
+  w.lean = p.lean ? f.sol(p.degree + 1) : 0.0;
+  w.coefficients = power_coefficients(f, p.degree);
   w.distance = poly_value(w.coefficients, 0.0);
   const double d1 = poly_value(w.coefficients, p.lookahead, 1), d2 = poly_value(w.coefficients, p.lookahead, 2);
   w.heading = std::atan(d1);
   w.curvature = d2 / std::pow(1 + d1 * d1, 1.5);
   w.valid = w.x_max - w.x_min >= p.min_length && w.residual <= p.max_residual && std::isfinite(w.distance);
+}
+
+}  // namespace
+
+WallFit fit_wall(const Points& points, const std::vector<std::vector<int>>& clusters, const WallParams& p) {
+  WallFit w;
+  w.cluster = longest_cluster_on_side(points, clusters, p.side, static_cast<float>(p.fit_range));
+  if (w.cluster < 0) return w;
+  WallGrower grower(points, clusters, p, w);
+  for (int dir : {1, -1}) grower.grow(dir);
+  grower.join_within_extent();
+  fit_near_car(points, clusters, p, w);
   return w;
 }
 

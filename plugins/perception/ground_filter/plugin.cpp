@@ -3,8 +3,8 @@
 #include <brickyard/msgs/PointCloud.h>
 #include <brickyard/plugin.hpp>
 
-#include "../messages.hpp"
-#include "common/ground_filter.hpp"
+#include "perception/messages.hpp"
+#include "perception/common/ground_filter.hpp"
 
 #include <algorithm>
 #include <array>

@@ -6,19 +6,18 @@
 #include <brickyard/msgs/WallEstimate.h>
 #include <brickyard/plugin.hpp>
 
-#include "../messages.hpp"
-#include "../wall.hpp"
-#include "common/obstacles.hpp"
-
-#include <array>
-#include <deque>
+#include "perception/messages.hpp"
+#include "perception/wall.hpp"
+#include "perception/common/obstacles.hpp"
+#include "perception/common/stamp_match.hpp"
 
 namespace {
 
 using namespace brickyard;
 using namespace brickyard::perception;
 
-using WallPtr = std::shared_ptr<const msgs::WallEstimate>;
+// Frames of clusters with the wall fits of their stamp: the messages kept until then.
+using Match = StampMatch<std::shared_ptr<const msgs::ClusterList>, std::shared_ptr<const msgs::WallEstimate>>;
 
 ParamBinding<ObstacleParams> bindings() {
   using O = ObstacleParams;
@@ -72,41 +71,23 @@ class ObstacleDetectorNode : public Plugin {
   void configure(Context& ctx) override {
     op_ = bindings().read(ctx.params());
     io_ = ports().connect(ctx);
+    match_ = Match({io_.wall_right.connected(), io_.wall_left.connected()});
   }
 
   void step(Context& ctx) override {
-    for (auto& m : io_.clusters.take()) pending_.push_back(m);
+    for (auto& m : io_.clusters.take()) match_.add_frame(m->header().stamp_ns(), m);
     for (int s = 0; s < 2; ++s)
-      for (auto& w : wall_in(s).take()) {
-        walls_[s].push_back(w);
-        if (walls_[s].size() > 16) walls_[s].pop_front();
-      }
-    while (!pending_.empty()) {
-      const std::int64_t t = pending_.front()->header().stamp_ns();
+      for (auto& w : wall_in(s).take()) match_.add_wall(s, w->header().stamp_ns(), w);
+    while (auto m = match_.next()) {
       std::vector<std::pair<WallFit, int>> walls;
-      bool wait = false;
-      for (int s = 0; s < 2; ++s) {
-        if (!wall_in(s).connected()) continue;
-        WallPtr same;
-        bool newer = false;
-        for (auto& w : walls_[s]) {
-          if (w->header().stamp_ns() == t) same = w;
-          newer = newer || w->header().stamp_ns() > t;
-        }
-        if (same) walls.emplace_back(wall_fit(*same), s == 0 ? -1 : 1);
-        else if (!newer) wait = true;  // the fit of this frame is still to come
-      }
-      // A wall detector that stopped answering must not hold the obstacles back for long.
-      if (wait && pending_.size() <= 3) break;
-      if (wait) ++unmatched_;
-      process(ctx, *pending_.front(), walls);
-      pending_.pop_front();
+      for (const auto& [w, side] : m->walls) walls.emplace_back(wall_fit(*w), side);
+      process(ctx, *m->frame, walls);
     }
   }
 
   void deactivate(Context& ctx) override {
     ctx.metric("frames", static_cast<double>(frames_));
-    ctx.metric("frames_without_wall_fit", static_cast<double>(unmatched_));
+    ctx.metric("frames_without_wall_fit", static_cast<double>(match_.unmatched()));
     ctx.metric("malformed_frames", static_cast<double>(malformed_));
     ctx.metric("obstacles_per_frame", frames_ ? static_cast<double>(total_) / frames_ : 0.0);
   }
@@ -141,11 +122,10 @@ class ObstacleDetectorNode : public Plugin {
   ObstacleParams op_;
   Points pts_;
   std::vector<std::vector<int>> clusters_;
-  std::deque<std::shared_ptr<const msgs::ClusterList>> pending_;
-  std::array<std::deque<WallPtr>, 2> walls_;
+  Match match_;
   Ports io_;
   std::uint32_t seq_ = 0;
-  std::uint64_t frames_ = 0, unmatched_ = 0, malformed_ = 0, total_ = 0;
+  std::uint64_t frames_ = 0, malformed_ = 0, total_ = 0;
 };
 
 }  // namespace

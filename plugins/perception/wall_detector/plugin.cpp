@@ -4,8 +4,8 @@
 #include <brickyard/msgs/WallEstimate.h>
 #include <brickyard/plugin.hpp>
 
-#include "../messages.hpp"
-#include "../wall.hpp"
+#include "perception/messages.hpp"
+#include "perception/wall.hpp"
 
 namespace {
 

@@ -88,6 +88,18 @@ class GraphSearch {
             const SearchParams& p);
 
  private:
+  struct Frame;
+  // The starts of the start node's layer l0, each once, at their costs.
+  void seed_starts(const std::vector<std::pair<std::uint32_t, double>>& starts, int l0);
+  // The DAG pass: layer by layer from the start's up to the horizon, every reached node's edges.
+  void relax_layers(const Frame& fr, const std::vector<FrenetObstacle>& near, const SearchParams& p, Plan& out);
+  void relax_node(const Frame& fr, std::uint32_t n, double ra, const std::vector<FrenetObstacle>& near, const SearchParams& p,
+                  Plan& out);
+  // Adds to `c` the proximity cost of the obstacles beside the edge; false: one blocks it.
+  bool add_proximity_cost(const EdgeShape& shape, const RoadGraph::Edge& e, double hw, const SearchParams& p, double& c) const;
+  // The cheapest node past the horizon and its cost on to a common end; node ~0u: none.
+  std::pair<std::uint32_t, double> cheapest_end(const Frame& fr, const SearchParams& p) const;
+
   const RoadGraph& g_;
   std::vector<double> cost_;
   std::vector<std::uint32_t> parent_;

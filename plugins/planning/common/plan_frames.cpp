@@ -1,8 +1,6 @@
 #include "plan_frames.hpp"
 
 #include <algorithm>
-#include "math/planar_pose.hpp"
-
 #include <cmath>
 
 namespace brickyard::planning {
@@ -24,35 +22,15 @@ std::optional<MapObstacle> obstacle_in_map(const StampedPose& at, double ox, dou
   return m;
 }
 
-int nearest_pose(const std::vector<StampedPose>& poses, std::int64_t stamp) {
-  if (poses.empty()) return -1;
-  auto apart = [stamp](const StampedPose& e) {
-    return std::abs(static_cast<double>(e.stamp_ns) - static_cast<double>(stamp));
-  };
-  int best = static_cast<int>(poses.size()) - 1;
-  for (int i = 0; i < static_cast<int>(poses.size()); ++i)
-    if (apart(poses[i]) < apart(poses[best])) best = i;
-  return best;
+PoseSpread pose_spread(double var_x, double var_y, double var_yaw) {
+  return {std::sqrt(std::max({var_x, var_y, 0.0})), std::sqrt(std::max(var_yaw, 0.0))};
 }
 
-StampedPose pose_at(const std::vector<StampedPose>& poses, std::int64_t stamp) {
-  const int n = nearest_pose(poses, stamp);
-  if (n < 0) return {};
-  int before = -1, after = -1;
-  for (int i = 0; i < static_cast<int>(poses.size()); ++i) {
-    const std::int64_t t = poses[i].stamp_ns;
-    if (t <= stamp && (before < 0 || t > poses[before].stamp_ns)) before = i;
-    if (t >= stamp && (after < 0 || t < poses[after].stamp_ns)) after = i;
-  }
-  if (before < 0 || after < 0 || poses[after].stamp_ns <= poses[before].stamp_ns) return poses[n];
-  const StampedPose &a = poses[before], &b = poses[after];
-  const math::PlanarPose q = math::interpolate_pose(a.stamp_ns, {a.x, a.y, a.yaw}, b.stamp_ns, {b.x, b.y, b.yaw}, stamp);
-  StampedPose p = 2 * (stamp - a.stamp_ns) < b.stamp_ns - a.stamp_ns ? a : b;  // the spreads of the nearer (b at a tie)
-  p.stamp_ns = stamp;
-  p.x = q.x;
-  p.y = q.y;
-  p.yaw = q.yaw;
-  return p;
+std::optional<StampedPose> pose_at(const PoseHistory& history, std::int64_t stamp) {
+  const auto at = history.at(stamp);
+  if (!at) return std::nullopt;
+  const PoseSpread& spread = at->nearer->estimate;
+  return StampedPose{at->interpolated ? stamp : at->nearer->stamp_ns, at->pose.x, at->pose.y, at->pose.yaw, spread.position, spread.yaw};
 }
 
 PathGeometry path_geometry(const std::vector<PathSample>& pts) {
@@ -81,6 +59,17 @@ bool on_track(const track::Track& track, double x, double y, double edge_band, i
 double placement_band(const StampedPose& at, double ox, double oy, double edge_band, double sigmas) {
   const double spread = sigmas * (at.position_sigma + at.yaw_sigma * std::hypot(ox, oy));
   return std::isfinite(spread) && spread > 0 ? edge_band + spread : edge_band;
+}
+
+std::size_t place_detections(const StampedPose& at, const std::vector<Detection>& list, const track::Track* track, double edge_band,
+                             double sigmas, std::vector<MapObstacle>& seen) {
+  std::size_t off_track = 0;
+  for (const Detection& o : list)
+    if (auto m = obstacle_in_map(at, o.x, o.y, o.size_x, o.size_y)) {
+      if (track && !on_track(*track, m->x, m->y, placement_band(at, o.x, o.y, edge_band, sigmas))) ++off_track;
+      else seen.push_back(*m);
+    }
+  return off_track;
 }
 
 }  // namespace brickyard::planning

@@ -1,8 +1,10 @@
 #pragma once
 // The road-graph planner's adapter geometry, framework-free: obstacles from the vehicle frame into
-// the map with the car's pose of their stamp, the pose nearest a stamp, and a planned path as the
-// poses (heading from the neighbours), curvature and arc length a Path message carries.
+// the map with the car's pose of their stamp, and a planned path as the poses (heading from the
+// neighbours), curvature and arc length a Path message carries.
 #include "road_graph_planner.hpp"
+
+#include "math/estimate_history.hpp"
 
 #include "track/track.hpp"
 
@@ -38,14 +40,30 @@ bool on_track(const track::Track& track, double x, double y, double edge_band, i
 // spread that is not a finite number adds nothing: the detection is judged as placed.
 double placement_band(const StampedPose& at, double ox, double oy, double edge_band, double sigmas);
 
-// The index of the pose whose stamp is nearest `stamp_ns`: the last pose unless another is
-// strictly nearer (then the first of those); compared in double so that odd stamps cannot
-// overflow. -1 for no poses.
-int nearest_pose(const std::vector<StampedPose>& poses, std::int64_t stamp_ns);
-// The pose at a stamp: interpolated between the two poses around it (in stamp order), else the
-// nearest. Why: the estimate runs at its own rate (125 Hz), not the LiDAR's; the nearest pose
-// may be 4 ms from a frame's stamp, 0.3 m at 80 m/s.
-StampedPose pose_at(const std::vector<StampedPose>& poses, std::int64_t stamp_ns);
+// A detection as perception reports it: its centre and size in the vehicle frame, m.
+struct Detection {
+  double x = 0, y = 0, size_x = 0, size_y = 0;
+};
+
+// One list's detections, in the vehicle frame of `at`, into the map (obstacle_in_map): those that
+// can stand in the car's way (on_track at their placement_band; every one when `track` is null)
+// are appended to `seen`. Returns how many were off the track.
+std::size_t place_detections(const StampedPose& at, const std::vector<Detection>& list, const track::Track* track, double edge_band,
+                             double sigmas, std::vector<MapObstacle>& seen);
+
+// The spreads an estimate carries beside its pose: standard deviations, m and rad.
+struct PoseSpread {
+  double position = 0, yaw = 0;
+};
+using PoseHistory = math::EstimateHistory<PoseSpread>;
+
+// The spreads of an estimate whose covariance has these variances of x, y and yaw: the position's
+// the larger of x's and y's (a negative variance counts as none).
+PoseSpread pose_spread(double var_x, double var_y, double var_yaw);
+
+// The car's pose at a stamp (math::EstimateHistory::at) with the spreads of the estimate nearer
+// to it; none when the history is empty.
+std::optional<StampedPose> pose_at(const PoseHistory& history, std::int64_t stamp_ns);
 
 struct PathGeometry {
   std::vector<double> x, y, yaw, curvature, s;

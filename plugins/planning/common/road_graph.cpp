@@ -65,25 +65,34 @@ void check_params(const RoadGraphParams& p) {
   in("max_edge_length", p.max_edge_length, 5, 500);
 }
 
-RoadGraph RoadGraph::build(const RefLine& line, const TrackRoom& room, const RoadGraphParams& p,
-                           std::uint64_t digest) {
-  check_params(p);
-  RoadGraph g;
-  g.p_ = p;
-  g.digest_ = digest;
-  g.length_ = line.length();
-  // Layers: the spacing of a stretch is the turn spacing when the line bends anywhere in it.
+namespace {
+
+// Where the layers stand: the spacing of a stretch is the turn spacing when the line bends
+// anywhere in it.
+std::vector<double> layer_positions(const RefLine& line, const RoadGraphParams& p, double length) {
   std::vector<double> ls;
-  for (double s = 0; s < g.length_;) {
+  for (double s = 0; s < length;) {
     ls.push_back(s);
     bool turn = false;
     for (double u = 0; u <= p.layer_spacing; u += 1.0) turn = turn || std::abs(line.kappa(s + u)) > p.turn_curvature;
     s += turn ? p.layer_spacing_turn : p.layer_spacing;
   }
-  if (ls.size() > 1 && g.length_ - ls.back() < 0.5 * p.layer_spacing_turn) ls.pop_back();  // no sliver before the start
+  if (ls.size() > 1 && length - ls.back() < 0.5 * p.layer_spacing_turn) ls.pop_back();  // no sliver before the start
   if (ls.size() < 3) throw std::invalid_argument("road graph: the line is shorter than three layers");
+  return ls;
+}
+
+// The layers with their nodes, each node's layer, and the band of d each layer's nodes may take
+// (the track's edges less half the car's width and the margin).
+struct LayerNodes {
+  std::vector<RoadGraph::Layer> layers;
+  std::vector<std::uint32_t> node_layer;
+  std::vector<double> lo, hi;
+};
+
+LayerNodes layer_nodes(const std::vector<double>& ls, const TrackRoom& room, const RoadGraphParams& p) {
   const int nl = static_cast<int>(ls.size());
-  std::vector<double> lo(nl), hi(nl);
+  LayerNodes out{{}, {}, std::vector<double>(nl), std::vector<double>(nl)};
   for (int i = 0; i < nl; ++i) {
     const auto [dr, dl] = room(ls[i]);
     if (!(std::abs(dr) < 1000 && std::abs(dl) < 1000)) {  // NaN too: it must not reach an int cast
@@ -91,12 +100,12 @@ RoadGraph RoadGraph::build(const RefLine& line, const TrackRoom& room, const Roa
       std::snprintf(buf, sizeof buf, "road graph: at s = %.1f m the track's edges are not usable (d = %g and %g m)", ls[i], dr, dl);
       throw std::invalid_argument(buf);
     }
-    lo[i] = dr + p.half_width + p.edge_margin;
-    hi[i] = dl - p.half_width - p.edge_margin;
-    Layer L;
+    out.lo[i] = dr + p.half_width + p.edge_margin;
+    out.hi[i] = dl - p.half_width - p.edge_margin;
+    RoadGraph::Layer L;
     L.s = ls[i];
-    L.k0 = static_cast<std::int32_t>(std::ceil(lo[i] / p.lateral_step - 1e-9));
-    const auto k1 = static_cast<std::int32_t>(std::floor(hi[i] / p.lateral_step + 1e-9));
+    L.k0 = static_cast<std::int32_t>(std::ceil(out.lo[i] / p.lateral_step - 1e-9));
+    const auto k1 = static_cast<std::int32_t>(std::floor(out.hi[i] / p.lateral_step + 1e-9));
     if (k1 < L.k0) {
       char buf[200];
       std::snprintf(buf, sizeof buf, "road graph: at s = %.1f m the track leaves no room for the car (edges at d = %.2f and %.2f m)",
@@ -104,76 +113,126 @@ RoadGraph RoadGraph::build(const RefLine& line, const TrackRoom& room, const Roa
       throw std::invalid_argument(buf);
     }
     L.count = static_cast<std::uint32_t>(k1 - L.k0 + 1);
-    L.first_node = static_cast<std::uint32_t>(g.node_layer_.size());
-    g.layers_.push_back(L);
-    g.node_layer_.insert(g.node_layer_.end(), L.count, static_cast<std::uint32_t>(i));
+    L.first_node = static_cast<std::uint32_t>(out.node_layer.size());
+    out.layers.push_back(L);
+    out.node_layer.insert(out.node_layer.end(), L.count, static_cast<std::uint32_t>(i));
   }
-  // Edges: each layer's on its own (a pure function of the layers), on two threads, then joined
-  // in layer order, so the graph is the same whatever the threads did first.
-  struct LayerEdges {
-    std::vector<std::uint32_t> first;  // per node of the layer: its first edge, within `edges`
-    std::vector<Edge> edges;
-  };
-  std::vector<LayerEdges> per_layer(nl);
-  auto edges_of = [&](int a) {
-    const Layer& A = g.layers_[a];
-    LayerEdges& out = per_layer[a];
-    for (std::uint32_t i = 0; i < A.count; ++i) {
-      out.first.push_back(static_cast<std::uint32_t>(out.edges.size()));
-      const double da = (A.k0 + static_cast<std::int32_t>(i)) * p.lateral_step;
-      for (int span : kSpans) {
-        if (span >= nl) break;
-        const int b = (a + span) % nl;
-        const Layer& B = g.layers_[b];
-        double h = B.s - A.s;
-        if (h <= 0) h += g.length_;
-        if (h > p.max_edge_length && span > 1) break;
-        for (std::uint32_t j = 0; j < B.count; ++j) {
-          const double db = (B.k0 + static_cast<std::int32_t>(j)) * p.lateral_step;
-          const bool along = std::abs(db - da) < 1e-9;
-          if (along && span > 1) continue;  // the chain of span-1 edges is the same path
-          const EdgeShape e{0, da, h, db};
-          // Inside the track at every layer it passes.
-          bool inside = true;
-          for (int m = 1; m < span && inside; ++m) {
-            const int c = (a + m) % nl;
-            double sc = g.layers_[c].s - A.s;
-            if (sc < 0) sc += g.length_;
-            const double dc = e.d(sc);
-            inside = dc >= lo[c] - 1e-9 && dc <= hi[c] + 1e-9;
-          }
-          if (!inside) continue;
-          Edge E;
-          E.to = B.first_node + j;
-          double len = 0, curv = 0, dev = 0, kmax = 0;
-          const double ds = h / kSamples;
-          for (int k = 0; k < kSamples; ++k) {
-            const double s = (k + 0.5) * ds;
-            const double d = e.d(s), d1 = e.d1(s), kr = line.kappa(A.s + s);
-            const double q = 1 - kr * d, dl = std::sqrt(q * q + d1 * d1) * ds;
-            const double kappa = offset_curvature(kr, d, d1, e.d2(s));
-            len += dl;
-            curv += kappa * kappa * dl;
-            dev += std::abs(d) * ds;
-            kmax = std::max(kmax, std::abs(kappa));
-          }
-          if (!along && kmax > p.max_curvature) continue;
-          E.length = static_cast<float>(len);
-          E.curvature = static_cast<float>(curv);
-          E.deviation = static_cast<float>(dev);
-          E.max_kappa = static_cast<float>(kmax);
-          out.edges.push_back(E);
-        }
+  return out;
+}
+
+// The edges of one layer's nodes: per node its first edge, within `edges`.
+struct LayerEdges {
+  std::vector<std::uint32_t> first;
+  std::vector<RoadGraph::Edge> edges;
+};
+
+// What the edges are built from.
+struct EdgeSource {
+  const RefLine& line;
+  const RoadGraphParams& p;
+  const LayerNodes& nodes;
+  double length;
+};
+
+// Whether the edge from layer a over `span` layers stays inside the track at every layer it passes.
+bool inside_track(const EdgeSource& src, const EdgeShape& e, int a, int span) {
+  const auto& layers = src.nodes.layers;
+  const int nl = static_cast<int>(layers.size());
+  bool inside = true;
+  for (int m = 1; m < span && inside; ++m) {
+    const int c = (a + m) % nl;
+    double sc = layers[c].s - layers[a].s;
+    if (sc < 0) sc += src.length;
+    const double dc = e.d(sc);
+    inside = dc >= src.nodes.lo[c] - 1e-9 && dc <= src.nodes.hi[c] + 1e-9;
+  }
+  return inside;
+}
+
+// The edge's length, ∫κ² dl, ∫|d| ds and largest |κ| from samples at the midpoints of equal
+// steps in s, into E; false: sharper than max_curvature (and not along the line).
+bool measure_edge(const EdgeSource& src, const EdgeShape& e, double s_a, double h, bool along, RoadGraph::Edge& E) {
+  double len = 0, curv = 0, dev = 0, kmax = 0;
+  const double ds = h / kSamples;
+  for (int k = 0; k < kSamples; ++k) {
+    const double s = (k + 0.5) * ds;
+    const double d = e.d(s), d1 = e.d1(s), kr = src.line.kappa(s_a + s);
+    const double q = 1 - kr * d, dl = std::sqrt(q * q + d1 * d1) * ds;
+    const double kappa = offset_curvature(kr, d, d1, e.d2(s));
+    len += dl;
+    curv += kappa * kappa * dl;
+    dev += std::abs(d) * ds;
+    kmax = std::max(kmax, std::abs(kappa));
+  }
+  if (!along && kmax > src.p.max_curvature) return false;
+  E.length = static_cast<float>(len);
+  E.curvature = static_cast<float>(curv);
+  E.deviation = static_cast<float>(dev);
+  E.max_kappa = static_cast<float>(kmax);
+  return true;
+}
+
+// Layer a's edges on their own: a pure function of the layers.
+LayerEdges layer_edges(const EdgeSource& src, int a) {
+  const auto& layers = src.nodes.layers;
+  const int nl = static_cast<int>(layers.size());
+  const RoadGraphParams& p = src.p;
+  const RoadGraph::Layer& A = layers[a];
+  LayerEdges out;
+  for (std::uint32_t i = 0; i < A.count; ++i) {
+    out.first.push_back(static_cast<std::uint32_t>(out.edges.size()));
+    const double da = (A.k0 + static_cast<std::int32_t>(i)) * p.lateral_step;
+    for (int span : kSpans) {
+      if (span >= nl) break;
+      const int b = (a + span) % nl;
+      const RoadGraph::Layer& B = layers[b];
+      double h = B.s - A.s;
+      if (h <= 0) h += src.length;
+      if (h > p.max_edge_length && span > 1) break;
+      for (std::uint32_t j = 0; j < B.count; ++j) {
+        const double db = (B.k0 + static_cast<std::int32_t>(j)) * p.lateral_step;
+        const bool along = std::abs(db - da) < 1e-9;
+        if (along && span > 1) continue;  // the chain of span-1 edges is the same path
+        const EdgeShape e{0, da, h, db};
+        if (!inside_track(src, e, a, span)) continue;
+        RoadGraph::Edge E;
+        E.to = B.first_node + j;
+        if (measure_edge(src, e, A.s, h, along, E)) out.edges.push_back(E);
       }
     }
-  };
+  }
+  return out;
+}
+
+// Every layer's edges, on two threads; each layer's come out the same whatever the threads did first.
+std::vector<LayerEdges> all_layer_edges(const EdgeSource& src) {
+  const int nl = static_cast<int>(src.nodes.layers.size());
+  std::vector<LayerEdges> per_layer(nl);
   std::atomic<int> next{0};
   auto worker = [&] {
-    for (int a; (a = next++) < nl;) edges_of(a);
+    for (int a; (a = next++) < nl;) per_layer[a] = layer_edges(src, a);
   };
   std::thread second(worker);
   worker();
   second.join();
+  return per_layer;
+}
+
+}  // namespace
+
+RoadGraph RoadGraph::build(const RefLine& line, const TrackRoom& room, const RoadGraphParams& p,
+                           std::uint64_t digest) {
+  check_params(p);
+  RoadGraph g;
+  g.p_ = p;
+  g.digest_ = digest;
+  g.length_ = line.length();
+  const LayerNodes nodes = layer_nodes(layer_positions(line, p, g.length_), room, p);
+  g.layers_ = nodes.layers;
+  g.node_layer_ = nodes.node_layer;
+  // Edges: each layer's on its own, then joined in layer order, so the graph is the same
+  // whatever the threads did first.
+  std::vector<LayerEdges> per_layer = all_layer_edges(EdgeSource{line, p, nodes, g.length_});
   std::size_t total = 0;
   for (const auto& le : per_layer) total += le.edges.size();
   g.first_edge_.reserve(g.node_layer_.size() + 1);
@@ -237,95 +296,137 @@ void RoadGraph::save(const std::string& path) const {
   io::write_whole_file(path, bytes);  // whole or not at all
 }
 
-RoadGraph RoadGraph::load(const std::string& path) {
-  auto fail = [&](const std::string& what) { return std::runtime_error(path + ": not a usable road graph (" + what + ")"); };
+namespace {
+
+std::runtime_error unusable(const std::string& path, const std::string& what) {
+  return std::runtime_error(path + ": not a usable road graph (" + what + ")");
+}
+
+std::string read_graph_file(const std::string& path) {
   std::string bytes;
-  {
-    std::ifstream in(path, std::ios::binary | std::ios::ate);
-    if (!in) throw std::runtime_error(path + ": cannot open");
-    const std::streamoff size = in.tellg();
-    if (size < 0) throw fail("not a regular file");
-    if (static_cast<std::uint64_t>(size) > kMaxFileBytes) throw fail(std::to_string(size) + " bytes, more than a road graph holds");
-    bytes.resize(static_cast<std::size_t>(size));
-    in.seekg(0);
-    in.read(bytes.data(), size);
-    if (!in) throw fail("cannot be read");
-  }
-  if (bytes.size() < 8 || std::memcmp(bytes.data(), kMagic, 4) != 0) throw fail("no BYRG header");
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
+  if (!in) throw std::runtime_error(path + ": cannot open");
+  const std::streamoff size = in.tellg();
+  if (size < 0) throw unusable(path, "not a regular file");
+  if (static_cast<std::uint64_t>(size) > kMaxFileBytes) throw unusable(path, std::to_string(size) + " bytes, more than a road graph holds");
+  bytes.resize(static_cast<std::size_t>(size));
+  in.seekg(0);
+  in.read(bytes.data(), size);
+  if (!in) throw unusable(path, "cannot be read");
+  return bytes;
+}
+
+// The magic, the format version and the digest of every byte before it.
+void check_header_and_digest(const std::string& path, const std::string& bytes) {
+  if (bytes.size() < 8 || std::memcmp(bytes.data(), kMagic, 4) != 0) throw unusable(path, "no BYRG header");
   std::uint32_t version = 0;
   std::memcpy(&version, bytes.data() + 4, sizeof version);
   if (version != kVersion)
-    throw fail("format version " + std::to_string(version) + ", this build reads " + std::to_string(kVersion) + ": rebuild it with brickyard-plan graph");
-  if (bytes.size() < 16) throw fail("truncated at digest");
+    throw unusable(path, "format version " + std::to_string(version) + ", this build reads " + std::to_string(kVersion) +
+                             ": rebuild it with brickyard-plan graph");
+  if (bytes.size() < 16) throw unusable(path, "truncated at digest");
   std::uint64_t sum = 0;
   std::memcpy(&sum, bytes.data() + bytes.size() - sizeof sum, sizeof sum);
   if (math::fnv1a(std::string_view(bytes.data(), bytes.size() - sizeof sum)) != sum)
-    throw fail("its digest does not match its bytes: damaged or cut short");
-  std::istringstream f(std::move(bytes), std::ios::binary);
-  f.seekg(8);
-  auto get = [&](auto& v, const char* what) {
-    f.read(reinterpret_cast<char*>(&v), sizeof(v));
-    if (!f) throw fail(std::string("truncated at ") + what);
-  };
-  auto get_vec = [&](auto& v, const char* what, std::uint64_t limit) {
+    throw unusable(path, "its digest does not match its bytes: damaged or cut short");
+}
+
+// The file's fields after the header, in order.
+class GraphReader {
+ public:
+  GraphReader(std::string bytes, const std::string& path) : f_(std::move(bytes), std::ios::binary), path_(path) { f_.seekg(8); }
+  template <class T>
+  void get(T& v, const char* what) {
+    f_.read(reinterpret_cast<char*>(&v), sizeof(v));
+    if (!f_) throw unusable(path_, std::string("truncated at ") + what);
+  }
+  template <class T>
+  void get_vec(std::vector<T>& v, const char* what, std::uint64_t limit) {
     std::uint64_t n = 0;
     get(n, what);
-    if (n > limit) throw fail(std::string(what) + " count " + std::to_string(n) + " is implausible");
+    if (n > limit) throw unusable(path_, std::string(what) + " count " + std::to_string(n) + " is implausible");
     v.resize(n);
-    f.read(reinterpret_cast<char*>(v.data()), static_cast<std::streamsize>(n * sizeof(v[0])));
-    if (!f) throw fail(std::string("truncated in ") + what);
-  };
+    f_.read(reinterpret_cast<char*>(v.data()), static_cast<std::streamsize>(n * sizeof(v[0])));
+    if (!f_) throw unusable(path_, std::string("truncated in ") + what);
+  }
+  bool at_end() { return f_.peek() == std::char_traits<char>::eof(); }
+
+ private:
+  std::istringstream f_;
+  const std::string& path_;
+};
+
+// Layers in order, their nodes contiguous and within a kilometre of the line; counts checked in
+// 64 bits before anything is allocated for them. Returns the number of nodes.
+std::uint64_t checked_node_count(const std::string& path, const std::vector<RoadGraph::Layer>& layers, double length,
+                                 double lateral_step) {
+  std::uint64_t nodes = 0;
+  const double k_max = 1000 / lateral_step;
+  for (std::size_t i = 0; i < layers.size(); ++i) {
+    const RoadGraph::Layer& L = layers[i];
+    if (L.first_node != nodes || L.count == 0 || !(L.s >= 0 && L.s < length) || (i > 0 && L.s <= layers[i - 1].s) ||
+        std::abs(static_cast<double>(L.k0)) > k_max || L.count > 2 * k_max + 1)
+      throw unusable(path, "layer " + std::to_string(i) + " is out of order or out of bounds");
+    nodes += L.count;
+  }
+  return nodes;
+}
+
+// Every node's edge range within the edges, before any edge is read (a range past them, found by
+// fuzzing, read beyond the array).
+void check_edge_ranges(const std::string& path, const std::vector<std::uint32_t>& first_edge) {
+  for (std::size_t n = 0; n + 1 < first_edge.size(); ++n)
+    if (first_edge[n] > first_edge[n + 1]) throw unusable(path, "edge ranges out of order at node " + std::to_string(n));
+}
+
+// Edges: in range, finite, non-negative, and forward by 1 to 8 layers — the search is a DAG pass
+// that a backward edge would turn into a cycle.
+void check_edges(const std::string& path, const std::vector<std::uint32_t>& first_edge, const std::vector<RoadGraph::Edge>& edges,
+                 const std::vector<std::uint32_t>& node_layer, std::uint64_t nodes, std::uint32_t nl) {
+  for (std::size_t n = 0; n + 1 < first_edge.size(); ++n) {
+    for (std::uint32_t k = first_edge[n]; k < first_edge[n + 1]; ++k) {
+      const RoadGraph::Edge& e = edges[k];
+      if (e.to >= nodes) throw unusable(path, "edge " + std::to_string(k) + " leads past the last node");
+      const std::uint32_t ahead = (node_layer[e.to] + nl - node_layer[n]) % nl;
+      if (ahead < 1 || ahead > 8) throw unusable(path, "edge " + std::to_string(k) + " does not lead 1 to 8 layers forward");
+      for (float v : {e.length, e.curvature, e.deviation, e.max_kappa})
+        if (!(v >= 0 && v < 1e9)) throw unusable(path, "edge " + std::to_string(k) + " has a negative or non-finite cost");
+      if (!(e.length > 0)) throw unusable(path, "edge " + std::to_string(k) + " has no length");
+    }
+  }
+}
+
+}  // namespace
+
+RoadGraph RoadGraph::load(const std::string& path) {
+  std::string bytes = read_graph_file(path);
+  check_header_and_digest(path, bytes);
+  GraphReader f(std::move(bytes), path);
   RoadGraph g;
-  get(g.p_, "parameters");
+  f.get(g.p_, "parameters");
   try {
     check_params(g.p_);
   } catch (const std::invalid_argument& e) {
-    throw fail(e.what());
+    throw unusable(path, e.what());
   }
-  get(g.digest_, "digest");
-  get(g.length_, "length");
-  if (!(g.length_ > 0 && g.length_ < 1e6)) throw fail("implausible line length");
-  get_vec(g.layers_, "layers", 1u << 24);
-  get_vec(g.first_edge_, "nodes", 1u << 26);
-  get_vec(g.edges_, "edges", 1u << 28);
+  f.get(g.digest_, "digest");
+  f.get(g.length_, "length");
+  if (!(g.length_ > 0 && g.length_ < 1e6)) throw unusable(path, "implausible line length");
+  f.get_vec(g.layers_, "layers", 1u << 24);
+  f.get_vec(g.first_edge_, "nodes", 1u << 26);
+  f.get_vec(g.edges_, "edges", 1u << 28);
   std::uint64_t trailing = 0;
-  get(trailing, "digest");
-  if (f.peek() != std::char_traits<char>::eof()) throw fail("trailing bytes");
+  f.get(trailing, "digest");
+  if (!f.at_end()) throw unusable(path, "trailing bytes");
   // Consistency: layers in order and their nodes contiguous; edge ranges and targets in bounds.
-  // Layers in order, their nodes contiguous and within a kilometre of the line; counts checked
-  // in 64 bits before anything is allocated for them.
-  std::uint64_t nodes = 0;
-  const double k_max = 1000 / g.p_.lateral_step;
-  for (std::size_t i = 0; i < g.layers_.size(); ++i) {
-    const Layer& L = g.layers_[i];
-    if (L.first_node != nodes || L.count == 0 || !(L.s >= 0 && L.s < g.length_) || (i > 0 && L.s <= g.layers_[i - 1].s) ||
-        std::abs(static_cast<double>(L.k0)) > k_max || L.count > 2 * k_max + 1)
-      throw fail("layer " + std::to_string(i) + " is out of order or out of bounds");
-    nodes += L.count;
-  }
+  const std::uint64_t nodes = checked_node_count(path, g.layers_, g.length_, g.p_.lateral_step);
   if (g.layers_.size() < 3 || g.first_edge_.size() != nodes + 1 || g.first_edge_.back() != g.edges_.size())
-    throw fail("node and edge counts disagree");
-  // Every node's edge range within the edges, before any edge is read (a range past them, found
-  // by fuzzing, read beyond the array).
-  for (std::size_t n = 0; n + 1 < g.first_edge_.size(); ++n)
-    if (g.first_edge_[n] > g.first_edge_[n + 1]) throw fail("edge ranges out of order at node " + std::to_string(n));
+    throw unusable(path, "node and edge counts disagree");
+  check_edge_ranges(path, g.first_edge_);
   g.node_layer_.reserve(nodes);
   for (std::size_t i = 0; i < g.layers_.size(); ++i)
     g.node_layer_.insert(g.node_layer_.end(), g.layers_[i].count, static_cast<std::uint32_t>(i));
-  // Edges: in range, finite, non-negative, and forward by 1 to 8 layers — the search is a DAG
-  // pass that a backward edge would turn into a cycle.
-  const auto nl = static_cast<std::uint32_t>(g.layers_.size());
-  for (std::size_t n = 0; n + 1 < g.first_edge_.size(); ++n) {
-    for (std::uint32_t k = g.first_edge_[n]; k < g.first_edge_[n + 1]; ++k) {
-      const Edge& e = g.edges_[k];
-      if (e.to >= nodes) throw fail("edge " + std::to_string(k) + " leads past the last node");
-      const std::uint32_t ahead = (g.node_layer_[e.to] + nl - g.node_layer_[n]) % nl;
-      if (ahead < 1 || ahead > 8) throw fail("edge " + std::to_string(k) + " does not lead 1 to 8 layers forward");
-      for (float v : {e.length, e.curvature, e.deviation, e.max_kappa})
-        if (!(v >= 0 && v < 1e9)) throw fail("edge " + std::to_string(k) + " has a negative or non-finite cost");
-      if (!(e.length > 0)) throw fail("edge " + std::to_string(k) + " has no length");
-    }
-  }
+  check_edges(path, g.first_edge_, g.edges_, g.node_layer_, nodes, static_cast<std::uint32_t>(g.layers_.size()));
   return g;
 }
 

@@ -93,43 +93,44 @@ namespace {
 constexpr double kInBandSlope = 0.05;  // m across per m along: 3°
 }  // namespace
 
-std::vector<RoadGraphPlanner::Piece> RoadGraphPlanner::emergency_swerve(double s_c, double d_c, double speed,
-                                                                        const std::vector<FrenetObstacle>& obs,
-                                                                        double* past, bool* short_of) const {
-  *short_of = false;
-  const double L = line_.length(), hw = g_.params().half_width;
-  SearchParams keep = p_.search;
-  keep.clearance = std::min(p_.keep_clearance, p_.search.clearance);
-  // The nearest obstacle in the way of the car going on at its offset.
+namespace {
+// The nearest obstacle in the way of the car (s_c, d_c) going on at its offset, within the
+// horizon, and how far ahead it is; null: none.
+const FrenetObstacle* nearest_in_way(const std::vector<FrenetObstacle>& obs, double s_c, double d_c, double L, double hw,
+                                     const SearchParams& keep, double horizon, double* ahead) {
   const FrenetObstacle* first = nullptr;
-  double ahead = 0;
   for (const auto& o : obs) {
     const double r = relative_s(o.s, s_c, L);
-    if (r <= 0 || r > p_.search.horizon) continue;
+    if (r <= 0 || r > horizon) continue;
     if (std::abs(o.d - d_c) >= o.radius + hw + keep.clearance) continue;
-    if (!first || r < ahead) { first = &o; ahead = r; }
+    if (!first || r < *ahead) { first = &o; *ahead = r; }
   }
-  if (!first) return {};
-  // Where the car's nose reaches the obstacle. (A car that could stop before it swerves too: one
-  // stopped there has no lead-in sharp enough to go round, and would stand.)
-  const double reach = ahead - p_.search.car_front - first->radius;
-  if (reach < 5.0) return {};
-  // The sides: the emergency band at the obstacle (the graph's band widened to swerve_edge_margin).
-  const auto& Ly = g_.layers()[g_.layer_at_or_after(first->s)];
-  const double step = g_.params().lateral_step, widen = std::max(0.0, g_.params().edge_margin - p_.swerve_edge_margin);
-  const double lo = Ly.k0 * step - widen, hi = (Ly.k0 + static_cast<double>(Ly.count) - 1) * step + widen;
-  const double s0 = s_c, s1 = s_c + reach, s2 = first->s + (first->s < s_c ? L : 0.0) + p_.search.car_rear + first->radius + 5;
-  auto shape = [&](double d_t) {
-    return std::vector<Piece>{{EdgeShape{s0 - p_.behind, d_c, s0, d_c}, kNoNode},
+  return first;
+}
+}  // namespace
+
+// One emergency swerve's setting: the obstacle in the way (`first`, one of `obs`), the band at it
+// (lo, hi), and where the lane change starts (s0), ends (s1) and the car is past the obstacle (s2).
+struct RoadGraphPlanner::Swerve {
+  const RoadGraphPlanner& pl;
+  const std::vector<FrenetObstacle>& obs;
+  const FrenetObstacle* first;
+  const SearchParams& keep;
+  double speed, d_c, L, hw;
+  double lo, hi, s0, s1, s2;
+  double need;  // the offset from the obstacle that passes it at keep_clearance
+
+  std::vector<Piece> shape(double d_t) const {
+    return std::vector<Piece>{{EdgeShape{s0 - pl.p_.behind, d_c, s0, d_c}, kNoNode},
                               {EdgeShape{s0, d_c, s1, d_t}, kNoNode},
                               {EdgeShape{s1, d_t, s2, d_t}, kNoNode}};
-  };
+  }
   // Steerable: within the graph's curvature limit, and at the speed the car has at each point of
   // the lane change and the stretch past the obstacle while it brakes as hard as the grip its
   // bend leaves allows (the friction ellipse). Judged at the car's speed now for the whole of it,
   // a swerve in a bend near the car's lateral limit was never steerable, and the car passed
   // Monza's Lesmo pylon, hidden by the inner wall until 97 m ahead at 65 m/s, 0.44 m off.
-  auto steerable = [&](const std::vector<Piece>& ps) {
+  bool steerable(const std::vector<Piece>& ps) const {
     double v2 = speed * speed;
     for (std::size_t i = 1; i < ps.size(); ++i) {
       const EdgeShape& e = ps[i].shape;
@@ -137,23 +138,23 @@ std::vector<RoadGraphPlanner::Piece> RoadGraphPlanner::emergency_swerve(double s
       const double ds = (e.s_b - e.s_a) / n;
       for (int k = 0; k < n; ++k) {
         const double s = e.s_a + (k + 0.5) * ds;
-        const double kappa = std::abs(offset_curvature(line_.kappa(s), e.d(s), e.d1(s), e.d2(s)));
-        if (kappa > g_.params().max_curvature) return false;
+        const double kappa = std::abs(offset_curvature(pl.line_.kappa(s), e.d(s), e.d1(s), e.d2(s)));
+        if (kappa > pl.g_.params().max_curvature) return false;
         if (keep.lateral_accel <= 0) continue;
         const double lat = kappa * v2 / keep.lateral_accel;
         if (lat > 1) return false;
-        v2 = std::max(0.0, v2 - 2 * p_.limits.a_decel * std::sqrt(1 - lat * lat) * ds);
+        v2 = std::max(0.0, v2 - 2 * pl.p_.limits.a_decel * std::sqrt(1 - lat * lat) * ds);
       }
     }
     return true;
-  };
+  }
   // The least gap between the car's swept side and the obstacles along the pieces: `first`
   // alone, or every other one.
-  auto least_gap = [&](const std::vector<Piece>& ps, bool of_first) {
+  double least_gap(const std::vector<Piece>& ps, bool of_first) const {
     double least = 1e300;
     for (const Piece& pc : ps) {
       const EdgeShape e{0, pc.shape.d_a, pc.shape.s_b - pc.shape.s_a, pc.shape.d_b};
-      const double w = swept_half_width(hw, max_kappa(pc.shape), keep);
+      const double w = swept_half_width(hw, pl.max_kappa(pc.shape), keep);
       for (const auto& o : obs) {
         if ((&o == first) != of_first) continue;
         FrenetObstacle r = o;
@@ -164,33 +165,25 @@ std::vector<RoadGraphPlanner::Piece> RoadGraphPlanner::emergency_swerve(double s
       }
     }
     return least;
-  };
-  std::vector<Piece> best;
-  double best_move = 1e300;
-  // The sweep of the lane change itself is not known before its shape: take the largest the
-  // graph allows (its curvature limit) and check the shape after.
-  const double need = first->radius + swept_half_width(hw, 0.0, keep) + keep.clearance + 0.05;
-  for (const int side : {-1, +1}) {
-    const double d_t = first->d + side * need;
-    if (d_t < lo || d_t > hi || std::abs(d_t - d_c) >= best_move) continue;
-    std::vector<Piece> ps = shape(d_t);
-    if (!steerable(ps) || std::min(least_gap(ps, true), least_gap(ps, false)) < keep.clearance) continue;
-    append_in_band(ps, s2, d_t, p_.search.horizon);
-    best = std::move(ps);
-    best_move = std::abs(d_t - d_c);
-    *past = s2;
   }
-  if (!best.empty()) return best;
-  // None at keep_clearance. A car that can stop before the obstacle does (the caller's stop);
-  // one that cannot steers as far from it as it can while it brakes, when that passes it
-  // farther than braking straight on would, clear of every other obstacle.
-  const double brake = p_.limits.a_decel > 0 ? speed * speed / (2 * p_.limits.a_decel) : 1e300;
-  if (brake <= reach) return {};
-  double best_gap = least_gap(shape(d_c), true);
-  for (const int side : {-1, +1}) {
-    // The farthest offset toward this side, within the band, that the car steers at its speed.
-    const double full = std::clamp(first->d + side * need, lo, hi);
-    if ((full - d_c) * side <= 0) continue;
+  // The lane change at keep_clearance to the side with less sideways travel; empty: none.
+  std::vector<Piece> at_keep_clearance(double* past) const {
+    std::vector<Piece> best;
+    double best_move = 1e300;
+    for (const int side : {-1, +1}) {
+      const double d_t = first->d + side * need;
+      if (d_t < lo || d_t > hi || std::abs(d_t - d_c) >= best_move) continue;
+      std::vector<Piece> ps = shape(d_t);
+      if (!steerable(ps) || std::min(least_gap(ps, true), least_gap(ps, false)) < keep.clearance) continue;
+      pl.append_in_band(ps, s2, d_t, pl.p_.search.horizon);
+      best = std::move(ps);
+      best_move = std::abs(d_t - d_c);
+      *past = s2;
+    }
+    return best;
+  }
+  // The farthest offset toward `full` (within the band) that the car steers at its speed.
+  double farthest_steerable(double full) const {
     double ok = d_c, bad = full;
     if (steerable(shape(full))) {
       ok = full;
@@ -200,16 +193,60 @@ std::vector<RoadGraphPlanner::Piece> RoadGraphPlanner::emergency_swerve(double s
         (steerable(shape(mid)) ? ok : bad) = mid;
       }
     }
-    std::vector<Piece> ps = shape(ok);
-    const double gap = least_gap(ps, true);
-    if (gap <= best_gap + 0.05 || least_gap(ps, false) < keep.clearance) continue;
-    append_in_band(ps, s2, ok, p_.search.horizon);
-    best = std::move(ps);
-    best_gap = gap;
-    *past = s2;
-    *short_of = true;
+    return ok;
   }
-  return best;
+  // The lane change that passes the obstacle farthest off, when that is farther than braking
+  // straight on would pass it, clear of every other obstacle; empty: none.
+  std::vector<Piece> least_harm(double* past, bool* short_of) const {
+    std::vector<Piece> best;
+    double best_gap = least_gap(shape(d_c), true);
+    for (const int side : {-1, +1}) {
+      const double full = std::clamp(first->d + side * need, lo, hi);
+      if ((full - d_c) * side <= 0) continue;
+      const double ok = farthest_steerable(full);
+      std::vector<Piece> ps = shape(ok);
+      const double gap = least_gap(ps, true);
+      if (gap <= best_gap + 0.05 || least_gap(ps, false) < keep.clearance) continue;
+      pl.append_in_band(ps, s2, ok, pl.p_.search.horizon);
+      best = std::move(ps);
+      best_gap = gap;
+      *past = s2;
+      *short_of = true;
+    }
+    return best;
+  }
+};
+
+std::vector<RoadGraphPlanner::Piece> RoadGraphPlanner::emergency_swerve(double s_c, double d_c, double speed,
+                                                                        const std::vector<FrenetObstacle>& obs,
+                                                                        double* past, bool* short_of) const {
+  *short_of = false;
+  const double L = line_.length(), hw = g_.params().half_width;
+  SearchParams keep = p_.search;
+  keep.clearance = std::min(p_.keep_clearance, p_.search.clearance);
+  double ahead = 0;
+  const FrenetObstacle* first = nearest_in_way(obs, s_c, d_c, L, hw, keep, p_.search.horizon, &ahead);
+  if (!first) return {};
+  // Where the car's nose reaches the obstacle. (A car that could stop before it swerves too: one
+  // stopped there has no lead-in sharp enough to go round, and would stand.)
+  const double reach = ahead - p_.search.car_front - first->radius;
+  if (reach < 5.0) return {};
+  // The sides: the emergency band at the obstacle (the graph's band widened to swerve_edge_margin).
+  const auto& Ly = g_.layers()[g_.layer_at_or_after(first->s)];
+  const double step = g_.params().lateral_step, widen = std::max(0.0, g_.params().edge_margin - p_.swerve_edge_margin);
+  const double lo = Ly.k0 * step - widen, hi = (Ly.k0 + static_cast<double>(Ly.count) - 1) * step + widen;
+  const double s0 = s_c, s1 = s_c + reach, s2 = first->s + (first->s < s_c ? L : 0.0) + p_.search.car_rear + first->radius + 5;
+  // The sweep of the lane change itself is not known before its shape: take the largest the
+  // graph allows (its curvature limit) and check the shape after.
+  const double need = first->radius + swept_half_width(hw, 0.0, keep) + keep.clearance + 0.05;
+  const Swerve sw{*this, obs, first, keep, speed, d_c, L, hw, lo, hi, s0, s1, s2, need};
+  if (std::vector<Piece> best = sw.at_keep_clearance(past); !best.empty()) return best;
+  // None at keep_clearance. A car that can stop before the obstacle does (the caller's stop);
+  // one that cannot steers as far from it as it can while it brakes, when that passes it
+  // farther than braking straight on would, clear of every other obstacle.
+  const double brake = p_.limits.a_decel > 0 ? speed * speed / (2 * p_.limits.a_decel) : 1e300;
+  if (brake <= reach) return {};
+  return sw.least_harm(past, short_of);
 }
 
 void RoadGraphPlanner::append_in_band(std::vector<Piece>& pieces, double s_a, double d_a, double length) const {
@@ -316,6 +353,88 @@ double RoadGraphPlanner::stop_at(const std::vector<Piece>& pieces, const std::ve
   return stop;
 }
 
+std::vector<FrenetObstacle> RoadGraphPlanner::confirmed_obstacles(double s_c) const {
+  std::vector<FrenetObstacle> obs;
+  for (const MapObstacle& m : memory_) {
+    if (m.seen < p_.confirmations) continue;
+    const Eigen::Vector2d q = line_.to_frenet(m.x, m.y, s_c);
+    if (std::isfinite(q.x()) && std::abs(q.y()) < 1000) obs.push_back({q.x(), q.y(), m.radius});
+  }
+  return obs;
+}
+
+std::vector<RoadGraphPlanner::Piece> RoadGraphPlanner::kept_pieces(double s_c, double d_c, double commit, bool* on_it) const {
+  const double L = line_.length();
+  std::vector<Piece> kept;
+  for (const Piece& pc : pieces_) {
+    const double ra = relative_s(pc.shape.s_a, s_c, L), rb = ra + (pc.shape.s_b - pc.shape.s_a);
+    if (rb < 0) continue;
+    if (ra <= 0) *on_it = std::abs(pc.shape.d(pc.shape.s_a - ra) - d_c) <= p_.rejoin;
+    kept.push_back(pc);
+    if (rb >= commit && !stopping_) break;
+  }
+  return kept;
+}
+
+Plan RoadGraphPlanner::search_from_car(double s_c, double d_c, double commit, const std::vector<FrenetObstacle>& obs,
+                                       SearchParams sp) {
+  Plan fresh;
+  const double clearances[2] = {p_.search.clearance, std::min(p_.keep_clearance, p_.search.clearance)};
+  for (int c = 0; c < 2 && !fresh.found; ++c) {
+    if (c == 1 && !(clearances[1] < clearances[0])) break;
+    sp.clearance = clearances[c];
+    for (double reach = commit;; reach = std::max(p_.commit_min, reach - 10)) {
+      sp.ahead = reach;
+      fresh = search_.plan(lead_ins(s_c, d_c, reach, obs, sp), obs, sp);
+      out_.edges_relaxed += fresh.edges_relaxed;
+      if (fresh.found || reach <= p_.commit_min) break;
+    }
+    // A slow car beside the band (it stopped there) may have no lead-in sharp enough to the
+    // layer at the commitment distance, but one to a layer farther on: there, its lead-in
+    // bends gently back into the band (lead_ins keeps it clear of the obstacles).
+    for (double reach = commit + 10; !fresh.found && reach <= commit + p_.rejoin_reach; reach += 10) {
+      sp.ahead = reach;
+      fresh = search_.plan(lead_ins(s_c, d_c, reach, obs, sp), obs, sp);
+      out_.edges_relaxed += fresh.edges_relaxed;
+    }
+  }
+  return fresh;
+}
+
+void RoadGraphPlanner::follow_route(const Plan& plan, std::vector<Piece> pieces, double speed) {
+  const double L = line_.length();
+  for (std::size_t i = 1; i < plan.nodes.size(); ++i) {
+    const std::uint32_t a = plan.nodes[i - 1], b = plan.nodes[i];
+    double h = g_.node_s(b) - g_.node_s(a);
+    if (h <= 0) h += L;
+    const double sa = pieces.back().shape.s_b;
+    pieces.push_back({EdgeShape{sa, g_.node_d(a), sa + h, g_.node_d(b)}, b});
+  }
+  pieces_ = std::move(pieces);
+  stopping_ = false;
+  make_path(speed, false, 0);
+}
+
+void RoadGraphPlanner::brake_to_stop(const std::vector<Piece>& kept, bool usable, double s_c, double d_c, double commit,
+                                     const std::vector<FrenetObstacle>& obs, double speed) {
+  if (!(stopping_ && usable)) {
+    if (usable) {
+      pieces_ = kept;
+    } else {
+      pieces_ = {{EdgeShape{s_c - p_.behind, d_c, s_c + commit, d_c}, kNoNode}};
+      out_.restarted = true;
+    }
+    // On along the line at the same offset (within the track) over the horizon: the car stops
+    // before the blockage, not at the end of its commitment.
+    const EdgeShape end = pieces_.back().shape;
+    append_in_band(pieces_, end.s_b, end.d_b, p_.search.horizon);
+  } else {
+    pieces_ = kept;
+  }
+  stopping_ = true;
+  make_path(speed, true, stop_at(pieces_, obs, s_c));
+}
+
 const PlannedPath& RoadGraphPlanner::plan(double x, double y, double speed) {
   const double L = line_.length();
   out_ = PlannedPath{};
@@ -325,24 +444,12 @@ const PlannedPath& RoadGraphPlanner::plan(double x, double y, double speed) {
   if (!(std::isfinite(s_c) && std::abs(d_c) < 1000)) return out_;
   hint_s_ = s_c;
   if (!(speed >= 0 && speed < 1000)) speed = 0;
-  std::vector<FrenetObstacle> obs;
-  for (const MapObstacle& m : memory_) {
-    if (m.seen < p_.confirmations) continue;
-    const Eigen::Vector2d q = line_.to_frenet(m.x, m.y, s_c);
-    if (std::isfinite(q.x()) && std::abs(q.y()) < 1000) obs.push_back({q.x(), q.y(), m.radius});
-  }
+  const std::vector<FrenetObstacle> obs = confirmed_obstacles(s_c);
   // What stays of the last plan: pieces not yet behind the car, up to the commitment point (all
   // of them while stopping: the stop point stays where it was).
   const double commit = std::max(p_.commit_min, p_.commit_time * speed);
-  std::vector<Piece> kept;
   bool on_it = false;
-  for (const Piece& pc : pieces_) {
-    const double ra = relative_s(pc.shape.s_a, s_c, L), rb = ra + (pc.shape.s_b - pc.shape.s_a);
-    if (rb < 0) continue;
-    if (ra <= 0) on_it = std::abs(pc.shape.d(pc.shape.s_a - ra) - d_c) <= p_.rejoin;
-    kept.push_back(pc);
-    if (rb >= commit && !stopping_) break;
-  }
+  const std::vector<Piece> kept = kept_pieces(s_c, d_c, commit, &on_it);
   const bool usable = on_it && !kept.empty() && !committed_blocked(kept, obs, s_c);
   const bool reaches = usable && relative_s(kept.back().shape.s_b, s_c, L) >= commit && kept.back().end != kNoNode;
   Plan plan;
@@ -360,28 +467,7 @@ const PlannedPath& RoadGraphPlanner::plan(double x, double y, double speed) {
     // When an obstacle seen late leaves no way round at the commitment distance, nearer layers
     // are tried (a sharper lead-in; the speeds follow its bends), down to commit_min.
     // With none at the clearance, once more at keep_clearance before the car stops.
-    Plan fresh;
-    const double clearances[2] = {p_.search.clearance, std::min(p_.keep_clearance, p_.search.clearance)};
-    for (int c = 0; c < 2 && !fresh.found; ++c) {
-      if (c == 1 && !(clearances[1] < clearances[0])) break;
-      sp.clearance = clearances[c];
-      for (double reach = commit;; reach = std::max(p_.commit_min, reach - 10)) {
-        sp.ahead = reach;
-        fresh = search_.plan(lead_ins(s_c, d_c, reach, obs, sp), obs, sp);
-        out_.edges_relaxed += fresh.edges_relaxed;
-        if (fresh.found || reach <= p_.commit_min) break;
-      }
-      // A slow car beside the band (it stopped there) may have no lead-in sharp enough to the
-      // layer at the commitment distance, but one to a layer farther on: there, its lead-in
-      // bends gently back into the band (lead_ins keeps it clear of the obstacles).
-      for (double reach = commit + 10; !fresh.found && reach <= commit + p_.rejoin_reach; reach += 10) {
-        sp.ahead = reach;
-        fresh = search_.plan(lead_ins(s_c, d_c, reach, obs, sp), obs, sp);
-        out_.edges_relaxed += fresh.edges_relaxed;
-      }
-    }
-    sp.clearance = p_.search.clearance;
-    if (fresh.found) {
+    if (Plan fresh = search_from_car(s_c, d_c, commit, obs, sp); fresh.found) {
       plan = std::move(fresh);
       const std::uint32_t first = plan.nodes.front();
       double h = g_.node_s(first) - s_c;
@@ -392,16 +478,7 @@ const PlannedPath& RoadGraphPlanner::plan(double x, double y, double speed) {
   }
   out_.route_found = plan.found;
   if (plan.found) {
-    for (std::size_t i = 1; i < plan.nodes.size(); ++i) {
-      const std::uint32_t a = plan.nodes[i - 1], b = plan.nodes[i];
-      double h = g_.node_s(b) - g_.node_s(a);
-      if (h <= 0) h += L;
-      const double sa = pieces.back().shape.s_b;
-      pieces.push_back({EdgeShape{sa, g_.node_d(a), sa + h, g_.node_d(b)}, b});
-    }
-    pieces_ = std::move(pieces);
-    stopping_ = false;
-    make_path(speed, false, 0);
+    follow_route(plan, std::move(pieces), speed);
     return out_;
   }
   // No route: stop. On what the car is committed to while it is usable (it then stays put),
@@ -419,22 +496,7 @@ const PlannedPath& RoadGraphPlanner::plan(double x, double y, double speed) {
     make_path(speed, true, past);
     return out_;
   }
-  if (!(stopping_ && usable)) {
-    if (usable) {
-      pieces_ = kept;
-    } else {
-      pieces_ = {{EdgeShape{s_c - p_.behind, d_c, s_c + commit, d_c}, kNoNode}};
-      out_.restarted = true;
-    }
-    // On along the line at the same offset (within the track) over the horizon: the car stops
-    // before the blockage, not at the end of its commitment.
-    const EdgeShape end = pieces_.back().shape;
-    append_in_band(pieces_, end.s_b, end.d_b, p_.search.horizon);
-  } else {
-    pieces_ = kept;
-  }
-  stopping_ = true;
-  make_path(speed, true, stop_at(pieces_, obs, s_c));
+  brake_to_stop(kept, usable, s_c, d_c, commit, obs, speed);
   return out_;
 }
 

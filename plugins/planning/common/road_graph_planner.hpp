@@ -133,6 +133,21 @@ class RoadGraphPlanner {
   // farther than braking straight on would pass it — the least harm.
   std::vector<Piece> emergency_swerve(double s_c, double d_c, double speed, const std::vector<FrenetObstacle>& obs,
                                       double* past, bool* short_of) const;
+  struct Swerve;  // one emergency swerve's setting and its candidate lane changes
+  // The remembered obstacles seen in `confirmations` frames, on the line's frame near s_c.
+  std::vector<FrenetObstacle> confirmed_obstacles(double s_c) const;
+  // What stays of the last plan: pieces not yet behind the car, up to the commitment point (all
+  // of them while stopping); `on_it`: the car is within `rejoin` of the piece it is on.
+  std::vector<Piece> kept_pieces(double s_c, double d_c, double commit, bool* on_it) const;
+  // A search from lead-ins from the car: to the layer at the commitment distance, then nearer
+  // ones down to commit_min, then farther ones up to rejoin_reach; at the search's clearance,
+  // then at keep_clearance.
+  Plan search_from_car(double s_c, double d_c, double commit, const std::vector<FrenetObstacle>& obs, SearchParams sp);
+  // The plan's nodes as pieces after `pieces`, and the path along them.
+  void follow_route(const Plan& plan, std::vector<Piece> pieces, double speed);
+  // No route and no swerve: the path that brakes to a stop before the first obstacle in the way.
+  void brake_to_stop(const std::vector<Piece>& kept, bool usable, double s_c, double d_c, double commit,
+                     const std::vector<FrenetObstacle>& obs, double speed);
   void make_path(double speed, bool stop, double stop_s);
   const RoadGraph& g_;
   const RefLine& line_;

@@ -8,7 +8,7 @@
 #include <brickyard/msgs/TrackMap.h>
 #include <brickyard/plugin.hpp>
 
-#include "../line_params.hpp"
+#include "planning/line_params.hpp"
 #include "map_msg.hpp"
 #include "motion/racing_line.hpp"
 #include "newest.hpp"
@@ -66,7 +66,14 @@ class RacingLineNode : public Plugin {
         .with_ports(ports())
         .plays(roles::planner)
         .parameters(bindings())
-        .periodic("rate_hz");
+        .periodic("rate_hz")
+        .check(&check);
+  }
+
+  // At validation, the vehicle and racing-line files read and checked as configure will.
+  static void check(const CheckView& v) {
+    const Settings s = bindings().read(v.params());
+    planning::load_line(v, s.line, plugins::read_vehicle_file(v.find_file(s.vehicle)));
   }
 
   void configure(Context& ctx) override {

@@ -12,10 +12,10 @@
 // (graph_file=...). `track` is both in one step for any track file and the car: DIR/<track>_line.csv,
 // DIR/<track>_profile.csv and DIR/<track>.byrg. Bad input: a message naming the file or option,
 // exit 2.
-#include "common/line_setup.hpp"
-#include "common/min_curvature.hpp"
-#include "common/min_time.hpp"
-#include "common/road_graph.hpp"
+#include "planning/common/line_setup.hpp"
+#include "planning/common/min_curvature.hpp"
+#include "planning/common/min_time.hpp"
+#include "planning/common/road_graph.hpp"
 #include "io/whole_file.hpp"
 #include "motion/racing_line.hpp"
 #include "motion/speed_profile.hpp"

@@ -27,8 +27,25 @@ std::vector<double> row_elevations(int rows, double lo_deg, double hi_deg, const
 
 LidarCaster::LidarCaster(const Track& track, LidarSpec spec) : track_(track), spec_(std::move(spec)) {
   const auto& w = track.spec();
-  const int n = track.size();
-  pylons_ = w.pylons;
+  const std::vector<int> pylon_seg = sort_pylons_by_segment();
+  build_segments(pylon_seg);
+  build_blocks(pylon_seg);
+  find_tops_within_reach();
+  wall_left_ = w.walls.left;
+  wall_right_ = w.walls.right;
+  wall_left_off_ = w.walls.left_offset;
+  wall_right_off_ = w.walls.right_offset;
+  wall_h_ = w.walls.height;
+  body_from_sensor_ = Eigen::Translation3d(spec_.mount) * Eigen::AngleAxisd(spec_.yaw, Eigen::Vector3d::UnitZ()) *
+                      Eigen::AngleAxisd(spec_.pitch, Eigen::Vector3d::UnitY()) *
+                      Eigen::AngleAxisd(spec_.roll, Eigen::Vector3d::UnitX());
+  build_ray_directions();
+  bound_road_slope();
+}
+
+std::vector<int> LidarCaster::sort_pylons_by_segment() {
+  const Track& track = track_;
+  pylons_ = track.spec().pylons;
   std::vector<int> pseg(pylons_.size());
   for (std::size_t i = 0; i < pylons_.size(); ++i) pseg[i] = track.project(pylons_[i].x, pylons_[i].y).seg;
   std::vector<std::size_t> order(pylons_.size());
@@ -38,6 +55,13 @@ LidarCaster::LidarCaster(const Track& track, LidarSpec spec) : track_(track), sp
   std::vector<int> sorted_seg;
   for (auto i : order) { sorted.push_back(pylons_[i]); sorted_seg.push_back(pseg[i]); }
   pylons_ = sorted;
+  return sorted_seg;
+}
+
+void LidarCaster::build_segments(const std::vector<int>& pylon_seg) {
+  const Track& track = track_;
+  const auto& w = track.spec();
+  const int n = track.size();
   seg_.resize(n);
   for (int i = 0; i < n; ++i) {
     const auto& s = track.segments()[i];
@@ -50,9 +74,15 @@ LidarCaster::LidarCaster(const Track& track, LidarSpec spec) : track_(track), sp
     g.inv_n0 = 1 / std::sqrt(1 + g.tb0 * g.tb0);
     g.wall_l = w.walls.left ? g.wl0 + w.walls.left_offset : kInf;
     g.wall_r = w.walls.right ? -(g.wr0 + w.walls.right_offset) : -kInf;
-    g.pylon_begin = static_cast<int>(std::lower_bound(sorted_seg.begin(), sorted_seg.end(), i) - sorted_seg.begin());
-    g.pylon_end = static_cast<int>(std::upper_bound(sorted_seg.begin(), sorted_seg.end(), i) - sorted_seg.begin());
+    g.pylon_begin = static_cast<int>(std::lower_bound(pylon_seg.begin(), pylon_seg.end(), i) - pylon_seg.begin());
+    g.pylon_end = static_cast<int>(std::upper_bound(pylon_seg.begin(), pylon_seg.end(), i) - pylon_seg.begin());
   }
+}
+
+void LidarCaster::build_blocks(const std::vector<int>& pylon_seg) {
+  const Track& track = track_;
+  const auto& w = track.spec();
+  const int n = track.size();
   const int nb = (n + kBlock - 1) / kBlock;
   blocks_.resize(nb);
   for (int b = 0; b < nb; ++b) {
@@ -83,12 +113,17 @@ LidarCaster::LidarCaster(const Track& track, LidarSpec spec) : track_(track), sp
     B.z_max += 0.01;
   }
   for (std::size_t i = 0; i < pylons_.size(); ++i) {
-    Block& B = blocks_[sorted_seg[i] / kBlock];
+    Block& B = blocks_[pylon_seg[i] / kBlock];
     B.z_max = std::max(B.z_max, pylons_[i].z + pylons_[i].height + 0.01);
   }
-  // Highest point within reach of a block: of every block that may come within max range of it.
-  // Two points of blocks b and c are at least (distance of their nearest end points - length of
-  // b - length of c) apart, so that bound decides.
+}
+
+// Highest point within reach of a block: of every block that may come within max range of it.
+// Two points of blocks b and c are at least (distance of their nearest end points - length of
+// b - length of c) apart, so that bound decides.
+void LidarCaster::find_tops_within_reach() {
+  const auto& w = track_.spec();
+  const int n = static_cast<int>(seg_.size()), nb = static_cast<int>(blocks_.size());
   std::vector<double> top(nb), blen(nb, 0.0);
   for (int i = 0; i < n; ++i) blen[i / kBlock] += seg_[i].len;
   const double wall_h = (w.walls.left || w.walls.right) ? w.walls.height : 0.0;
@@ -105,14 +140,9 @@ LidarCaster::LidarCaster(const Track& track, LidarSpec spec) : track_(track), sp
     blocks_[b].z_top_near = zt;
     z_top_all_ = std::max(z_top_all_, zt);
   }
-  wall_left_ = w.walls.left;
-  wall_right_ = w.walls.right;
-  wall_left_off_ = w.walls.left_offset;
-  wall_right_off_ = w.walls.right_offset;
-  wall_h_ = w.walls.height;
-  body_from_sensor_ = Eigen::Translation3d(spec_.mount) * Eigen::AngleAxisd(spec_.yaw, Eigen::Vector3d::UnitZ()) *
-                      Eigen::AngleAxisd(spec_.pitch, Eigen::Vector3d::UnitY()) *
-                      Eigen::AngleAxisd(spec_.roll, Eigen::Vector3d::UnitX());
+}
+
+void LidarCaster::build_ray_directions() {
   for (int c = 0; c < spec_.columns; ++c) {
     double a = spec_.columns == 1 ? 0.0 : spec_.h_fov / 2 - spec_.h_fov * c / (spec_.columns - 1);
     col_c_.push_back(std::cos(a));
@@ -124,9 +154,15 @@ LidarCaster::LidarCaster(const Track& track, LidarSpec spec) : track_(track), sp
     row_c_.push_back(std::cos(e));
     row_s_.push_back(std::sin(e));
   }
-  // Steepest the road can be, in the slab frame the march uses: tan(bank) across, d * d(tan
-  // bank)/da and the edges' slope along; along-track distances on a curve's outside are
-  // stretched by 1 / (1 - curvature * d) against a.
+}
+
+// Steepest the road can be, in the slab frame the march uses: tan(bank) across, d * d(tan
+// bank)/da and the edges' slope along; along-track distances on a curve's outside are
+// stretched by 1 / (1 - curvature * d) against a.
+void LidarCaster::bound_road_slope() {
+  const Track& track = track_;
+  const auto& w = track.spec();
+  const int n = static_cast<int>(seg_.size());
   for (int i = 0; i < n; ++i) {
     const Seg& g = seg_[i];
     const Seg& h = seg_[track.wrap(i + 1)];

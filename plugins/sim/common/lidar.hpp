@@ -99,6 +99,8 @@ class LidarCaster {
                          const std::vector<int>& near_pylons, const Eigen::Vector3d& o) const;
   RayHit march(const Eigen::Vector3d& o, const Eigen::Vector3d& v, int seg, const Resume* from, double shift,
                double shift_rest, Resume* checkpoint) const;
+  // march's state and steps (lidar_march.hpp).
+  struct RayMarch;
   // A hit's point (range noise, dropout, range limits, intensity) into staging buffers that are
   // appended to the frame a column, or a group of columns, at a time.
   struct Staging;
@@ -118,6 +120,8 @@ class LidarCaster {
   // (march_lanes: each lane does march's operations in march's order, so the same bits).
   template <int W> struct Lanes;
   template <int W> void march_lanes(const Eigen::Vector3d& o, int seg, Lanes<W>& L) const;
+  // march_lanes's state and steps (lidar_lanes.cpp).
+  template <int W> struct LaneMarch;
   // What marching columns [c0, c1) of a frame leaves for its points: per ray, in groups of W
   // columns (row by row, the W lanes side by side), the range, surface and cosine; per column,
   // the rows cast. Pure: the columns of a frame may be marched on two threads.
@@ -133,6 +137,8 @@ class LidarCaster {
   // The groups of W columns first, first + stride, ... (two threads take every other group: the
   // columns that meet a near wall and those that look far are spread over both).
   template <int W> void march_columns(const Frame& f, int first, int stride, ColumnHits& h) const;
+  // march_columns's scratch and steps for a group of W columns (lidar_lanes.cpp).
+  template <int W> struct GroupRays;
   void march_columns_avx2(const Frame& f, int first, int stride, ColumnHits& h) const;
   template <int W>
   std::size_t scan_lanes(const Eigen::Isometry3d& world_from_body, int seg_hint, Rng& rng, double noise_factor,
@@ -141,6 +147,15 @@ class LidarCaster {
                               PointBuffers& out) const;
   std::size_t scan_avx2(const Eigen::Isometry3d& world_from_body, int seg_hint, Rng& rng, double noise_factor,
                         PointBuffers& out) const;
+  // The constructor's steps, in the order it takes them: the pylons sorted by segment (returns each
+  // one's segment), the segments' and the blocks' tables, the heights within reach of each block,
+  // the rays' directions and the bound on the road's gradient.
+  std::vector<int> sort_pylons_by_segment();
+  void build_segments(const std::vector<int>& pylon_seg);
+  void build_blocks(const std::vector<int>& pylon_seg);
+  void find_tops_within_reach();
+  void build_ray_directions();
+  void bound_road_slope();
   // Per segment, everything as a function of a (m along the segment from its start).
   struct Seg {
     double px, py, tx, ty, len;

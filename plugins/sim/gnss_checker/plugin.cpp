@@ -9,9 +9,9 @@
 #include <map>
 
 #include "vehicle_param.hpp"
-#include "../common/rng.hpp"
-#include "../sensor_faults.hpp"
-#include "../world_msg.hpp"
+#include "sim/common/rng.hpp"
+#include "sim/sensor_faults.hpp"
+#include "sim/world_msg.hpp"
 
 namespace {
 
@@ -61,7 +61,8 @@ class GnssChecker : public Plugin {
     return Manifest("sim.gnss_checker", "1.0.0")
         .describe("Test assertion: GNSS fixes equal the antenna's true position plus the expected fault offset")
         .with_ports(ports())
-        .parameters(bindings());
+        .parameters(bindings())
+        .check(&plugins::check_vehicle_file<&bindings, &Settings::vehicle>);
   }
 
   void configure(Context& ctx) override {

@@ -3,10 +3,10 @@
 #include <brickyard/msgs/Imu.h>
 #include <brickyard/plugin.hpp>
 
-#include "../common/digest.hpp"
-#include "../common/rng.hpp"
-#include "../sensor_faults.hpp"
-#include "../world_msg.hpp"
+#include "sim/common/digest.hpp"
+#include "sim/common/rng.hpp"
+#include "sim/sensor_faults.hpp"
+#include "sim/world_msg.hpp"
 
 namespace {
 

@@ -6,7 +6,7 @@
 #include <brickyard/msgs/VehicleState.h>
 #include <brickyard/plugin.hpp>
 
-#include "../common/localization_score.hpp"
+#include "sim/common/localization_score.hpp"
 
 #include <nlohmann/json.hpp>
 

@@ -8,8 +8,8 @@
 #include <brickyard/msgs/WallEstimate.h>
 #include <brickyard/plugin.hpp>
 
-#include "../common/perception_score.hpp"
-#include "../world_msg.hpp"
+#include "sim/common/perception_score.hpp"
+#include "sim/world_msg.hpp"
 
 #include <cstdio>
 

@@ -3,13 +3,12 @@
 #include <brickyard/msgs/ControlCommand.h>
 #include <brickyard/plugin.hpp>
 
-#include <cmath>
+#include <optional>
 
 #include "vehicle_param.hpp"
 
-#include "../common/command_watchdog.hpp"
-#include "../common/vehicle_model.hpp"
-#include "../world_msg.hpp"
+#include "sim/common/car_on_track.hpp"
+#include "sim/world_msg.hpp"
 
 namespace {
 
@@ -64,13 +63,13 @@ class Vehicle : public Plugin {
         .with_ports(ports())
         .plays(roles::vehicle_interface)
         .parameters(bindings())
+        .check(&plugins::check_vehicle_file<&bindings, &Settings::vehicle>)
         .periodic("rate_hz");
   }
 
   void configure(Context& ctx) override {
     const Settings s = bindings().read(ctx.params());
-    const VehicleParams v = plugins::read_vehicle(ctx, s.vehicle);
-    model_ = std::make_unique<VehicleModel>(v);
+    car_.emplace(plugins::read_vehicle(ctx, s.vehicle));
     dt_ = 1.0 / s.rate_hz;
     start_s_ = s.start_s;
     start_d_ = s.start_d;
@@ -80,19 +79,11 @@ class Vehicle : public Plugin {
   }
 
   void step(Context& ctx) override {
-    if (!track_) {
+    if (!car_->placed()) {
       auto w = newest(io_.world);
       if (!w) return;  // no world yet: the car does not exist
       track_ = std::make_unique<Track>(from_message(*w));
-      Frenet f = track_->at(start_s_, start_d_);
-      Eigen::Vector2d base = track_->position(f);
-      double yaw = track_->heading(f);
-      auto& s = model_->state();
-      s.yaw = yaw;
-      s.x = base.x() + model_->params().lr * std::cos(yaw);
-      s.y = base.y() + model_->params().lr * std::sin(yaw);
-      s.vx = start_speed_;
-      hint_ = f.seg;
+      car_->place(*track_, start_s_, start_d_, start_speed_);
       publish(ctx);
       return;
     }
@@ -105,60 +96,39 @@ class Vehicle : public Plugin {
     }
     // An unwired command input is a fixture (a car that coasts); a wired one is the stack's.
     if (io_.command.connected()) {
-      const bool was = watchdog_.stopping();
-      c = watchdog_.apply(ctx.now_s(), !fresh.empty(), c);
-      if (watchdog_.stopping() && !was)
-        ctx.log(LogLevel::warn, "no command for " + std::to_string(ctx.now_s() - watchdog_.quiet_since()) + " s: throttle off, braking to a stop");
-      if (was && !watchdog_.stopping())
-        ctx.log(LogLevel::warn, "commands again: the stack drives (the longest gap between two so far: " + std::to_string(watchdog_.longest_gap()) + " s)");
+      const WatchedCommand w = watch_command(watchdog_, ctx.now_s(), !fresh.empty(), c);
+      c = w.command;
+      if (!w.warning.empty()) ctx.log(LogLevel::warn, w.warning);
     }
-    const auto& s = model_->state();
-    Frenet f = track_->project(s.x, s.y, hint_);
-    model_->step(dt_, c, track_->road_gradient(f));
-    if (!std::isfinite(s.x) || !std::isfinite(s.vx)) throw std::runtime_error("vehicle state is not finite");
+    car_->step(dt_, c);
     publish(ctx);
   }
 
   void deactivate(Context& ctx) override {
     ctx.metric("command_watchdog_trips", static_cast<double>(watchdog_.trips()));
     ctx.metric("longest_command_gap_s", watchdog_.longest_gap());
-    if (model_) ctx.metric("final_speed_mps", model_->state().vx);
+    if (car_) ctx.metric("final_speed_mps", car_->state().vx);
   }
 
  private:
   void publish(Context& ctx) {
-    const auto& s = model_->state();
-    const double lr = model_->params().lr, c = std::cos(s.yaw), sn = std::sin(s.yaw);
-    const double bx = s.x - lr * c, by = s.y - lr * sn;
-    Frenet f = track_->project(bx, by, hint_);
-    hint_ = f.seg;
-    Eigen::Vector2d g = track_->road_gradient(f);
+    const BaseLinkTruth t = car_->truth();
     msgs::VehicleState m;
     m.header().stamp_ns(ctx.now_ns());
     m.header().seq(seq_++);
     m.header().frame_id("map");
-    m.x(bx);
-    m.y(by);
-    m.z(track_->road_z(f));
-    m.yaw(s.yaw);
-    m.pitch(-std::atan(g.x() * c + g.y() * sn));
-    m.roll(std::atan(-g.x() * sn + g.y() * c));
-    m.vx(s.vx);
-    m.vy(s.vy - lr * s.r);
-    m.yaw_rate(s.r);
-    m.ax(s.ax);
-    m.ay(s.ay);
-    m.steer(s.steer);
-    m.s(f.s);
-    m.d(f.d);
+    m.x(t.x); m.y(t.y); m.z(t.z);
+    m.yaw(t.yaw); m.pitch(t.pitch); m.roll(t.roll);
+    m.vx(t.vx); m.vy(t.vy); m.yaw_rate(t.yaw_rate);
+    m.ax(t.ax); m.ay(t.ay); m.steer(t.steer);
+    m.s(t.s); m.d(t.d);
     io_.truth.publish(std::move(m));
   }
 
-  std::unique_ptr<VehicleModel> model_;
+  std::optional<CarOnTrack> car_;
   std::unique_ptr<Track> track_;
   CommandWatchdog watchdog_;
   double dt_ = 0.002, start_s_ = 0, start_d_ = 0, start_speed_ = 0;
-  int hint_ = -1;
   std::uint32_t seq_ = 0;
   Ports io_;
 };

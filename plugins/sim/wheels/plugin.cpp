@@ -6,10 +6,10 @@
 #include <cmath>
 
 #include "vehicle_param.hpp"
-#include "../common/digest.hpp"
-#include "../common/rng.hpp"
-#include "../sensor_faults.hpp"
-#include "../world_msg.hpp"
+#include "sim/common/digest.hpp"
+#include "sim/common/rng.hpp"
+#include "sim/sensor_faults.hpp"
+#include "sim/world_msg.hpp"
 
 namespace {
 
@@ -58,6 +58,7 @@ class Wheels : public Plugin {
         .with_ports(ports())
         .plays(roles::wheel_speed_driver)
         .parameters(bindings())
+        .check(&plugins::check_vehicle_file<&bindings, &Settings::vehicle>)
         .periodic("rate_hz");
   }
 

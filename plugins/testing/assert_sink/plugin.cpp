@@ -1,5 +1,5 @@
 // testing.assert_sink: checks a Scalar stream and fails the run (exit 1) on any violation.
-#include "assert_sink/stream_checker.hpp"
+#include "testing/assert_sink/stream_checker.hpp"
 
 #include <brickyard/msgs/Scalar.h>
 #include <brickyard/plugin.hpp>

@@ -1,4 +1,4 @@
-#include "assert_sink/stream_checker.hpp"
+#include "testing/assert_sink/stream_checker.hpp"
 
 #include <cstdio>
 #include <cstring>

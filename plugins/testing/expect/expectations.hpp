@@ -61,7 +61,12 @@ class ExpectationChecker {
     std::string first_failure, last_seen;
     std::optional<double> previous;
   };
-  bool check(const Expectation& e, State& st, double t_s, const nlohmann::json& sample);
+  void observe_ages(double t_s, std::uint64_t index, const nlohmann::json& sample);
+  // A field expectation's check of one sample: its first failing value, said as "path = value"
+  // (or what is missing); empty when it held.
+  std::string near_failure(const Expectation& e, const nlohmann::json& sample);
+  std::string away_from_failure(const Expectation& e, const nlohmann::json& sample);
+  std::string value_failure(const Expectation& e, State& st, const nlohmann::json& sample);
   std::vector<Expectation> e_;
   std::vector<State> state_;
   std::optional<nlohmann::json> ref_;

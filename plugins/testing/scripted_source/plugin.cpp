@@ -1,5 +1,5 @@
 // testing.scripted_source: publishes a scripted sequence of Scalar values at a fixed rate.
-#include "scripted_source/script.hpp"
+#include "testing/scripted_source/script.hpp"
 
 #include <brickyard/msgs/Scalar.h>
 #include <brickyard/plugin.hpp>

@@ -1,4 +1,4 @@
-#include "scripted_source/script.hpp"
+#include "testing/scripted_source/script.hpp"
 
 namespace brickyard::testing {
 

@@ -1,0 +1,47 @@
+#include "estimator_report.hpp"
+
+namespace brickyard::estimation {
+
+ModeDue ModeCadence::step(double now, Status s) {
+  if (last_step_ >= 0) time_in_[static_cast<int>(s)] += now - last_step_;
+  last_step_ = now;
+  ModeDue due;
+  if (s != last_status_ || now - last_mode_ >= 0.1 - 1e-9) {
+    due.publish = true;
+    due.seq = seq_++;
+    due.announce = s != last_status_ || seq_ == 1;
+    last_mode_ = now;
+    last_status_ = s;
+  }
+  return due;
+}
+
+std::vector<std::pair<std::string, double>> summary_metrics(const Localizer& loc, const ModeCadence& modes, Policy policy,
+                                                            bool scan_pose_wired, const PolicyParams& selection) {
+  std::vector<std::pair<std::string, double>> m = {
+      {"epochs", static_cast<double>(loc.epochs())},
+      {"fixes_rejected", static_cast<double>(loc.rejected())},
+      {"malformed_samples", static_cast<double>(loc.malformed())},
+      {"fixes_late", static_cast<double>(loc.late())},
+      {"fixes_too_late", static_cast<double>(loc.too_late())},
+      {"fix_late_max_s", loc.late_max_s()},
+      {"epochs_single", static_cast<double>(loc.epochs_of(UpdateCase::single))},
+      {"epochs_weighted", static_cast<double>(loc.epochs_of(UpdateCase::weighted))},
+      {"epochs_partial", static_cast<double>(loc.epochs_of(UpdateCase::partial))},
+      {"epochs_rejected", static_cast<double>(loc.epochs_of(UpdateCase::rejected))},
+      {"time_warning_s", modes.time_in(Status::warning)},
+      {"time_emergency_s", modes.time_in(Status::emergency)},
+  };
+  if (policy == Policy::resilient) m.emplace_back("reacquisitions", static_cast<double>(loc.reacquisitions()));
+  if (scan_pose_wired) {
+    m.emplace_back("scan_updates", static_cast<double>(loc.scan_updates()));
+    m.emplace_back("scan_refused", static_cast<double>(loc.scan_refused()));
+  }
+  if (policy == Policy::resilient) {
+    m.emplace_back("epsilon_m", selection.epsilon);
+    m.emplace_back("delta_m", selection.delta);
+  }
+  return m;
+}
+
+}  // namespace brickyard::estimation

@@ -1,0 +1,684 @@
+// Resilient localization: every branch of the paper's update selection with numbers worked out
+// by hand, the metre-valued distance, the filter, the baselines' behaviour and the manager.
+#include "estimation/common/epoch_gather.hpp"
+#include "estimation/common/estimator_report.hpp"
+#include "estimation/common/localization_manager.hpp"
+#include "estimation/common/localizer.hpp"
+#include "estimation/common/sample_feed.hpp"
+#include "estimation/common/update_selection.hpp"
+
+#include <Eigen/Geometry>
+#include <gtest/gtest.h>
+
+#include <limits>
+
+#include <cmath>
+
+using namespace brickyard::estimation;
+
+TEST(UpdateSelection, AllWithinEpsilonUsesTheClosestOrAllByLikelihood) {
+  Selection s = select_updates({0.10, 0.05}, 0.2, 5.0);  // the paper's weighting
+  EXPECT_EQ(s.which, UpdateCase::single);
+  EXPECT_EQ(s.weight, (std::vector<double>{0, 1}));
+  // Both consistent (within 3 sigma): equal weights.
+  s = select_updates({0.10, 0.05}, 0.2, 5.0, Weighting::likelihood, {2.0, 1.0});
+  EXPECT_EQ(s.which, UpdateCase::single);
+  EXPECT_EQ(s.weight, (std::vector<double>{0.5, 0.5}));
+  // 4 and 1 sigma: excess 16 - 9 = 7 and 0 -> e^-3.5 / (1 + e^-3.5) and 1 / (1 + e^-3.5).
+  s = select_updates({0.15, 0.05}, 0.2, 5.0, Weighting::likelihood, {4.0, 1.0});
+  EXPECT_NEAR(s.weight[0], std::exp(-3.5) / (1 + std::exp(-3.5)), 1e-12);
+  EXPECT_NEAR(s.weight[1], 1 / (1 + std::exp(-3.5)), 1e-12);
+}
+
+TEST(UpdateSelection, AllWithinDeltaIsTheWeightedSum) {
+  // ΣΔ = 4: λ = 1 - 1/4 = 0.75 and 1 - 3/4 = 0.25 (they already sum to 1 for two fixes).
+  Selection s = select_updates({1.0, 3.0}, 0.2, 5.0);
+  EXPECT_EQ(s.which, UpdateCase::weighted);
+  EXPECT_DOUBLE_EQ(s.weight[0], 0.75);
+  EXPECT_DOUBLE_EQ(s.weight[1], 0.25);
+  // One within ε and one not is still "not all within ε": weighted. ΣΔ = 0.5: 0.8 / 0.2.
+  s = select_updates({0.1, 0.4}, 0.2, 5.0);
+  EXPECT_EQ(s.which, UpdateCase::weighted);
+  EXPECT_DOUBLE_EQ(s.weight[0], 0.8);
+  EXPECT_DOUBLE_EQ(s.weight[1], 0.2);
+}
+
+TEST(UpdateSelection, LikelihoodWeightingPrefersTheConsistentFix) {
+  // d = 1 and 5 sigma: excess 0 and 25 - 9 = 16 -> 1 / (1 + e^-8) and e^-8 / (1 + e^-8).
+  Selection s = select_updates({0.3, 0.4}, 0.2, 5.0, Weighting::likelihood, {1.0, 5.0});
+  EXPECT_EQ(s.which, UpdateCase::weighted);
+  EXPECT_NEAR(s.weight[0], 1 / (1 + std::exp(-8.0)), 1e-12);
+  EXPECT_NEAR(s.weight[1], std::exp(-8.0) / (1 + std::exp(-8.0)), 1e-12);
+  // Far apart in sigma, no underflow: 30 and 40 sigma -> all on the first.
+  s = select_updates({1.0, 2.0}, 0.2, 5.0, Weighting::likelihood, {30.0, 40.0});
+  EXPECT_NEAR(s.weight[0], 1.0, 1e-12);
+}
+
+TEST(UpdateSelection, ThreeFixesNormaliseTheWeights) {
+  // ΣΔ = 6: λ = 5/6, 4/6, 3/6, sum 2 -> 5/12, 4/12, 3/12.
+  Selection s = select_updates({1, 2, 3}, 0.2, 5.0);
+  EXPECT_EQ(s.which, UpdateCase::weighted);
+  EXPECT_NEAR(s.weight[0], 5.0 / 12, 1e-12);
+  EXPECT_NEAR(s.weight[1], 4.0 / 12, 1e-12);
+  EXPECT_NEAR(s.weight[2], 3.0 / 12, 1e-12);
+}
+
+TEST(UpdateSelection, SomeWithinDeltaUsesOnlyThose) {
+  Selection s = select_updates({2.0, 7.0}, 0.2, 5.0);
+  EXPECT_EQ(s.which, UpdateCase::partial);
+  EXPECT_EQ(s.weight, (std::vector<double>{1, 0}));
+  // Two of three feasible: weighted among them, ΣΔ = 4 -> 0.75 / 0.25.
+  s = select_updates({1, 3, 8}, 0.2, 5.0);
+  EXPECT_EQ(s.which, UpdateCase::partial);
+  EXPECT_DOUBLE_EQ(s.weight[0], 0.75);
+  EXPECT_DOUBLE_EQ(s.weight[1], 0.25);
+  EXPECT_DOUBLE_EQ(s.weight[2], 0);
+}
+
+TEST(UpdateSelection, NoneWithinDeltaRejectsAll) {
+  Selection s = select_updates({6, 9}, 0.2, 5.0);
+  EXPECT_EQ(s.which, UpdateCase::rejected);
+  EXPECT_EQ(s.weight, (std::vector<double>{0, 0}));
+  EXPECT_EQ(select_updates({}, 0.2, 5.0).which, UpdateCase::predict_only);
+  // A lone fix within δ is used as it is.
+  s = select_updates({3}, 0.2, 5.0);
+  EXPECT_EQ(s.which, UpdateCase::single);
+  EXPECT_EQ(s.weight, (std::vector<double>{1}));
+}
+
+TEST(UpdateSelection, DeltaIsInMetres) {
+  // Isotropic S: Δ is the Euclidean distance, whatever S's size.
+  EXPECT_NEAR(metric_delta({0.3, 0.4}, Eigen::Matrix2d::Identity() * 0.01), 0.5, 1e-12);
+  EXPECT_NEAR(metric_delta({0.3, 0.4}, Eigen::Matrix2d::Identity() * 100), 0.5, 1e-12);
+  // S = diag(0.04, 0.01), e = (0.2, 0) along the unsure axis: Mahalanobis 1, times the largest
+  // sigma 0.2 -> 0.2 m, the Euclidean distance.
+  EXPECT_NEAR(metric_delta({0.2, 0}, Eigen::Vector2d(0.04, 0.01).asDiagonal().toDenseMatrix()), 0.2, 1e-12);
+  // Across the sure axis it counts double: e = (0, 0.2) -> Mahalanobis 2 -> 0.4 m.
+  EXPECT_NEAR(metric_delta({0, 0.2}, Eigen::Vector2d(0.04, 0.01).asDiagonal().toDenseMatrix()), 0.4, 1e-12);
+}
+
+TEST(PoseFilter, DeadReckonsStraightAndRound) {
+  PoseFilter f;
+  f.init(0, 0, 0, 0.1, 0.01);
+  for (int i = 0; i < 125; ++i) f.predict(0.008, 20.0, 0.0);
+  EXPECT_NEAR(f.state()(PoseFilter::X), 20.0, 1e-9);
+  EXPECT_NEAR(f.state()(PoseFilter::Y), 0.0, 1e-9);
+  // A quarter circle of radius 100 m at 20 m/s (no sideslip learnt yet: K = 0).
+  PoseFilter g;
+  g.init(0, 0, 0, 0.1, 0.01);
+  const double w = 0.2, T = M_PI / 2 / w;
+  const int n = static_cast<int>(std::round(T / 0.001));
+  for (int i = 0; i < n; ++i) g.predict(T / n, 20.0, w);
+  EXPECT_NEAR(g.state()(PoseFilter::X), 100.0, 1e-3);
+  EXPECT_NEAR(g.state()(PoseFilter::Y), 100.0, 1e-3);
+  EXPECT_GT(g.cov()(0, 0), f.cov()(0, 0) * 0.5);  // uncertainty grows with travel
+}
+
+TEST(PoseFilter, LeverArmIsTakenOut) {
+  PoseFilter f;
+  f.init(10, 20, M_PI / 2, 0.1, 0.01);  // facing north: the antenna 1.606 m ahead is north
+  Eigen::Vector2d base = f.base_from_antenna({10.05, 21.606}, {1.606, -0.05, 1.0});
+  EXPECT_NEAR(base.x(), 10.0, 1e-12);
+  EXPECT_NEAR(base.y(), 20.0, 1e-12);
+}
+
+namespace {
+PoseFilter after_outage(double seconds) {
+  PoseFilter f;
+  f.init(0, 0, 0, 0.02, 0.002);
+  const int n = static_cast<int>(seconds / 0.008);
+  for (int i = 0; i < n; ++i) f.predict(0.008, 70.0, 0.0);
+  return f;
+}
+}  // namespace
+
+TEST(Policies, ResilientWeighsTheCloseFixAndGatedLetsBadFixesInAfterALongRejection) {
+  PolicyParams p;
+  // Fresh filter, one receiver 0.4 m off: the weighted sum leans on the good one.
+  PoseFilter r;
+  r.init(0, 0, 0, 0.02, 0.002);
+  std::vector<Fix> fixes = {{0, {1.606 + 0.4, 0.05}, {1.606, 0.05, 1.0}, 0.015}, {1, {1.606 + 0.01, -0.05}, {1.606, -0.05, 1.0}, 0.015}};
+  EpochResult e = apply_fixes(r, fixes, Policy::resilient, p);
+  EXPECT_EQ(e.which, UpdateCase::weighted);
+  EXPECT_LT(std::abs(r.position().x()), 0.05);
+  // After a 10 s outage at 70 m/s the covariance has grown: 8 m off passes the chi-square gate,
+  // while Δ, in metres, still rejects it.
+  PoseFilter g = after_outage(10), rs = g;
+  const double x = g.position().x();
+  std::vector<Fix> bad = {{0, {x + 1.606, 8.05}, {1.606, 0.05, 1.0}, 0.015}, {1, {x + 1.606, 7.95}, {1.606, -0.05, 1.0}, 0.015}};
+  EpochResult eg = apply_fixes(g, bad, Policy::gated, p);
+  EXPECT_EQ(eg.which, UpdateCase::weighted) << "gated should accept both after the outage";
+  EpochResult er = apply_fixes(rs, bad, Policy::resilient, p);
+  EXPECT_EQ(er.which, UpdateCase::rejected);
+  EXPECT_GT(er.delta[0], 5.0);
+  EXPECT_NEAR(rs.position().y(), 0.0, 1e-9);
+  // The same bad fixes on a fresh filter: the gate holds.
+  PoseFilter fresh = after_outage(0.1);
+  bad[0].antenna.x() = bad[1].antenna.x() = fresh.position().x() + 1.606;
+  EXPECT_EQ(apply_fixes(fresh, bad, Policy::gated, p).which, UpdateCase::rejected);
+  // Naive takes everything.
+  PoseFilter nv = after_outage(0.1);
+  EXPECT_EQ(apply_fixes(nv, bad, Policy::naive, p).which, UpdateCase::weighted);
+  EXPECT_GT(nv.position().y(), 3.0);
+}
+
+TEST(LocalizationManager, WarningEmergencyAndHysteresis) {
+  ManagerParams mp;  // 2 receivers, EMERGENCY after 0.3 s, recover after 1 s, timeout 0.25 s
+  LocalizationManager m(mp);
+  int k = 0;  // epochs of 0.05 s
+  auto epoch = [&](bool ok0, bool ok1) {
+    const double t = 0.05 * k++;
+    m.on_fix(0, t, ok0);
+    m.on_fix(1, t, ok1);
+    return m.update(t);
+  };
+  for (int i = 0; i < 20; ++i) EXPECT_EQ(epoch(true, true), Status::normal);
+  EXPECT_EQ(epoch(false, true), Status::warning);  // one rejected
+  EXPECT_EQ(epoch(true, true), Status::warning);   // hysteresis: not back yet
+  for (int i = 0; i < 6; ++i) EXPECT_EQ(epoch(false, false), Status::warning) << i;  // 0 .. 0.25 s
+  EXPECT_EQ(epoch(false, false), Status::emergency);                                 // 0.30 s
+  for (int i = 0; i < 20; ++i) EXPECT_EQ(epoch(true, true), Status::emergency) << i;  // 0 .. 0.95 s
+  for (int i = 0; i < 20; ++i) EXPECT_EQ(epoch(true, true), Status::warning) << i;    // 1.0 .. 1.95 s
+  EXPECT_EQ(epoch(true, true), Status::normal);                                       // 2.0 s
+  // Silence counts as rejection once it lasts fix_timeout_s: both silent from t0.
+  const double t0 = 0.05 * (k - 1);
+  EXPECT_EQ(m.update(t0 + 0.2), Status::normal);
+  EXPECT_EQ(m.update(t0 + 0.3), Status::warning);    // both silent since t0 + 0.25 (seen at 0.3)
+  EXPECT_EQ(m.update(t0 + 0.55), Status::warning);
+  EXPECT_EQ(m.update(t0 + 0.61), Status::emergency);  // 0.31 s after it was first seen
+}
+
+TEST(Localizer, HeadingFromTravelThenRollFromTheImu) {
+  LocalizerParams p;
+  p.manager.receivers = 1;
+  p.lever[0] = {1.606, 0.05, 1.0};
+  Localizer loc(p);
+  loc.speed(20);
+  // Driving north-east at 20 m/s, a fix every 0.05 s: the heading is taken after 5 m.
+  const double yaw = M_PI / 4;
+  int k = 0;
+  for (; k < 20 && !loc.filter().initialized(); ++k) {
+    const double t = 0.05 * k, s = 20 * t;
+    EXPECT_EQ(loc.status(t), Status::warning);  // not localized yet
+    loc.imu(t, 0.0, 0.0);
+    Fix f{0, {s * std::cos(yaw) + 1.606 * std::cos(yaw), s * std::sin(yaw) + 1.606 * std::sin(yaw)}, p.lever[0], 0.015};
+    loc.fixes(t, {f});
+  }
+  ASSERT_TRUE(loc.filter().initialized());
+  EXPECT_NEAR(loc.filter().state()(PoseFilter::YAW), yaw, 1e-9);
+  EXPECT_EQ(k, 6);  // 5 m at 20 m/s: the fix at 0.25 s
+  // Steady turn on a banked road: f_y = v w + g sin(roll). After a few time constants the
+  // roll estimate is the banking's.
+  const double roll = -0.16, w = 0.2;
+  for (int i = 0; i < 2000; ++i) loc.imu(0.3 + 0.008 * i, w, 20 * w + 9.81 * std::sin(roll));  // 16 time constants
+  EXPECT_NEAR(loc.filter().roll(), roll, 1e-6);
+}
+
+// A receiver that sends NaN (broken, or forged) costs nothing but its own fixes (NaN
+// fixes made the fusion reject the healthy receiver too, EMERGENCY for 15 of 16 s).
+TEST(Localizer, AMalformedFixCostsOnlyItself) {
+  LocalizerParams p;
+  p.manager.receivers = 2;
+  Localizer loc(p);
+  loc.speed(20);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for (int k = 0; k < 200; ++k) {
+    const double t = 0.05 * k, s = 20 * t;
+    loc.imu(t, 0.0, 0.0);
+    loc.imu(t + 0.01, nan, 0.0);  // dropped, not a step to NaN
+    Fix good{0, {s, 0.0}, p.lever[0], 0.02}, bad{1, {nan, 0.0}, p.lever[1], 0.02};
+    loc.fixes(t, {good, bad});
+    loc.speed(nan);  // kept at 20
+  }
+  ASSERT_TRUE(loc.filter().initialized());
+  EXPECT_TRUE(loc.filter().state().allFinite());
+  EXPECT_NEAR(loc.filter().state()(PoseFilter::X), 20 * 0.05 * 199, 0.5);
+  EXPECT_EQ(loc.malformed(), 3u * 200u);
+  EXPECT_EQ(loc.rejected(), 0u) << "the good receiver is never rejected for the other's NaN";
+  EXPECT_NE(loc.status(0.05 * 199), Status::emergency);
+}
+
+// Fixes delivered after IMU samples stamped later (a sample DDS resent, a loaded host: the split
+// main job's stack restarted on a busy machine took its fixes up to 0.2 s late at 35 m/s and
+// rejected them all for 48 s): each is carried to now by the filter's motion since its stamp,
+// not taken as now (7 m behind the car, past delta). One older than the history is dropped.
+TEST(Localizer, ALateFixIsCarriedToNowByTheMotionSinceItsStamp) {
+  LocalizerParams p;
+  p.manager.receivers = 2;
+  p.lever[0] = {1.606, 0.05, 0.9};
+  p.lever[1] = {1.606, -0.05, 0.9};
+  p.roll_filter_s = 0;
+  Localizer loc(p);
+  const double v = 35, w = 0.1, radius = v / w;  // a steady turn
+  auto antenna = [&](double t, int r) {
+    const double yaw = w * t;
+    const Eigen::Vector2d base(radius * std::sin(yaw), radius * (1 - std::cos(yaw)));
+    return Eigen::Vector2d(base + Eigen::Rotation2Dd(yaw) * p.lever[r].head<2>());
+  };
+  const double late = 0.2;
+  std::vector<std::pair<double, Fix>> queue;  // fixes waiting for delivery
+  Status status = Status::warning;
+  double t = 0;
+  for (int i = 0; i < 1000; ++i) {
+    t = 0.01 * i;
+    loc.speed(v);
+    loc.imu(t, w, 0.0);
+    // The receivers apart: one at whole epochs, the other 23 ms after (unsynchronised clocks).
+    if (i % 5 == 0) queue.push_back({t, Fix{0, antenna(t, 0), p.lever[0], 0.02}});
+    if (i % 5 == 2) queue.push_back({t + 0.003, Fix{1, antenna(t + 0.003, 1), p.lever[1], 0.02}});
+    while (!queue.empty() && queue.front().first <= t - late) {
+      loc.fixes(queue.front().first, {queue.front().second});
+      queue.erase(queue.begin());
+    }
+    status = loc.status(t);
+  }
+  ASSERT_TRUE(loc.filter().initialized());
+  EXPECT_EQ(loc.rejected(), 0u);
+  EXPECT_EQ(status, Status::normal);
+  EXPECT_GT(loc.late(), 300u);
+  EXPECT_NEAR(loc.late_max_s(), late, 0.011);
+  const Eigen::Vector2d truth = antenna(t, 0) - Eigen::Rotation2Dd(w * t) * p.lever[0].head<2>();
+  EXPECT_LT((loc.filter().position() - truth).norm(), 0.05);
+  EXPECT_NEAR(std::remainder(loc.filter().state()(PoseFilter::YAW) - w * t, 2 * M_PI), 0.0, 2e-3);
+  // Older than the history (about 1.5 s of predictions): dropped, not taken.
+  const auto rejected = loc.rejected();
+  loc.fixes(t - 3.0, {Fix{0, antenna(t - 3.0, 0), p.lever[0], 0.02}});
+  EXPECT_EQ(loc.too_late(), 1u);  // the history is kept from the first IMU sample on
+  EXPECT_EQ(loc.rejected(), rejected);
+}
+
+// The real clock's receivers stamp their fixes a few milliseconds apart and the estimator may
+// take one before the other: the gather makes them one epoch again (each fix keeping its stamp),
+// lets a lone fix go once it has waited wait_s, and keeps one receiver's two fixes apart.
+TEST(EpochGather, PairsTheReceiversFixesOfAnEpochAndLetsALoneOneGo) {
+  EpochGather g(2, 0.01, 0.05);
+  auto fix = [](int r) { return Fix{r, {0.0, 0.0}, Eigen::Vector3d::Zero(), 0.02}; };
+  g.add(1.000, fix(0));
+  EXPECT_TRUE(g.release(1.001).empty());
+  g.add(1.003, fix(1));
+  auto out = g.release(1.004);
+  ASSERT_EQ(out.size(), 1u);
+  ASSERT_EQ(out[0].fixes.size(), 2u);
+  EXPECT_DOUBLE_EQ(out[0].t, 1.003);
+  EXPECT_DOUBLE_EQ(out[0].fixes[0].stamp, 1.000);
+  EXPECT_DOUBLE_EQ(out[0].fixes[1].stamp, 1.003);
+  // A receiver alone (the other silent): handed on once it has waited 0.05 s.
+  g.add(2.000, fix(1));
+  EXPECT_TRUE(g.release(2.049).empty());
+  out = g.release(2.051);
+  ASSERT_EQ(out.size(), 1u);
+  EXPECT_EQ(out[0].fixes.size(), 1u);
+  // One receiver's two fixes are two epochs, the other's fix joins the nearer of them, and a fix
+  // from before the held ones goes first.
+  g.add(3.000, fix(0));
+  g.add(3.005, fix(0));
+  g.add(3.006, fix(1));
+  g.add(2.980, fix(1));
+  out = g.release(3.1);
+  ASSERT_EQ(out.size(), 3u);
+  EXPECT_DOUBLE_EQ(out[0].fixes[0].stamp, 2.980);
+  EXPECT_EQ(out[1].fixes.size(), 1u);  // 3.000 (0)
+  EXPECT_EQ(out[2].fixes.size(), 2u);  // 3.005 (0) with 3.006 (1)
+  EXPECT_EQ(g.held(), 0u);
+  // A stamp that is not finite is refused; fixes stamped far ahead of the clock (forged, or a
+  // wrong clock) are not held past kMaxHeld epochs.
+  EXPECT_FALSE(g.add(std::numeric_limits<double>::quiet_NaN(), fix(0)));
+  EXPECT_FALSE(g.add(std::numeric_limits<double>::infinity(), fix(0)));
+  EXPECT_EQ(g.held(), 0u);
+  for (int k = 0; k < 100; ++k) g.add(1e6 + k, fix(0));
+  EXPECT_EQ(g.release(4.0).size(), 100u - EpochGather::kMaxHeld);
+  EXPECT_EQ(g.held(), EpochGather::kMaxHeld);
+}
+
+// Issue 16's outage on the real clock: the receivers' fixes 3 ms apart and taken by the estimator
+// as they come. Epoch by epoch of one fix each, the receivers never agree with each other in one
+// epoch and the filter never comes back; gathered, it does (as on the sim clock).
+TEST(Localizer, ComesBackOnTheRealClockWithItsReceiversFixesGathered) {
+  for (bool gathered : {false, true}) {
+    LocalizerParams p;
+    p.manager.receivers = 2;
+    p.lever[0] = p.lever[1] = Eigen::Vector3d::Zero();
+    p.roll_filter_s = 0;
+    Localizer loc(p);
+    EpochGather gather(2, 0.01, 0.05);
+    double t = 0, last = 0;
+    Status status = Status::warning;
+    auto drive = [&](double until, bool fixes, double speed_factor) {
+      for (; t < until - 1e-9; t += 0.001) {
+        const int ms = static_cast<int>(std::lround(t * 1000));
+        if (ms % 10 == 0) {
+          loc.speed(20 * speed_factor);
+          loc.imu(t, 0.0, 0.0);
+          last = t;
+        }
+        const bool r0 = ms % 50 == 0, r1 = ms % 50 == 3;
+        if (fixes && (r0 || r1)) {
+          const Fix f{r0 ? 0 : 1, Eigen::Vector2d(20 * t, r0 ? 0.0 : 0.02), Eigen::Vector3d::Zero(), 0.015};
+          if (gathered) gather.add(t, f);
+          else loc.fixes(t, {f});
+        }
+        if (gathered)
+          for (auto& e : gather.release(last)) loc.fixes(e.t, e.fixes);
+        status = loc.status(t);
+      }
+    };
+    drive(10, true, 1.0);
+    ASSERT_TRUE(loc.filter().initialized());
+    EXPECT_EQ(status, Status::normal);
+    drive(20, false, 1.1);  // the outage: no fixes, the wheels read 10 % high
+    EXPECT_EQ(status, Status::emergency);
+    drive(30, true, 1.0);
+    const double error = (loc.filter().position() - Eigen::Vector2d(20 * last, 0)).norm();
+    if (gathered) {
+      EXPECT_EQ(loc.reacquisitions(), 1u);
+      EXPECT_LT(error, 0.1);
+      EXPECT_EQ(status, Status::normal);
+      EXPECT_GT(loc.epochs_of(UpdateCase::single), 0u);
+    } else {
+      EXPECT_EQ(loc.reacquisitions(), 0u);
+      EXPECT_GT(error, 15.0);
+      EXPECT_EQ(status, Status::emergency);
+    }
+  }
+}
+
+// The rule of coming back: receivers that agree with each other and move as the prediction does
+// for the window; not one receiver alone, not receivers apart, not fixes that jump about.
+TEST(Reacquisition, AgreeingReceiversThatMoveWithThePrediction) {
+  ReacquireParams p;  // agree 0.3 m, motion 0.3 m, window 1 s, two receivers
+  const Eigen::Vector2d drift(12, -3);  // the prediction is this far from the truth
+  auto epoch = [&](double t, double apart, double jitter) {
+    const Eigen::Vector2d truth(20 * t, 0), filter = truth - drift;
+    return std::make_pair(std::vector<Eigen::Vector2d>{truth + Eigen::Vector2d(jitter, apart / 2), truth - Eigen::Vector2d(0, apart / 2)}, filter);
+  };
+  Reacquisition r(p);
+  std::optional<Reacquired> at;
+  double when = -1;
+  for (int k = 0; k <= 40 && !at; ++k) {
+    const auto [z, x] = epoch(0.05 * k, 0.1, 0.0);
+    at = r.observe(0.05 * k, z, x);
+    if (at) when = 0.05 * k;
+  }
+  ASSERT_TRUE(at);
+  EXPECT_NEAR(when, 1.0, 1e-9);                               // after the window, not before
+  EXPECT_NEAR((at->position - Eigen::Vector2d(20 * when, 0)).norm(), 0, 1e-9);  // the receivers' mean
+  EXPECT_NEAR(at->turn, 0, 1e-9);
+  // Receivers 0.5 m apart never agree.
+  Reacquisition apart(p);
+  for (int k = 0; k <= 100; ++k) {
+    const auto [z, x] = epoch(0.05 * k, 0.5, 0.0);
+    EXPECT_FALSE(apart.observe(0.05 * k, z, x));
+  }
+  // Fixes jumping by a metre every other epoch (a receiver's noise x30) never move as predicted.
+  Reacquisition jumpy(p);
+  for (int k = 0; k <= 100; ++k) {
+    const auto [z, x] = epoch(0.05 * k, 0.0, k % 2 ? 1.0 : 0.0);
+    EXPECT_FALSE(jumpy.observe(0.05 * k, {z[0], z[0]}, x));
+  }
+  // One receiver has nothing to agree with.
+  Reacquisition one(p);
+  for (int k = 0; k <= 100; ++k) {
+    const auto [z, x] = epoch(0.05 * k, 0.0, 0.0);
+    EXPECT_FALSE(one.observe(0.05 * k, {z[0]}, x));
+  }
+}
+
+// Dead reckoning that drifted in heading too (a yaw-rate bias during the outage): the fixes trace
+// the predicted path turned by 0.05 rad and moved. The offset between them changes as the car
+// drives, so only a fit that turns the path finds them in agreement; it returns the turn.
+TEST(Reacquisition, FindsTheHeadingErrorOfDeadReckoning) {
+  ReacquireParams p;
+  for (double err : {0.05, -0.2, 0.5}) {
+    Reacquisition r(p);
+    const double c = std::cos(err), sn = std::sin(err);
+    std::optional<Reacquired> at;
+    for (int k = 0; k <= 40 && !at; ++k) {
+      const double t = 0.1 * k;
+      const Eigen::Vector2d truth(60 * t, 0.5 * t * t);  // 60 m/s, bending gently
+      // The filter's path: the truth turned by -err about (30, -40) and shifted by (8, 5).
+      const Eigen::Vector2d q = truth - Eigen::Vector2d(30, -40);
+      const Eigen::Vector2d filter = Eigen::Vector2d(30, -40) + Eigen::Vector2d(c * q.x() + sn * q.y(), -sn * q.x() + c * q.y()) + Eigen::Vector2d(8, 5);
+      at = r.observe(t, {truth + Eigen::Vector2d(0, 0.05), truth - Eigen::Vector2d(0, 0.05)}, filter);
+    }
+    if (std::abs(err) > p.max_turn) {
+      EXPECT_FALSE(at) << err;  // past the largest turn the fit may make
+      continue;
+    }
+    ASSERT_TRUE(at) << err;
+    EXPECT_NEAR(at->turn, err, 1e-6);
+  }
+  // The same drift with the turn taken as zero (the old rule): never.
+  ReacquireParams still = p;
+  still.min_span_m = 1e6;
+  Reacquisition r(still);
+  for (int k = 0; k <= 40; ++k) {
+    const double t = 0.1 * k;
+    const Eigen::Vector2d truth(60 * t, 0), filter(60 * t * std::cos(0.05) + 8, -60 * t * std::sin(0.05) + 5);
+    EXPECT_FALSE(r.observe(t, {truth, truth}, filter));
+  }
+}
+
+// A 10 s outage with a wheel speed 10 % high: dead reckoning ends 20 m out, every healthy fix is
+// rejected and the localization stays in EMERGENCY for good — unless the rule brings it back.
+TEST(Localizer, ComesBackAfterAnOutageThatDriftedPastDelta) {
+  for (bool enabled : {false, true}) {
+    LocalizerParams p;
+    p.manager.receivers = 2;
+    p.lever[0] = p.lever[1] = Eigen::Vector3d::Zero();
+    p.reacquire.enabled = enabled;
+    p.roll_filter_s = 0;
+    Localizer loc(p);
+    double t = 0, last = 0;  // the time of the last IMU sample: where the filter is
+    Status status = Status::warning;
+    auto drive = [&](double until, bool fixes, double speed_factor) {
+      for (; t < until - 1e-9; t += 0.01) {
+        loc.speed(20 * speed_factor);
+        loc.imu(t, 0.0, 0.0);
+        if (fixes && std::fmod(t + 1e-9, 0.05) < 0.01) {
+          const Eigen::Vector2d at(20 * t, 0);
+          loc.fixes(t, {Fix{0, at, p.lever[0], 0.015}, Fix{1, at + Eigen::Vector2d(0, 0.02), p.lever[1], 0.015}});
+        }
+        status = loc.status(t);  // the manager is stepped as the plugin steps it
+        last = t;
+      }
+    };
+    drive(10, true, 1.0);
+    ASSERT_TRUE(loc.filter().initialized());
+    EXPECT_EQ(status, Status::normal);
+    drive(20, false, 1.1);  // the outage: no fixes, the wheels read 10 % high
+    EXPECT_EQ(status, Status::emergency);
+    EXPECT_GT(std::abs(loc.filter().position().x() - 20 * last), 15.0);
+    drive(30, true, 1.0);   // healthy fixes again
+    const double error = (loc.filter().position() - Eigen::Vector2d(20 * last, 0)).norm();
+    if (enabled) {
+      EXPECT_EQ(loc.reacquisitions(), 1u);
+      EXPECT_LT(error, 0.1);
+      EXPECT_EQ(status, Status::normal);
+    } else {
+      EXPECT_EQ(loc.reacquisitions(), 0u);
+      EXPECT_GT(error, 15.0);
+      EXPECT_EQ(status, Status::emergency);
+    }
+  }
+}
+
+// The scan mapper's pose as a second estimate (docs/mapping.md): not taken while fixes are
+// accepted (the mapper's prior is this filter's estimate: the same information twice), taken in an
+// outage — each one stamped a LiDAR sweep ago and moved to now by the filter's motion since — and
+// a pose far off refused by the gate.
+TEST(Localizer, TakesTheScanPoseOnlyWhileGnssIsDegraded) {
+  auto run = [](bool scan, Eigen::Vector2d scan_offset, std::uint64_t* updates, std::uint64_t* refused, std::uint64_t* before) {
+    LocalizerParams p;
+    p.manager.receivers = 1;
+    p.lever[0] = Eigen::Vector3d::Zero();
+    p.roll_filter_s = 0;
+    Localizer loc(p);
+    const double v = 20;
+    for (double t = 0; t < 15.0 - 1e-9; t += 0.01) {
+      loc.speed(v * 1.03);  // the wheels read 3 % high: dead reckoning drifts 0.6 m a second
+      loc.imu(t, 0.0, 0.0);
+      const bool gnss = t < 5.0;
+      if (gnss && std::fmod(t + 1e-9, 0.05) < 0.01) loc.fixes(t, {Fix{0, {v * t, 0}, p.lever[0], 0.015}});
+      if (scan && t > 0.5 && std::fmod(t + 1e-9, 0.05) < 0.01) {
+        const double stamp = t - 0.05;  // the frame's time: a sweep ago
+        loc.scan_pose(stamp, Eigen::Vector2d(v * stamp, 0) + scan_offset, Eigen::Matrix2d::Identity() * 0.01);
+      }
+      if (std::abs(t - 4.99) < 1e-6) *before = loc.scan_updates();
+    }
+    *updates = loc.scan_updates();
+    *refused = loc.scan_refused();
+    return (loc.filter().position() - Eigen::Vector2d(v * 14.99, 0)).norm();
+  };
+  std::uint64_t updates = 0, refused = 0, before = 0;
+  const double without = run(false, {0, 0}, &updates, &refused, &before);
+  const double with = run(true, {0, 0}, &updates, &refused, &before);
+  EXPECT_GT(without, 4.0) << "10 s of dead reckoning on wheels 3 % high";
+  EXPECT_LT(with, 0.5) << "the scan poses, moved to now, hold it (a lag remains: the filter has no state for a wheel-speed scale error)";
+  EXPECT_EQ(before, 0u) << "none taken while the fixes were accepted";
+  EXPECT_GT(updates, 150u);
+  const double far = run(true, {0, 8.0}, &updates, &refused, &before);
+  EXPECT_GT(refused, 0u);
+  EXPECT_GT(far, 4.0) << "poses 8 m off are refused, not followed";
+}
+
+// The estimator's step (sample_feed.hpp): a step's samples, read input by input (the IMU's out of
+// order here), reach the localizer as hand-made calls in time order would: an IMU sample before a
+// fix of its stamp, both receivers' fixes of one stamp as one epoch, a "no fix" nowhere.
+TEST(SampleFeed, AStepsSamplesReachTheLocalizerInTimeOrder) {
+  Receivers rx;
+  rx.lever[0] = {1.6, 0.5, 1.0};
+  rx.lever[1] = {1.6, -0.5, 1.0};
+  LocalizerParams p;
+  p.manager.receivers = 2;
+  p.lever[0] = rx.lever[0];
+  p.lever[1] = rx.lever[1];
+  Localizer fed(p), by_hand(p);
+  fed.speed(20);
+  by_hand.speed(20);
+  auto fix = [&](int r, double t) { return rx.fix(r, {20 * t + 1.6, rx.lever[r].y()}, 0.02, 0.01); };
+  for (int step = 0; step < 100; ++step) {
+    const double t0 = 0.05 * step, tf = t0 + 0.02;  // the fixes stamped as the third IMU sample
+    std::vector<ImuSample> imu;
+    for (int i = 4; i >= 0; --i) imu.push_back({t0 + 0.01 * i, 0.0, 0.0});
+    const std::vector<GnssSample> gnss = {{tf, true, fix(0, tf)}, {t0 + 0.03, false, fix(0, t0 + 0.03)}, {tf, true, fix(1, tf)}};
+    feed_in_time_order(fed, nullptr, imu, gnss);
+    for (int i = 0; i < 3; ++i) by_hand.imu(t0 + 0.01 * i, 0.0, 0.0);
+    by_hand.fixes(tf, {fix(0, tf), fix(1, tf)});
+    for (int i = 3; i < 5; ++i) by_hand.imu(t0 + 0.01 * i, 0.0, 0.0);
+  }
+  ASSERT_TRUE(fed.filter().initialized());
+  EXPECT_GT(fed.epochs(), 50u);
+  EXPECT_EQ(fed.epochs(), by_hand.epochs());
+  EXPECT_TRUE(fed.filter().state() == by_hand.filter().state());
+  EXPECT_TRUE(fed.filter().cov() == by_hand.filter().cov());
+}
+
+// On the real clock the receivers' fixes come a few milliseconds apart: through the gather they are
+// one epoch, without it two.
+TEST(SampleFeed, OnTheRealClockTheGatherMakesOneEpochOfTheReceiversFixes) {
+  Receivers rx;
+  LocalizerParams p;
+  p.manager.receivers = 2;
+  Localizer gathered(p), apart(p);
+  EpochGather gather(2, 0.01, 0.05);
+  for (Localizer* loc : {&gathered, &apart}) loc->speed(20);
+  for (int step = 0; step < 100; ++step) {
+    const double t0 = 0.05 * step;
+    const std::vector<ImuSample> imu = {{t0, 0.0, 0.0}, {t0 + 0.025, 0.0, 0.0}};
+    const std::vector<GnssSample> gnss = {{t0 + 0.010, true, rx.fix(0, {20 * (t0 + 0.010), 0.0}, 0.02, 0.02)},
+                                          {t0 + 0.013, true, rx.fix(1, {20 * (t0 + 0.013), 0.0}, 0.02, 0.02)}};
+    feed_in_time_order(gathered, &gather, imu, gnss);
+    feed_in_time_order(apart, nullptr, imu, gnss);
+  }
+  EXPECT_EQ(gather.held(), 0u) << "each epoch let go once whole";
+  EXPECT_GT(gathered.epochs(), 80u);
+  EXPECT_NEAR(static_cast<double>(apart.epochs()), 2.0 * static_cast<double>(gathered.epochs()), 2.0);
+}
+
+TEST(SampleFeed, AFixIsItsReceiversOrTheFirstOnes) {
+  Receivers rx;
+  rx.lever[0] = {1, 2, 3};
+  rx.lever[1] = {4, 5, 6};
+  const Fix second = rx.fix(1, {10, 20}, 0.03, 0.02);
+  EXPECT_EQ(second.receiver, 1);
+  EXPECT_EQ(second.lever, rx.lever[1]);
+  EXPECT_EQ(second.antenna, Eigen::Vector2d(10, 20));
+  EXPECT_DOUBLE_EQ(second.sigma, 0.03) << "the larger spread";
+  EXPECT_TRUE(std::isnan(second.stamp)) << "the epoch's";
+  EXPECT_EQ(rx.fix(7, {0, 0}, 0.01, 0.01).receiver, 0) << "an unknown id";
+  rx.count = 1;
+  const Fix alone = rx.fix(1, {0, 0}, 0.01, 0.04);
+  EXPECT_EQ(alone.receiver, 0) << "one receiver wired";
+  EXPECT_EQ(alone.lever, rx.lever[0]);
+  EXPECT_DOUBLE_EQ(alone.sigma, 0.04);
+}
+
+// Only the scan mapper's registered poses (update case 2) are offered to the localizer.
+TEST(SampleFeed, OnlyRegisteredScanPosesAreTaken) {
+  LocalizerParams p;
+  p.manager.receivers = 1;
+  p.scan_after_s = 0;  // degraded from the start: every pose offered is weighed
+  Localizer loc(p);
+  loc.speed(20);
+  for (int k = 0; k <= 40; ++k) {
+    const double t = 0.05 * k;
+    loc.imu(t, 0.0, 0.0);
+    loc.fixes(t, {Fix{0, {20 * t, 0.0}, p.lever[0], 0.02}});
+  }
+  ASSERT_TRUE(loc.filter().initialized());
+  const double t = 0.05 * 40 - 0.05;  // a frame a sweep ago
+  ScanPoseSample registered{t, 2, {20 * t, 0.0}, Eigen::Matrix2d::Identity() * 0.01};
+  ScanPoseSample dead_reckoned = registered, none = registered;
+  dead_reckoned.update_case = 0;
+  none.update_case = 4;
+  feed_scan_poses(loc, {dead_reckoned, registered, none});
+  EXPECT_EQ(loc.scan_updates() + loc.scan_refused(), 1u);
+}
+
+// ModeStatus on a change and at 10 Hz; the first one also tells the run's status line; the time
+// from one step to the next counts for the status of the later step.
+TEST(ModeCadence, OnAChangeAndAtTenHertz) {
+  ModeCadence c;
+  ModeDue d = c.step(0.0, Status::normal);
+  EXPECT_TRUE(d.publish);
+  EXPECT_TRUE(d.announce);
+  EXPECT_EQ(d.seq, 0u);
+  EXPECT_FALSE(c.step(0.05, Status::normal).publish);
+  d = c.step(0.1, Status::normal);
+  EXPECT_TRUE(d.publish);
+  EXPECT_FALSE(d.announce);
+  EXPECT_EQ(d.seq, 1u);
+  d = c.step(0.12, Status::warning);
+  EXPECT_TRUE(d.publish);
+  EXPECT_TRUE(d.announce);
+  EXPECT_EQ(d.seq, 2u);
+  EXPECT_FALSE(c.step(0.2, Status::warning).publish);
+  EXPECT_TRUE(c.step(0.25, Status::emergency).announce);
+  EXPECT_DOUBLE_EQ(c.time_in(Status::normal), 0.1);
+  EXPECT_NEAR(c.time_in(Status::warning), 0.1, 1e-12);
+  EXPECT_NEAR(c.time_in(Status::emergency), 0.05, 1e-12);
+}
+
+TEST(EstimatorReport, TheSummarysMetricsInTheirOrder) {
+  LocalizerParams p;
+  Localizer loc(p);
+  ModeCadence modes;
+  auto names = [&](Policy policy, bool scan) {
+    std::vector<std::string> out;
+    for (const auto& [name, value] : summary_metrics(loc, modes, policy, scan, p.selection)) out.push_back(name);
+    return out;
+  };
+  const std::vector<std::string> common = {"epochs",         "fixes_rejected",  "malformed_samples", "fixes_late",
+                                           "fixes_too_late", "fix_late_max_s",  "epochs_single",     "epochs_weighted",
+                                           "epochs_partial", "epochs_rejected", "time_warning_s",    "time_emergency_s"};
+  EXPECT_EQ(names(Policy::naive, false), common);
+  std::vector<std::string> gated = common;
+  gated.insert(gated.end(), {"scan_updates", "scan_refused"});
+  EXPECT_EQ(names(Policy::gated, true), gated);
+  std::vector<std::string> resilient = common;
+  resilient.insert(resilient.end(), {"reacquisitions", "scan_updates", "scan_refused", "epsilon_m", "delta_m"});
+  EXPECT_EQ(names(Policy::resilient, true), resilient);
+  const auto m = summary_metrics(loc, modes, Policy::resilient, false, p.selection);
+  EXPECT_EQ(m[m.size() - 2].second, p.selection.epsilon);
+  EXPECT_EQ(m.back().second, p.selection.delta);
+}
