@@ -1,0 +1,162 @@
+# Bad input: exit 2, the culprit named, nothing started (and the same checks of the map source
+# and the vehicle file). Included by tests/CMakeLists.txt.
+
+# ---- bad input: exit 2, the culprit named, nothing started ----
+set(BAD ${CMAKE_CURRENT_SOURCE_DIR}/bad_inputs)
+set(GOOD ${CMAKE_CURRENT_SOURCE_DIR}/graphs/chain.json)
+function(bad_case name regex absent)
+  by_next_domain(d)
+  add_test(NAME bad_input.${name}
+    COMMAND ${NETNS} ${EXPECT} 2 "${regex}" "${absent}" -- ${BY} ${ARGN} --domain ${d})
+endfunction()
+function(bad_input name regex)
+  bad_case(${name} "${regex}" "${NOT_STARTED}" ${ARGN})
+endfunction()
+
+bad_input(huge_seed "--seed 99999999999999999999999: expected a non-negative integer of at most 19 digits" run ${GOOD} --seed 99999999999999999999999)
+bad_input(malformed_json        "malformed.json:3:[0-9]+: invalid JSON"          run ${BAD}/malformed.json)
+bad_input(top_level_array       "top_array.json#: expected object, found array"   run ${BAD}/top_array.json)
+bad_input(nodes_not_object      "nodes_not_object.json#/nodes: expected object, found array" run ${BAD}/nodes_not_object.json)
+bad_input(unknown_top_key       "#/wirez: unknown key"                            run ${BAD}/unknown_top_key.json)
+bad_input(unknown_node_key      "#/nodes/src/parameters: unknown key"             run ${BAD}/unknown_node_key.json)
+bad_input(duplicate_node        "duplicate_node.json:3:3: duplicate key \"src\""  run ${BAD}/duplicate_node.json)
+bad_input(unknown_plugin        "#/nodes/src/plugin: unknown plugin \"testing.no_such_plugin\"" run ${BAD}/unknown_plugin.json)
+bad_input(latency_over_period "latency_over_period.json#/nodes/src/params/latency_s: latency 0.2 s is longer than the node's period \\(0.1 s\\)" run ${BAD}/latency_over_period.json)
+bad_input(not_shared_object     "libnot_elf.so: not a shared object"              run ${GOOD} --plugin-path ${FIXTURES}/not_elf)
+bad_input(missing_entry_point   "libfixture_no_entry.so: missing entry point brickyard_plugin_library" run ${GOOD} --plugin-path ${FIXTURES}/no_entry)
+bad_input(abi_major             "libfixture_abi_mismatch.so: built against plugin ABI 99.0 \\(SDK 99.0.0\\), this host's is 3.0" run ${GOOD} --plugin-path ${FIXTURES}/abi_mismatch)
+bad_input(manifest_all_problems "libfixture_bad_manifest.so: .*declared twice.*unknown message type acme::Unknown.*constraint names 'mode', which is not a number param.*its defaults break its own constraint: parameter 'lo' \\(2\\) must be at most 'hi' \\(1\\).*not a number param.*declared twice" run ${GOOD} --plugin-path ${FIXTURES}/bad_manifest)
+# Two providers of one name in one folder: still an error (in an earlier folder it overrides: cli.plugin_override).
+file(MAKE_DIRECTORY ${FIXTURES}/duplicate_same_folder)
+file(CREATE_LINK ${FIXTURES}/duplicate/libfixture_duplicate.so ${FIXTURES}/duplicate_same_folder/libfixture_duplicate.so SYMBOLIC)
+file(CREATE_LINK ${BRICKYARD_PLUGIN_OUTPUT_DIR}/libtesting_transform.so ${FIXTURES}/duplicate_same_folder/libtesting_transform.so SYMBOLIC)
+bad_input(duplicate_plugin      "libtesting_transform.so: plugin 'testing.transform' is also provided by .*libfixture_duplicate.so" run ${GOOD} --plugin-path ${FIXTURES}/duplicate_same_folder)
+bad_input(unknown_port          "#/wires/0/from: node \"src\" \\(testing.scripted_source\\) has no port \"outt\"" run ${BAD}/unknown_port.json)
+bad_input(wrong_direction       "#/wires/0/from: \"t.in\" is an input"            run ${BAD}/wrong_direction.json)
+bad_input(type_mismatch         "#/wires/0: type mismatch: b.out carries brickyard::msgs::Blob" run ${BAD}/type_mismatch.json)
+bad_input(two_writers           "#/wires/2/to: input \"check.in\" already has a writer" run ${BAD}/two_writers.json)
+bad_input(unwired_input         "#/nodes/check: required input \"in\"" run ${BAD}/unwired_input.json)
+# Bad input found by a node's configure (files, JSON parameters): exit 2, the culprit named, no step run.
+function(bad_config name regex)
+  bad_case(${name} "${regex}" "\\[brickyard\\] running" ${ARGN})
+endfunction()
+# testing.expect's expectations, checked against the wire's type before any step.
+bad_config(expect_unknown_field "node 'check' \\(testing.expect\\): parameter 'expect' /1/field: poses\\[\\*\\].q: no member 'q' in Pose2D \\(members: x, y, yaw\\) \\(brickyard::msgs::Path\\) \\(.*expect_unknown_field.json#/nodes/check/params/expect/1/field\\)" run ${BAD}/expect_unknown_field.json)
+bad_config(expect_near_unwired "parameter 'expect' /0/near: compares with the input 'ref', which is not wired" run ${BAD}/expect_near_unwired.json)
+bad_config(json_source_bad_field "node 'path' \\(testing.json_source\\): parameter 'samples' /0/msg/poses/0/x: expected a number, found \"a\" \\(brickyard::msgs::Path\\) \\(.*json_source_bad_field.json#/nodes/path/params/samples/0/msg/poses/0/x\\)" run ${BAD}/json_source_bad_field.json)
+# The same checks at validation (Manifest::check, ABI 2.4): nothing runs, and every node's failure is said.
+bad_config(expect_unknown_field_validate "node 'check' \\(testing.expect\\): parameter 'expect' /1/field: poses\\[\\*\\].q: no member 'q' in Pose2D .*expect_unknown_field.json#/nodes/check/params/expect/1/field" validate ${BAD}/expect_unknown_field.json)
+bad_config(json_source_bad_field_validate "node 'path' \\(testing.json_source\\): parameter 'samples' /0/msg/poses/0/x: expected a number" validate ${BAD}/json_source_bad_field.json)
+# A data file a parameter names is read at validation, not first at the run's start (the
+# track files above are refused there too: "error:", before any run).
+if(BRICKYARD_SIM)
+  bad_config(validate_missing_track "node 'map' \\(map.track_file\\): .*tracks/Nowhere.csv" validate ${PROJECT_SOURCE_DIR}/configs/race.json --arg track=tracks/Nowhere.csv)
+endif()
+# One pass: a structural error elsewhere in the graph does not hide a plugin's own check.
+bad_config(validate_checks_with_structure "map/params/bogus: unknown parameter \"bogus\".*node 'check' \\(testing.expect\\): parameter 'expect' /1/field: poses\\[\\*\\].q: no member 'q'" validate ${BAD}/expect_unknown_field.json --set map.bogus=1)
+bad_config(validate_every_check "error: node 'path' \\(testing.json_source\\): parameter 'samples' /0/msg/poses/0/x: expected a number, found \"a\" .*validate_every_check.json#/nodes/path/params/samples/0/msg/poses/0/x\\).*error: node 'check' \\(testing.expect\\): parameter 'expect' /0/field: steer_rate: no member 'steer_rate' in ControlCommand .*validate_every_check.json#/nodes/check/params/expect/0/field" validate ${BAD}/validate_every_check.json)
+by_next_domain(d)
+add_test(NAME bad_input.json_source_too_big COMMAND sh -c "mkdir -p ${RUNS} && truncate -s 300M ${RUNS}/too_big.json && exec \"$0\" \"$@\""
+  ${NETNS} ${EXPECT} 2 "node 'path' \\(testing.json_source\\): file .*too_big.json: larger than 256 MiB"
+  -- ${BY} run ${CMAKE_CURRENT_SOURCE_DIR}/graphs/expect_tracker_straight.json --set path.file=${RUNS}/too_big.json --domain ${d})
+bad_input(any_to_any "any_to_any.json#/wires/0: src.out and check.in both take any message type: nothing says which \\(set src's parameter 'type'\\)" run ${BAD}/any_to_any.json)
+if(BRICKYARD_SIM)  # the nodes that find these live in simulator graphs
+  # The world's track file and pylons: read at validation, so nothing starts.
+  bad_input(track_bad_row   "error: node 'world' \\(sim.world\\): track file .*bad_track.csv:4: field 3 is not a number: 'abc'" run ${BAD}/bad_track.json)
+  bad_input(track_missing   "node 'world' \\(sim.world\\): file 'tracks/NoSuchTrack.csv' not found; looked in:" run ${BAD}/missing_track.json)
+  bad_input(pylon_without_d "node 'world' \\(sim.world\\): parameter 'pylons' /1: needs s and d" run ${BAD}/bad_pylons.json)
+  bad_config(fusion_antenna  "node 'estimator' \\(estimation.resilient_fusion\\): parameter 'antenna1': needs 3 numbers" run ${CMAKE_CURRENT_SOURCE_DIR}/graphs/localization_double_degradation.json --set estimator.antenna1=[1.6,0])
+  bad_config(gnss_mount      "node 'gnss' \\(sim.gnss\\): parameter 'vehicle_mount': .*vehicle 'Dallara AV-21' has no mount \"gnss_roof\"" run ${CMAKE_CURRENT_SOURCE_DIR}/graphs/sim_gnss_faults.json --set gnss.vehicle_mount=gnss_roof --set gnss.antenna=[])
+  bad_config(fusion_mount    "node 'estimator' \\(estimation.resilient_fusion\\): parameter 'antenna0_mount': vehicles/av21.json: vehicle 'Dallara AV-21' has no mount \"gnss_roof\"" run ${CMAKE_CURRENT_SOURCE_DIR}/graphs/localization_double_degradation.json --set estimator.antenna0_mount=gnss_roof)
+  bad_config(track_figure8 "error: node 'map' \\(map.track_file\\): track file .*figure8_track.csv: its centre line crosses itself between lines 1 and 102 at 23 degrees: two stretches over each other, not a bridge \\(one of at least 30 degrees\\)" run ${PROJECT_SOURCE_DIR}/configs/race.json --arg track=${BAD}/figure8_track.csv)
+  bad_config(track_overlapping "error: node 'map' \\(map.track_file\\): track file .*overlapping_track.csv: the track runs over itself: near lines 4 and 218" run ${PROJECT_SOURCE_DIR}/configs/race.json --arg track=${BAD}/overlapping_track.csv)
+  bad_config(track_far_point "error: node 'map' \\(map.track_file\\): track file .*far_point_track.csv:3: a point more than 1000 km from the origin" run ${PROJECT_SOURCE_DIR}/configs/race.json --arg track=${BAD}/far_point_track.csv)
+  bad_config(faults_window   "node 'gnss' \\(sim.gnss\\): parameter 'faults' /1/end_s: must be after start_s" run ${BAD}/bad_faults.json)
+endif()
+# Constraints between parameters (ParamBinding::not_above / below): found by validation, before
+# any node is built, at the pointer of the value the graph (or --set) gave.
+bad_input(param_order           "#/nodes/check/params/max_value: parameter 'min_value' \\(1\\) must be at most 'max_value' \\(0\\) \\(from --set check.max_value=0\\)" validate ${GOOD} --set check.max_value=0)
+if(BRICKYARD_SIM)
+  bad_input(lidar_fov         "#/nodes/lidar/params/v_max_deg: parameter 'v_min_deg' \\(.*\\) must be below 'v_max_deg'" run ${BAD}/bad_lidar_fov.json)
+  bad_input(fusion_epsilon    "#/nodes/estimator/params/epsilon_m: parameter 'epsilon_m' \\(6\\) must be at most 'delta_m' \\(5\\) \\(from --set estimator.epsilon_m=6\\)" run ${CMAKE_CURRENT_SOURCE_DIR}/graphs/localization_double_degradation.json --set estimator.epsilon_m=6)
+  bad_input(clustering_sizes  "#/nodes/clusters/params/max_size: parameter 'min_size' \\(10\\) must be at most 'max_size' \\(5\\)" run ${CMAKE_CURRENT_SOURCE_DIR}/graphs/perception_ims_straight.json --set clusters.min_size=10 --set clusters.max_size=5)
+  bad_input(tracker_lookahead "#/nodes/path_tracker/params/lookahead_min: parameter 'lookahead_min' \\(80\\) must be at most 'lookahead_max' \\(60\\)" validate ${CMAKE_CURRENT_SOURCE_DIR}/graphs/resilient_ims_fault_in_turn.json --set path_tracker.lookahead_min=80)
+endif()
+bad_input(param_wrong_type      "#/nodes/src/params/rate_hz: expected number, found \"fast\"" run ${BAD}/param_wrong_type.json)
+bad_input(param_out_of_range    "#/nodes/src/params/rate_hz: expected a value from 0.001 to 1e\\+06 Hz, found 0" run ${BAD}/param_out_of_range.json)
+bad_input(param_unknown         "#/nodes/src/params/rate: unknown parameter \"rate\"" run ${BAD}/param_unknown.json)
+bad_input(param_missing         "#/nodes/b/params: missing required parameter \"size_bytes\"" run ${BAD}/param_missing.json)
+bad_input(set_syntax            "--set src_rate_hz: expected node.param=value"    run ${GOOD} --set src_rate_hz)
+bad_input(set_unknown_node      "--set nope.gain=2: the graph has no node \"nope\"" run ${GOOD} --set nope.gain=2)
+bad_input(set_unknown_param     "#/nodes/double/params/gane: unknown parameter .*from --set double.gane=2" run ${GOOD} --set double.gane=2)
+bad_input(set_wrong_type        "#/nodes/src/params/count: expected integer, found 2.5 \\(from --set" run ${GOOD} --set src.count=2.5)
+bad_input(unknown_process       "--process nope: no node of the graph runs in process \"nope\"" run ${GOOD} --process nope)
+bad_input(zero_delay_cycle      "#/wires: zero-delay cycle a -> b -> a"           run ${BAD}/zero_delay_cycle.json)
+bad_input(deep_nesting          "deep.json:1:[0-9]+: nesting deeper than 64"      run ${FIXTURES}/deep.json)
+bad_input(bad_endpoint          "#/wires/0/from: expected \"node.port\", found \"src\"" run ${BAD}/bad_endpoint.json)
+bad_input(bad_clock_mode        "#/clock/mode: expected \"sim\" or \"real\"" run ${BAD}/bad_clock_mode.json)
+bad_input(sim_split_restart     "sim_split_restart.json#/processes/a/restart: on-failure needs the real clock" run ${BAD}/sim_split_restart.json --process a)
+bad_input(sim_split_foreign     "sim_split_foreign.json#/transport/foreign_writers: accept needs the real clock" run ${BAD}/sim_split_foreign.json --process a)
+bad_input(sim_split_secured     "sim_split_secured.json#/transport/security: a split run on the sim clock \\(its processes in lockstep\\) does not run secured yet" run ${BAD}/sim_split_secured.json)
+bad_input(bad_domain            "#/transport/domain: expected a DDS domain id"    run ${BAD}/bad_domain.json)
+bad_input(unknown_process_policy "bad_processes.json#/processes/c: no node runs in process \"c\"" run ${BAD}/bad_processes.json)
+bad_input(bad_restart_policy  "bad_processes.json#/processes/a/restart: expected \"never\" or \"on-failure\", found \"always\"" run ${BAD}/bad_processes.json)
+bad_input(security_no_out       "security init: needs --out DIR" security init ${GOOD})
+bad_input(security_days         "--days 0: expected a whole number of days from 1 to 3650" security init ${GOOD} --out /tmp/x --days 0)
+bad_input(security_play_no_identity "--security /tmp/by_no_keys: bag play writes topics: it needs --identity NAME" bag play ${PROJECT_SOURCE_DIR}/fuzz/corpus/fuzz_mcap/chain_zstd.mcap --security /tmp/by_no_keys)
+bad_input(security_topic_no_keys "--security /tmp/by_no_keys: identity 'observer': .*/tmp/by_no_keys/identity_ca.pem: does not exist" topic echo src.out --security /tmp/by_no_keys)
+bad_input(security_protect      "--protect nope: expected sign or encrypt" security init ${GOOD} --out /tmp/x --protect nope)
+bad_input(security_observer     "node 'src' runs in process 'observer'" security init ${BAD}/security_observer_process.json --out /tmp/by_security_observer)
+bad_input(security_missing      "security_missing.json#/transport/security: .*no_such_keys is not a folder: make it with .brickyard security init" validate ${BAD}/security_missing.json)
+bad_input(supervised_record   "--record: a supervised run records each process into --out DIR/PROCESS/recording.mcap" run ${CMAKE_CURRENT_SOURCE_DIR}/graphs/multiprocess/two_process.json --record /tmp/x.mcap)
+bad_input(bad_deadline          "bad_deadline.json#/nodes/fault/deadline_s: expected seconds, more than 0 and at most 3600, found -1" run ${BAD}/bad_deadline.json)
+bad_input(bad_live_port         "bad_live_port.json#/live/port: expected a port from 0 to 65535, found 70000" run ${BAD}/bad_live_port.json)
+bad_input(bad_live_cloud_hz     "bad_live_cloud_hz.json#/live/cloud_hz: expected clouds a second from 0 \\(every one\\) to 1000, found -5" run ${BAD}/bad_live_cloud_hz.json)
+bad_input(missing_plugin_dir    "no/such/folder: plugin folder does not exist"    run ${BAD}/missing_plugin_dir.json)
+bad_input(missing_graph_file    "nope.json: no such file"                         run ${BAD}/nope.json)
+# A folder with the user's own summary.json: --out refuses rather than replace it.
+file(WRITE ${CMAKE_CURRENT_BINARY_DIR}/foreign_out/summary.json "{\"mine\": true}\n")
+bad_input(out_foreign_summary   "--out .*foreign_out: .*foreign_out/summary.json was not written by brickyard: move it or use another folder" run ${GOOD} --out ${CMAKE_CURRENT_BINARY_DIR}/foreign_out)
+bad_input(huge_duration         "--duration: expected a positive number of seconds, at most 1e7" run ${GOOD} --duration 1e308)
+# Names of 100 000 characters: refused in one pass, quoted short; a regex overflowed the stack.
+string(REPEAT "a" 100000 BY_LONG_NAME)
+file(WRITE ${CMAKE_CURRENT_BINARY_DIR}/long_node_name.json "{\"nodes\": {\"${BY_LONG_NAME}\": {\"plugin\": \"testing.scripted_source\"}}}")
+bad_input(long_node_name        "node name \"aaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaa… \\(100000 characters\\)\" must be letters" run ${CMAKE_CURRENT_BINARY_DIR}/long_node_name.json)
+bad_input(long_set_name         "--set src.aaaaaaaaaaaaaaaaaaaaaaaaaaaaaa[a]*… \\(100006 characters\\): expected node.param=value" run ${GOOD} --set src.${BY_LONG_NAME}=1)
+bad_input(long_plugin_name      "new-plugin aaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaa… \\(100000 characters\\): expected a name" new-plugin ${BY_LONG_NAME} --dir /tmp/by_never)
+bad_input(bad_duration          "--duration -3: expected a number|--duration: expected a positive" run ${GOOD} --duration -3)
+bad_input(unknown_option        "--fast: unknown option"                          run ${GOOD} --fast)
+bad_input(bad_threads_zero      "--threads 0: expected an integer from 1 to 64"   run ${GOOD} --threads 0)
+bad_input(bad_threads_word      "--threads four: expected an integer from 1 to 64" run ${GOOD} --threads four)
+bad_input(validate_reports_all  "unknown plugin.*\n.*unknown parameter|unknown parameter.*\n.*unknown plugin" validate ${BAD}/unknown_plugin.json --set src.x=1)
+
+# ---- the map source and the vehicle file: bad input names the file ----
+bad_config(map_narrow  "node 'map' \\(map.track_file\\): track file .*narrow_track.csv: at s = [0-9.]+ m \\(point 41\\) it is 1.60 m wide, narrower than the car \\(1.94 m, vehicles/av21.json\\)" run ${BAD}/narrow_map.json)
+bad_config(map_bad_row "node 'map' \\(map.track_file\\): track file .*bad_track.csv:4: field 3 is not a number: 'abc'" run ${BAD}/bad_map_track.json)
+# The bank column (a mapped track's, docs/mapping.md): asked for of a file without it; dropped by one row.
+bad_config(map_bank_file_no_column "node 'map' \\(map.track_file\\): parameter 'bank_mode': .*IMS.csv: bank_mode 'file', but the track file has no bank_deg column" run ${BAD}/bank_file_no_column.json)
+bad_config(map_bank_column_dropped "node 'map' \\(map.track_file\\): track file .*bank_column_dropped.csv:5: 4 fields, expected 5" run ${BAD}/bank_column_dropped.json)
+# Graph arguments (configs/race.json): one never declared; a graph file beside a planned line.
+bad_input(arg_undeclared "--arg trak=x: the graph declares no argument \"trak\" \\(declared: bank_deg, .*track, wall_side\\)"
+          run ${PROJECT_SOURCE_DIR}/configs/race.json --arg trak=x)
+if(BRICKYARD_SIM)
+  bad_config(vehicle_bad_key "node 'path_tracker' \\(control.path_tracker\\): parameter 'vehicle': .*bad_vehicle.json: /geometry/wheelbase: unknown key"
+             run ${CMAKE_CURRENT_SOURCE_DIR}/graphs/resilient_ims_fault_in_turn.json --set path_tracker.vehicle=${BAD}/bad_vehicle.json)
+  bad_config(wall_follower_unwired "node 'wall_follower' \\(control.wall_follower\\): law paper follows the wall wired to input 'wall', which is not wired"
+             run ${PROJECT_SOURCE_DIR}/configs/race.json --set wall_follower.law=paper)
+  bad_config(graph_file_with_planned_line "node 'planner' \\(planning.road_graph\\): graph_file needs a raceline file: with raceline plan"
+             run ${PROJECT_SOURCE_DIR}/configs/race.json --set planner.graph_file=x.byrg)
+  # Every file a parameter names is found and read at validation, naming the node: the car's file,
+  # a racing line, the simulator's track, a road-graph file.
+  set(RACE ${PROJECT_SOURCE_DIR}/configs/race.json)
+  bad_input(validate_vehicle_missing "node 'path_tracker' \\(control.path_tracker\\): file 'vehicles/none.json' not found; looked in:"
+            validate ${RACE} --set path_tracker.vehicle=vehicles/none.json)
+  bad_input(validate_vehicle_bad_key "node 'lidar_left' \\(sim.lidar\\): parameter 'vehicle': .*bad_vehicle.json: /geometry/wheelbase: unknown key"
+            validate ${RACE} --set lidar_left.vehicle=${BAD}/bad_vehicle.json)
+  bad_input(validate_raceline_missing "node 'planner' \\(planning.racing_line\\): file 'racelines/none.csv' not found"
+            validate ${RACE} --set planner.plugin=planning.racing_line --set planner.raceline=racelines/none.csv)
+  bad_input(validate_world_track_missing "node 'world' \\(sim.world\\): file 'tracks/none.csv' not found"
+            validate ${RACE} --set world.track=tracks/none.csv)
+  bad_input(validate_graph_file_missing "node 'planner' \\(planning.road_graph\\): file 'nothing.byrg' not found"
+            validate ${PROJECT_SOURCE_DIR}/configs/ims_race.json --set planner.graph_file=nothing.byrg)
+endif()

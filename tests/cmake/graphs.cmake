@@ -1,0 +1,48 @@
+# The graph tests (tests/graphs). Included by tests/CMakeLists.txt.
+
+# ---- graph tests: tests/graphs/*.json; fail_* must exit 1 and say why. Registered with the SDK's
+# brickyard_add_graph_test (the exit code and the message together), as a plugin's own project
+# registers its graphs (docs/testing.md), run in a private network namespace ----
+set(fail_assert_why    "node 'check' \\(testing.expect\\): 1 of 1 expectations failed: /0 value sample to sample decreasing, always in the whole run: sample 1 at 0.100 s: value = 1 after 0 \\(4 of 5 samples failed\\)")
+set(fail_expect_every_failure_why "error check: expectation failed: /0 count within \\[1, 5\\]: 11 samples.*error check: expectation failed: /2 speed\\[\\*\\] within \\[20, 60\\], always in the whole run: sample 0 at 0.000 s: speed\\[0\\] = [0-9.]+ \\(11 of 11 samples failed\\).*error check: expectation failed: /3 poses\\[3\\].x equals 0, eventually in the whole run: never held over 11 samples.*node 'check' \\(testing.expect\\): 3 of 4 expectations failed \\(each above\\)")
+set(fail_expect_fusion_naive_follows_jump_why "expectation failed: /1 \\(x, y\\) within 0.5 of ref's \\(x, y\\), always in \\[1 s, 4 s\\]: sample [0-9]+ at 2.[0-9]+ s: distance 1.[0-9]+.*node 'check' \\(testing.expect\\): 2 of 6 expectations failed")
+set(fail_configure_why "node 'broken' \\(testing.transform\\) failed in configure: configured to fail in configure")
+set(fail_sim_wall_contact_why "node 'referee' \\(sim.referee\\): crash: wall contact at s = [0-9.]+ m")
+set(fail_sim_gnss_wrong_offset_why "node 'check' \\(sim.gnss_checker\\): fix at t = 1.000 s is 0.51 m from the expected position")
+set(fail_localization_naive_no_emergency_why "node 'score' \\(sim.localization_scorer\\): EMERGENCY never raised")
+set(fail_perception_wall_not_grown_why "node 'score' \\(sim.perception_scorer\\): [0-9]+ false obstacles \\(at most 0 allowed\\)")
+set(fail_resilient_naive_hits_wall_why "node 'referee' \\(sim.referee\\): crash: wall contact at s = [0-9.]+ m")
+set(fail_obstacles_racing_line_why "node 'referee' \\(sim.referee\\): obstacle passed -?[0-9.]+ m off at s = [0-9.]+ m \\(at least 1.00 m required\\)")
+set(fail_race_car_stops_why "node 'referee' \\(sim.referee\\): did not finish: 0 of 1 laps; the car stopped at s = [0-9.]+ m and stood 2.0 s")
+set(fail_race_ends_by_duration_why "node 'referee' \\(sim.referee\\): did not finish: 0 of 2 laps; the run ended at t = 10.0 s with the car at s = [0-9.]+ m")
+set(fail_race_pylon_hit_why "node 'referee' \\(sim.referee\\): obstacle passed -?[0-9.]+ m off at s = [0-9.]+ m \\(at least 0.50 m required\\)")
+# The headline run must hand steering to the wall follower and back before it ends well.
+set(resilient_ims_fault_in_turn_want "manager: PATH -> WALL_FOLLOW at t = [0-9.]+ s: localization EMERGENCY.*manager: WALL_FOLLOW -> PATH at t = .*\\[brickyard\\] success")
+set(fail_step_why      "node 'broken' \\(testing.transform\\) failed in step: configured to fail at sample 5")
+set(fail_step_handed_out_why "node 'broken' \\(testing.transform\\) failed in step: configured to fail at sample 5")
+set(fail_expect_road_graph_no_obstacle_why "expectation failed: /5 \\(poses\\[\\*\\].x, poses\\[\\*\\].y\\) at least 2 from \\(4.433, -297.876\\), always in \\[1 s, 3 s\\]: sample [0-9]+ at 1.[0-9]+ s: poses\\[[0-9]+\\].x = [-0-9.]+, poses\\[[0-9]+\\].y = [-0-9.]+: [0-9.]+ from it.*node 'check' \\(testing.expect\\): 1 of 6 expectations failed")
+set(fail_latency_age_why "node 'check' \\(testing.expect\\): 1 of 1 expectations failed: /0 age \\(arrival less header.stamp_ns\\) within \\[0, 0.01\\] s: sample 0 at 0.050000 s stamped 0.000000 s: 0.050000 s old")
+file(GLOB graph_files CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/graphs/*.json)
+foreach(g ${graph_files})
+  get_filename_component(name ${g} NAME_WE)
+  by_uses_sim(${g} sim)
+  if(sim AND NOT BRICKYARD_SIM)
+    continue()
+  endif()
+  by_next_domain(d)
+  if(name MATCHES "^fail_")
+    set(absent "\\[brickyard\\] success")
+    if(name STREQUAL "fail_configure")
+      set(absent "\\[brickyard\\] (running|success)")  # configure failed: nothing ran
+    endif()
+    brickyard_add_graph_test(NAME graph.${name} GRAPH ${g} EXPECT_EXIT 1 EXPECT_OUTPUT "${${name}_why}" EXPECT_ABSENT "${absent}"
+      LAUNCHER ${NETNS} ARGS --domain ${d} --out ${RUNS}/${name})
+  else()
+    set(want "\\[brickyard\\] success")
+    if(DEFINED ${name}_want)  # a graph that must also say something on its way
+      set(want "${${name}_want}")
+    endif()
+    brickyard_add_graph_test(NAME graph.${name} GRAPH ${g} EXPECT_OUTPUT "${want}" LAUNCHER ${NETNS}
+      ARGS --domain ${d} --out ${RUNS}/${name})
+  endif()
+endforeach()

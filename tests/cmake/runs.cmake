@@ -1,0 +1,155 @@
+# Runs and what they leave: the planning command, progress and the summary, recording and
+# replay, the main job and the configs, the report, the simulator. Included by tests/CMakeLists.txt.
+
+# ---- planning: the offline command and the graph file ----
+add_test(NAME cli.plan_line COMMAND ${EXPECT} 0 "ims_line.csv: 805 points, sum k\\^2 ds 0.0[0-9]+ 1/m.*min-time refinement: lap time [0-9.]+ -> [0-9.]+ s.*ims_profile.csv: lap time [0-9.]+ s"
+  -- $<TARGET_FILE:brickyard-plan> line --track ${PROJECT_SOURCE_DIR}/data/tracks/IMS.csv
+     --out ${RUNS}/ims_line.csv --profile ${RUNS}/ims_profile.csv)
+add_test(NAME cli.planned_lines_current
+  COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/cli/planned_lines_current.sh $<TARGET_FILE:brickyard-plan> ${PROJECT_SOURCE_DIR} ${RUNS}/planned_lines)
+add_test(NAME cli.plan_bad_option COMMAND ${EXPECT} 2 "brickyard-plan: --margin abc: not a number"
+  -- $<TARGET_FILE:brickyard-plan> line --track ${PROJECT_SOURCE_DIR}/data/tracks/IMS.csv --out ${RUNS}/x.csv --margin abc)
+add_test(NAME cli.plan_bad_min_time COMMAND ${EXPECT} 2 "brickyard-plan: --min-time maybe: expected on or off"
+  -- $<TARGET_FILE:brickyard-plan> line --track ${PROJECT_SOURCE_DIR}/data/tracks/IMS.csv --out ${RUNS}/x.csv --min-time maybe)
+add_test(NAME cli.plan_bad_curvature_slack COMMAND ${EXPECT} 2 "brickyard-plan: --curvature-slack -0.5: must be >= 0"
+  -- $<TARGET_FILE:brickyard-plan> line --track ${PROJECT_SOURCE_DIR}/data/tracks/IMS.csv --out ${RUNS}/x.csv --curvature-slack -0.5)
+add_test(NAME cli.plan_bad_vehicle COMMAND ${EXPECT} 2 "brickyard-plan: .*bad_vehicle.json: /geometry/wheelbase: unknown key"
+  -- $<TARGET_FILE:brickyard-plan> line --track ${PROJECT_SOURCE_DIR}/data/tracks/IMS.csv --out ${RUNS}/x.csv --vehicle ${BAD}/bad_vehicle.json)
+add_test(NAME cli.plan_impossible_car COMMAND ${EXPECT} 2 "brickyard-plan: .*impossible_car.json: /limits/a_lat_mps2: 18 m/s\\^2 is more than the tyres' grip \\(mu 1.6 x g = 15.70 m/s\\^2\\)"
+  -- $<TARGET_FILE:brickyard-plan> line --track ${PROJECT_SOURCE_DIR}/data/tracks/IMS.csv --out ${RUNS}/x.csv --vehicle ${BAD}/impossible_car.json)
+add_test(NAME cli.plan_line_off_track COMMAND ${EXPECT} 2 "brickyard-plan: .*off_track_line.csv: the line leaves the track \\(.*IMS.csv\\): point 100 \\([-0-9.]+, [-0-9.]+\\) is [0-9.]+ m beyond the track's (left|right) edge at s = [0-9.]+ m"
+  -- $<TARGET_FILE:brickyard-plan> graph --track ${PROJECT_SOURCE_DIR}/data/tracks/IMS.csv --raceline ${BAD}/off_track_line.csv --out ${RUNS}/x.byrg)
+add_test(NAME cli.plan_bad_track COMMAND ${EXPECT} 2 "brickyard-plan: .*missing.csv: cannot open"
+  -- $<TARGET_FILE:brickyard-plan> graph --track ${RUNS}/missing.csv --raceline x.csv --out ${RUNS}/x.byrg)
+# Any track in one step: line, profile and road graph for Spielberg and the AV-21.
+add_test(NAME cli.plan_track_one_step COMMAND ${EXPECT} 0
+  "Spielberg_line.csv: [0-9]+ points.*Spielberg_profile.csv: lap time [0-9.]+ s.*Spielberg.byrg: [0-9]+ layers, [0-9]+ nodes, [0-9]+ edges"
+  -- $<TARGET_FILE:brickyard-plan> track --track ${PROJECT_SOURCE_DIR}/data/tracks/Spielberg.csv --out-dir ${RUNS}/plan_spielberg)
+add_test(NAME cli.plan_track_impossible_car COMMAND ${EXPECT} 2 "brickyard-plan: .*impossible_car.json: /limits/a_lat_mps2: 18 m/s\\^2 is more than the tyres' grip"
+  -- $<TARGET_FILE:brickyard-plan> track --track ${PROJECT_SOURCE_DIR}/data/tracks/Spielberg.csv --out-dir ${RUNS}/plan_bad --vehicle ${BAD}/impossible_car.json)
+# A full disk (/dev/full): exit 1 naming the file, the device left a device.
+add_test(NAME cli.plan_full_disk COMMAND ${EXPECT} 1 "brickyard-plan: /dev/full: cannot be written \\(No space left on device\\)"
+  -- $<TARGET_FILE:brickyard-plan> line --track ${PROJECT_SOURCE_DIR}/data/tracks/Spielberg.csv --out /dev/full)
+add_test(NAME cli.plan_graph_full_disk COMMAND ${EXPECT} 1 "brickyard-plan: /dev/full: cannot be written \\(No space left on device\\)"
+  -- $<TARGET_FILE:brickyard-plan> graph --track ${PROJECT_SOURCE_DIR}/data/tracks/Spielberg.csv
+     --raceline ${PROJECT_SOURCE_DIR}/data/racelines/Spielberg.csv --out /dev/full)
+# A plugin that takes its process down, or hangs in its step (docs/reliability.md).
+evidence_script(faults faults.sh ${CMAKE_CURRENT_SOURCE_DIR}/graphs)
+# `brickyard topic list | echo | hz` against a running real-clock graph, over DDS.
+evidence_script(topic_tools topic_tools.sh ${CMAKE_CURRENT_SOURCE_DIR}/graphs)
+# A run killed mid-way keeps its recording up to its last second.
+by_next_domain(d)
+add_test(NAME evidence.recording_survives_a_kill
+  COMMAND ${NETNS} ${CMAKE_CURRENT_SOURCE_DIR}/cli/recording_crash.sh ${BY} ${CMAKE_CURRENT_SOURCE_DIR}/graphs ${d} ${RUNS}/recording_crash)
+if(BRICKYARD_SIM)  # the road graph file, progress, recording and the main job run on the simulator
+by_next_domain(d)
+add_test(NAME evidence.road_graph_file
+  COMMAND ${NETNS} ${CMAKE_CURRENT_SOURCE_DIR}/cli/road_graph_file.sh $<TARGET_FILE:brickyard-plan> ${BY}
+          ${CMAKE_CURRENT_SOURCE_DIR}/graphs/obstacles_ims_road_graph.json ${PROJECT_SOURCE_DIR}/data ${d} ${RUNS}/road_graph_file)
+
+# ---- progress and the summary table ----
+by_next_domain(d)
+add_test(NAME cli.run_progress_and_summary COMMAND ${NETNS} ${EXPECT} 0
+  "progress: sim [0-9.]+ s \\([0-9.]+x real time\\) · localization NORMAL · speed [0-9.]+ m/s · lap 1 · mode PATH.*node +plugin +steps +metrics.*referee +sim.referee +[0-9]+ +lap_times_s \\[\\] · laps_completed 0"
+  -- ${BY} run ${CMAKE_CURRENT_SOURCE_DIR}/graphs/obstacles_ims_road_graph.json --domain ${d} --duration 4 --progress 0.05)
+
+# ---- recording and replay ----
+evidence_script(record_replay record_replay.sh ${CMAKE_CURRENT_SOURCE_DIR}/graphs)
+# --out onto a full disk (a tmpfs in a mount namespace of its own): exit 1 naming the file, nothing
+# half-written.
+evidence_script(out_full_disk out_full_disk.sh ${CMAKE_CURRENT_SOURCE_DIR}/graphs/localization_double_degradation.json)
+set_tests_properties(evidence.out_full_disk PROPERTIES SKIP_RETURN_CODE 77)
+# The main job split (simulator, stack) on the real clock, the stack killed at 15 s.
+evidence_script(stack_killed stack_killed.sh ${CMAKE_CURRENT_SOURCE_DIR}/graphs/multiprocess/ims_race_split.json)
+# The same, supervised, the stack restarted on failure: back within a second, the lap finished.
+evidence_script(stack_restart stack_restart.sh ${CMAKE_CURRENT_SOURCE_DIR}/graphs/multiprocess/ims_race_split.json)
+# MCAP, read by Foxglove's libraries (tests/clients, installed by scripts/setup from npm).
+by_next_domain(d)
+add_test(NAME evidence.mcap_recording
+  COMMAND ${NETNS} ${CMAKE_CURRENT_SOURCE_DIR}/cli/mcap_recording.sh ${BY} ${CMAKE_CURRENT_SOURCE_DIR}/graphs ${d} ${RUNS}/mcap_recording
+          ${CMAKE_CURRENT_SOURCE_DIR}/clients)
+# Point clouds recorded compact (--record-cloud-precision): smaller, read by @mcap/core, replayed within the precision.
+by_next_domain(d)
+add_test(NAME evidence.cloud_precision
+  COMMAND ${NETNS} ${CMAKE_CURRENT_SOURCE_DIR}/cli/cloud_precision.sh ${BY} ${CMAKE_CURRENT_SOURCE_DIR}/graphs ${d} ${RUNS}/cloud_precision
+          ${CMAKE_CURRENT_SOURCE_DIR}/clients)
+# bag play: a recording republished over DDS, heard by topic echo / hz in another process.
+evidence_script(bag_play bag_play.sh ${CMAKE_CURRENT_SOURCE_DIR}/graphs)
+# The live view, watched by Foxglove's own client (tests/clients), and clients that misbehave.
+by_next_domain(d)
+add_test(NAME evidence.live_view
+  COMMAND ${NETNS} ${CMAKE_CURRENT_SOURCE_DIR}/cli/live_view.sh ${BY} ${PROJECT_SOURCE_DIR}/configs ${d} ${RUNS}/live_view
+          ${CMAKE_CURRENT_SOURCE_DIR}/clients)
+by_next_domain(d)
+add_test(NAME evidence.command_watchdog
+  COMMAND ${NETNS} ${CMAKE_CURRENT_SOURCE_DIR}/cli/command_watchdog.sh ${BY} ${PROJECT_SOURCE_DIR}/configs ${CMAKE_CURRENT_SOURCE_DIR}/graphs ${d} ${RUNS}/command_watchdog)
+by_next_domain(d)
+add_test(NAME evidence.map_build
+  COMMAND ${NETNS} ${CMAKE_CURRENT_SOURCE_DIR}/cli/map_build.sh ${BY} ${PROJECT_SOURCE_DIR}/configs ${CMAKE_CURRENT_SOURCE_DIR}/graphs ${d} ${RUNS}/map_build)
+
+# ---- the main job (scripts/demo) and every config valid ----
+by_next_domain(d)
+add_test(NAME graph.configs_ims_race
+  COMMAND ${NETNS} ${CMAKE_CURRENT_SOURCE_DIR}/cli/main_job.sh ${BY} ${PROJECT_SOURCE_DIR}/configs/ims_race.json ${d} ${RUNS}/ims_race)
+# Seed 3 put a one-frame false obstacle on the racing line in turn 2, which closed the road and
+# sent the car braking into the wall (fixed: obstacles are planned around once seen in 3 frames).
+by_next_domain(d)
+add_test(NAME graph.configs_ims_race_seed3
+  COMMAND ${NETNS} ${CMAKE_CURRENT_SOURCE_DIR}/cli/main_job.sh ${BY} ${PROJECT_SOURCE_DIR}/configs/ims_race.json ${d} ${RUNS}/ims_race_seed3 --seed 3)
+endif()
+file(GLOB config_files CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/configs/*.json)
+foreach(c ${config_files})
+  get_filename_component(name ${c} NAME_WE)
+  by_uses_sim(${c} sim)
+  if(sim AND NOT BRICKYARD_SIM)
+    continue()
+  endif()
+  add_test(NAME cli.validate_config_${name} COMMAND ${EXPECT} 0 "valid" -- ${BY} validate ${c})
+endforeach()
+
+if(BRICKYARD_SIM)
+# ---- the run report ----
+evidence_script(report report.sh ${CMAKE_CURRENT_SOURCE_DIR}/graphs/resilient_ims_fault_in_turn.json)
+
+# ---- the simulator ----
+evidence_script(sim_determinism determinism.sh ${CMAKE_CURRENT_SOURCE_DIR}/graphs/sim_all_sensors.json)
+by_next_domain(d)
+add_test(NAME graph.configs_sim_truth_lap
+  COMMAND ${NETNS} ${CMAKE_CURRENT_SOURCE_DIR}/cli/sim_truth_lap.sh ${BY} ${PROJECT_SOURCE_DIR}/configs/sim_truth_lap.json ${d} ${RUNS}/sim_truth_lap)
+# Issue 16: localization comes back after an outage that drifted past delta (60 m/s, the paper's fault).
+by_next_domain(d)
+add_test(NAME graph.ims_race_60_localization_comes_back
+  COMMAND ${NETNS} ${CMAKE_CURRENT_SOURCE_DIR}/cli/comes_back.sh ${BY} ${PROJECT_SOURCE_DIR}/configs/ims_race.json ${d} ${RUNS}/comes_back)
+# Issue 16: a road course at the car's limit (Spielberg, walls at both edges, 2 laps).
+by_next_domain(d)
+add_test(NAME graph.configs_sim_truth_limit_spielberg
+  COMMAND ${NETNS} ${CMAKE_CURRENT_SOURCE_DIR}/cli/road_course_lap.sh ${BY} ${PROJECT_SOURCE_DIR}/configs/sim_truth_limit.json ${d} ${RUNS}/sim_truth_limit)
+# Issue 16: the full stack at the car's limit on a road course (configs/race.json: Spielberg, walls
+# at both edges, the double GNSS fault in lap 2).
+by_next_domain(d)
+add_test(NAME graph.race_spielberg_fault_in_lap_2
+  COMMAND ${NETNS} ${CMAKE_CURRENT_SOURCE_DIR}/cli/race_road_course.sh ${BY} ${PROJECT_SOURCE_DIR}/configs/race.json ${d} ${RUNS}/race_spielberg
+          - --arg track=tracks/Spielberg.csv --arg wall_side=left --arg inner_wall=true --arg fault_start=135 --arg fault_end=142)
+# The same without the fault: the flying lap within 1.03 x the planned lap.
+by_next_domain(d)
+add_test(NAME graph.race_spielberg_at_the_limit
+  COMMAND ${NETNS} ${CMAKE_CURRENT_SOURCE_DIR}/cli/race_road_course.sh ${BY} ${PROJECT_SOURCE_DIR}/configs/race.json ${d} ${RUNS}/race_spielberg_clean
+          1.03 --arg track=tracks/Spielberg.csv --arg wall_side=left --arg inner_wall=true)
+# A racing line file that leaves the track: both planners refuse it, naming the file and the point.
+by_next_domain(d)
+add_test(NAME graph.raceline_leaves_track
+  COMMAND ${NETNS} ${CMAKE_CURRENT_SOURCE_DIR}/cli/raceline_leaves_track.sh ${EXPECT} ${BY} ${PROJECT_SOURCE_DIR} ${d} ${RUNS}/raceline_leaves_track)
+# The mapping graph: frames registered, the pose near the truth, the map written.
+by_next_domain(d)
+add_test(NAME graph.mapping_ims
+  COMMAND ${NETNS} ${CMAKE_CURRENT_SOURCE_DIR}/cli/mapping_graph.sh ${BY} ${PROJECT_SOURCE_DIR}/configs/map_ims.json ${d} ${RUNS}/mapping_ims)
+# Pylons in a hairpin and in a right-hander (docs/planning.md, "Pylons anywhere"): the body's sweep,
+# the two clearances and the stop path kept in the track.
+foreach(at 1400 2213)
+  by_next_domain(d)
+  add_test(NAME graph.race_spielberg_pylon_at_${at}
+    COMMAND ${NETNS} ${CMAKE_CURRENT_SOURCE_DIR}/cli/race_road_course.sh ${BY} ${PROJECT_SOURCE_DIR}/configs/race.json ${d} ${RUNS}/race_spielberg_pylon_${at}
+            pylon --arg track=tracks/Spielberg.csv --arg wall_side=left "--arg" "pylons=[{\"s\":${at},\"d\":0}]")
+endforeach()
+
+endif()
