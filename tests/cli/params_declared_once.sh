@@ -10,11 +10,11 @@ set -u
 check() {
   local root=$1 bad=0 hits
   [ -d "$root/plugins" ] || return 0
-  hits=$(grep -rnE --include='*.cpp' --include='*.hpp' '\.param\([[:space:]]*(ParamSpec|plugins::)' "$root/plugins" "$root/sdk/template" 2>/dev/null)
+  hits=$(grep -rnE --include='*.cpp' --include='*.hpp' '\.param\([[:space:]]*(ParamSpec|plugins::)' "$root/plugins" "$root/sdk/template" "$root/sdk/role_templates" 2>/dev/null)
   if [ -n "$hits" ]; then
     echo "plugins declaring a parameter apart from its read (use ParamBinding):"; echo "$hits"; bad=1
   fi
-  hits=$(grep -rnE --include='*.cpp' --include='*.hpp' 'ctx\.params\(\)' "$root/plugins" "$root/sdk/template" 2>/dev/null |
+  hits=$(grep -rnE --include='*.cpp' --include='*.hpp' 'ctx\.params\(\)' "$root/plugins" "$root/sdk/template" "$root/sdk/role_templates" 2>/dev/null |
          grep -vE '\.read\([[:space:]]*ctx\.params\(\)[[:space:]]*\)')
   if [ -n "$hits" ]; then
     echo "plugins reading parameters by name (use ParamBinding::read):"; echo "$hits"; bad=1

@@ -9,7 +9,7 @@ check() {
   local root=$1 hits
   [ -d "$root/plugins" ] || return 0
   hits=$(grep -rnE --include='*.cpp' --include='*.hpp' \
-    '\.(input|output)(<|_any\()|\.on_input\(|ctx\.(input|output)(<|_any\()' "$root/plugins" "$root/sdk/template" 2>/dev/null)
+    '\.(input|output)(<|_any\()|\.on_input\(|ctx\.(input|output)(<|_any\()' "$root/plugins" "$root/sdk/template" "$root/sdk/role_templates" 2>/dev/null)
   [ -z "$hits" ] && return 0
   echo "plugins declaring or connecting a port by name (use PortBinding):"; echo "$hits"
   return 1
