@@ -157,6 +157,16 @@ if(BRICKYARD_SIM)
             validate ${RACE} --set planner.plugin=planning.racing_line --set planner.raceline=racelines/none.csv)
   bad_input(validate_world_track_missing "node 'world' \\(sim.world\\): file 'tracks/none.csv' not found"
             validate ${RACE} --set world.track=tracks/none.csv)
+  # The map localizer's map (configs/race_on_map.json): missing, not a point cloud, empty.
+  set(ON_MAP ${PROJECT_SOURCE_DIR}/configs/race_on_map.json)
+  bad_input(validate_map_file_not_given "node 'map_localizer' \\(mapping.map_localizer\\): parameter 'map_file': empty: the track's map is needed"
+            validate ${ON_MAP})
+  bad_input(validate_map_file_missing "node 'map_localizer' \\(mapping.map_localizer\\): file 'maps/none.pcd' not found"
+            validate ${ON_MAP} --arg map_file=maps/none.pcd)
+  bad_input(validate_map_file_not_pcd "node 'map_localizer' \\(mapping.map_localizer\\): parameter 'map_file': .*not_a_map.pcd: FIELDS must be 'x y z'"
+            validate ${ON_MAP} --arg map_file=${BAD}/not_a_map.pcd)
+  bad_input(validate_map_file_empty "node 'map_localizer' \\(mapping.map_localizer\\): parameter 'map_file': .*empty_map.pcd: the map holds no point"
+            validate ${ON_MAP} --arg map_file=${BAD}/empty_map.pcd)
   bad_input(validate_graph_file_missing "node 'planner' \\(planning.road_graph\\): file 'nothing.byrg' not found"
             validate ${PROJECT_SOURCE_DIR}/configs/ims_race.json --set planner.graph_file=nothing.byrg)
 endif()

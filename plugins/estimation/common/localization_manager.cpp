@@ -46,8 +46,10 @@ Status LocalizationManager::update(double t) {
   const bool all_bad = bad == static_cast<int>(last_fix_.size());
   if (!all_bad) all_bad_since_ = -1;
   else if (all_bad_since_ < 0) all_bad_since_ = t;
+  const bool witnessed = p_.witness_timeout_s > 0 && t - last_witness_ <= p_.witness_timeout_s;
+  if (all_bad && witnessed) why += "; located on the map";
   Status raw = Status::normal;
-  if (all_bad && t - all_bad_since_ >= p_.emergency_after_s) raw = Status::emergency;
+  if (all_bad && t - all_bad_since_ >= p_.emergency_after_s && !witnessed) raw = Status::emergency;
   else if (bad > 0) raw = Status::warning;
 
   if (raw >= status_) {

@@ -78,6 +78,7 @@ bool Localizer::scan_pose(double stamp, const Eigen::Vector2d& xy, const Eigen::
     return false;
   }
   filter_.update_position(z, R);
+  manager_.on_witness(t_);
   ++scan_updates_;
   return true;
 }

@@ -45,6 +45,9 @@ template <Policy P> ParamBinding<Settings> bindings() {
   b.bind("scan_pose", &Settings::loc, &L::scan_pose)
       .doc("with scan_pose wired: its registered poses are position updates while no fix has been accepted for scan_after_s (docs/mapping.md)");
   b.bind("scan_after_s", &Settings::loc, &L::scan_after_s).in_unit("s").range(0, 3600).doc("GNSS degraded: no fix accepted for this long");
+  b.bind("scan_pose_trusted_s", &Settings::loc, &L::manager, &M::witness_timeout_s).in_unit("s").range(0, 60)
+      .doc("a scan pose taken within this long keeps the status at WARNING (the car on its path) while every receiver is lost: "
+           "for an independent witness, the map localizer's (docs/algorithms.md); 0: EMERGENCY as without one");
   b.bind("scan_min_sigma", &Settings::loc, &L::scan_min_sigma).in_unit("m").range(0.001, 100).doc("floor on a scan pose's spread");
   b.bind("epoch_pair_s", &Settings::epoch_pair_s).in_unit("s").range(0, 1)
       .doc("real clock: two receivers' fixes stamped this close are one epoch (each carried from its own stamp)");

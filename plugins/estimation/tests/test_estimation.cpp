@@ -162,6 +162,30 @@ TEST(Policies, ResilientWeighsTheCloseFixAndGatedLetsBadFixesInAfterALongRejecti
   EXPECT_GT(nv.position().y(), 3.0);
 }
 
+// Every receiver lost while an independent witness (the map localizer's poses) is taken: WARNING,
+// the car keeps its path; the witness silent for witness_timeout_s: EMERGENCY; the receivers
+// back: down a level at a time, as ever. Without witness_timeout_s the witness counts for nothing.
+TEST(LocalizationManager, AWitnessKeepsEmergencyAwayWhileItIsTaken) {
+  for (const double timeout : {0.0, 0.3}) {
+    ManagerParams mp;  // 2 receivers, EMERGENCY after 0.3 s, recover after 1 s, timeout 0.25 s
+    mp.witness_timeout_s = timeout;
+    LocalizationManager m(mp);
+    double t = 0;
+    for (; t < 1; t += 0.05) m.on_fix(0, t, true), m.on_fix(1, t, true), m.update(t);
+    const double lost = t;
+    for (; t < lost + 5; t += 0.05) {  // both silent, a witness every 0.05 s
+      m.on_witness(t);
+      const Status s = m.update(t);
+      if (t < lost + 0.6) continue;  // silent past fix_timeout_s, then emergency_after_s
+      ASSERT_EQ(s, timeout > 0 ? Status::warning : Status::emergency) << t - lost;
+      if (timeout > 0) EXPECT_NE(m.reason().find("located on the map"), std::string::npos) << m.reason();
+    }
+    const double witness_gone = t - 0.05;
+    for (; t < witness_gone + 0.3 - 1e-9; t += 0.05) EXPECT_EQ(m.update(t), timeout > 0 ? Status::warning : Status::emergency);
+    EXPECT_EQ(m.update(witness_gone + 0.31), Status::emergency) << "the witness silent too";
+  }
+}
+
 TEST(LocalizationManager, WarningEmergencyAndHysteresis) {
   ManagerParams mp;  // 2 receivers, EMERGENCY after 0.3 s, recover after 1 s, timeout 0.25 s
   LocalizationManager m(mp);

@@ -20,7 +20,7 @@ ScanResult ScanMapper::add(const Points& scan, const Eigen::Isometry3d& guess, c
                            const Points* ground, const Tilt& tilt, bool on_estimate) {
   ScanResult out;
   out.pose = out.map_pose = guess;
-  const Points near = thinned(scan);
+  const Points near = thinned(scan, p_.scan_voxel, p_.max_range);
   const Surfaces surfaces = point_surfaces(near, p_.covariances);
   const Eigen::FullPivLU<Eigen::Matrix<double, 6, 6>> prior_lu(information);
   prior_covariance_.reset();
@@ -84,7 +84,7 @@ ScanResult ScanMapper::add(const Points& scan, const Eigen::Isometry3d& guess, c
 }
 
 std::optional<Eigen::Isometry3d> ScanMapper::level_on_ground(const Points& ground, const Eigen::Isometry3d& from) const {
-  const Points near = thinned(ground);
+  const Points near = thinned(ground, p_.scan_voxel, p_.max_range);
   if (near.size() < p_.min_matched) return std::nullopt;
   const Surfaces surfaces = point_surfaces(near, p_.covariances);
   // The (x, y, yaw) held at `from`'s (flat ground cannot tell them); roll, pitch and height free.
@@ -101,9 +101,8 @@ std::optional<Eigen::Isometry3d> ScanMapper::level_on_ground(const Points& groun
   return r.transform;
 }
 
-Points ScanMapper::thinned(const Points& scan) const {
-  // One point per scan_voxel (the mean of those in it), within max_range; in first-met order.
-  const float r2 = static_cast<float>(p_.max_range * p_.max_range), inv = 1.0f / p_.scan_voxel;
+Points thinned(const Points& scan, float voxel, double max_range) {
+  const float r2 = static_cast<float>(max_range * max_range), inv = 1.0f / voxel;
   perception::CellMap<std::uint32_t> cells;
   cells.reset(scan.size());
   Points sum;
@@ -125,22 +124,27 @@ Points ScanMapper::thinned(const Points& scan) const {
   return sum;
 }
 
-void ScanMapper::keep_prior_where_unseen(const Surfaces& surfaces, const Eigen::Isometry3d& guess, ScanResult& out) const {
+Unseen unseen_directions(const Surfaces& surfaces, const Eigen::Matrix3d& R, double epsilon, double min_support) {
   // The surfaces' normals, summed as n n^T: a point's surface s is sqrt(1 - eps) n. (A point with
   // too few neighbours has s = 0: it faces nowhere.)
   Eigen::Matrix3d support = Eigen::Matrix3d::Zero();
   for (const Eigen::Vector3f& s : surfaces) support += (s * s.transpose()).cast<double>();
-  const double eps = p_.covariances.epsilon;
-  const Eigen::Matrix3d R = out.pose.linear();
-  support = R * support * R.transpose() / (1.0 - eps);
+  support = R * support * R.transpose() / (1.0 - epsilon);
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(support);
-  Eigen::Matrix3d unseen = Eigen::Matrix3d::Zero();  // projector onto the directions not told
+  Unseen out;
   for (int k = 0; k < 3; ++k)
-    if (es.eigenvalues()(k) < p_.min_support) {
-      unseen += es.eigenvectors().col(k) * es.eigenvectors().col(k).transpose();
-      ++out.degenerate;
+    if (es.eigenvalues()(k) < min_support) {
+      out.projector += es.eigenvectors().col(k) * es.eigenvectors().col(k).transpose();
+      ++out.count;
     }
+  return out;
+}
+
+void ScanMapper::keep_prior_where_unseen(const Surfaces& surfaces, const Eigen::Isometry3d& guess, ScanResult& out) const {
+  const Unseen u = unseen_directions(surfaces, out.pose.linear(), p_.covariances.epsilon, p_.min_support);
+  out.degenerate = u.count;
   if (out.degenerate == 0) return;
+  const Eigen::Matrix3d& unseen = u.projector;
   // There: the guess's translation, and the prior's variance (its covariance, inverted from
   // the information the caller gave; without one, the registration's stays).
   out.pose.translation() += unseen * (guess.translation() - out.pose.translation());

@@ -85,7 +85,6 @@ class ScanMapper {
   std::size_t keyframes() const { return keyframes_; }
 
  private:
-  Points thinned(const Points& scan) const;
   // Where the scan's surfaces tell nothing (ScanMapperParams::min_support): the guess's
   // translation and the prior's variance.
   void keep_prior_where_unseen(const Surfaces& surfaces, const Eigen::Isometry3d& guess, ScanResult& out) const;
@@ -101,6 +100,20 @@ class ScanMapper {
   std::size_t keyframes_ = 0;
   Eigen::Vector3d last_key_ = Eigen::Vector3d::Constant(1e300);
 };
+
+// A frame thinned to one point (the mean of those in it) per voxel of `voxel` m, within
+// `max_range` of the car; in first-met order.
+Points thinned(const Points& scan, float voxel, double max_range);
+
+// The directions of translation a frame's surfaces cannot tell (ScanMapperParams::min_support):
+// the sum over the frame of n n^T (n each point's surface normal, turned into the map by `R`) has
+// an eigenvalue below `min_support` along each. `epsilon`: the surfaces' regularization
+// (CovarianceParams::epsilon).
+struct Unseen {
+  Eigen::Matrix3d projector = Eigen::Matrix3d::Zero();  // onto those directions
+  int count = 0;
+};
+Unseen unseen_directions(const Surfaces& surfaces, const Eigen::Matrix3d& R, double epsilon, double min_support);
 
 // The (x, y, yaw) covariance of a pose covariance over (omega, v): rows and columns v_x, v_y, omega_z.
 Eigen::Matrix3d planar_covariance(const Eigen::Matrix<double, 6, 6>& c);

@@ -11,6 +11,7 @@
 #include <brickyard/plugin.hpp>
 
 #include "mapping/common/mapping_run.hpp"
+#include "mapping/frame_io.hpp"
 #include "params.hpp"
 #include "ports.hpp"
 #include "perception/messages.hpp"
@@ -61,10 +62,7 @@ class ScanMapperNode : public Plugin {
     for (auto& e : io_.estimate.take())
       run_->estimate(e->header().stamp_ns(), {e->x(), e->y(), e->yaw()}, {e->speed(), e->yaw_rate(), e->covariance(), e->status()});
     for (auto& m : io_.imu.take()) run_->imu(m->header().stamp_ns(), m->accel_x(), m->accel_y(), m->gyro_z());
-    for (auto& p : io_.points.take()) {
-      features_.push_back(p);
-      if (features_.size() > 8) features_.pop_front();
-    }
+    for (auto& p : io_.points.take()) features_.add(p);
     for (auto& in : io_.scan)
       for (auto& c : in.take()) {
         scans_.push_back(c);
@@ -98,10 +96,7 @@ class ScanMapperNode : public Plugin {
     Points pts;
     std::size_t n_ground = 0;
     try {
-      perception::append_vehicle_points(ground, pts);
-      n_ground = pts.size();
-      for (const auto& f : features_)
-        if (f->header().stamp_ns() == stamp) perception::append_vehicle_points(*f, pts);
+      features_.assemble(ground, pts, &n_ground);
     } catch (const std::runtime_error& e) {
       if (run_->malformed()) ctx.log(LogLevel::warn, std::string(e.what()) + ": frame skipped");
       return;
@@ -116,29 +111,14 @@ class ScanMapperNode : public Plugin {
       if (!mount.matrix().allFinite()) continue;
       run_->add_scan(c->x().data(), c->y().data(), c->z().data(), c->intensity().data(), n, mount, found->map_pose);
     }
-    publish(*found);
-  }
-
-  void publish(const FramePose& f) {
-    msgs::LocalizationEstimate m;
-    m.header().stamp_ns(f.stamp_ns);
-    m.header().seq(seq_++);
-    m.header().frame_id("map");
-    m.x(f.x);
-    m.y(f.y);
-    m.yaw(f.yaw);
-    m.speed(f.speed);
-    m.yaw_rate(f.yaw_rate);
-    m.covariance(f.covariance);
-    m.update_case(f.update_case);
-    m.status(f.status);
-    io_.pose.publish(std::move(m));
+    io_.pose.publish(pose_message(*found, seq_++));
   }
 
   std::optional<MappingRun> run_;
   std::string map_file_, track_file_;
   Ports io_;
-  std::deque<CloudPtr> features_, scans_;
+  FrameFeatures features_;
+  std::deque<CloudPtr> scans_;
   std::uint32_t seq_ = 0;
 };
 

@@ -11,6 +11,7 @@
 #include "track/banking.hpp"
 #include "mapping/common/gicp.hpp"
 #include "mapping/common/vgicp.hpp"
+#include "scenes.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/LU>
@@ -26,37 +27,9 @@
 #include <sstream>
 
 using namespace brickyard::mapping;
+using namespace brickyard::mapping::scenes;
 
 namespace {
-
-// A walled yard: the ground, a wall along each side, one across the end, and five boxes, sampled
-// every `step` m with `noise` m of range noise (one seed per sampling).
-Points yard(double step, double noise, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::normal_distribution<float> n(0.0f, static_cast<float>(noise));
-  Points pts;
-  auto add = [&](double x, double y, double z) { pts.emplace_back(x + n(rng), y + n(rng), z + n(rng)); };
-  for (double x = -20; x <= 20; x += step)
-    for (double y = -6; y <= 6; y += step) add(x, y, 0.002 * x * x);  // a gentle bowl, not flat
-  for (double x = -20; x <= 20; x += step)
-    for (double z = 0; z <= 1.2; z += step) add(x, -6, z), add(x, 6, z);
-  for (double y = -6; y <= 6; y += step)
-    for (double z = 0; z <= 1.2; z += step) add(20, y, z);
-  const double boxes[5][2] = {{-12, 2}, {-4, -3}, {3, 1}, {9, -2}, {15, 3.5}};
-  for (const auto& b : boxes)
-    for (double u = 0; u <= 1.0; u += step)
-      for (double z = 0; z <= 1.0; z += step) {
-        add(b[0] + u, b[1], z), add(b[0] + u, b[1] + 1, z);
-        add(b[0], b[1] + u, z), add(b[0] + 1, b[1] + u, z);
-      }
-  return pts;
-}
-
-Points moved(const Points& pts, const Eigen::Isometry3d& T) {
-  Points out;
-  for (const auto& p : pts) out.push_back((T * p.cast<double>()).cast<float>());
-  return out;
-}
 
 double angle(const Eigen::Matrix3d& R) { return Eigen::AngleAxisd(R).angle(); }
 
@@ -281,32 +254,6 @@ TEST(Mapping, RegistrationWithNothingToMatchKeepsTheGuess) {
   EXPECT_FALSE(b.converged);
   EXPECT_TRUE(b.transform.isApprox(guess));
 }
-
-namespace {
-
-// A corridor: flat ground and two smooth parallel walls along x, nothing across: a scan of it
-// says where the car is across and how it is turned, not how far along.
-Points corridor(double step, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::normal_distribution<float> n(0.0f, 0.01f);
-  Points pts;
-  for (double x = -30; x <= 30; x += step) {
-    for (double y = -6; y <= 6; y += step) pts.emplace_back(x + n(rng), y + n(rng), n(rng));
-    for (double z = 0; z <= 1.2; z += step) pts.emplace_back(x + n(rng), -6 + n(rng), z), pts.emplace_back(x + n(rng), 6 + n(rng), z);
-  }
-  return pts;
-}
-
-Eigen::Isometry3d planar(double x, double y, double yaw_deg) {
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.translate(Eigen::Vector3d(x, y, 0));
-  T.rotate(Eigen::AngleAxisd(yaw_deg * M_PI / 180, Eigen::Vector3d::UnitZ()));
-  return T;
-}
-
-double yaw_of(const Eigen::Isometry3d& T) { return std::atan2(T.linear()(1, 0), T.linear()(0, 0)); }
-
-}  // namespace
 
 // In a corridor the registration fixes the pose across and in heading and leaves it where the
 // prior says along the corridor, and the covariance says which is which. In the yard (boxes

@@ -1,0 +1,52 @@
+#pragma once
+// mapping.map_localizer's work over a drive, framework-free: the pose estimates (each frame's
+// guess, at its stamp), each frame located on the prior map (MapLocalizer) with the height, roll
+// and pitch the last located frame found (the estimate is planar), and the summary's statistics.
+// The plugin converts the messages and publishes.
+#include "map_localizer.hpp"
+#include "mapping_run.hpp"
+
+#include "math/estimate_history.hpp"
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace brickyard::mapping {
+
+struct MapLocalizationRunParams {
+  MapLocalizerParams localizer;
+  double max_estimate_age = 0.1;  // s: a frame with no estimate this near its stamp is left out
+};
+
+class MapLocalizationRun {
+ public:
+  MapLocalizationRun(const Points& map, const MapLocalizationRunParams& p);
+
+  void estimate(std::int64_t stamp_ns, const math::PlanarPose& pose, const EstimateExtras& extras);
+  // One frame (vehicle frame) located from the estimate at its stamp (interpolated). None,
+  // counted, without an estimate within max_estimate_age or with one that is not finite; else the
+  // pose (update_case 2: located on the map, 0: not, the guess with the estimate's spreads).
+  std::optional<FramePose> frame(std::int64_t stamp_ns, const Points& points);
+  // A cloud that could not be read: counted; true for the first (said once).
+  bool malformed() { return malformed_++ == 0; }
+
+  const MapLocalizer& localizer() const { return localizer_; }
+  // The summary's numbers, in the order they are reported.
+  std::vector<std::pair<std::string, double>> metrics() const;
+
+ private:
+  FramePose pose_of(std::int64_t stamp, const Located& r, const EstimateExtras& est, const Eigen::Matrix3d& guess_cov) const;
+
+  MapLocalizer localizer_;
+  std::int64_t max_age_ns_ = 0;
+  math::EstimateHistory<EstimateExtras> estimates_{256};
+  double roll_ = 0, pitch_ = 0, z_ = 0;  // the last located frame's
+  std::uint64_t frames_ = 0, located_ = 0, unseen_frames_ = 0, no_estimate_ = 0, malformed_ = 0;
+  std::uint64_t failures_[6] = {0, 0, 0, 0, 0, 0};  // per LocateFailure
+  double correction_sum_ = 0, correction_max_ = 0;
+};
+
+}  // namespace brickyard::mapping

@@ -1,0 +1,86 @@
+#pragma once
+// Localization on a prior point map, framework-free: each LiDAR frame (vehicle frame) registered
+// onto a map of the track made before (the PCD file mapping.scan_mapper writes), from a guess (the
+// fusion's estimate at the frame's stamp). The map is not changed, so the pose found is a witness
+// of its own: where the walls and the road fix it, the map says where the car is whatever GNSS
+// says; along a smooth straight between smooth walls nothing in the frame does, and there the
+// pose keeps the guess's coordinate with a spread of `unseen_sigma`: the covariance says the map
+// cannot tell, never a confident pose the frame does not support.
+#include "covariances.hpp"
+#include "scan_mapper.hpp"
+#include "vgicp.hpp"
+#include "voxel_map.hpp"
+
+#include <Eigen/Geometry>
+
+#include <cstddef>
+
+namespace brickyard::mapping {
+
+struct MapLocalizerParams {
+  float coarse_voxel = 1.0f;  // m: the map registered on first, from the guess (reaches far)
+  float fine_voxel = 0.25f;   // m: then on this one (accurate near the answer)
+  float scan_voxel = 0.4f;    // m: the frame thinned to one point (the mean) per voxel of this size
+  double max_range = 60.0;    // m from the car: farther points are left out
+  double points_worth = 200;  // how many independent points a frame counts as (its covariance; RegistrationParams::weight)
+  double max_correction = 2.0;  // m: a pose farther from the guess in the plane is not taken
+  double max_turn = 0.05;       // rad: nor one whose heading turned more
+  std::size_t min_matched = 100;  // frame points matched to the map, at least
+  double min_support = 30;        // a direction with less surface facing it is unseen (unseen_directions)
+  double unseen_sigma = 100;      // m: the spread reported along an unseen direction
+  // A weak prior at the guess (1 sigma): it keeps the solution where the frame tells nothing (the
+  // registration would wander there by aliasing) and weighs nothing where the frame tells.
+  // The frame's height is searched on the coarse map within this of the guess's first: a map's
+  // height drifts over a mapping drive (its frames join on the ground's registration, with no
+  // height from GNSS: 3.4 m over a lap of Spielberg), so the height carried from the last frame
+  // is metres off where the drive closed its loop. 0: the guess's height.
+  double height_search = 6.0;     // m
+  double prior_sigma = 1.0;       // m
+  double prior_sigma_turn = 0.1;  // rad
+  CovarianceParams covariances;
+  RegistrationParams registration{16, 1e-3, 1e-4, false};
+};
+
+// Why a frame was not located.
+enum class LocateFailure { none, too_few_points, not_converged, too_few_matched, implausible, singular };
+const char* failure_name(LocateFailure f);
+
+struct Located {
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  // map from vehicle: registered, else the guess
+  bool registered = false;
+  LocateFailure failure = LocateFailure::none;
+  // Over (rotation omega, translation v), map axes: the registration's system inverted, with
+  // unseen_sigma^2 along each unseen direction.
+  Eigen::Matrix<double, 6, 6> covariance = Eigen::Matrix<double, 6, 6>::Identity();
+  std::size_t matched = 0;
+  int iterations = 0;
+  int unseen = 0;           // directions of translation the frame could not tell
+  double correction = 0;    // m: how far the pose is from the guess in the plane
+};
+
+class MapLocalizer {
+ public:
+  // `map`: the map's points (map frame), such as read_pcd returns.
+  explicit MapLocalizer(const Points& map, MapLocalizerParams p = {});
+  const MapLocalizerParams& params() const { return p_; }
+  std::size_t map_points() const { return points_; }
+  const VoxelMap& fine_map() const { return fine_; }
+
+  // One frame (vehicle frame) located from `guess` (map from vehicle), its height searched first.
+  Located locate(const Points& frame, Eigen::Isometry3d guess) const;
+
+ private:
+  // The height at which most of the frame's points (every 4th) fall in the coarse map's voxels,
+  // searched in half-voxel steps within height_search of the guess's (ties: the nearest).
+  double height_on_map(const Points& near, const Eigen::Isometry3d& guess) const;
+  // The weak prior, and a hold along the `unseen` directions (a projector).
+  Eigen::Matrix<double, 6, 6> prior_information(const Eigen::Matrix3d& unseen) const;
+  // Along unseen directions: the guess's translation and unseen_sigma's spread.
+  void keep_guess_where_unseen(const Surfaces& surfaces, const Eigen::Isometry3d& guess, Located& out) const;
+
+  MapLocalizerParams p_;
+  VoxelMap coarse_, fine_;
+  std::size_t points_ = 0;
+};
+
+}  // namespace brickyard::mapping

@@ -1,0 +1,40 @@
+#pragma once
+// mapping.map_localizer's parameters (plugin.cpp): the map file and the localizer's. Plugin-side (SDK).
+#include <brickyard/plugin.hpp>
+
+#include "mapping/common/map_localization_run.hpp"
+
+#include <string>
+
+namespace brickyard::mapping {
+
+struct LocalizerSettings : MapLocalizationRunParams {
+  std::string map_file;
+};
+
+inline ParamBinding<LocalizerSettings> localizer_bindings() {
+  using S = LocalizerSettings;
+  using M = MapLocalizerParams;
+  ParamBinding<S> b;
+  b.bind_required("map_file", &S::map_file)
+      .doc("the prior map of the track: a PCD file (x y z float, binary or ascii) as mapping.scan_mapper writes it");
+  b.bind("coarse_voxel", &S::localizer, &M::coarse_voxel).in_unit("m").range(0.05, 10)
+      .doc("the map registered on first, from the estimate: reaches far");
+  b.bind("fine_voxel", &S::localizer, &M::fine_voxel).in_unit("m").range(0.02, 10).doc("then on this one, accurate near the answer");
+  b.bind("max_range", &S::localizer, &M::max_range).in_unit("m").range(1, 1000).doc("points farther from the car are left out");
+  b.bind("max_correction", &S::localizer, &M::max_correction).in_unit("m").range(0, 100)
+      .doc("a pose farther from the estimate is not taken");
+  b.bind("max_turn", &S::localizer, &M::max_turn).in_unit("rad").range(0, 3.14).doc("nor one turned more");
+  b.bind("min_support", &S::localizer, &M::min_support).range(0, 1e6)
+      .doc("a direction with less of the frame's surface facing it (points' worth) is one the map cannot tell");
+  b.bind("unseen_sigma", &S::localizer, &M::unseen_sigma).in_unit("m").range(0.1, 1e4)
+      .doc("the spread reported along a direction the map cannot tell (the estimate's coordinate kept there)");
+  b.bind("points_worth", &S::localizer, &M::points_worth).range(1, 1e6)
+      .doc("how many independent points a frame counts as: the pose's covariance");
+  b.bind("max_estimate_age", &S::max_estimate_age).in_unit("s").range(0, 60)
+      .doc("a frame with no estimate within this of its stamp is left out");
+  b.not_above("fine_voxel", "coarse_voxel");
+  return b;
+}
+
+}  // namespace brickyard::mapping

@@ -1,0 +1,141 @@
+// Localization on a prior map (map_localizer.hpp, map_localization_run.hpp): the map as the
+// scan mapper writes it, frames located on it from a guess that is off, what the map cannot tell
+// said in the covariance, and frames it cannot locate counted by why.
+#include "mapping/common/map_localization_run.hpp"
+#include "mapping/common/map_localizer.hpp"
+#include "mapping/common/pcd.hpp"
+#include "mapping/common/scan_mapper.hpp"
+#include "scenes.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <string>
+
+using namespace brickyard::mapping;
+using namespace brickyard::mapping::scenes;
+
+namespace {
+
+// A scene's map as the mapping drive leaves it: stacked by the scan mapper, written as a PCD
+// file (its fine voxels' means) and read back.
+Points map_file_of(const Points& scene, const std::string& name) {
+  ScanMapper mapper;
+  mapper.add(scene, Eigen::Isometry3d::Identity(), Eigen::Matrix<double, 6, 6>::Zero());
+  const std::string path = ::testing::TempDir() + name + ".pcd";
+  write_pcd(path, mapper.fine_map());
+  Points map = read_pcd(path);
+  std::remove(path.c_str());
+  return map;
+}
+
+Eigen::Matrix3d planar_of(const Located& r) { return planar_covariance(r.covariance); }
+
+}  // namespace
+
+// In the yard (walls and boxes tell every direction) a frame is located from a guess 0.7 m and
+// 2 degrees off to within centimetres, and its covariance is the registration's: small.
+TEST(MapLocalizer, LocatesAFrameFromAGuessThatIsOff) {
+  const MapLocalizer loc(map_file_of(yard(0.15, 0.01, 1), "yard"));
+  const Eigen::Isometry3d truth = planar(2.0, 0.5, 3.0);
+  const Points frame = moved(yard(0.2, 0.01, 2), truth.inverse());
+  const Located r = loc.locate(frame, planar(2.6, 0.1, 1.0));
+  ASSERT_TRUE(r.registered) << failure_name(r.failure);
+  EXPECT_EQ(r.failure, LocateFailure::none);
+  EXPECT_NEAR(r.pose.translation().x(), 2.0, 0.03);
+  EXPECT_NEAR(r.pose.translation().y(), 0.5, 0.03);
+  EXPECT_NEAR(yaw_of(r.pose) * 180 / M_PI, 3.0, 0.1);
+  EXPECT_EQ(r.unseen, 0);
+  EXPECT_NEAR(r.correction, std::hypot(0.6, 0.4), 0.05);
+  const Eigen::Matrix3d c = planar_of(r);
+  EXPECT_LT(c(0, 0), 0.05 * 0.05);
+  EXPECT_LT(c(1, 1), 0.05 * 0.05);
+}
+
+// A guess 3.4 m too high (the height carried from the last frame where the mapping drive closed
+// its loop, its map's height drifted): the height is found on the map first, then the frame is
+// located as from the right height. Without the search it matches nothing.
+TEST(MapLocalizer, FindsTheFramesHeightOnTheMapFirst) {
+  const Points map = map_file_of(yard(0.15, 0.01, 1), "yard_height");
+  const Points frame = moved(yard(0.2, 0.01, 2), planar(2.0, 0.5, 3.0).inverse());
+  Eigen::Isometry3d guess = planar(2.3, 0.3, 2.0);
+  guess.translation().z() = 3.4;
+  const Located r = MapLocalizer(map).locate(frame, guess);
+  ASSERT_TRUE(r.registered) << failure_name(r.failure);
+  EXPECT_NEAR(r.pose.translation().x(), 2.0, 0.03);
+  EXPECT_NEAR(r.pose.translation().z(), 0.0, 0.05);
+  MapLocalizerParams fixed;
+  fixed.height_search = 0;
+  EXPECT_FALSE(MapLocalizer(map, fixed).locate(frame, guess).registered);
+}
+
+// Between two smooth walls the map tells where the car is across and how it is turned, not how
+// far along: there the pose is the guess's and the covariance says unseen_sigma, never a
+// confident coordinate the frame does not support.
+TEST(MapLocalizer, SaysWhatTheMapCannotTellAlongACorridor) {
+  const MapLocalizer loc(map_file_of(corridor(0.15, 1), "corridor"));
+  const Points frame = moved(corridor(0.2, 2), planar(2.0, 0.0, 0.0).inverse());
+  const Located r = loc.locate(frame, planar(2.4, 0.3, 1.0));
+  ASSERT_TRUE(r.registered) << failure_name(r.failure);
+  EXPECT_GE(r.unseen, 1);
+  EXPECT_NEAR(r.pose.translation().y(), 0.0, 0.03);
+  EXPECT_NEAR(yaw_of(r.pose) * 180 / M_PI, 0.0, 0.1);
+  EXPECT_NEAR(r.pose.translation().x(), 2.4, 0.01) << "along the corridor: the guess's";
+  const Eigen::Matrix3d c = planar_of(r);
+  const double unseen = loc.params().unseen_sigma * loc.params().unseen_sigma;
+  EXPECT_GT(c(0, 0), 0.9 * unseen);
+  EXPECT_LT(c(1, 1), 0.05 * 0.05);
+}
+
+// A map of somewhere else (the yard 500 m away: another track's) locates nothing; an empty frame
+// neither. Each is counted by why, and the pose is the guess.
+TEST(MapLocalizer, AMapOfElsewhereOrAnEmptyFrameLocatesNothing) {
+  const MapLocalizer loc(moved(map_file_of(yard(0.15, 0.01, 1), "far"), planar(500, 0, 0)));
+  const Points frame = yard(0.2, 0.01, 2);
+  const Located r = loc.locate(frame, Eigen::Isometry3d::Identity());
+  EXPECT_FALSE(r.registered);
+  EXPECT_TRUE(r.failure == LocateFailure::too_few_matched || r.failure == LocateFailure::not_converged) << failure_name(r.failure);
+  EXPECT_TRUE(r.pose.isApprox(Eigen::Isometry3d::Identity()));
+  const Located none = loc.locate({}, Eigen::Isometry3d::Identity());
+  EXPECT_EQ(none.failure, LocateFailure::too_few_points);
+}
+
+// A guess farther off than max_correction is not corrected (a frame that "locates" 5 m away is
+// more likely a wrong match than a right one): implausible, the guess kept.
+TEST(MapLocalizer, ACorrectionBeyondTheBoundIsRefused) {
+  MapLocalizerParams p;
+  p.max_correction = 0.3;
+  const MapLocalizer loc(map_file_of(yard(0.15, 0.01, 1), "yard_bound"), p);
+  const Points frame = moved(yard(0.2, 0.01, 2), planar(2.0, 0.5, 0).inverse());
+  const Located r = loc.locate(frame, planar(2.6, 0.1, 0));
+  EXPECT_FALSE(r.registered);
+  EXPECT_EQ(r.failure, LocateFailure::implausible);
+}
+
+// Over a drive: each frame from the estimate at its stamp; without one near it, left out and
+// counted; the height, roll and pitch found carried to the next frame's guess; the summary.
+TEST(MapLocalizationRun, FramesFromTheEstimateAtTheirStampAndTheSummary) {
+  MapLocalizationRun run(map_file_of(yard(0.15, 0.01, 1), "run"), {});
+  const Points frame = moved(yard(0.2, 0.01, 2), planar(2.0, 0.5, 3.0).inverse());
+  EXPECT_FALSE(run.frame(1'000'000'000, frame)) << "no estimate yet";
+  EstimateExtras extras;
+  extras.covariance = {0.25, 0, 0, 0, 0.25, 0, 0, 0, 0.01};
+  run.estimate(1'000'000'000, {2.3, 0.2, 1.0 * M_PI / 180}, extras);
+  run.estimate(1'100'000'000, {2.5, 0.4, 1.0 * M_PI / 180}, extras);
+  const auto f = run.frame(1'050'000'000, frame);
+  ASSERT_TRUE(f);
+  EXPECT_EQ(f->update_case, 2);
+  EXPECT_NEAR(f->x, 2.0, 0.03);
+  EXPECT_NEAR(f->y, 0.5, 0.03);
+  EXPECT_LT(f->covariance[0], 0.25 / 10) << "the map's, far below the estimate's";
+  EXPECT_FALSE(run.frame(2'000'000'000, frame)) << "the estimate 0.9 s away";
+  std::map<std::string, double> m;
+  for (const auto& [name, value] : run.metrics()) m[name] = value;
+  EXPECT_EQ(m["frames"], 1);
+  EXPECT_EQ(m["located"], 1);
+  EXPECT_EQ(m["frames_without_estimate"], 2);
+  EXPECT_GT(m["map_points"], 1000);
+  EXPECT_NEAR(m["correction_max_m"], std::hypot(0.4, 0.2), 0.05);
+}
