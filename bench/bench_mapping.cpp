@@ -6,9 +6,11 @@
 // poses. The guess: the true pose moved 0.3 m and 0.5 deg. Per scan: ours = the scan's
 // surfaces + the registration (the map's voxels built once, not timed); PCL = align()
 // (which works out both clouds' covariances). Prints per-scan medians, the ratios, and the error
-// of each result against the truth (<= 10 ms per scan, >= 10x PCL's GICP).
+// of each result against the truth (<= 10 ms per scan, >= 10x PCL's GICP). The map localizer's
+// whole step on each frame (mapping.map_localizer: <= 10 ms a frame, issue 41) beside them.
 // usage: bench_mapping [--scans N]
 #include "mapping/common/covariances.hpp"
+#include "mapping/common/map_localizer.hpp"
 #include "perception/common/ground_filter.hpp"
 #include "mapping/common/scan_mapper.hpp"
 #include "mapping/common/vgicp.hpp"
@@ -68,9 +70,9 @@ int main(int argc, char** argv) {
   o.pylons = {{0, 0, 0.15, 0.7}};
   const scenes::Ims ims(std::string(BRICKYARD_SOURCE_DIR) + "/data", o);
   constexpr float kLeaf = 0.25f;
-  Row ours, d1, pcl, ndt, thin, pcl_thin;
+  Row ours, d1, pcl, ndt, thin, pcl_thin, located;
   std::vector<double> cov_ms;
-  std::size_t points = 0, thin_points = 0;
+  std::size_t points = 0, thin_points = 0, raw_points = 0;
   for (int k = 0; k < scans; ++k) {
     // Half the scans on the straight, half in the banked turn.
     const double s = (k % 2 ? ims.turn_s() : ims.straight_s()) + 40.0 * (k / 2);
@@ -81,6 +83,7 @@ int main(int argc, char** argv) {
       map_pts.insert(map_pts.end(), w.begin(), w.end());
     }
     const scenes::Frame f = ims.frame(s, 0.5, 200 + k);
+    raw_points += f.points.size();
     const perception::Points scan = perception::voxel_filter(f.points, kLeaf);
     points += scan.size();
     Eigen::Isometry3d guess = f.world_from_body;
@@ -129,6 +132,18 @@ int main(int argc, char** argv) {
     thin.add(median(tt), rt.transform.matrix(), truth);
     const auto theirs_thin = baseline::gicp(thin_scan, map_pts, guess.matrix());
     pcl_thin.add(theirs_thin.ms, theirs_thin.transform, truth);
+    // The map localizer on the whole frame as the stack hands it over: thinned, its height found
+    // on the map, its surfaces, the registration, the directions it cannot tell (the map's
+    // voxels built once, not timed).
+    const mapping::MapLocalizer localizer(map_pts);
+    mapping::Located at;
+    std::vector<double> tl;
+    for (int run = 0; run < 5; ++run) {
+      const auto t0 = std::chrono::steady_clock::now();
+      at = localizer.locate(f.points, guess);
+      tl.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    }
+    located.add(median(tl), at.pose.matrix(), truth);
     const auto n = baseline::ndt(scan, map_pts, guess.matrix());
     ndt.add(n.ms, n.transform, truth);
     std::printf("scan %d (s %.0f, %zu points, map %zu): ours %.1f ms, %.3f m %.3f deg (DIRECT1 %d iterations) | PCL GICP %.1f ms, %.3f m %.3f deg\n", k, s,
@@ -150,5 +165,9 @@ int main(int argc, char** argv) {
   thin.print("ours: DIRECT1, as the mapper");
   pcl_thin.print("baseline: PCL GICP");
   std::printf("PCL GICP / ours: %.1f\n", median(pcl_thin.ms) / median(thin.ms));
+  std::printf("\nlocalization on a prior map (mapping.map_localizer), the whole frame (%zu points a scan on average)\n",
+              raw_points / scans);
+  located.print("ours: MapLocalizer::locate");
+  std::printf("PCL GICP (thinned scan) / ours: %.1f\n", median(pcl_thin.ms) / median(located.ms));
   return 0;
 }

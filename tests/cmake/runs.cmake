@@ -98,13 +98,15 @@ add_test(NAME graph.configs_ims_race_seed3
   COMMAND ${NETNS} ${CMAKE_CURRENT_SOURCE_DIR}/cli/main_job.sh ${BY} ${PROJECT_SOURCE_DIR}/configs/ims_race.json ${d} ${RUNS}/ims_race_seed3 --seed 3)
 endif()
 file(GLOB config_files CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/configs/*.json)
+# A config with an argument it cannot run without is validated with one.
+set(validate_args_race_on_map --arg map_file=${CMAKE_CURRENT_SOURCE_DIR}/graphs/three_point_map.pcd)
 foreach(c ${config_files})
   get_filename_component(name ${c} NAME_WE)
   by_uses_sim(${c} sim)
   if(sim AND NOT BRICKYARD_SIM)
     continue()
   endif()
-  add_test(NAME cli.validate_config_${name} COMMAND ${EXPECT} 0 "valid" -- ${BY} validate ${c})
+  add_test(NAME cli.validate_config_${name} COMMAND ${EXPECT} 0 "valid" -- ${BY} validate ${c} ${validate_args_${name}})
 endforeach()
 
 if(BRICKYARD_SIM)
