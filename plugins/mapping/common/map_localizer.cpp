@@ -46,7 +46,7 @@ double MapLocalizer::height_on_map(const Points& near, const Eigen::Isometry3d& 
   const double step = 0.5 * coarse_.voxel_size(), z0 = guess.translation().z();
   const int reach = static_cast<int>(p_.height_search / step);
   Points placed;
-  for (std::size_t i = 0; i < near.size(); i += 4) placed.push_back((guess * near[i].cast<double>()).cast<float>());
+  for (std::size_t i = 0; i < near.size(); i += 8) placed.push_back((guess * near[i].cast<double>()).cast<float>());
   double best_z = z0;
   std::size_t best = 0;
   for (int k = 0; k <= 2 * reach; ++k) {  // 0, +1, -1, +2, -2, ...: the nearest first

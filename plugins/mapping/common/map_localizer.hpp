@@ -32,9 +32,9 @@ struct MapLocalizerParams {
   // registration would wander there by aliasing) and weighs nothing where the frame tells.
   // The frame's height is searched on the coarse map within this of the guess's first: a map's
   // height drifts over a mapping drive (its frames join on the ground's registration, with no
-  // height from GNSS: 3.4 m over a lap of Spielberg), so the height carried from the last frame
-  // is metres off where the drive closed its loop. 0: the guess's height.
-  double height_search = 6.0;     // m
+  // height from GNSS: 3.4 m over a lap of Spielberg, 10 m over one of Monza), so the height
+  // carried from the last frame is metres off where the drive closed its loop. 0: the guess's.
+  double height_search = 20.0;    // m
   double prior_sigma = 1.0;       // m
   double prior_sigma_turn = 0.1;  // rad
   CovarianceParams covariances;
@@ -70,7 +70,7 @@ class MapLocalizer {
   Located locate(const Points& frame, Eigen::Isometry3d guess) const;
 
  private:
-  // The height at which most of the frame's points (every 4th) fall in the coarse map's voxels,
+  // The height at which most of the frame's points (every 8th) fall in the coarse map's voxels,
   // searched in half-voxel steps within height_search of the guess's (ties: the nearest).
   double height_on_map(const Points& near, const Eigen::Isometry3d& guess) const;
   // The weak prior, and a hold along the `unseen` directions (a projector).
