@@ -45,7 +45,7 @@ class MapLocalizationRun {
   math::EstimateHistory<EstimateExtras> estimates_{256};
   double roll_ = 0, pitch_ = 0, z_ = 0;  // the last located frame's
   std::uint64_t frames_ = 0, located_ = 0, unseen_frames_ = 0, no_estimate_ = 0, malformed_ = 0;
-  std::uint64_t failures_[6] = {0, 0, 0, 0, 0, 0};  // per LocateFailure
+  std::uint64_t failures_[static_cast<int>(LocateFailure::singular) + 1] = {};  // per LocateFailure
   double correction_sum_ = 0, correction_max_ = 0;
 };
 

@@ -42,7 +42,7 @@ struct MapLocalizerParams {
 };
 
 // Why a frame was not located.
-enum class LocateFailure { none, too_few_points, not_converged, too_few_matched, implausible, singular };
+enum class LocateFailure { none, too_few_points, not_converged, too_few_matched, implausible, singular };  // singular last
 const char* failure_name(LocateFailure f);
 
 struct Located {
