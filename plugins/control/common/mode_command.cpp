@@ -41,8 +41,10 @@ ModeCommand command_for(Mode mode, double t, const std::optional<ControllerComma
       break;
     case Mode::safe_stop:
       // Full brake; keep following the wall's line while it is seen (a command of the last
-      // wall_timeout_s), else a straight wheel.
-      c.steer = wall && t - wall->stamp <= p.wall_timeout_s ? wall->command.steer : 0.0;
+      // wall_timeout_s), else the path tracker's wheel when stop_on_path and fresh, else straight.
+      if (wall && t - wall->stamp <= p.wall_timeout_s) c.steer = wall->command.steer;
+      else if (p.stop_on_path && path && t - path->stamp <= p.command_timeout_s) c.steer = path->command.steer;
+      else c.steer = 0.0;
       c.brake = 1.0;
       break;
   }

@@ -14,9 +14,9 @@ const char* mode_name(Mode m) {
 }
 
 void SystemManager::status(double t, LocStatus s) {
-  // NORMAL holds from its first report after anything else, a silence included.
+  // A status good enough to resume at holds from its first report after a worse one, or a silence.
   const bool silent = have_status_ && t - status_t_ > p_.status_timeout_s;
-  if (s == LocStatus::normal && (!have_status_ || status_ != LocStatus::normal || silent)) normal_since_ = t;
+  if (s <= p_.resume_at && (!have_status_ || status_ > p_.resume_at || silent)) normal_since_ = t;
   status_ = s;
   status_t_ = t;
   have_status_ = true;
@@ -48,7 +48,9 @@ Transition SystemManager::update(double t) {
   // A controller is silent once its commands have come and then stopped for controller_timeout_s.
   auto silent = [&](double last) { return last > -1e299 && t - last > p_.controller_timeout_s; };
   const bool path_silent = silent(path_cmd_t_), wall_silent = silent(wall_cmd_t_);
-  const bool recovered = !stale && status_ == LocStatus::normal && t - normal_since_ >= p_.recover_after_s && !path_silent;
+  const bool recovered = !stale && status_ <= p_.resume_at && t - normal_since_ >= p_.recover_after_s && !path_silent;
+  const char* back = status_ == LocStatus::normal ? "localization NORMAL again: back to the path"
+                                                  : "localization corrected again (WARNING): back to the path";
   switch (mode_) {
     case Mode::path:
       if (path_silent)
@@ -59,12 +61,12 @@ Transition SystemManager::update(double t) {
                        : go(Mode::safe_stop, stale ? "no localization status and no valid wall" : "localization EMERGENCY and no valid wall");
       break;
     case Mode::wall:
-      if (recovered) return go(Mode::path, "localization NORMAL again: back to the path");
+      if (recovered) return go(Mode::path, back);
       if (!wall_ok) return go(Mode::safe_stop, "wall estimate lost while following it");
       if (wall_silent) return go(Mode::safe_stop, "the wall follower's commands stopped");
       break;
     case Mode::safe_stop:
-      if (recovered) return go(Mode::path, "localization NORMAL again: back to the path");
+      if (recovered) return go(Mode::path, back);
       if (p_.resume_on_wall && wall_ok && t - wall_valid_since_ >= p_.wall_resume_s && !wall_silent && wall_cmd_t_ > -1e299)
         return go(Mode::wall, "a valid wall again while localization is not back: following it");
       break;

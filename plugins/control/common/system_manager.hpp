@@ -4,7 +4,8 @@
 //   PATH (path tracker) ── localization EMERGENCY, wall valid ──► WALL (wall follower)
 //   PATH ── EMERGENCY, no valid wall ──► SAFE_STOP
 //   WALL ── no valid wall for wall_timeout_s ──► SAFE_STOP
-//   WALL, SAFE_STOP ── localization NORMAL held for recover_after_s ──► PATH
+//   WALL, SAFE_STOP ── localization NORMAL (or, resume_at WARNING: WARNING or better) held for
+//                      recover_after_s ──► PATH
 //   SAFE_STOP ── a valid wall held for wall_resume_s, the wall follower alive ──► WALL
 //   PATH ── the path tracker's commands stale (controller_timeout_s) ──► WALL, or SAFE_STOP with no valid wall
 //   WALL ── the wall follower's commands stale ──► SAFE_STOP
@@ -24,6 +25,15 @@ const char* mode_name(Mode m);
 
 struct ManagerParams {
   double recover_after_s = 2.0;   // NORMAL this long before the path tracker drives again
+  // The status at which the path tracker is handed the car back. NORMAL (the paper). WARNING: an
+  // estimator whose WARNING means "corrected by some source" (one receiver, or the prior map's
+  // poses: estimation's scan_pose_trusted_s) hands the car back once that source corrects it
+  // again, though GNSS is still out (docs/map-localization.md).
+  LocStatus resume_at = LocStatus::normal;
+  // SAFE_STOP's wheel when no wall is seen: false, straight (the paper says nothing); true, the
+  // path tracker's while its commands are fresh (it steers on dead reckoning, which holds the
+  // racing line for the seconds a stop from speed takes; a straight wheel in a turn meets the wall).
+  bool stop_on_path = false;
   // While the wall follower steers: false, its pedals (the paper); true, whichever of its and the
   // path tracker's (on dead reckoning) pedals slow the car more — the paper's wall follower sees
   // 20 m of wall, the path tracker's speed plan the hairpin 200 m ahead.

@@ -35,6 +35,12 @@ ParamBinding<Settings> bindings() {
       .doc("the node's step deadline, wall time (0: none)");
   b.bind("recover_after_s", &Settings::manager, &M::recover_after_s).in_unit("s").range(0, 3600)
       .doc("NORMAL this long before the path tracker drives again");
+  b.bind_choice("resume_at", {{"NORMAL", LocStatus::normal}, {"WARNING", LocStatus::warning}}, &Settings::manager, &M::resume_at)
+      .doc("the localization status held recover_after_s that hands the path tracker the car back: NORMAL (the paper), or "
+           "WARNING (an estimator corrected by one receiver or the prior map again, docs/map-localization.md)");
+  b.bind_choice("stop_steering", {{"wall_or_straight", false}, {"wall_or_path", true}}, &Settings::manager, &M::stop_on_path)
+      .doc("SAFE_STOP's wheel: the wall follower's while a wall is seen, else straight, or else the path tracker's (on dead "
+           "reckoning) while its commands are fresh");
   b.bind("wall_timeout_s", &Settings::manager, &M::wall_timeout_s).in_unit("s").range(0, 3600).doc("no valid wall this long: safe stop");
   b.bind("resume_on_wall", &Settings::manager, &M::resume_on_wall)
       .doc("a car stopped for want of a wall follows it again once it has been valid wall_resume_s (false: it stands until localization is back)");
@@ -45,7 +51,7 @@ ParamBinding<Settings> bindings() {
   b.bind_choice("wall_pedals", {{"wall_follower", false}, {"cautious", true}}, &Settings::manager, &M::cautious_pedals)
       .doc("while the wall follower steers: its pedals (the paper), or cautious: the pedals of whichever of it and the path tracker (on dead reckoning) aims lower");
   b.bind("command_timeout_s", &Settings::manager, &M::command_timeout_s).in_unit("s").range(0, 3600)
-      .doc("wall_pedals cautious: a path command older than this is not used");
+      .doc("wall_pedals cautious, stop_steering wall_or_path: a path command older than this is not used");
   b.bind("controller_timeout_s", &Settings::manager, &M::controller_timeout_s).in_unit("s").range(0.01, 3600)
       .doc("a controller whose commands have come and then not for this long is silent: not forwarded (to the wall follower, or SAFE_STOP)");
   return b;

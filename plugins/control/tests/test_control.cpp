@@ -339,6 +339,44 @@ TEST(SystemManager, EmergencyWallRecoveryAndSafeStop) {
   EXPECT_EQ(tick(LocStatus::normal, true).to, Mode::path);
 }
 
+// resume_at WARNING: after an EMERGENCY, a WARNING held recover_after_s (the estimator corrected by
+// the prior map again, GNSS still out) hands the path tracker the car back, from the wall follower
+// and from a safe stop alike; with the paper's NORMAL it does not.
+TEST(SystemManager, ResumeAtWarningHandsThePathBackOnTheMap) {
+  for (const LocStatus resume : {LocStatus::normal, LocStatus::warning}) {
+    for (const bool wall_seen : {true, false}) {
+      ManagerParams p;
+      p.resume_at = resume;
+      SystemManager m(p);
+      double t = 0;
+      auto tick = [&](LocStatus s) {
+        t += 0.125;
+        m.status(t, s);
+        m.wall(t, wall_seen);
+        m.path_command(t);
+        return m.update(t);
+      };
+      for (int i = 0; i < 4; ++i) tick(LocStatus::normal);
+      tick(LocStatus::emergency);
+      while (t < 3) tick(LocStatus::emergency);
+      ASSERT_EQ(m.mode(), wall_seen ? Mode::wall : Mode::safe_stop);
+      for (int i = 0; i < 16; ++i) EXPECT_FALSE(tick(LocStatus::warning).happened) << i;
+      const Transition tr = tick(LocStatus::warning);
+      if (resume == LocStatus::warning) {
+        ASSERT_TRUE(tr.happened) << wall_seen;
+        EXPECT_EQ(tr.to, Mode::path);
+        EXPECT_NE(tr.reason.find("WARNING"), std::string::npos) << tr.reason;
+        EXPECT_FALSE(tick(LocStatus::warning).happened) << "WARNING keeps the path";
+        EXPECT_EQ(tick(LocStatus::emergency).to, wall_seen ? Mode::wall : Mode::safe_stop);
+      } else {
+        EXPECT_FALSE(tr.happened);
+        for (int i = 0; i < 16; ++i) tick(LocStatus::normal);
+        EXPECT_EQ(tick(LocStatus::normal).to, Mode::path) << "NORMAL held 2 s";
+      }
+    }
+  }
+}
+
 // Stopped for want of a wall, with localization still in EMERGENCY: the car follows the wall
 // again once it has been valid for wall_resume_s (1 s), report after report; an invalid report
 // starts the second again; not with resume_on_wall off, nor with a wall follower gone silent.
@@ -535,6 +573,22 @@ TEST(ModeCommand, ASafeStopBrakesAndSteersAlongAWallStillSeen) {
   EXPECT_EQ(c.command.target_speed, 0.0);
   EXPECT_EQ(command_for(Mode::safe_stop, 1.4, path, wall, p).command.steer, 0.0) << "the wall follower's command too old";
   EXPECT_EQ(command_for(Mode::safe_stop, 1.0, path, std::nullopt, p).command.steer, 0.0);
+}
+
+// stop_on_path: with no wall seen, the safe stop steers the path tracker's wheel (on dead
+// reckoning) while its command is fresh; a wall still seen comes first.
+TEST(ModeCommand, ASafeStopOnThePathSteersThePathTrackersWheelWhenNoWallIsSeen) {
+  ManagerParams p;
+  p.stop_on_path = true;
+  const ControllerCommand path{1.0, {0.1, 0.6, 0.0, 30.0}}, wall{1.0, {-0.05, 0.4, 0.0, 25.0}};
+  EXPECT_EQ(command_for(Mode::safe_stop, 1.25, path, wall, p).command.steer, -0.05) << "the wall first";
+  const ModeCommand c = command_for(Mode::safe_stop, 1.05, path, std::nullopt, p);
+  EXPECT_EQ(c.command.steer, 0.1);
+  EXPECT_EQ(c.command.throttle, 0.0);
+  EXPECT_EQ(c.command.brake, 1.0);
+  EXPECT_EQ(command_for(Mode::safe_stop, 1.4, path, wall, p).command.steer, 0.0) << "both too old (command_timeout_s 0.1 s)";
+  p.stop_on_path = false;
+  EXPECT_EQ(command_for(Mode::safe_stop, 1.05, path, std::nullopt, p).command.steer, 0.0) << "the paper's: straight";
 }
 
 TEST(ModeCommand, ModeNamesAndNumbers) {

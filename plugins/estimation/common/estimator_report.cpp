@@ -37,6 +37,17 @@ std::vector<std::pair<std::string, double>> summary_metrics(const Localizer& loc
     m.emplace_back("scan_updates", static_cast<double>(loc.scan_updates()));
     m.emplace_back("scan_refused", static_cast<double>(loc.scan_refused()));
   }
+  if (scan_pose_wired && loc.params().witness.enabled) {
+    const MapWitness& w = loc.witness();
+    m.emplace_back("map_verified", w.ever_verified() ? 1.0 : 0.0);
+    m.emplace_back("map_mismatch", w.mismatch() ? 1.0 : 0.0);
+    m.emplace_back("map_poses_unverified", static_cast<double>(loc.scan_unverified()));
+    m.emplace_back("map_disagreements", static_cast<double>(w.disagreements()));
+    m.emplace_back("map_jumps", static_cast<double>(w.jumps()));
+    m.emplace_back("fixes_refused_by_map", static_cast<double>(w.refusals()));
+    m.emplace_back("map_refusal_stretches", static_cast<double>(w.refusal_stretches()));
+    m.emplace_back("map_first_refusal_s", w.first_refusal_s());
+  }
   if (policy == Policy::resilient) {
     m.emplace_back("epsilon_m", selection.epsilon);
     m.emplace_back("delta_m", selection.delta);

@@ -31,8 +31,8 @@ class ModeCadence {
 };
 
 // The summary's metrics of an estimator, in the order they are reported: the epochs and fixes,
-// the time in WARNING and EMERGENCY, re-acquisitions (resilient), the scan poses (when wired)
-// and the thresholds (resilient, for the report's delta figure).
+// the time in WARNING and EMERGENCY, re-acquisitions (resilient), the scan poses (when wired),
+// the map witness (when enabled) and the thresholds (resilient, for the report's delta figure).
 std::vector<std::pair<std::string, double>> summary_metrics(const Localizer& loc, const ModeCadence& modes, Policy policy,
                                                             bool scan_pose_wired, const PolicyParams& selection);
 

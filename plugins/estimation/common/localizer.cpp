@@ -9,7 +9,7 @@ namespace brickyard::estimation {
 
 Localizer::Localizer(LocalizerParams p)
     : p_(p), filter_(p.noise), manager_(p.manager), last_delta_(std::max(p.manager.receivers, 1), -1.0),
-      reacquisition_(p.reacquire) {}
+      reacquisition_(p.reacquire), witness_(p.witness) {}
 
 void Localizer::advance(double t) {
   if (t_ < 0) t_ = t;
@@ -59,7 +59,7 @@ Eigen::Vector2d Localizer::Motion::carry(const Eigen::Vector2d& p, const Eigen::
 }
 
 bool Localizer::scan_pose(double stamp, const Eigen::Vector2d& xy, const Eigen::Matrix2d& cov) {
-  if (!p_.scan_pose || !filter_.initialized() || t_ - last_accepted_t_ < p_.scan_after_s) return false;
+  if (!p_.scan_pose || !filter_.initialized()) return false;
   if (!xy.allFinite() || !cov.allFinite() || !std::isfinite(stamp)) return false;
   // The pose carried by the motion since: the offset from the filter's pose then, turned by the
   // turn since and put at the filter's pose now.
@@ -67,11 +67,18 @@ bool Localizer::scan_pose(double stamp, const Eigen::Vector2d& xy, const Eigen::
   if (!m) return false;
   const Eigen::Rotation2Dd r(m->turn);
   const Eigen::Vector2d z = m->carry(xy, filter_.position());
-  const double floor = p_.scan_min_sigma * p_.scan_min_sigma;
-  Eigen::Matrix2d R = r.toRotationMatrix() * cov * r.toRotationMatrix().transpose();
-  R(0, 0) = std::max(R(0, 0), floor);
-  R(1, 1) = std::max(R(1, 1), floor);
+  const Eigen::Matrix2d turned = r.toRotationMatrix() * cov * r.toRotationMatrix().transpose();
+  const Eigen::Matrix2d R = with_floor(turned, p_.scan_min_sigma);
   const Eigen::Vector2d e = z - filter_.position();
+  if (p_.witness.enabled) {
+    const Eigen::Matrix2d W = witness_.floored(turned);
+    witness_.observe({t_, e, W, filter_.innovation_cov(W)}, gnss_accepted());
+  }
+  if (gnss_accepted()) return false;
+  if (p_.witness.enabled && !witness_.verified()) {
+    ++scan_unverified_;
+    return false;
+  }
   const Eigen::Matrix2d S = filter_.innovation_cov(R);
   if (!(e.dot(S.ldlt().solve(e)) <= p_.scan_gate)) {
     ++scan_refused_;
@@ -81,6 +88,10 @@ bool Localizer::scan_pose(double stamp, const Eigen::Vector2d& xy, const Eigen::
   manager_.on_witness(t_);
   ++scan_updates_;
   return true;
+}
+
+void Localizer::scan_unlocated() {
+  if (p_.witness.enabled && filter_.initialized()) witness_.unlocated(t_, gnss_accepted());
 }
 
 void Localizer::imu(double t, double gyro_z, double accel_y) {
@@ -142,8 +153,11 @@ void Localizer::fixes(double t, const std::vector<Fix>& epoch_in) {
     last_accepted_t_ = t;
     return;
   }
-  EpochResult r = apply_fixes(filter_, epoch, p_.policy, p_.selection);
-  if (p_.policy == Policy::resilient) reacquire(t, epoch, r);
+  const std::vector<bool> refused = refused_by_map(epoch);
+  EpochResult r = apply_judged(epoch, refused);
+  // A standing map says where the car is: fixes it refused are not taken back by reacquisition.
+  if (p_.policy == Policy::resilient && witness_.standing(t_)) reacquisition_.reset();
+  else if (p_.policy == Policy::resilient) reacquire(t, epoch, r);
   ++epochs_;
   ++cases_[static_cast<int>(r.which)];
   last_case_ = r.which;
@@ -155,6 +169,36 @@ void Localizer::fixes(double t, const std::vector<Fix>& epoch_in) {
     rejected_ += !r.accepted[i];
     if (r.accepted[i]) last_accepted_t_ = t;
   }
+}
+
+std::vector<bool> Localizer::refused_by_map(const std::vector<Fix>& epoch) {
+  std::vector<bool> refused(epoch.size(), false);
+  if (!p_.witness.enabled) return refused;
+  for (std::size_t i = 0; i < epoch.size(); ++i) {
+    const Eigen::Vector2d base = filter_.base_from_antenna(epoch[i].antenna, epoch[i].lever);
+    const Eigen::Matrix2d R = filter_.fix_variance(epoch[i].sigma) * Eigen::Matrix2d::Identity();
+    refused[i] = witness_.refuses(t_, base, R, filter_.position());
+  }
+  return refused;
+}
+
+EpochResult Localizer::apply_judged(const std::vector<Fix>& epoch, const std::vector<bool>& refused) {
+  std::vector<Fix> judged;
+  for (std::size_t i = 0; i < epoch.size(); ++i)
+    if (!refused[i]) judged.push_back(epoch[i]);
+  if (judged.size() == epoch.size()) return apply_fixes(filter_, epoch, p_.policy, p_.selection);
+  const EpochResult kept = judged.empty() ? EpochResult{UpdateCase::rejected, {}, {}} : apply_fixes(filter_, judged, p_.policy, p_.selection);
+  EpochResult r{kept.which, {}, {}};
+  for (std::size_t i = 0, k = 0; i < epoch.size(); ++i) {
+    if (refused[i]) {
+      r.delta.push_back((filter_.base_from_antenna(epoch[i].antenna, epoch[i].lever) - filter_.position()).norm());
+      r.accepted.push_back(false);
+    } else {
+      r.delta.push_back(kept.delta[k]);
+      r.accepted.push_back(kept.accepted[k++]);
+    }
+  }
+  return r;
 }
 
 // Every fix rejected: the rule of reacquisition.hpp may say the receivers are right and the

@@ -3,6 +3,7 @@
 // fed in time order with IMU samples, rear-axle speeds and epochs of fixes. The plugin
 // (fusion/plugin.cpp) only turns messages into these calls and the state into messages.
 #include "localization_manager.hpp"
+#include "map_witness.hpp"
 #include "reacquisition.hpp"
 #include "update_selection.hpp"
 
@@ -29,6 +30,10 @@ struct LocalizerParams {
   double scan_after_s = 0.3;                       // s without an accepted fix
   double scan_min_sigma = 0.05;                    // m: floor on the pose's reported spread
   double scan_gate = 13.8;                         // chi-square, 2 dof, 0.999: a pose farther is refused
+  // The scan pose as an independent witness (a prior map's localizer, map_witness.hpp): judged on
+  // every pose, GNSS healthy or not; once verified it refuses fixes that disagree with it, and a
+  // map that never verified is not used.
+  WitnessParams witness;
 };
 
 class Localizer {
@@ -56,11 +61,15 @@ class Localizer {
   // dead reckoning's motion since the stamp, then a position update, when GNSS is degraded (see
   // LocalizerParams::scan_pose). Returns whether it was taken.
   bool scan_pose(double stamp, const Eigen::Vector2d& xy, const Eigen::Matrix2d& cov);
+  // A frame the scan pose's source could not locate (the map witness counts it).
+  void scan_unlocated();
   // The manager's status at t (WARNING while the heading is not known yet).
   Status status(double t);
 
   const PoseFilter& filter() const { return filter_; }
   const LocalizationManager& manager() const { return manager_; }
+  const MapWitness& witness() const { return witness_; }
+  const LocalizerParams& params() const { return p_; }
   // What happened since the last take_epoch_summary(): the last epoch's case and Δ per receiver
   // (-1: no fix), then reset to "predict only".
   std::pair<UpdateCase, std::vector<double>> take_epoch_summary();
@@ -71,6 +80,7 @@ class Localizer {
   std::uint64_t reacquisitions() const { return reacquisitions_; }
   std::uint64_t scan_updates() const { return scan_updates_; }
   std::uint64_t scan_refused() const { return scan_refused_; }
+  std::uint64_t scan_unverified() const { return scan_unverified_; }  // not taken: the map never verified
   std::uint64_t malformed() const { return malformed_; }
   std::uint64_t late() const { return late_; }          // fixes carried to now
   std::uint64_t too_late() const { return too_late_; }  // fixes dropped: older than the history
@@ -88,6 +98,11 @@ class Localizer {
   };
   std::optional<Motion> motion_since(double stamp) const;
   void reacquire(double t, const std::vector<Fix>& epoch, EpochResult& r);
+  // The epoch's fixes that the map witness refuses (all false without a standing map).
+  std::vector<bool> refused_by_map(const std::vector<Fix>& epoch);
+  // apply_fixes on the fixes not refused; the refused ones rejected, at their distance.
+  EpochResult apply_judged(const std::vector<Fix>& epoch, const std::vector<bool>& refused);
+  bool gnss_accepted() const { return t_ - last_accepted_t_ < p_.scan_after_s; }
 
   LocalizerParams p_;
   PoseFilter filter_;
@@ -110,7 +125,8 @@ class Localizer {
   std::vector<Past> past_;
   std::size_t past_next_ = 0;
   double last_accepted_t_ = -1e300;
-  std::uint64_t scan_updates_ = 0, scan_refused_ = 0;
+  std::uint64_t scan_updates_ = 0, scan_refused_ = 0, scan_unverified_ = 0;
+  MapWitness witness_;
 };
 
 }  // namespace brickyard::estimation

@@ -52,6 +52,7 @@ void feed_in_time_order(Localizer& loc, EpochGather* gather, const std::vector<I
 void feed_scan_poses(Localizer& loc, const std::vector<ScanPoseSample>& poses) {
   for (const ScanPoseSample& s : poses)
     if (s.update_case == 2) loc.scan_pose(s.t, s.xy, s.cov);
+    else loc.scan_unlocated();
 }
 
 }  // namespace brickyard::estimation

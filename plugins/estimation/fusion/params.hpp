@@ -48,6 +48,19 @@ template <Policy P> ParamBinding<Settings> bindings() {
   b.bind("scan_pose_trusted_s", &Settings::loc, &L::manager, &M::witness_timeout_s).in_unit("s").range(0, 60)
       .doc("a scan pose taken within this long keeps the status at WARNING (the car on its path) while every receiver is lost: "
            "for an independent witness, the map localizer's (docs/algorithms.md); 0: EMERGENCY as without one");
+  using W = WitnessParams;
+  b.bind("scan_pose_witness", &Settings::loc, &L::witness, &W::enabled)
+      .doc("scan_pose is an independent witness (a prior map's localizer, not the scan mapper): once its poses have agreed with "
+           "accepted fixes for witness_verify_s, fixes that disagree with it are refused (receivers wrong together); a map that "
+           "never verifies is not used (docs/algorithms.md)");
+  b.bind("witness_verify_s", &Settings::loc, &L::witness, &W::verify_s).in_unit("s").range(0, 3600)
+      .doc("the map's poses agree with the filter this long, fixes accepted, before it may refuse a fix");
+  b.bind("witness_sigma_floor", &Settings::loc, &L::witness, &W::sigma_floor).in_unit("m").range(0.01, 100)
+      .doc("floor on the map pose's spread per direction when judging fixes");
+  b.bind("witness_jump_m", &Settings::loc, &L::witness, &W::jump_m).in_unit("m").range(0.01, 1000)
+      .doc("the map's offset from the filter moving this much between two poses: not trusted until it verifies again");
+  b.bind("witness_mismatch_s", &Settings::loc, &L::witness, &W::mismatch_s).in_unit("s").range(0.1, 3600)
+      .doc("frames with GNSS accepted and the map never verified this long: the map is not this track's (reported)");
   b.bind("scan_min_sigma", &Settings::loc, &L::scan_min_sigma).in_unit("m").range(0.001, 100).doc("floor on a scan pose's spread");
   b.bind("epoch_pair_s", &Settings::epoch_pair_s).in_unit("s").range(0, 1)
       .doc("real clock: two receivers' fixes stamped this close are one epoch (each carried from its own stamp)");

@@ -88,6 +88,11 @@ template <Policy P> class Estimator : public Plugin {
       scan.push_back({stamp_s(*s), s->update_case(), {s->x(), s->y()}, (Eigen::Matrix2d() << c[0], c[1], c[3], c[4]).finished()});
     }
     feed_scan_poses(*loc_, scan);
+    if (!mismatch_said_ && loc_->witness().mismatch()) {
+      mismatch_said_ = true;
+      ctx.log(LogLevel::error, "the map does not match the track: never located on it in agreement with GNSS; its poses are "
+                               "not used, the car stays on GNSS (metric map_mismatch)");
+    }
     const Status s = loc_->status(ctx.now_s());
     publish_mode(ctx, s);
     if (loc_->filter().initialized()) publish_estimate(ctx, s);
@@ -138,6 +143,7 @@ template <Policy P> class Estimator : public Plugin {
   PolicyParams selection_;
   ModeCadence modes_;
   std::uint32_t seq_ = 0;
+  bool mismatch_said_ = false;
   Ports io_;
 };
 

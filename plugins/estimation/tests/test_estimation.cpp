@@ -7,9 +7,11 @@
 #include "estimation/common/sample_feed.hpp"
 #include "estimation/common/update_selection.hpp"
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
+#include <functional>
 #include <limits>
 
 #include <cmath>
@@ -705,4 +707,229 @@ TEST(EstimatorReport, TheSummarysMetricsInTheirOrder) {
   const auto m = summary_metrics(loc, modes, Policy::resilient, false, p.selection);
   EXPECT_EQ(m[m.size() - 2].second, p.selection.epsilon);
   EXPECT_EQ(m.back().second, p.selection.delta);
+}
+
+// ---- the prior map as a third witness (map_witness.hpp) ----
+namespace {
+
+// A map pose at t: offset from the filter, its covariance (floored as the localizer does) and the
+// filter's position spread of 0.1 m beside it.
+MapPoseNow map_pose(const MapWitness& w, double t, Eigen::Vector2d offset, Eigen::Matrix2d cov = Eigen::Matrix2d::Identity() * 0.01) {
+  const Eigen::Matrix2d floored = w.floored(cov);
+  return {t, offset, floored, floored + Eigen::Matrix2d::Identity() * 0.01};
+}
+
+}  // namespace
+
+TEST(MapWitness, VerifiedByAgreeingWithAcceptedGnssThenRefusesFixesOffTheMap) {
+  WitnessParams p;
+  p.enabled = true;
+  MapWitness w(p);
+  const Eigen::Vector2d filter(100, 50);
+  const Eigen::Matrix2d rtk = Eigen::Matrix2d::Identity() * 0.02 * 0.02;
+  double t = 0;
+  for (; t < 1.9; t += 0.1) w.observe(map_pose(w, t, {0.1, -0.05}), true);
+  EXPECT_FALSE(w.verified()) << "not yet verify_s of agreement";
+  EXPECT_FALSE(w.refuses(t, filter + Eigen::Vector2d(6, -8), rtk, filter)) << "an unverified map refuses nothing";
+  for (; t < 2.15; t += 0.1) w.observe(map_pose(w, t, {0.1, -0.05}), true);
+  ASSERT_TRUE(w.verified());
+  EXPECT_TRUE(w.standing(t));
+  // Receivers that moved together by (6, -8) m, claiming RTK: refused; one at the map: not.
+  EXPECT_TRUE(w.refuses(t, filter + Eigen::Vector2d(6, -8), rtk, filter));
+  EXPECT_FALSE(w.refuses(t, filter + Eigen::Vector2d(0.2, -0.1), rtk, filter));
+  // The bound: the map's spread floored at 0.25 m per direction, chi-square 13.8: 0.93 m.
+  EXPECT_FALSE(w.refuses(t, filter + Eigen::Vector2d(0.1 + 0.85, -0.05), rtk, filter));
+  EXPECT_TRUE(w.refuses(t, filter + Eigen::Vector2d(0.1 + 1.0, -0.05), rtk, filter));
+  EXPECT_EQ(w.refusals(), 2u);
+  EXPECT_EQ(w.refusal_stretches(), 1u);
+  EXPECT_NEAR(w.first_refusal_s(), t, 1e-12);
+  EXPECT_FALSE(w.standing(t + 0.31)) << "a map pose older than fresh_s witnesses nothing";
+  EXPECT_FALSE(w.refuses(t + 0.31, filter + Eigen::Vector2d(6, -8), rtk, filter));
+}
+
+TEST(MapWitness, RefusesNothingAlongWhatTheMapCannotTell) {
+  WitnessParams p;
+  p.enabled = true;
+  MapWitness w(p);
+  // Between parallel walls along x: the map's x spread is 100 m (map_localizer's unseen_sigma).
+  Eigen::Matrix2d straight;
+  straight << 100.0 * 100.0, 0, 0, 0.01;
+  for (double t = 0; t < 2.5; t += 0.1) w.observe(map_pose(w, t, {0, 0}, straight), true);
+  ASSERT_TRUE(w.verified());
+  const Eigen::Matrix2d rtk = Eigen::Matrix2d::Identity() * 0.02 * 0.02;
+  EXPECT_FALSE(w.refuses(2.5, {8, 0}, rtk, {0, 0})) << "8 m along the straight: the map cannot say";
+  EXPECT_TRUE(w.refuses(2.5, {0, 3}, rtk, {0, 0})) << "3 m across it: it can";
+  // The same straight at 45 degrees: its covariance's diagonal is large both ways, its spread
+  // across near zero. The floor holds across it too (a floor on the diagonal alone would not:
+  // fixes 7 cm off refused on a clean Spielberg lap).
+  const Eigen::Matrix2d turn = Eigen::Rotation2Dd(M_PI / 4).toRotationMatrix();
+  Eigen::Matrix2d diagonal_straight;
+  diagonal_straight << 100.0 * 100.0, 0, 0, 1e-8;
+  diagonal_straight = turn * diagonal_straight * turn.transpose();
+  const Eigen::Matrix2d floored = with_floor(diagonal_straight, 0.25);
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es(floored);
+  EXPECT_NEAR(es.eigenvalues()(0), 0.0625, 1e-9);
+  EXPECT_NEAR(es.eigenvalues()(1), 1e4, 1e-6);
+  MapWitness d(p);
+  for (double t = 0; t < 2.5; t += 0.1) d.observe(map_pose(d, t, {0, 0}, diagonal_straight), true);
+  ASSERT_TRUE(d.verified());
+  EXPECT_FALSE(d.refuses(2.5, {0.05, -0.05}, rtk, {0, 0})) << "7 cm across";
+  EXPECT_TRUE(d.refuses(2.5, {-2, 2}, rtk, {0, 0})) << "2.8 m across";
+  EXPECT_FALSE(d.refuses(2.5, {6, 6}, rtk, {0, 0})) << "8.5 m along";
+}
+
+TEST(MapWitness, AJumpOrAGapOffTheFilterLosesTheTrustUntilVerifiedAgain) {
+  WitnessParams p;
+  p.enabled = true;
+  MapWitness w(p);
+  double t = 0;
+  for (; t < 2.5; t += 0.1) w.observe(map_pose(w, t, {0, 0}), true);
+  ASSERT_TRUE(w.verified());
+  w.observe(map_pose(w, t, {2.5, 0}), true);  // the registration slipped 2.5 m in one frame
+  EXPECT_FALSE(w.verified());
+  EXPECT_EQ(w.jumps(), 1u);
+  EXPECT_FALSE(w.refuses(t, {6, -8}, Eigen::Matrix2d::Identity() * 4e-4, {0, 0}));
+  for (t += 0.1; t < 5.0; t += 0.1) w.observe(map_pose(w, t, {0, 0}), true);
+  ASSERT_TRUE(w.verified()) << "back on the filter for verify_s";
+  // A gap (LiDAR lost 3 s in a GNSS outage): the next pose is judged on the filter's spread.
+  t += 3.0;
+  const Eigen::Matrix2d floored = w.floored(Eigen::Matrix2d::Identity() * 0.01);
+  w.observe({t, {1.5, 0}, floored, floored + Eigen::Matrix2d::Identity() * 1.0}, false);  // the filter drifted, 1 m spread
+  EXPECT_TRUE(w.verified()) << "within the dead-reckoned filter's spread";
+  t += 3.0;
+  w.observe({t, {9.0, 0}, floored, floored + Eigen::Matrix2d::Identity() * 1.0}, false);
+  EXPECT_FALSE(w.verified()) << "9 m off a filter sure to 1 m";
+}
+
+TEST(MapWitness, AMapThatNeverAgreesWithGnssIsAMismatch) {
+  WitnessParams p;
+  p.enabled = true;
+  MapWitness w(p);
+  double t = 0;
+  for (; t < 9.9; t += 0.1) w.observe(map_pose(w, t, {30, 4}), true);  // another track's map: located, 30 m off
+  EXPECT_FALSE(w.mismatch());
+  for (; t < 10.3; t += 0.1) w.unlocated(t, true);  // or not located at all
+  EXPECT_TRUE(w.mismatch());
+  EXPECT_FALSE(w.ever_verified());
+  EXPECT_GT(w.disagreements(), 90u);
+  MapWitness quiet(p);  // GNSS not accepted: nothing to compare with, no verdict
+  for (double s = 0; s < 20; s += 0.1) quiet.unlocated(s, false);
+  EXPECT_FALSE(quiet.mismatch());
+}
+
+namespace {
+
+// A straight drive at 20 m/s on wheels 1 % high, both receivers at 20 Hz (each fix's error
+// `fix_error(t)`), map poses at 10 Hz a sweep late (error `map_error(t)`, none while `map_on(t)`
+// is false); the filter's final error and the localizer.
+struct WitnessDrive {
+  std::function<Eigen::Vector2d(double)> fix_error = [](double) { return Eigen::Vector2d::Zero(); };
+  std::function<bool(double)> gnss_on = [](double) { return true; };
+  std::function<Eigen::Vector2d(double)> map_error = [](double) { return Eigen::Vector2d::Zero(); };
+  std::function<bool(double)> map_on = [](double) { return true; };
+  double seconds = 30, worst_after = 1e9;  // the largest error after this time
+  double worst = 0;
+
+  Localizer run(bool witness) {
+    LocalizerParams p;
+    p.manager.receivers = 2;
+    p.manager.witness_timeout_s = 0.3;
+    p.roll_filter_s = 0;
+    p.witness.enabled = witness;
+    Localizer loc(p);
+    const double v = 20;
+    for (int k = 0; k * 0.01 < seconds; ++k) {
+      const double t = 0.01 * k;
+      loc.speed(v * 1.01);
+      loc.imu(t, 0.0, 0.0);
+      if (k % 5 == 0 && gnss_on(t))
+        loc.fixes(t, {Fix{0, Eigen::Vector2d(v * t, 0) + fix_error(t), p.lever[0], 0.02},
+                      Fix{1, Eigen::Vector2d(v * t, 0) + fix_error(t), p.lever[1], 0.02}});
+      if (k % 10 == 0 && t > 1) {
+        const double stamp = t - 0.1;
+        if (map_on(stamp)) loc.scan_pose(stamp, Eigen::Vector2d(v * stamp, 0) + map_error(stamp), Eigen::Matrix2d::Identity() * 0.01);
+        else loc.scan_unlocated();
+      }
+      loc.status(t);
+      if (t > worst_after && loc.filter().initialized()) worst = std::max(worst, (loc.filter().position() - Eigen::Vector2d(v * t, 0)).norm());
+    }
+    return loc;
+  }
+};
+
+}  // namespace
+
+// Both receivers moved by the same (6, -8) m, claiming RTK-fixed, for 20 s: without the map the
+// filter ends on them (they agree with each other; the paper's rule cannot tell); with it every
+// biased fix is refused from the first, the map's poses carry the car, and no reacquisition fires.
+TEST(Localizer, AMapThatVerifiedRefusesReceiversBiasedTogether) {
+  WitnessDrive d;
+  d.fix_error = [](double t) { return t >= 10 && t < 30 ? Eigen::Vector2d(6, -8) : Eigen::Vector2d::Zero(); };
+  d.worst_after = 5;
+  d.run(false);
+  EXPECT_GT(d.worst, 5.0) << "without the witness the filter follows the receivers";
+  d.worst = 0;
+  const Localizer loc = d.run(true);
+  EXPECT_LT(d.worst, 0.5);
+  EXPECT_TRUE(loc.witness().ever_verified());
+  EXPECT_NEAR(loc.witness().first_refusal_s(), 10.0, 0.051) << "the bias found at its first epoch";
+  EXPECT_EQ(loc.witness().refusal_stretches(), 1u);
+  EXPECT_GT(loc.scan_updates(), 150u) << "the map carries the car";
+  EXPECT_EQ(loc.reacquisitions(), 0u);
+  EXPECT_NE(loc.manager().status(), Status::emergency) << "located on the map";
+}
+
+// One receiver biased: refused by the map as by the paper's rule; the other keeps the filter.
+TEST(Localizer, OneBiasedReceiverIsRefusedAndTheOtherKept) {
+  WitnessDrive d;
+  d.worst_after = 5;
+  const Localizer clean = d.run(true);
+  EXPECT_EQ(clean.witness().refusals(), 0u) << "no false alarm on a clean drive";
+  EXPECT_EQ(clean.scan_updates(), 0u) << "GNSS healthy: the map's poses witness, they do not update";
+  // Only receiver 1's fixes wrong, by (3, 4) m from 10 s on.
+  LocalizerParams p;
+  p.roll_filter_s = 0;
+  p.witness.enabled = true;
+  Localizer loc(p);
+  double worst = 0;
+  for (int k = 0; k * 0.01 < 20; ++k) {
+    const double t = 0.01 * k;
+    loc.speed(20 * 1.01);
+    loc.imu(t, 0.0, 0.0);
+    const Eigen::Vector2d bias = t >= 10 ? Eigen::Vector2d(3, 4) : Eigen::Vector2d::Zero();
+    if (k % 5 == 0) loc.fixes(t, {Fix{0, {20 * t, 0}, p.lever[0], 0.02}, Fix{1, Eigen::Vector2d(20 * t, 0) + bias, p.lever[1], 0.02}});
+    if (k % 10 == 0 && t > 1) loc.scan_pose(t - 0.1, {20 * (t - 0.1), 0}, Eigen::Matrix2d::Identity() * 0.01);
+    if (t > 5) worst = std::max(worst, (loc.filter().position() - Eigen::Vector2d(20 * t, 0)).norm());
+  }
+  EXPECT_LT(worst, 0.2);
+  EXPECT_GT(loc.witness().refusals(), 150u);
+  EXPECT_EQ(loc.scan_updates(), 0u) << "receiver 0 accepted throughout";
+}
+
+// A map of another track: never verified, reported, never used; the car stays on GNSS, and in an
+// outage dead reckons as it would without a map.
+TEST(Localizer, AMapThatDoesNotMatchIsReportedAndNotUsed) {
+  WitnessDrive d;
+  d.map_error = [](double) { return Eigen::Vector2d(30, 4); };
+  d.gnss_on = [](double t) { return t < 20 || t >= 25; };
+  d.worst_after = 5;
+  const Localizer loc = d.run(true);
+  EXPECT_TRUE(loc.witness().mismatch());
+  EXPECT_EQ(loc.scan_updates(), 0u);
+  EXPECT_GT(loc.scan_unverified(), 0u);
+  EXPECT_EQ(loc.witness().refusals(), 0u);
+  EXPECT_LT(d.worst, 1.5) << "5 s of dead reckoning on wheels 1 % high, then GNSS again";
+}
+
+// A registration that slips (3 m for a second) while GNSS is healthy: the map loses its standing
+// at the jump and refuses no good fix; it verifies again once back.
+TEST(Localizer, AMapThatSlipsRefusesNoGoodFix) {
+  WitnessDrive d;
+  d.map_error = [](double t) { return t >= 10 && t < 11 ? Eigen::Vector2d(0, 3) : Eigen::Vector2d::Zero(); };
+  d.worst_after = 5;
+  const Localizer loc = d.run(true);
+  EXPECT_EQ(loc.witness().refusals(), 0u);
+  EXPECT_GE(loc.witness().jumps(), 1u);
+  EXPECT_TRUE(loc.witness().verified()) << "verified again after the slip";
+  EXPECT_LT(d.worst, 0.2);
 }

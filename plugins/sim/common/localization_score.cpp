@@ -1,5 +1,7 @@
 #include "localization_score.hpp"
 
+#include "perception_score.hpp"
+
 #include <cmath>
 #include <limits>
 
@@ -36,6 +38,7 @@ bool LocalizationScore::estimate(double t, double x, double y, int status) {
   ++n_;
   sq_ += e * e;
   max_ = std::max(max_, e);
+  errors_.push_back(e);
   if (status == 0) max_normal_ = std::max(max_normal_, e);
   for (const auto& [a, b] : p_.windows) {
     if (t >= a && t <= b) max_window_ = std::max(max_window_, e);
@@ -47,6 +50,8 @@ bool LocalizationScore::estimate(double t, double x, double y, int status) {
   last_status_ = status;
   return true;
 }
+
+double LocalizationScore::p99_error() const { return PerceptionScore::percentile(errors_, 0.99); }
 
 double LocalizationScore::rmse() const {
   return n_ ? std::sqrt(sq_ / static_cast<double>(n_)) : std::numeric_limits<double>::quiet_NaN();

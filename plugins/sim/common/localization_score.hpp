@@ -25,6 +25,7 @@ class LocalizationScore {
 
   std::size_t samples() const { return n_; }
   double rmse() const;                   // NaN without samples
+  double p99_error() const;              // the 99th percentile of the errors; NaN without samples
   double max_error() const { return max_; }
   double max_error_normal() const { return max_normal_; }
   double time_to_flag() const { return flag_; }            // -1: never flagged in a window
@@ -39,6 +40,7 @@ class LocalizationScore {
   ScoreParams p_;
   std::deque<std::pair<double, std::pair<double, double>>> truth_;
   std::size_t n_ = 0;
+  std::vector<double> errors_;
   double sq_ = 0, max_ = 0, max_normal_ = 0, max_window_ = 0, flag_ = -1, emergency_ = -1;
   int false_alarms_ = 0, last_status_ = 0;
 };

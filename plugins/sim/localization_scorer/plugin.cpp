@@ -90,6 +90,7 @@ class Scorer : public Plugin {
     ctx.metric("samples", static_cast<double>(s.samples()));
     ctx.metric("rmse_m", s.rmse());
     ctx.metric("max_error_m", s.max_error());
+    ctx.metric("p99_error_m", s.p99_error());
     ctx.metric("max_error_normal_m", s.max_error_normal());
     ctx.metric("max_error_in_windows_m", s.max_error_in_windows());
     ctx.metric("time_to_flag_s", s.time_to_flag());

@@ -723,6 +723,12 @@ TEST(LocalizationScore, FlagTimesAndFalseAlarms) {
   EXPECT_NEAR(s.time_to_emergency(), 0.4, 1e-9);
   EXPECT_NEAR(s.max_error_normal(), 2.0, 1e-12);
   EXPECT_NEAR(s.max_error(), 2.0, 1e-12);
+  EXPECT_NEAR(s.p99_error(), 2.0, 1e-12) << "3 samples: the 99th percentile is the largest";
+  brickyard::sim::LocalizationScore many(p);
+  for (int i = 0; i <= 2000; ++i) many.truth(i * 0.01, i * 0.01, 0);
+  for (int i = 0; i < 200; ++i) many.estimate(2 + i * 0.01, 2 + i * 0.01, i < 198 ? 0.1 : 5.0, 0);
+  EXPECT_NEAR(many.p99_error(), 0.1, 1e-12) << "2 outliers in 200 are the top 1 %";
+  EXPECT_NEAR(many.max_error(), 5.0, 1e-12);
 }
 
 // The car's side of the command contract: the newest command holds while commands keep coming;

@@ -1,0 +1,64 @@
+#include "map_witness.hpp"
+
+#include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
+
+#include <algorithm>
+
+namespace brickyard::estimation {
+
+namespace {
+
+bool within(const Eigen::Vector2d& e, const Eigen::Matrix2d& S, double gate) { return e.dot(S.ldlt().solve(e)) <= gate; }
+
+}  // namespace
+
+Eigen::Matrix2d with_floor(const Eigen::Matrix2d& cov, double sigma) {
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es(0.5 * (cov + cov.transpose()));
+  const Eigen::Vector2d spread = es.eigenvalues().cwiseMax(sigma * sigma);
+  return es.eigenvectors() * spread.asDiagonal() * es.eigenvectors().transpose();
+}
+
+void MapWitness::count_frame(double t, bool gnss_accepted) {
+  if (gnss_accepted && !ever_verified_ && last_frame_t_ >= 0 && t - last_frame_t_ <= p_.fresh_s) unverified_s_ += t - last_frame_t_;
+  last_frame_t_ = t;
+}
+
+void MapWitness::unlocated(double t, bool gnss_accepted) {
+  count_frame(t, gnss_accepted);
+  agree_since_ = -1;
+}
+
+void MapWitness::observe(const MapPoseNow& m, bool gnss_accepted) {
+  count_frame(m.t, gnss_accepted);
+  const bool agrees = within(m.offset, m.innovation_cov, p_.gate);
+  // Within fresh_s of the previous pose the offset must be continuous; after a gap (LiDAR lost,
+  // the filter on dead reckoning meanwhile) the pose must agree with the filter's spread instead.
+  const bool recent = last_t_ >= 0 && m.t - last_t_ <= p_.fresh_s;
+  if (recent ? (m.offset - offset_).norm() > p_.jump_m : !agrees) {
+    jumps_ += verified_;
+    verified_ = false;
+    agree_since_ = -1;
+  }
+  if (gnss_accepted && agrees) {
+    if (agree_since_ < 0) agree_since_ = m.t;
+    if (m.t - agree_since_ >= p_.verify_s) verified_ = ever_verified_ = true;
+  } else if (gnss_accepted) {
+    agree_since_ = -1;
+    ++disagreements_;
+  }
+  last_t_ = m.t;
+  offset_ = m.offset;
+  cov_ = m.cov;
+}
+
+bool MapWitness::refuses(double t, const Eigen::Vector2d& base, const Eigen::Matrix2d& R, const Eigen::Vector2d& filter_xy) {
+  if (!standing(t) || within(base - (filter_xy + offset_), cov_ + R, p_.gate)) return false;
+  ++refusals_;
+  if (first_refusal_ < 0) first_refusal_ = t;
+  if (t - last_refusal_ > 1.0) ++stretches_;  // a new stretch: none refused for a second
+  last_refusal_ = t;
+  return true;
+}
+
+}  // namespace brickyard::estimation

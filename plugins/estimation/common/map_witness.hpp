@@ -1,0 +1,85 @@
+#pragma once
+// The prior map as a third witness of the position, beside the two receivers. Framework-free.
+// Receivers wrong together by the same offset agree with each other and, once the filter has
+// followed them, with the prediction: the paper's selection cannot tell them (docs/algorithms.md).
+// A pose registered on a map of the track is independent of GNSS, so it can. The rule:
+//   verified   the map's poses have agreed with the filter for verify_s on end while fixes were
+//              being accepted: the map is the track's and registers (a map of another track never
+//              verifies: mismatch() says so, and its poses are not used);
+//   jump       a pose whose offset from the filter moved by more than jump_m since the previous
+//              pose (within fresh_s): the registration slipped (a wrong minimum), or the filter
+//              jumped; either way the map is not trusted until it verifies again;
+//   standing   verified, and its latest pose within fresh_s: a fix farther from the map's position
+//              than the gate (chi-square 2 dof on both spreads, the map's floored at sigma_floor
+//              per direction) is refused, whatever the receiver claims (an RTK fix that lies), and
+//              no reacquisition may take the fixes' position. What the map cannot tell (a straight
+//              between parallel walls) is in its covariance, so it refuses nothing along it.
+// The map's position now is its latest pose's offset from the filter laid on the filter's position
+// now: between two frames the filter only predicts, or takes fixes that agree with the map.
+#include <Eigen/Core>
+
+#include <cstdint>
+
+namespace brickyard::estimation {
+
+struct WitnessParams {
+  bool enabled = false;      // the scan pose is a prior map's (independent of GNSS)
+  double fresh_s = 0.3;      // s: an older map pose witnesses nothing
+  double sigma_floor = 0.25; // m: floor on the map pose's spread per direction when judging
+  double gate = 13.8;        // chi-square, 2 dof, 0.999
+  double verify_s = 2.0;     // s of agreement with accepted GNSS before the map is trusted
+  double jump_m = 1.0;       // m: the offset from the filter moving this much between poses
+  double mismatch_s = 10.0;  // s of map poses with GNSS accepted, never verified: not this track's map
+};
+
+// A covariance whose spread in every direction is at least `sigma`: its eigenvalues floored. (A
+// floor on the diagonal alone leaves a pose long along a diagonal direction sure to nothing
+// across it: 100 m along a straight at 45 degrees has a near-zero eigenvalue across.)
+Eigen::Matrix2d with_floor(const Eigen::Matrix2d& cov, double sigma);
+
+// One map pose carried to now, and how it stands against the filter there.
+struct MapPoseNow {
+  double t = 0;
+  Eigen::Vector2d offset;   // the map's position less the filter's, m
+  Eigen::Matrix2d cov;      // the map pose's covariance, floored
+  Eigen::Matrix2d innovation_cov;  // the filter's position covariance plus cov
+};
+
+class MapWitness {
+ public:
+  explicit MapWitness(WitnessParams p) : p_(p) {}
+  // A map pose at t; `gnss_accepted`: a fix has been accepted lately (GNSS healthy).
+  void observe(const MapPoseNow& pose, bool gnss_accepted);
+  // A frame the map localizer could not locate, at t.
+  void unlocated(double t, bool gnss_accepted);
+  bool verified() const { return verified_; }
+  bool standing(double t) const { return verified_ && last_t_ >= 0 && t - last_t_ <= p_.fresh_s; }
+  // Whether the map, standing at t, refuses a fix's base_link position (covariance R) given the
+  // filter's position now. Counted.
+  bool refuses(double t, const Eigen::Vector2d& base, const Eigen::Matrix2d& R, const Eigen::Vector2d& filter_xy);
+  // Never verified after mismatch_s of frames with GNSS accepted (none located, or located off
+  // the fixes): a map of another track, or one that does not register.
+  bool mismatch() const { return !ever_verified_ && unverified_s_ >= p_.mismatch_s; }
+  Eigen::Matrix2d floored(const Eigen::Matrix2d& cov) const { return with_floor(cov, p_.sigma_floor); }
+
+  bool ever_verified() const { return ever_verified_; }
+  std::uint64_t refusals() const { return refusals_; }
+  std::uint64_t refusal_stretches() const { return stretches_; }
+  double first_refusal_s() const { return first_refusal_; }
+  std::uint64_t disagreements() const { return disagreements_; }  // poses off accepted GNSS
+  std::uint64_t jumps() const { return jumps_; }
+
+ private:
+  // The time since the previous frame, located or not (0 after a gap), counted towards mismatch.
+  void count_frame(double t, bool gnss_accepted);
+
+  WitnessParams p_;
+  bool verified_ = false, ever_verified_ = false;
+  double last_t_ = -1, agree_since_ = -1, last_frame_t_ = -1, unverified_s_ = 0;
+  Eigen::Vector2d offset_ = Eigen::Vector2d::Zero();
+  Eigen::Matrix2d cov_ = Eigen::Matrix2d::Identity();
+  std::uint64_t refusals_ = 0, stretches_ = 0, disagreements_ = 0, jumps_ = 0;
+  double first_refusal_ = -1, last_refusal_ = -1e300;
+};
+
+}  // namespace brickyard::estimation
