@@ -49,6 +49,8 @@ RaceRun run_race(const std::string& host, const std::string& graph, const std::v
   if (nodes.contains("referee")) r.referee = nodes["referee"]["metrics"];
   if (nodes.contains("manager")) r.manager = nodes["manager"]["metrics"];
   if (nodes.contains("planner")) r.planner = nodes["planner"]["metrics"];
+  r.nodes = nlohmann::json::object();
+  for (const auto& [name, node] : nodes.items()) r.nodes[name] = node.contains("metrics") ? node["metrics"] : nlohmann::json::object();
   return r;
 }
 

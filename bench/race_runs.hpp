@@ -14,6 +14,7 @@ struct RaceRun {
   bool ok = false;  // the run's result is success
   std::string reason;
   nlohmann::json referee, manager, planner;  // their metrics
+  nlohmann::json nodes;                      // every node's metrics, by node name
   double sim_s = 0, wall_s = 0;
 };
 

@@ -141,14 +141,6 @@ add_test(NAME graph.race_spielberg_at_the_limit
 by_next_domain(d)
 add_test(NAME graph.raceline_leaves_track
   COMMAND ${NETNS} ${CMAKE_CURRENT_SOURCE_DIR}/cli/raceline_leaves_track.sh ${EXPECT} ${BY} ${PROJECT_SOURCE_DIR} ${d} ${RUNS}/raceline_leaves_track)
-# Issue 41: racing on the map through a GNSS outage. Spielberg (walls at both edges) mapped by a
-# mapping drive, then raced with both receivers gone for 60 s of lap 2: no contact, no wall
-# following, the lap within 1.03 x the planned one.
-by_next_domain(d)
-add_test(NAME graph.race_on_map_spielberg_gnss_gone_60_s
-  COMMAND ${NETNS} ${CMAKE_CURRENT_SOURCE_DIR}/cli/race_on_map.sh ${BY} ${PROJECT_SOURCE_DIR}/configs/race_on_map.json ${d} ${RUNS}/race_on_map_spielberg
-          tracks/Spielberg.csv 100 160 --arg wall_side=left --arg inner_wall=true)
-set_tests_properties(graph.race_on_map_spielberg_gnss_gone_60_s PROPERTIES TIMEOUT 600)
 # The mapping graph: frames registered, the pose near the truth, the map written.
 by_next_domain(d)
 add_test(NAME graph.mapping_ims

@@ -3,16 +3,14 @@
 // GNSS receivers; the three differ only in how an epoch of fixes is used
 // (common/update_selection) — same ports and params, so a graph swaps them by plugin name.
 // Each publishes a LocalizationEstimate per IMU sample and the localization manager's ModeStatus.
-#include <brickyard/msgs/GnssFix.h>
-#include <brickyard/msgs/Imu.h>
 #include <brickyard/msgs/LocalizationEstimate.h>
 #include <brickyard/msgs/ModeStatus.h>
-#include <brickyard/msgs/WheelSpeeds.h>
 #include <brickyard/plugin.hpp>
 
 #include "estimation/common/estimator_report.hpp"
 #include "estimation/common/sample_feed.hpp"
 #include "params.hpp"
+#include "ports.hpp"
 
 #include <array>
 #include <optional>
@@ -23,29 +21,6 @@ using namespace brickyard;
 using namespace brickyard::estimation;
 
 template <class T> double stamp_s(const T& m) { return static_cast<double>(m.header().stamp_ns()) * 1e-9; }
-
-// One binding for the three estimators: their ports are the same.
-struct Ports {
-  Input<msgs::Imu> imu;
-  Input<msgs::WheelSpeeds> wheels;
-  std::array<Input<msgs::GnssFix>, 2> gnss;
-  Input<msgs::LocalizationEstimate> scan_pose;
-  Output<msgs::LocalizationEstimate> estimate;
-  Output<msgs::ModeStatus> mode;
-};
-
-PortBinding<Ports> ports() {
-  PortBinding<Ports> b;
-  b.input("imu", &Ports::imu).doc("IMU: the yaw rate drives the prediction").depth(256).steps();
-  b.input("wheels", &Ports::wheels).doc("wheel speeds: the rear axle's speed drives the prediction").depth(256);
-  b.inputs("gnss", &Ports::gnss).doc("fixes of one receiver each: gnss0 the first, gnss1 the second (optional)")
-      .required_first(1).depth(64);
-  b.input("scan_pose", &Ports::scan_pose)
-      .doc("a second estimate of the pose (the scan mapper's), taken while GNSS is degraded (optional)").optional();
-  b.output("estimate", &Ports::estimate).doc("pose, covariance, the update case, delta per receiver, status");
-  b.output("mode", &Ports::mode).doc("the localization manager's status, on change and at 10 Hz");
-  return b;
-}
 
 template <Policy P> class Estimator : public Plugin {
  public:
@@ -88,11 +63,8 @@ template <Policy P> class Estimator : public Plugin {
       scan.push_back({stamp_s(*s), s->update_case(), {s->x(), s->y()}, (Eigen::Matrix2d() << c[0], c[1], c[3], c[4]).finished()});
     }
     feed_scan_poses(*loc_, scan);
-    if (!mismatch_said_ && loc_->witness().mismatch()) {
-      mismatch_said_ = true;
-      ctx.log(LogLevel::error, "the map does not match the track: never located on it in agreement with GNSS; its poses are "
-                               "not used, the car stays on GNSS (metric map_mismatch)");
-    }
+    if (!mismatch_said_ && (mismatch_said_ = loc_->witness().mismatch()))
+      ctx.log(LogLevel::error, "the map does not match the track (never located on it in agreement with GNSS): not used, the car stays on GNSS");
     const Status s = loc_->status(ctx.now_s());
     publish_mode(ctx, s);
     if (loc_->filter().initialized()) publish_estimate(ctx, s);
