@@ -167,6 +167,9 @@ if(BRICKYARD_SIM)
             validate ${ON_MAP} --arg map_file=${BAD}/not_a_map.pcd)
   bad_input(validate_map_file_empty "node 'map_localizer' \\(mapping.map_localizer\\): parameter 'map_file': .*empty_map.pcd: the map holds no point"
             validate ${ON_MAP} --arg map_file=${BAD}/empty_map.pcd)
+  # A map that does not cover the track it is used on (three points at the origin; IMS's lap).
+  bad_input(validate_map_far_from_track "node 'map_localizer' \\(mapping.map_localizer\\): parameter 'map_file': .*three_point_map.pcd: far from the track: [0-9]+ % of its centre line lies within 30 m of the map"
+            validate ${ON_MAP} --arg map_file=${CMAKE_CURRENT_SOURCE_DIR}/graphs/three_point_map.pcd)
   bad_input(validate_graph_file_missing "node 'planner' \\(planning.road_graph\\): file 'nothing.byrg' not found"
             validate ${PROJECT_SOURCE_DIR}/configs/ims_race.json --set planner.graph_file=nothing.byrg)
 endif()

@@ -99,7 +99,7 @@ add_test(NAME graph.configs_ims_race_seed3
 endif()
 file(GLOB config_files CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/configs/*.json)
 # A config with an argument it cannot run without is validated with one.
-set(validate_args_race_on_map --arg map_file=${CMAKE_CURRENT_SOURCE_DIR}/graphs/three_point_map.pcd)
+set(validate_args_race_on_map --arg map_file=${CMAKE_CURRENT_SOURCE_DIR}/graphs/ims_centre_line_map.pcd)
 foreach(c ${config_files})
   get_filename_component(name ${c} NAME_WE)
   by_uses_sim(${c} sim)

@@ -22,6 +22,7 @@ Eigen::Matrix2d with_floor(const Eigen::Matrix2d& cov, double sigma) {
 void MapWitness::count_frame(double t, bool gnss_accepted) {
   if (gnss_accepted && !ever_verified_ && last_frame_t_ >= 0 && t - last_frame_t_ <= p_.fresh_s) unverified_s_ += t - last_frame_t_;
   last_frame_t_ = t;
+  mismatch_ = mismatch_ || (!ever_verified_ && unverified_s_ >= p_.mismatch_s);
 }
 
 void MapWitness::unlocated(double t, bool gnss_accepted) {
@@ -40,7 +41,9 @@ void MapWitness::observe(const MapPoseNow& m, bool gnss_accepted) {
     verified_ = false;
     agree_since_ = -1;
   }
-  if (gnss_accepted && agrees) {
+  if (mismatch_) {
+    verified_ = false;
+  } else if (gnss_accepted && agrees) {
     if (agree_since_ < 0) agree_since_ = m.t;
     if (m.t - agree_since_ >= p_.verify_s) verified_ = ever_verified_ = true;
   } else if (gnss_accepted) {

@@ -4,8 +4,11 @@
 // followed them, with the prediction: the paper's selection cannot tell them (docs/algorithms.md).
 // A pose registered on a map of the track is independent of GNSS, so it can. The rule:
 //   verified   the map's poses have agreed with the filter for verify_s on end while fixes were
-//              being accepted: the map is the track's and registers (a map of another track never
-//              verifies: mismatch() says so, and its poses are not used);
+//              being accepted: the map is the track's and registers;
+//   mismatch   not verified within mismatch_s of frames with GNSS accepted: a map of another
+//              track (or one that does not register). Latched: a map of elsewhere may still
+//              "locate" a few frames near the estimate where it happens to have structure, and
+//              must not be trusted for them later in the run;
 //   jump       a pose whose offset from the filter moved by more than jump_m since the previous
 //              pose (within fresh_s): the registration slipped (a wrong minimum), or the filter
 //              jumped; either way the map is not trusted until it verifies again;
@@ -57,9 +60,9 @@ class MapWitness {
   // Whether the map, standing at t, refuses a fix's base_link position (covariance R) given the
   // filter's position now. Counted.
   bool refuses(double t, const Eigen::Vector2d& base, const Eigen::Matrix2d& R, const Eigen::Vector2d& filter_xy);
-  // Never verified after mismatch_s of frames with GNSS accepted (none located, or located off
-  // the fixes): a map of another track, or one that does not register.
-  bool mismatch() const { return !ever_verified_ && unverified_s_ >= p_.mismatch_s; }
+  // Not verified within mismatch_s of frames with GNSS accepted (none located, or located off
+  // the fixes): a map of another track, or one that does not register. Latched.
+  bool mismatch() const { return mismatch_; }
   Eigen::Matrix2d floored(const Eigen::Matrix2d& cov) const { return with_floor(cov, p_.sigma_floor); }
 
   bool ever_verified() const { return ever_verified_; }
@@ -74,7 +77,7 @@ class MapWitness {
   void count_frame(double t, bool gnss_accepted);
 
   WitnessParams p_;
-  bool verified_ = false, ever_verified_ = false;
+  bool verified_ = false, ever_verified_ = false, mismatch_ = false;
   double last_t_ = -1, agree_since_ = -1, last_frame_t_ = -1, unverified_s_ = 0;
   Eigen::Vector2d offset_ = Eigen::Vector2d::Zero();
   Eigen::Matrix2d cov_ = Eigen::Matrix2d::Identity();

@@ -812,6 +812,10 @@ TEST(MapWitness, AMapThatNeverAgreesWithGnssIsAMismatch) {
   EXPECT_TRUE(w.mismatch());
   EXPECT_FALSE(w.ever_verified());
   EXPECT_GT(w.disagreements(), 90u);
+  // Later it "locates" near the estimate where it happens to have structure: latched, never trusted.
+  for (; t < 14; t += 0.1) w.observe(map_pose(w, t, {0, 0}), true);
+  EXPECT_FALSE(w.verified());
+  EXPECT_FALSE(w.refuses(t, {6, -8}, Eigen::Matrix2d::Identity() * 4e-4, {0, 0}));
   MapWitness quiet(p);  // GNSS not accepted: nothing to compare with, no verdict
   for (double s = 0; s < 20; s += 0.1) quiet.unlocated(s, false);
   EXPECT_FALSE(quiet.mismatch());

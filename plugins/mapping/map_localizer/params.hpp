@@ -10,6 +10,9 @@ namespace brickyard::mapping {
 
 struct LocalizerSettings : MapLocalizationRunParams {
   std::string map_file;
+  std::string track;         // empty: the map is not checked against a track
+  double track_reach = 30;   // m
+  double track_share = 0.9;  // of the centre line within track_reach of the map
 };
 
 inline ParamBinding<LocalizerSettings> localizer_bindings() {
@@ -18,6 +21,10 @@ inline ParamBinding<LocalizerSettings> localizer_bindings() {
   ParamBinding<S> b;
   b.bind_required("map_file", &S::map_file)
       .doc("the prior map of the track: a PCD file (x y z float, binary or ascii) as mapping.scan_mapper writes it");
+  b.bind("track", &S::track)
+      .doc("the track the map is of (a centre-line file, as the world's): a map that does not cover it is refused at validation");
+  b.bind("track_reach", &S::track_reach).in_unit("m").range(1, 1000).doc("a centre-line point this near a map point is covered");
+  b.bind("track_share", &S::track_share).range(0, 1).doc("the share of the centre line the map must cover");
   b.bind("coarse_voxel", &S::localizer, &M::coarse_voxel).in_unit("m").range(0.05, 10)
       .doc("the map registered on first, from the estimate: reaches far");
   b.bind("fine_voxel", &S::localizer, &M::fine_voxel).in_unit("m").range(0.02, 10).doc("then on this one, accurate near the answer");

@@ -5,18 +5,39 @@
 // independent of GNSS. Wired into the fusion's scan_pose, it carries the car through a GNSS outage.
 #include <brickyard/plugin.hpp>
 
+#include "mapping/common/map_coverage.hpp"
 #include "mapping/common/map_localization_run.hpp"
 #include "mapping/common/pcd.hpp"
 #include "mapping/frame_io.hpp"
 #include "params.hpp"
 #include "ports.hpp"
 
+#include "track/centre_line.hpp"
+
+#include <cstdio>
 #include <optional>
 
 namespace {
 
 using namespace brickyard;
 using namespace brickyard::mapping;
+
+// A map far from the track it is used on (another track's, or in another frame) is refused.
+template <class Files> void check_covers_track(const Files& files, const LocalizerSettings& s, const std::string& map_path, const Points& map) {
+  const std::string path = files.find_file(s.track);
+  track::CenterLine line;
+  try {
+    line = track::load_centerline_csv(path);
+  } catch (const std::exception& e) {
+    throw BadInput(std::string("parameter 'track': ") + e.what());
+  }
+  const double share = share_near_map(map, line.x, line.y, s.track_reach);
+  if (share >= s.track_share) return;
+  char b[160];
+  std::snprintf(b, sizeof b, ": far from the track: %.0f %% of its centre line lies within %.0f m of the map (%.0f %% needed)", 100 * share,
+                s.track_reach, 100 * s.track_share);
+  throw BadInput("parameter 'map_file': " + map_path + b + " (" + path + ")");
+}
 
 // The map file: read, or refused naming it (at validation and at configure alike).
 template <class Files> Points read_map(const Files& files, const LocalizerSettings& s) {
@@ -29,6 +50,7 @@ template <class Files> Points read_map(const Files& files, const LocalizerSettin
     throw BadInput(std::string("parameter 'map_file': ") + e.what());
   }
   if (map.empty()) throw BadInput("parameter 'map_file': " + path + ": the map holds no point");
+  if (!s.track.empty()) check_covers_track(files, s, path, map);
   return map;
 }
 
