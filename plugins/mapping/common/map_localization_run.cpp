@@ -7,13 +7,18 @@
 namespace brickyard::mapping {
 
 MapLocalizationRun::MapLocalizationRun(const Points& map, const MapLocalizationRunParams& p)
-    : localizer_(map, p.localizer), max_age_ns_(static_cast<std::int64_t>(p.max_estimate_age * 1e9)) {}
+    : localizer_(map, p.localizer), max_age_ns_(static_cast<std::int64_t>(p.max_estimate_age * 1e9)),
+      min_interval_ns_(static_cast<std::int64_t>(p.min_interval_s * 1e9)) {}
 
 void MapLocalizationRun::estimate(std::int64_t stamp_ns, const math::PlanarPose& pose, const EstimateExtras& extras) {
   estimates_.add(stamp_ns, pose, extras);
 }
 
 std::optional<FramePose> MapLocalizationRun::frame(std::int64_t stamp, const Points& pts) {
+  if (tried_ && stamp - last_tried_ns_ < min_interval_ns_ && stamp >= last_tried_ns_) {
+    ++skipped_;
+    return std::nullopt;
+  }
   const auto pose_at = estimates_.at(stamp);
   const auto* est = pose_at ? pose_at->nearer : nullptr;
   if (!est || std::llabs(est->stamp_ns - stamp) > max_age_ns_ || !std::isfinite(pose_at->pose.x) ||
@@ -22,6 +27,8 @@ std::optional<FramePose> MapLocalizationRun::frame(std::int64_t stamp, const Poi
     return std::nullopt;
   }
   ++frames_;
+  tried_ = true;
+  last_tried_ns_ = stamp;
   // The guess: the estimate's (x, y, yaw) with the height, roll and pitch the last located frame
   // found (the estimate is planar; a banked turn tilts the car).
   Eigen::Isometry3d guess = Eigen::Isometry3d::Identity();
@@ -74,6 +81,7 @@ std::vector<std::pair<std::string, double>> MapLocalizationRun::metrics() const 
           {"not_located_implausible", n(failures_[static_cast<int>(LocateFailure::implausible)])},
           {"not_located_singular", n(failures_[static_cast<int>(LocateFailure::singular)])},
           {"frames_without_estimate", n(no_estimate_)},
+          {"frames_skipped", n(skipped_)},
           {"malformed_clouds", n(malformed_)},
           {"correction_mean_m", located_ ? correction_sum_ / n(located_) : 0.0},
           {"correction_max_m", correction_max_}};

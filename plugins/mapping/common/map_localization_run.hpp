@@ -19,6 +19,9 @@ namespace brickyard::mapping {
 struct MapLocalizationRunParams {
   MapLocalizerParams localizer;
   double max_estimate_age = 0.1;  // s: a frame with no estimate this near its stamp is left out
+  // s: a frame within this of the last one located (or tried) is left out, counted (0: every
+  // frame). The cost of the localizer is per frame; the fusion needs a pose only every so often.
+  double min_interval_s = 0;
 };
 
 class MapLocalizationRun {
@@ -27,7 +30,8 @@ class MapLocalizationRun {
 
   void estimate(std::int64_t stamp_ns, const math::PlanarPose& pose, const EstimateExtras& extras);
   // One frame (vehicle frame) located from the estimate at its stamp (interpolated). None,
-  // counted, without an estimate within max_estimate_age or with one that is not finite; else the
+  // counted, within min_interval_s of the last one tried, or without an estimate within
+  // max_estimate_age or with one that is not finite; else the
   // pose (update_case 2: located on the map, 0: not, the guess with the estimate's spreads).
   std::optional<FramePose> frame(std::int64_t stamp_ns, const Points& points);
   // A cloud that could not be read: counted; true for the first (said once).
@@ -41,10 +45,11 @@ class MapLocalizationRun {
   FramePose pose_of(std::int64_t stamp, const Located& r, const EstimateExtras& est, const Eigen::Matrix3d& guess_cov) const;
 
   MapLocalizer localizer_;
-  std::int64_t max_age_ns_ = 0;
+  std::int64_t max_age_ns_ = 0, min_interval_ns_ = 0, last_tried_ns_ = 0;
   math::EstimateHistory<EstimateExtras> estimates_{256};
   double roll_ = 0, pitch_ = 0, z_ = 0;  // the last located frame's
-  std::uint64_t frames_ = 0, located_ = 0, unseen_frames_ = 0, no_estimate_ = 0, malformed_ = 0;
+  std::uint64_t frames_ = 0, located_ = 0, unseen_frames_ = 0, no_estimate_ = 0, malformed_ = 0, skipped_ = 0;
+  bool tried_ = false;
   std::uint64_t failures_[static_cast<int>(LocateFailure::singular) + 1] = {};  // per LocateFailure
   double correction_sum_ = 0, correction_max_ = 0;
 };

@@ -138,4 +138,23 @@ TEST(MapLocalizationRun, FramesFromTheEstimateAtTheirStampAndTheSummary) {
   EXPECT_EQ(m["frames_without_estimate"], 2);
   EXPECT_GT(m["map_points"], 1000);
   EXPECT_NEAR(m["correction_max_m"], std::hypot(0.4, 0.2), 0.05);
+  EXPECT_EQ(m["frames_skipped"], 0);
+}
+
+// min_interval_s: a frame within it of the last one tried is left out and counted.
+TEST(MapLocalizationRun, FramesWithinTheIntervalAreLeftOut) {
+  MapLocalizationRunParams p;
+  p.min_interval_s = 0.1;
+  MapLocalizationRun run(map_file_of(yard(0.15, 0.01, 1), "run_interval"), p);
+  const Points frame = moved(yard(0.2, 0.01, 2), planar(2.0, 0.5, 3.0).inverse());
+  EstimateExtras extras;
+  extras.covariance = {0.25, 0, 0, 0, 0.25, 0, 0, 0, 0.01};
+  for (std::int64_t t = 1'000'000'000; t <= 1'300'000'000; t += 50'000'000) run.estimate(t, {2.1, 0.5, 3.0 * M_PI / 180}, extras);
+  int published = 0;
+  for (std::int64_t t = 1'000'000'000; t <= 1'300'000'000; t += 50'000'000) published += run.frame(t, frame).has_value();
+  EXPECT_EQ(published, 4) << "frames at 0, 0.1, 0.2, 0.3 s; those at 0.05, 0.15, 0.25 s left out";
+  std::map<std::string, double> m;
+  for (const auto& [name, value] : run.metrics()) m[name] = value;
+  EXPECT_EQ(m["frames_skipped"], 3);
+  EXPECT_EQ(m["frames"], 4);
 }
