@@ -156,7 +156,7 @@ void Localizer::fixes(double t, const std::vector<Fix>& epoch_in) {
   const std::vector<bool> refused = refused_by_map(epoch);
   EpochResult r = apply_judged(epoch, refused);
   // A standing map says where the car is: fixes it refused are not taken back by reacquisition.
-  if (p_.policy == Policy::resilient && witness_.standing(t_)) reacquisition_.reset();
+  if (p_.policy == Policy::resilient && witness_.holds_reacquisition(t_)) reacquisition_.reset();
   else if (p_.policy == Policy::resilient) reacquire(t, epoch, r);
   ++epochs_;
   ++cases_[static_cast<int>(r.which)];

@@ -36,20 +36,24 @@ void MapWitness::observe(const MapPoseNow& m, bool gnss_accepted) {
   // Within fresh_s of the previous pose the offset must be continuous; after a gap (LiDAR lost,
   // the filter on dead reckoning meanwhile) the pose must agree with the filter's spread instead.
   const bool recent = last_t_ >= 0 && m.t - last_t_ <= p_.fresh_s;
-  if (recent ? (m.offset - offset_).norm() > p_.jump_m : !agrees) {
+  if (recent ? !within(m.offset - offset_, m.cov + cov_, p_.gate) : !agrees) {
     jumps_ += verified_;
     verified_ = false;
     agree_since_ = -1;
   }
+  // The filter's own position spread: the innovation's less the map pose's.
+  const double filter_var = Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(m.innovation_cov - m.cov).eigenvalues().maxCoeff();
+  const bool witness_to_agree = gnss_accepted || filter_var <= p_.verify_sigma * p_.verify_sigma;
   if (mismatch_) {
     verified_ = false;
-  } else if (gnss_accepted && agrees) {
+  } else if (witness_to_agree && agrees) {
     if (agree_since_ < 0) agree_since_ = m.t;
     if (m.t - agree_since_ >= p_.verify_s) verified_ = ever_verified_ = true;
-  } else if (gnss_accepted) {
+  } else {
     agree_since_ = -1;
-    ++disagreements_;
+    disagreements_ += gnss_accepted;
   }
+  if (verified_) last_verified_t_ = m.t;
   last_t_ = m.t;
   offset_ = m.offset;
   cov_ = m.cov;

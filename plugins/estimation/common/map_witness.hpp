@@ -3,15 +3,19 @@
 // Receivers wrong together by the same offset agree with each other and, once the filter has
 // followed them, with the prediction: the paper's selection cannot tell them (docs/algorithms.md).
 // A pose registered on a map of the track is independent of GNSS, so it can. The rule:
-//   verified   the map's poses have agreed with the filter for verify_s on end while fixes were
-//              being accepted: the map is the track's and registers;
+//   verified   the map's poses have agreed with the filter for verify_s on end, while fixes were
+//              being accepted or the filter was sure of its position to verify_sigma (dead
+//              reckoning a few seconds into an outage: independent of the map, whose poses an
+//              unverified map does not give it): the map is the track's and registers;
 //   mismatch   not verified within mismatch_s of frames with GNSS accepted: a map of another
 //              track (or one that does not register). Latched: a map of elsewhere may still
 //              "locate" a few frames near the estimate where it happens to have structure, and
 //              must not be trusted for them later in the run;
-//   jump       a pose whose offset from the filter moved by more than jump_m since the previous
-//              pose (within fresh_s): the registration slipped (a wrong minimum), or the filter
-//              jumped; either way the map is not trusted until it verifies again;
+//   jump       a pose whose offset from the filter moved since the previous pose (within
+//              fresh_s) by more than the gate on both poses' covariances: the registration
+//              slipped (a wrong minimum), or the filter jumped; either way the map is not trusted
+//              until it verifies again (jitter along a direction the frame barely tells is in
+//              the covariance, and is no jump);
 //   standing   verified, and its latest pose within fresh_s: a fix farther from the map's position
 //              than the gate (chi-square 2 dof on both spreads, the map's floored at sigma_floor
 //              per direction) is refused, whatever the receiver claims (an RTK fix that lies), and
@@ -28,10 +32,11 @@ namespace brickyard::estimation {
 struct WitnessParams {
   bool enabled = false;      // the scan pose is a prior map's (independent of GNSS)
   double fresh_s = 0.3;      // s: an older map pose witnesses nothing
-  double sigma_floor = 0.25; // m: floor on the map pose's spread per direction when judging
+  double sigma_floor = 0.5;  // m: floor on the map pose's spread in every direction when judging
   double gate = 13.8;        // chi-square, 2 dof, 0.999
-  double verify_s = 2.0;     // s of agreement with accepted GNSS before the map is trusted
-  double jump_m = 1.0;       // m: the offset from the filter moving this much between poses
+  double verify_s = 2.0;     // s of agreement with the filter before the map is trusted
+  double verify_sigma = 1.0; // m: without accepted fixes, agreement counts only with the filter this sure
+  double hold_reacquire_s = 5.0;  // s after the map last stood: no reacquisition
   double mismatch_s = 10.0;  // s of map poses with GNSS accepted, never verified: not this track's map
 };
 
@@ -57,6 +62,9 @@ class MapWitness {
   void unlocated(double t, bool gnss_accepted);
   bool verified() const { return verified_; }
   bool standing(double t) const { return verified_ && last_t_ >= 0 && t - last_t_ <= p_.fresh_s; }
+  // Standing, or was within hold_reacquire_s: the fixes' position is not taken by reacquisition
+  // (a map that slipped for a frame during a bias must not let the biased fixes in meanwhile).
+  bool holds_reacquisition(double t) const { return standing(t) || t - last_verified_t_ <= p_.hold_reacquire_s; }
   // Whether the map, standing at t, refuses a fix's base_link position (covariance R) given the
   // filter's position now. Counted.
   bool refuses(double t, const Eigen::Vector2d& base, const Eigen::Matrix2d& R, const Eigen::Vector2d& filter_xy);
@@ -78,7 +86,7 @@ class MapWitness {
 
   WitnessParams p_;
   bool verified_ = false, ever_verified_ = false, mismatch_ = false;
-  double last_t_ = -1, agree_since_ = -1, last_frame_t_ = -1, unverified_s_ = 0;
+  double last_t_ = -1, agree_since_ = -1, last_frame_t_ = -1, unverified_s_ = 0, last_verified_t_ = -1e300;
   Eigen::Vector2d offset_ = Eigen::Vector2d::Zero();
   Eigen::Matrix2d cov_ = Eigen::Matrix2d::Identity();
   std::uint64_t refusals_ = 0, stretches_ = 0, disagreements_ = 0, jumps_ = 0;

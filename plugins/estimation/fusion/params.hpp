@@ -54,11 +54,11 @@ template <Policy P> ParamBinding<Settings> bindings() {
            "accepted fixes for witness_verify_s, fixes that disagree with it are refused (receivers wrong together); a map that "
            "never verifies is not used (docs/algorithms.md)");
   b.bind("witness_verify_s", &Settings::loc, &L::witness, &W::verify_s).in_unit("s").range(0, 3600)
-      .doc("the map's poses agree with the filter this long, fixes accepted, before it may refuse a fix");
+      .doc("the map's poses agree with the filter this long (fixes accepted, or the filter sure to witness_verify_sigma) before it may refuse a fix");
   b.bind("witness_sigma_floor", &Settings::loc, &L::witness, &W::sigma_floor).in_unit("m").range(0.01, 100)
-      .doc("floor on the map pose's spread per direction when judging fixes");
-  b.bind("witness_jump_m", &Settings::loc, &L::witness, &W::jump_m).in_unit("m").range(0.01, 1000)
-      .doc("the map's offset from the filter moving this much between two poses: not trusted until it verifies again");
+      .doc("floor on the map pose's spread in every direction when judging fixes");
+  b.bind("witness_verify_sigma", &Settings::loc, &L::witness, &W::verify_sigma).in_unit("m").range(0.01, 1000)
+      .doc("without accepted fixes, the map's agreement counts towards verifying it only with the filter's position this sure");
   b.bind("witness_mismatch_s", &Settings::loc, &L::witness, &W::mismatch_s).in_unit("s").range(0.1, 3600)
       .doc("frames with GNSS accepted and the map never verified this long: the map is not this track's (reported)");
   b.bind("scan_min_sigma", &Settings::loc, &L::scan_min_sigma).in_unit("m").range(0.001, 100).doc("floor on a scan pose's spread");

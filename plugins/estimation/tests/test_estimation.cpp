@@ -180,7 +180,9 @@ TEST(LocalizationManager, AWitnessKeepsEmergencyAwayWhileItIsTaken) {
       const Status s = m.update(t);
       if (t < lost + 0.6) continue;  // silent past fix_timeout_s, then emergency_after_s
       ASSERT_EQ(s, timeout > 0 ? Status::warning : Status::emergency) << t - lost;
-      if (timeout > 0) EXPECT_NE(m.reason().find("located on the map"), std::string::npos) << m.reason();
+      if (timeout > 0) {
+        EXPECT_NE(m.reason().find("located on the map"), std::string::npos) << m.reason();
+      }
     }
     const double witness_gone = t - 0.05;
     for (; t < witness_gone + 0.3 - 1e-9; t += 0.05) EXPECT_EQ(m.update(t), timeout > 0 ? Status::warning : Status::emergency);
@@ -737,9 +739,9 @@ TEST(MapWitness, VerifiedByAgreeingWithAcceptedGnssThenRefusesFixesOffTheMap) {
   // Receivers that moved together by (6, -8) m, claiming RTK: refused; one at the map: not.
   EXPECT_TRUE(w.refuses(t, filter + Eigen::Vector2d(6, -8), rtk, filter));
   EXPECT_FALSE(w.refuses(t, filter + Eigen::Vector2d(0.2, -0.1), rtk, filter));
-  // The bound: the map's spread floored at 0.25 m per direction, chi-square 13.8: 0.93 m.
-  EXPECT_FALSE(w.refuses(t, filter + Eigen::Vector2d(0.1 + 0.85, -0.05), rtk, filter));
-  EXPECT_TRUE(w.refuses(t, filter + Eigen::Vector2d(0.1 + 1.0, -0.05), rtk, filter));
+  // The bound: the map's spread floored at 0.5 m in every direction, chi-square 13.8: 1.86 m.
+  EXPECT_FALSE(w.refuses(t, filter + Eigen::Vector2d(0.1 + 1.8, -0.05), rtk, filter));
+  EXPECT_TRUE(w.refuses(t, filter + Eigen::Vector2d(0.1 + 1.9, -0.05), rtk, filter));
   EXPECT_EQ(w.refusals(), 2u);
   EXPECT_EQ(w.refusal_stretches(), 1u);
   EXPECT_NEAR(w.first_refusal_s(), t, 1e-12);
@@ -785,7 +787,7 @@ TEST(MapWitness, AJumpOrAGapOffTheFilterLosesTheTrustUntilVerifiedAgain) {
   double t = 0;
   for (; t < 2.5; t += 0.1) w.observe(map_pose(w, t, {0, 0}), true);
   ASSERT_TRUE(w.verified());
-  w.observe(map_pose(w, t, {2.5, 0}), true);  // the registration slipped 2.5 m in one frame
+  w.observe(map_pose(w, t, {4.0, 0}), true);  // the registration slipped 4 m in one frame (the gate: 2.6 m)
   EXPECT_FALSE(w.verified());
   EXPECT_EQ(w.jumps(), 1u);
   EXPECT_FALSE(w.refuses(t, {6, -8}, Eigen::Matrix2d::Identity() * 4e-4, {0, 0}));
@@ -799,6 +801,38 @@ TEST(MapWitness, AJumpOrAGapOffTheFilterLosesTheTrustUntilVerifiedAgain) {
   t += 3.0;
   w.observe({t, {9.0, 0}, floored, floored + Eigen::Matrix2d::Identity() * 1.0}, false);
   EXPECT_FALSE(w.verified()) << "9 m off a filter sure to 1 m";
+  EXPECT_TRUE(w.holds_reacquisition(t + 1.9)) << "it last stood 3 s before: 5 s of no reacquisition";
+  EXPECT_FALSE(w.holds_reacquisition(t + 2.1));
+  // Still no GNSS: poses that agree with a filter sure to 0.5 m (dead reckoning, the map unused)
+  // verify it again; with the filter unsure (2 m) they could not.
+  MapWitness unsure = w;
+  for (int k = 1; k <= 21; ++k) {
+    w.observe({t + 0.1 * k, {9.0, 0}, floored, floored + Eigen::Matrix2d::Identity() * 0.25}, false);
+    unsure.observe({t + 0.1 * k, {9.0, 0}, floored, floored + Eigen::Matrix2d::Identity() * 4.0}, false);
+  }
+  EXPECT_FALSE(w.verified()) << "9 m off a filter sure to 0.5 m: no agreement";
+  for (int k = 22; k <= 45; ++k) {
+    w.observe({t + 0.1 * k, {0.2, 0}, floored, floored + Eigen::Matrix2d::Identity() * 0.25}, false);
+    unsure.observe({t + 0.1 * k, {0.2, 0}, floored, floored + Eigen::Matrix2d::Identity() * 4.0}, false);
+  }
+  EXPECT_TRUE(w.verified()) << "2 s on a sure filter";
+  EXPECT_FALSE(unsure.verified()) << "a filter unsure to 2 m witnesses nothing";
+}
+
+// A map pose that barely tells the along-track direction jitters along it from frame to frame:
+// its covariance says so, and that is no jump.
+TEST(MapWitness, JitterAlongWhatTheFrameBarelyTellsIsNoJump) {
+  WitnessParams p;
+  p.enabled = true;
+  MapWitness w(p);
+  Eigen::Matrix2d weak_along_x;
+  weak_along_x << 3.0 * 3.0, 0, 0, 0.01;
+  double t = 0;
+  for (int k = 0; k < 40; ++k, t += 0.1) w.observe(map_pose(w, t, {k % 2 ? 2.5 : -2.5, 0}, weak_along_x), true);
+  EXPECT_TRUE(w.verified());
+  EXPECT_EQ(w.jumps(), 0u);
+  w.observe(map_pose(w, t, {2.5, 3.0}, weak_along_x), true);  // 3 m across: a jump
+  EXPECT_EQ(w.jumps(), 1u);
 }
 
 TEST(MapWitness, AMapThatNeverAgreesWithGnssIsAMismatch) {
