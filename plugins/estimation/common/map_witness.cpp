@@ -54,13 +54,14 @@ void MapWitness::observe(const MapPoseNow& m, bool gnss_accepted) {
     disagreements_ += gnss_accepted;
   }
   if (verified_) last_verified_t_ = m.t;
+  agrees_ = agrees;
   last_t_ = m.t;
   offset_ = m.offset;
   cov_ = m.cov;
 }
 
 bool MapWitness::refuses(double t, const Eigen::Vector2d& base, const Eigen::Matrix2d& R, const Eigen::Vector2d& filter_xy) {
-  if (!standing(t) || within(base - (filter_xy + offset_), cov_ + R, p_.gate)) return false;
+  if (!standing(t) || !agrees_ || within(base - (filter_xy + offset_), cov_ + R, p_.gate)) return false;
   ++refusals_;
   if (first_refusal_ < 0) first_refusal_ = t;
   if (t - last_refusal_ > 1.0) ++stretches_;  // a new stretch: none refused for a second

@@ -18,9 +18,13 @@
 //              the covariance, and is no jump);
 //   standing   verified, and its latest pose within fresh_s: a fix farther from the map's position
 //              than the gate (chi-square 2 dof on both spreads, the map's floored at sigma_floor
-//              per direction) is refused, whatever the receiver claims (an RTK fix that lies), and
-//              no reacquisition may take the fixes' position. What the map cannot tell (a straight
-//              between parallel walls) is in its covariance, so it refuses nothing along it.
+//              in every direction) is refused, whatever the receiver claims (an RTK fix that lies),
+//              provided the map's latest pose agreed with the filter: the fixes left the filter
+//              and the map together (a step), not the map the fixes and the filter (a registration
+//              confidently 2 m off, seen on Hockenheim's outer-wall map; the map pose is then the
+//              odd one out and refuses nothing). No reacquisition may take the fixes' position
+//              meanwhile. What the map cannot tell (a straight between parallel walls) is in its
+//              covariance, so it refuses nothing along it.
 // The map's position now is its latest pose's offset from the filter laid on the filter's position
 // now: between two frames the filter only predicts, or takes fixes that agree with the map.
 #include <Eigen/Core>
@@ -85,7 +89,7 @@ class MapWitness {
   void count_frame(double t, bool gnss_accepted);
 
   WitnessParams p_;
-  bool verified_ = false, ever_verified_ = false, mismatch_ = false;
+  bool verified_ = false, ever_verified_ = false, mismatch_ = false, agrees_ = false;
   double last_t_ = -1, agree_since_ = -1, last_frame_t_ = -1, unverified_s_ = 0, last_verified_t_ = -1e300;
   Eigen::Vector2d offset_ = Eigen::Vector2d::Zero();
   Eigen::Matrix2d cov_ = Eigen::Matrix2d::Identity();

@@ -746,6 +746,11 @@ TEST(MapWitness, VerifiedByAgreeingWithAcceptedGnssThenRefusesFixesOffTheMap) {
   EXPECT_EQ(w.refusal_stretches(), 1u);
   EXPECT_NEAR(w.first_refusal_s(), t, 1e-12);
   EXPECT_FALSE(w.standing(t + 0.31)) << "a map pose older than fresh_s witnesses nothing";
+  // The map's own pose 2.5 m off a filter on healthy GNSS (a registration confidently wrong): the
+  // odd one out, it refuses nothing.
+  MapWitness odd = w;
+  odd.observe(map_pose(odd, t, {2.5, 0.1}), true);
+  EXPECT_FALSE(odd.refuses(t, filter, rtk, filter));
   EXPECT_FALSE(w.refuses(t + 0.31, filter + Eigen::Vector2d(6, -8), rtk, filter));
 }
 
