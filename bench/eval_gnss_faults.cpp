@@ -5,8 +5,8 @@
 // race, then each fault class for each duration at --placements evenly spaced starts in lap 2
 // ("laps": the whole of laps 2 and 3). A row per track, layout, class and duration: runs that
 // finished clean, contacts, violations, least wall clearance, the slowest lap against the clean
-// run's same lap, localization error p99 and max (the worst run), the time the map took to find a
-// bias, the longest time in each mode; "ok" or what missed the target.
+// run's same lap, localization error p99 and max (the worst run), the time the fusion took to flag
+// the fault, the longest time in each mode; "ok" or what missed the target.
 // usage: eval_gnss_faults [--tracks DIR] [--track NAME]... [--layout outer|both] [--faults a,b]
 //                         [--durations 7,60,laps] [--placements N] [--seed N] [--jobs N]
 //                         [--domain N] [--maps DIR] [--set NODE.PARAM=V]...
@@ -108,8 +108,9 @@ Figures figures(const RaceRun& r, const RaceRun& clean, double start) {
   f.p99 = num(score, "p99_error_m");
   f.max = num(score, "max_error_m");
   const json& est = node(r, "estimator");
-  const double first = num(est, "map_first_refusal_s");
-  if (first >= 0) f.detect = first - start;  // negative: a refusal before the fault, a false alarm
+  // The bias found: the fusion's first status other than NORMAL from the fault's start (the
+  // scorer's time to flag: fixes refused, by the map or the paper's rule). -1: never.
+  f.detect = num(score, "time_to_flag_s");
   f.warning = num(est, "time_warning_s");
   f.emergency = num(est, "time_emergency_s");
   f.wall = num(r.manager, "time_s_WALL_FOLLOW");
@@ -137,12 +138,14 @@ Figures worst(const std::vector<Figures>& all) {
     w.lap_ratio = std::max(w.lap_ratio, f.lap_ratio);
     w.p99 = std::max(w.p99, f.p99);
     w.max = std::max(w.max, f.max);
-    if (!std::isnan(f.detect)) w.detect = std::isnan(w.detect) ? f.detect : (f.detect < 0 ? f.detect : std::max(w.detect, f.detect));
     w.warning = std::max(w.warning, f.warning);
     w.emergency = std::max(w.emergency, f.emergency);
     w.wall = std::max(w.wall, f.wall);
     w.stop = std::max(w.stop, f.stop);
     if (!f.why.empty()) w.why += " " + f.why + ";";
+    if (std::isnan(w.detect)) w.detect = f.detect;
+    else if (f.detect < 0 || w.detect < 0) w.detect = -1;  // a run never flagged it
+    else w.detect = std::max(w.detect, f.detect);
   }
   return w;
 }
@@ -178,8 +181,8 @@ std::vector<RaceRun> run_all(const Options& o, const std::string& by, const std:
 std::string detect_text(double d) {
   char b[48];
   if (std::isnan(d)) return "–";
-  if (d < 0) std::snprintf(b, sizeof b, "false alarm %.2f s before", -d);
-  else std::snprintf(b, sizeof b, "%.2f s", d);
+  if (d < 0) return "never";
+  std::snprintf(b, sizeof b, "%.2f s", d);
   return b;
 }
 
@@ -297,9 +300,9 @@ int main(int argc, char** argv) {
                   num(est, "fixes_refused_by_map"), num(node(clean, "score"), "p99_error_m"), num(node(clean, "score"), "max_error_m"),
                   clean.wall_s > 0 ? clean.sim_s / clean.wall_s : 0.0);
       std::fflush(stdout);
-      if (!clean.ok || laps.size() < 3 || num(est, "fixes_refused_by_map") > 0) {
+      if (!clean.ok || laps.size() < 3) {
         all_ok = false;
-        if (!clean.ok || laps.size() < 3) continue;
+        continue;
       }
       std::printf("| fault | duration | clean runs | contacts | violations | least clearance | slowest lap / clean | error p99 / max | bias found | WARNING / EMERGENCY | WALL / SAFE_STOP | |\n");
       std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|\n");

@@ -73,6 +73,10 @@ bool Localizer::scan_pose(double stamp, const Eigen::Vector2d& xy, const Eigen::
   if (p_.witness.enabled) {
     const Eigen::Matrix2d W = witness_.floored(turned);
     witness_.observe({t_, e, W, filter_.innovation_cov(W)}, gnss_accepted());
+    // A standing map that agrees with the filter is a witness of the position from this frame
+    // on, before its poses are taken (scan_after_s): at a bias's onset every fix is refused at
+    // once, and EMERGENCY must not race the first pose taken.
+    if (witness_.standing(t_) && witness_.agrees()) manager_.on_witness(t_);
   }
   if (gnss_accepted()) return false;
   if (p_.witness.enabled && !witness_.verified()) {

@@ -65,6 +65,7 @@ class MapWitness {
   // A frame the map localizer could not locate, at t.
   void unlocated(double t, bool gnss_accepted);
   bool verified() const { return verified_; }
+  bool agrees() const { return agrees_; }  // the latest pose agreed with the filter
   bool standing(double t) const { return verified_ && last_t_ >= 0 && t - last_t_ <= p_.fresh_s; }
   // Standing, or was within hold_reacquire_s: the fixes' position is not taken by reacquisition
   // (a map that slipped for a frame during a bias must not let the biased fixes in meanwhile).
