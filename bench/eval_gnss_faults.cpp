@@ -40,6 +40,10 @@ const json& node(const RaceRun& r, const char* name) {
   return r.nodes.contains(name) ? r.nodes[name] : none;
 }
 
+// A run's lap times: empty when its referee said nothing (the run did not start).
+json lap_times(const RaceRun& r) { return r.referee.is_object() ? r.referee.value("lap_times_s", json::array()) : json::array(); }
+std::string final_mode(const RaceRun& r) { return r.manager.is_object() ? r.manager.value("final_mode", "") : ""; }
+
 std::vector<std::string> split(const std::string& s) {
   std::vector<std::string> out;
   std::stringstream in(s);
@@ -99,9 +103,9 @@ Figures figures(const RaceRun& r, const RaceRun& clean, double start) {
   f.contacts = num(r.referee, "wall_contacts");
   f.violations = num(r.referee, "track_violations");
   f.clearance = num(r.referee, "min_wall_clearance_m");
-  f.clean = r.ok && f.contacts == 0 && f.violations == 0 && r.manager.value("final_mode", "") == "PATH";
+  f.clean = r.ok && f.contacts == 0 && f.violations == 0 && final_mode(r) == "PATH";
   if (!f.clean) f.why = r.ok ? "contact, violation or not back on the path" : r.reason;
-  const json laps = r.referee.value("lap_times_s", json::array()), base = clean.referee.value("lap_times_s", json::array());
+  const json laps = lap_times(r), base = lap_times(clean);
   for (std::size_t k = 1; k < laps.size() && k < base.size(); ++k)
     f.lap_ratio = std::max(f.lap_ratio, laps[k].get<double>() / base[k].get<double>());
   const json& score = node(r, "score");
@@ -189,7 +193,7 @@ std::string detect_text(double d) {
 // One row: every placement of one class and duration.
 bool fault_row(const Options& o, const std::string& by, const std::string& graph, const std::string& tag, const std::vector<std::string>& base,
                const RaceRun& clean, const std::string& cls, const std::string& duration) {
-  const json laps = clean.referee.value("lap_times_s", json::array());
+  const json laps = lap_times(clean);
   std::vector<std::vector<std::string>> args, sets;
   std::vector<std::string> dirs;
   const auto wins = windows(duration, laps, o.placements);
@@ -267,6 +271,7 @@ int main(int argc, char** argv) {
   if (const int rc = parse(argc, argv, o)) return rc;
   const std::string dir = std::getenv("EVAL_GNSS_FAULTS_DIR") ? std::getenv("EVAL_GNSS_FAULTS_DIR") : "/tmp/eval_gnss_faults";
   if (o.maps.empty()) o.maps = dir + "/maps";
+  fs::create_directories(dir);
   fs::create_directories(o.maps);
   const std::string graph = src + "/configs/eval/gnss_faults.json";
   bool all_ok = true;
@@ -293,7 +298,7 @@ int main(int argc, char** argv) {
       clean_args.insert(clean_args.end(), {"fault_start=1000000", "fault_end=1000001"});
       clean_args.push_back(std::find(o.durations.begin(), o.durations.end(), "laps") != o.durations.end() ? "laps=4" : "laps=3");
       const RaceRun clean = brickyard::bench::run_race(by, graph, clean_args, o.sets, o.seed, tag + "_clean", o.domain0);
-      const json laps = clean.referee.value("lap_times_s", json::array());
+      const json laps = lap_times(clean);
       const json& est = node(clean, "estimator");
       std::printf("clean: %s, laps %s, planned %.2f s, map verified %.0f, fixes refused by the map %.0f, error p99 %.2f m max %.2f m, real time %.1f×\n\n",
                   clean.ok ? "finished" : clean.reason.c_str(), laps.dump().c_str(), num(clean.planner, "planned_lap_s"), num(est, "map_verified"),
