@@ -714,6 +714,12 @@ TEST(EstimatorReport, TheSummarysMetricsInTheirOrder) {
 // ---- the prior map as a third witness (map_witness.hpp) ----
 namespace {
 
+WitnessParams witness_on() {
+  WitnessParams p;
+  p.enabled = true;
+  return p;
+}
+
 // A map pose at t: offset from the filter, its covariance (floored as the localizer does) and the
 // filter's position spread of 0.1 m beside it.
 MapPoseNow map_pose(const MapWitness& w, double t, Eigen::Vector2d offset, Eigen::Matrix2d cov = Eigen::Matrix2d::Identity() * 0.01) {
@@ -724,8 +730,7 @@ MapPoseNow map_pose(const MapWitness& w, double t, Eigen::Vector2d offset, Eigen
 }  // namespace
 
 TEST(MapWitness, VerifiedByAgreeingWithAcceptedGnssThenRefusesFixesOffTheMap) {
-  WitnessParams p;
-  p.enabled = true;
+  const WitnessParams p = witness_on();
   MapWitness w(p);
   const Eigen::Vector2d filter(100, 50);
   const Eigen::Matrix2d rtk = Eigen::Matrix2d::Identity() * 0.02 * 0.02;
@@ -755,8 +760,7 @@ TEST(MapWitness, VerifiedByAgreeingWithAcceptedGnssThenRefusesFixesOffTheMap) {
 }
 
 TEST(MapWitness, RefusesNothingAlongWhatTheMapCannotTell) {
-  WitnessParams p;
-  p.enabled = true;
+  const WitnessParams p = witness_on();
   MapWitness w(p);
   // Between parallel walls along x: the map's x spread is 100 m (map_localizer's unseen_sigma).
   Eigen::Matrix2d straight;
@@ -786,8 +790,7 @@ TEST(MapWitness, RefusesNothingAlongWhatTheMapCannotTell) {
 }
 
 TEST(MapWitness, AJumpOrAGapOffTheFilterLosesTheTrustUntilVerifiedAgain) {
-  WitnessParams p;
-  p.enabled = true;
+  const WitnessParams p = witness_on();
   MapWitness w(p);
   double t = 0;
   for (; t < 2.5; t += 0.1) w.observe(map_pose(w, t, {0, 0}), true);
@@ -827,8 +830,7 @@ TEST(MapWitness, AJumpOrAGapOffTheFilterLosesTheTrustUntilVerifiedAgain) {
 // A map pose that barely tells the along-track direction jitters along it from frame to frame:
 // its covariance says so, and that is no jump.
 TEST(MapWitness, JitterAlongWhatTheFrameBarelyTellsIsNoJump) {
-  WitnessParams p;
-  p.enabled = true;
+  const WitnessParams p = witness_on();
   MapWitness w(p);
   Eigen::Matrix2d weak_along_x;
   weak_along_x << 3.0 * 3.0, 0, 0, 0.01;
@@ -841,8 +843,7 @@ TEST(MapWitness, JitterAlongWhatTheFrameBarelyTellsIsNoJump) {
 }
 
 TEST(MapWitness, AMapThatNeverAgreesWithGnssIsAMismatch) {
-  WitnessParams p;
-  p.enabled = true;
+  const WitnessParams p = witness_on();
   MapWitness w(p);
   double t = 0;
   for (; t < 9.9; t += 0.1) w.observe(map_pose(w, t, {30, 4}), true);  // another track's map: located, 30 m off
