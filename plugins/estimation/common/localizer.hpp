@@ -56,10 +56,11 @@ class Localizer {
   // late) is carried to now by dead reckoning's motion since its stamp; one older than that
   // history (about 1.5 s) is dropped (too_late()).
   void fixes(double t, const std::vector<Fix>& epoch);
-  // A pose of base_link from another estimator (the scan mapper), stamped `stamp` (earlier than
-  // now: a LiDAR frame arrives a sweep late and takes its registration's time): moved to now by
-  // dead reckoning's motion since the stamp, then a position update, when GNSS is degraded (see
-  // LocalizerParams::scan_pose). Returns whether it was taken.
+  // A pose of base_link from another estimator (the scan mapper, the map localizer), stamped
+  // `stamp` (earlier than now: a LiDAR frame arrives a sweep late and takes its registration's
+  // time): moved to now by dead reckoning's motion since the stamp, judged by the map witness
+  // when it is one (LocalizerParams::witness), then a position update when GNSS is degraded and,
+  // as a witness, verified (see LocalizerParams::scan_pose). Returns whether it was taken.
   bool scan_pose(double stamp, const Eigen::Vector2d& xy, const Eigen::Matrix2d& cov);
   // A frame the scan pose's source could not locate (the map witness counts it).
   void scan_unlocated();

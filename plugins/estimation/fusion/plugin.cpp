@@ -12,7 +12,6 @@
 #include "params.hpp"
 #include "ports.hpp"
 
-#include <array>
 #include <optional>
 
 namespace {

@@ -41,7 +41,7 @@ inline ParamBinding<LocalizerSettings> localizer_bindings() {
   b.bind("max_estimate_age", &S::max_estimate_age).in_unit("s").range(0, 60)
       .doc("a frame with no estimate within this of its stamp is left out");
   b.bind("min_interval_s", &S::min_interval_s).in_unit("s").range(0, 10)
-      .doc("a frame within this of the last one located is left out (0: every frame): the localizer's cost is per frame");
+      .doc("a frame within this of the last one tried is left out (0: every frame): the localizer's cost is per frame");
   b.not_above("fine_voxel", "coarse_voxel");
   return b;
 }
