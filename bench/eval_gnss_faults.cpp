@@ -190,6 +190,15 @@ std::string detect_text(double d) {
   return b;
 }
 
+// How honest the map's poses were: their errors weighed by their own covariances (map_score). On
+// stderr: the table on stdout stays a table.
+void print_map_honesty(const std::string& what, const RaceRun& r) {
+  const json& m = node(r, "map_score");
+  std::fprintf(stderr, "%s: map poses %.0f, error p99 %.2f m max %.2f m, NEES p99 %.1f, over 13.8 in %.2f %%, largest error where sure to 0.5 m: %.2f m\n",
+              what.c_str(), num(m, "judged"), num(m, "p99_error_m"), num(m, "max_error_m"), num(m, "nees_p99"), 100 * num(m, "overconfident_share"),
+              num(m, "max_error_sure_m"));
+}
+
 // One row: every placement of one class and duration.
 bool fault_row(const Options& o, const std::string& by, const std::string& graph, const std::string& tag, const std::vector<std::string>& base,
                const RaceRun& clean, const std::string& cls, const std::string& duration) {
@@ -215,6 +224,7 @@ bool fault_row(const Options& o, const std::string& by, const std::string& graph
   std::vector<Figures> all;
   int clean_runs = 0;
   for (std::size_t k = 0; k < runs.size(); ++k) {
+    print_map_honesty(dirs[k], runs[k]);
     all.push_back(figures(runs[k], clean, wins[k].first));
     clean_runs += all.back().clean;
   }
@@ -304,6 +314,7 @@ int main(int argc, char** argv) {
                   clean.ok ? "finished" : clean.reason.c_str(), laps.dump().c_str(), num(clean.planner, "planned_lap_s"), num(est, "map_verified"),
                   num(est, "fixes_refused_by_map"), num(node(clean, "score"), "p99_error_m"), num(node(clean, "score"), "max_error_m"),
                   clean.wall_s > 0 ? clean.sim_s / clean.wall_s : 0.0);
+      print_map_honesty("clean", clean);
       std::fflush(stdout);
       if (!clean.ok || laps.size() < 3) {
         all_ok = false;

@@ -18,6 +18,18 @@ double heading_turn(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
   return std::remainder(heading_of(b) - heading_of(a), 2 * M_PI);
 }
 
+// Each surface within `tilt` of `up` turned to face `up` (its strength kept): a level disc.
+void level_ground(Surfaces& surfaces, const Eigen::Vector3f& up, double tilt) {
+  if (tilt <= 0) return;
+  const float cos_tilt = static_cast<float>(std::cos(tilt));
+  for (Eigen::Vector3f& s : surfaces) {
+    const float strength = s.norm();
+    if (strength == 0) continue;
+    const float facing = s.dot(up) / strength;
+    if (std::abs(facing) >= cos_tilt) s = (facing > 0 ? strength : -strength) * up;
+  }
+}
+
 }  // namespace
 
 const char* failure_name(LocateFailure f) {
@@ -35,7 +47,8 @@ const char* failure_name(LocateFailure f) {
 MapLocalizer::MapLocalizer(const Points& map, MapLocalizerParams p)
     : p_(p), coarse_(p.coarse_voxel), fine_(p.fine_voxel), points_(map.size()) {
   // Each map point's surface from its neighbours in the map, as the mapper's frames had theirs.
-  const Surfaces surfaces = point_surfaces(map, p_.covariances);
+  Surfaces surfaces = point_surfaces(map, p_.covariances);
+  level_ground(surfaces, Eigen::Vector3f::UnitZ(), p_.ground_tilt);
   Covariances covs(map.size());
   for (std::size_t i = 0; i < map.size(); ++i) covs[i] = covariance_of(surfaces[i]);
   coarse_.add(map, covs);
@@ -59,10 +72,22 @@ double MapLocalizer::height_on_map(const Points& near, const Eigen::Isometry3d& 
   return best_z;
 }
 
-Eigen::Matrix<double, 6, 6> MapLocalizer::prior_information(const Eigen::Matrix3d& unseen) const {
+Surfaces MapLocalizer::frame_surfaces(const Points& near, const Eigen::Isometry3d& guess) const {
+  Surfaces surfaces = point_surfaces(near, p_.covariances);
+  const Eigen::Vector3f up = (guess.linear().transpose() * Eigen::Vector3d::UnitZ()).cast<float>();
+  level_ground(surfaces, up, p_.ground_tilt);
+  return surfaces;
+}
+
+Eigen::Matrix<double, 6, 6> MapLocalizer::weak_prior() const {
   Eigen::Matrix<double, 6, 6> info = Eigen::Matrix<double, 6, 6>::Zero();
   info.topLeftCorner<3, 3>().diagonal().setConstant(1.0 / (p_.prior_sigma_turn * p_.prior_sigma_turn));
   info.bottomRightCorner<3, 3>().diagonal().setConstant(1.0 / (p_.prior_sigma * p_.prior_sigma));
+  return info;
+}
+
+Eigen::Matrix<double, 6, 6> MapLocalizer::prior_information(const Eigen::Matrix3d& unseen) const {
+  Eigen::Matrix<double, 6, 6> info = weak_prior();
   info.bottomRightCorner<3, 3>() += kHold * unseen;
   return info;
 }
@@ -76,7 +101,7 @@ Located MapLocalizer::locate(const Points& frame, Eigen::Isometry3d guess) const
     return out;
   }
   if (p_.height_search > 0) guess.translation().z() = height_on_map(near, guess);
-  const Surfaces surfaces = point_surfaces(near, p_.covariances);
+  const Surfaces surfaces = frame_surfaces(near, guess);
   // Directions the frame cannot tell are held at the guess through the registration: left free
   // there, it wanders by aliasing (the voxel means slide along a smooth wall) and does not
   // converge. The frame's surfaces turned by the guess's attitude: a turn of a few hundredths of
@@ -88,7 +113,10 @@ Located MapLocalizer::locate(const Points& frame, Eigen::Isometry3d guess) const
   const RegistrationResult r = register_scan(near, surfaces, {&coarse_, &fine_}, guess, rp, &prior);
   out.matched = r.matched;
   out.iterations = r.iterations;
-  const Eigen::FullPivLU<Eigen::Matrix<double, 6, 6>> lu(r.hessian);
+  // The covariance from what the frame told, without the weak prior's information: that is the
+  // estimate's own, and a pose that carried it would be the estimate told back to itself (where
+  // the frame tells little, a pose at the guess sure to prior_sigma, taken again every frame).
+  const Eigen::FullPivLU<Eigen::Matrix<double, 6, 6>> lu(r.hessian - weak_prior());
   if (!r.converged) out.failure = LocateFailure::not_converged;
   else if (r.matched < p_.min_matched) out.failure = LocateFailure::too_few_matched;
   else if ((r.transform.translation() - guess.translation()).head<2>().norm() > p_.max_correction ||

@@ -37,6 +37,13 @@ struct MapLocalizerParams {
   double height_search = 20.0;    // m
   double prior_sigma = 1.0;       // m
   double prior_sigma_turn = 0.1;  // rad
+  // Surfaces within this of level (the road, in the map and in the frame) are made level: they
+  // tell height, roll and pitch, never where the car is in the plane. A map's road is tilted
+  // where its mapping drive's attitude drifted (a sheet rising 16 % across the road in a
+  // hairpin of Spielberg's outer-wall map), and a frame's road matched onto it slides the pose
+  // metres sideways with a covariance sure to 0.15 m; where the plane position comes from the
+  // walls alone, the covariance says what the walls tell. 0: the road kept as it is.
+  double ground_tilt = 0.45;  // rad
   CovarianceParams covariances;
   RegistrationParams registration{16, 1e-3, 1e-4, false};
 };
@@ -49,8 +56,8 @@ struct Located {
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  // map from vehicle: registered, else the guess
   bool registered = false;
   LocateFailure failure = LocateFailure::none;
-  // Over (rotation omega, translation v), map axes: the registration's system inverted, with
-  // unseen_sigma^2 along each unseen direction.
+  // Over (rotation omega, translation v), map axes: the frame's information (the registration's
+  // system less the weak prior) inverted, with unseen_sigma^2 along each unseen direction.
   Eigen::Matrix<double, 6, 6> covariance = Eigen::Matrix<double, 6, 6>::Identity();
   std::size_t matched = 0;
   int iterations = 0;
@@ -73,6 +80,11 @@ class MapLocalizer {
   // The height at which most of the frame's points (every 8th) fall in the coarse map's voxels,
   // searched in half-voxel steps within height_search of the guess's (ties: the nearest).
   double height_on_map(const Points& near, const Eigen::Isometry3d& guess) const;
+  // The frame's surfaces (vehicle frame) with its road level in the map's frame, its attitude
+  // that of `guess`.
+  Surfaces frame_surfaces(const Points& near, const Eigen::Isometry3d& guess) const;
+  // The weak prior's information (prior_sigma, prior_sigma_turn).
+  Eigen::Matrix<double, 6, 6> weak_prior() const;
   // The weak prior, and a hold along the `unseen` directions (a projector).
   Eigen::Matrix<double, 6, 6> prior_information(const Eigen::Matrix3d& unseen) const;
   // Along unseen directions: the guess's translation and unseen_sigma's spread.

@@ -36,6 +36,8 @@ inline ParamBinding<LocalizerSettings> localizer_bindings() {
       .doc("a direction with less of the frame's surface facing it (points' worth) is one the map cannot tell");
   b.bind("unseen_sigma", &S::localizer, &M::unseen_sigma).in_unit("m").range(0.1, 1e4)
       .doc("the spread reported along a direction the map cannot tell (the estimate's coordinate kept there)");
+  b.bind("ground_tilt", &S::localizer, &M::ground_tilt).in_unit("rad").range(0, 1.5)
+      .doc("surfaces within this of level (the road) are made level in the map and the frame: they tell height, roll and pitch, not the plane position (0: kept)");
   b.bind("points_worth", &S::localizer, &M::points_worth).range(1, 1e6)
       .doc("how many independent points a frame counts as: the pose's covariance");
   b.bind("max_estimate_age", &S::max_estimate_age).in_unit("s").range(0, 60)

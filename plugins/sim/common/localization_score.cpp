@@ -2,6 +2,7 @@
 
 #include "perception_score.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -18,7 +19,11 @@ bool LocalizationScore::in_window(double t, double grace) const {
   return false;
 }
 
-bool LocalizationScore::estimate(double t, double x, double y, int status) {
+namespace {
+constexpr double kNees999 = 13.8;  // chi-square, 2 degrees of freedom, 99.9 %
+}  // namespace
+
+bool LocalizationScore::estimate(double t, double x, double y, int status, const PlanarSpread* spread) {
   if (truth_.empty() || t < truth_.front().first || t > truth_.back().first) return false;
   // Truth at t, linear between the samples around it.
   std::size_t i = truth_.size() - 1;
@@ -40,6 +45,7 @@ bool LocalizationScore::estimate(double t, double x, double y, int status) {
   max_ = std::max(max_, e);
   errors_.push_back(e);
   if (status == 0) max_normal_ = std::max(max_normal_, e);
+  if (spread) judge(x - tx, y - ty, *spread);
   for (const auto& [a, b] : p_.windows) {
     if (t >= a && t <= b) max_window_ = std::max(max_window_, e);
     if (t < a || t >= b + p_.grace_s) continue;
@@ -49,6 +55,23 @@ bool LocalizationScore::estimate(double t, double x, double y, int status) {
   if (last_status_ == 0 && status != 0 && !in_window(t, p_.grace_s)) ++false_alarms_;
   last_status_ = status;
   return true;
+}
+
+void LocalizationScore::judge(double ex, double ey, const PlanarSpread& c) {
+  const double det = c.xx * c.yy - c.xy * c.xy;
+  if (!(c.xx > 0 && det > 0)) return;
+  nees_.push_back((c.yy * ex * ex - 2 * c.xy * ex * ey + c.xx * ey * ey) / det);
+  // The larger eigenvalue of the 2x2 covariance: the estimate's least sure direction.
+  const double largest = 0.5 * (c.xx + c.yy) + std::sqrt(0.25 * (c.xx - c.yy) * (c.xx - c.yy) + c.xy * c.xy);
+  if (largest <= p_.sure_sigma_m * p_.sure_sigma_m) max_sure_ = std::max(max_sure_, std::hypot(ex, ey));
+}
+
+double LocalizationScore::nees_p99() const { return PerceptionScore::percentile(nees_, 0.99); }
+
+double LocalizationScore::overconfident_share() const {
+  if (nees_.empty()) return std::numeric_limits<double>::quiet_NaN();
+  const auto over = std::count_if(nees_.begin(), nees_.end(), [](double d) { return d > kNees999; });
+  return static_cast<double>(over) / static_cast<double>(nees_.size());
 }
 
 double LocalizationScore::p99_error() const { return PerceptionScore::percentile(errors_, 0.99); }

@@ -34,6 +34,7 @@ std::vector<std::pair<double, double>> parse_windows(const std::string& text) {
 struct Settings {
   ScoreParams score;
   double require_max_error_m = -1, require_emergency_within_s = -1, require_normal_error_below_m = -1;
+  bool located_only = false;
 };
 
 ParamBinding<Settings> bindings() {
@@ -43,6 +44,10 @@ ParamBinding<Settings> bindings() {
   b.bind("warmup_s", &Settings::score, &ScoreParams::warmup_s).in_unit("s").range(0, 1e7).doc("nothing counts before this");
   b.bind("grace_s", &Settings::score, &ScoreParams::grace_s).in_unit("s").range(0, 3600)
       .doc("after a window: recovery, not a false alarm");
+  b.bind("sure_sigma_m", &Settings::score, &ScoreParams::sure_sigma_m).in_unit("m").range(0, 1000)
+      .doc("an estimate whose covariance says this or less in every direction (1 sigma) is sure: max_error_sure_m is the largest error of those");
+  b.bind("located_only", &Settings::located_only)
+      .doc("estimates with update_case 0 are not scored (mapping.map_localizer's frames not located: the guess sent on)");
   b.bind("require_max_error_m", &Settings::require_max_error_m).in_unit("m").range(-1000, 1000)
       .doc("fail the run above this max error; < 0: off");
   b.bind("require_emergency_within_s", &Settings::require_emergency_within_s).in_unit("s").range(-3600, 3600)
@@ -79,6 +84,7 @@ class Scorer : public Plugin {
     max_error_ = s.require_max_error_m;
     emergency_within_ = s.require_emergency_within_s;
     normal_below_ = s.require_normal_error_below_m;
+    located_only_ = s.located_only;
     io_ = ports().connect(ctx);
   }
 
@@ -96,6 +102,10 @@ class Scorer : public Plugin {
     ctx.metric("time_to_flag_s", s.time_to_flag());
     ctx.metric("time_to_emergency_s", s.time_to_emergency());
     ctx.metric("false_alarms", static_cast<double>(s.false_alarms()));
+    ctx.metric("judged", static_cast<double>(s.judged()));
+    ctx.metric("nees_p99", s.nees_p99());
+    ctx.metric("overconfident_share", s.overconfident_share());
+    ctx.metric("max_error_sure_m", s.max_error_sure());
     char b[200];
     if (max_error_ >= 0 && s.max_error() > max_error_) {
       std::snprintf(b, sizeof b, "max error %.3f m exceeds the required %.3f m", s.max_error(), max_error_);
@@ -117,12 +127,17 @@ class Scorer : public Plugin {
  private:
   void drain() {
     for (const auto& s : io_.truth.take()) score_->truth(static_cast<double>(s->header().stamp_ns()) * 1e-9, s->x(), s->y());
-    for (const auto& e : io_.estimate.take())
-      score_->estimate(static_cast<double>(e->header().stamp_ns()) * 1e-9, e->x(), e->y(), e->status());
+    for (const auto& e : io_.estimate.take()) {
+      if (located_only_ && e->update_case() == 0) continue;
+      const auto& c = e->covariance();
+      const PlanarSpread spread{c[0], c[1], c[4]};
+      score_->estimate(static_cast<double>(e->header().stamp_ns()) * 1e-9, e->x(), e->y(), e->status(), &spread);
+    }
   }
 
   std::optional<LocalizationScore> score_;
   double max_error_ = -1, emergency_within_ = -1, normal_below_ = -1;
+  bool located_only_ = false;
   Ports io_;
 };
 

@@ -731,6 +731,32 @@ TEST(LocalizationScore, FlagTimesAndFalseAlarms) {
   EXPECT_NEAR(many.max_error(), 5.0, 1e-12);
 }
 
+// An estimate judged by its own covariance: an honest one's errors sit within it, a confident
+// wrong one is counted, and its error is the largest "sure" error.
+TEST(LocalizationScore, JudgesAnEstimateByItsOwnCovariance) {
+  brickyard::sim::ScoreParams p;
+  p.warmup_s = 0;
+  brickyard::sim::LocalizationScore s(p);
+  for (int i = 0; i <= 1000; ++i) s.truth(i * 0.01, i * 0.01, 0);
+  const brickyard::sim::PlanarSpread wide{1.0, 0, 1.0}, narrow_x{0.01, 0, 4.0}, sure{0.04, 0, 0.04};
+  s.estimate(1.0, 1.0, 1.5, 0, &wide);       // 1.5 sigma: honest
+  s.estimate(2.0, 2.0, 1.5, 0, &narrow_x);   // 0.75 sigma along y, where it is unsure: honest
+  s.estimate(3.0, 3.3, 0.0, 0, &narrow_x);   // 3 sigma along x: NEES 9, still within 99.9 %
+  s.estimate(4.0, 4.6, 0.0, 0, &sure);       // sure to 0.2 m and 0.6 m off: NEES 9
+  s.estimate(5.0, 5.0, 1.0, 0, &sure);       // 5 sigma: NEES 25, confidently wrong
+  const brickyard::sim::PlanarSpread flat{1.0, 1.0, 1.0};
+  s.estimate(6.0, 6.0, 0.0, 0, &flat);       // not positive definite: scored, not judged
+  s.estimate(7.0, 7.0, 0.0, 0);              // no spread: scored, not judged
+  EXPECT_EQ(s.samples(), 7u);
+  EXPECT_EQ(s.judged(), 5u);
+  EXPECT_NEAR(s.overconfident_share(), 0.2, 1e-12);
+  EXPECT_NEAR(s.nees_p99(), 25.0, 1e-9);
+  EXPECT_NEAR(s.max_error_sure(), 1.0, 1e-12) << "the narrow-in-x estimate is not sure along y";
+  brickyard::sim::LocalizationScore none(p);
+  EXPECT_TRUE(std::isnan(none.overconfident_share()));
+  EXPECT_TRUE(std::isnan(none.nees_p99()));
+}
+
 // The car's side of the command contract: the newest command holds while commands keep coming;
 // 0.25 s without one, the throttle is released and the car brakes, steering held; commands that
 // come back take over again; a stack that never sends one is caught after first_timeout_s.
