@@ -2,6 +2,7 @@
 
 #include "scan_mapper.hpp"
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 
 #include <algorithm>
@@ -128,8 +129,15 @@ Located MapLocalizer::locate(const Points& frame, Eigen::Isometry3d guess) const
   out.covariance = lu.inverse();
   out.registered = true;
   keep_guess_where_unseen(surfaces, guess, out);
+  floor_position_spread(out.covariance);
   out.correction = (out.pose.translation() - guess.translation()).head<2>().norm();
   return out;
+}
+
+void MapLocalizer::floor_position_spread(Eigen::Matrix<double, 6, 6>& covariance) const {
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(covariance.bottomRightCorner<3, 3>());
+  const Eigen::Vector3d spread = es.eigenvalues().cwiseMax(p_.min_sigma * p_.min_sigma);
+  covariance.bottomRightCorner<3, 3>() = es.eigenvectors() * spread.asDiagonal() * es.eigenvectors().transpose();
 }
 
 void MapLocalizer::keep_guess_where_unseen(const Surfaces& surfaces, const Eigen::Isometry3d& guess, Located& out) const {

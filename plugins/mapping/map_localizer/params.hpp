@@ -38,6 +38,8 @@ inline ParamBinding<LocalizerSettings> localizer_bindings() {
       .doc("the spread reported along a direction the map cannot tell (the estimate's coordinate kept there)");
   b.bind("ground_tilt", &S::localizer, &M::ground_tilt).in_unit("rad").range(0, 1.5)
       .doc("surfaces within this of level (the road) are made level in the map and the frame: they tell height, roll and pitch, not the plane position (0: kept)");
+  b.bind("min_sigma", &S::localizer, &M::min_sigma).in_unit("m").range(0, 100)
+      .doc("the least spread reported in any direction of the position: what the map's making adds to the registration's own");
   b.bind("points_worth", &S::localizer, &M::points_worth).range(1, 1e6)
       .doc("how many independent points a frame counts as: the pose's covariance");
   b.bind("max_estimate_age", &S::max_estimate_age).in_unit("s").range(0, 60)
