@@ -2,8 +2,8 @@
 // (configs/eval/gnss_faults.json: configs/race_on_map.json with its localization scored against
 // the truth) through GNSS faults, on every track in a folder, for both wall layouts. Per track and
 // layout: the track's map from a mapping drive (scripts/track-map, cached under --maps), a clean
-// race, then each fault class for each duration at --placements evenly spaced starts in lap 2
-// ("laps": the whole of laps 2 and 3). A row per track, layout, class and duration: runs that
+// race (the map must not overrule its healthy GNSS), then each fault class for each duration at
+// --placements evenly spaced starts in lap 2 ("laps": the whole of laps 2 and 3). A row per track, layout, class and duration: runs that
 // finished clean, contacts, violations, least wall clearance, the slowest lap against the clean
 // run's same lap, localization error p99 and max (the worst run), the time the fusion took to flag
 // the fault, the longest time in each mode; "ok" or what missed the target.
@@ -310,11 +310,16 @@ int main(int argc, char** argv) {
       const RaceRun clean = brickyard::bench::run_race(by, graph, clean_args, o.sets, o.seed, tag + "_clean", o.domain0);
       const json laps = lap_times(clean);
       const json& est = node(clean, "estimator");
-      std::printf("clean: %s, laps %s, planned %.2f s, map verified %.0f, fixes refused by the map %.0f, error p99 %.2f m max %.2f m, real time %.1f×\n\n",
+      std::printf("clean: %s, laps %s, planned %.2f s, map verified %.0f, fixes refused by the map %.0f, overruled by it %.0f, error p99 %.2f m max %.2f m, real time %.1f×\n\n",
                   clean.ok ? "finished" : clean.reason.c_str(), laps.dump().c_str(), num(clean.planner, "planned_lap_s"), num(est, "map_verified"),
-                  num(est, "fixes_refused_by_map"), num(node(clean, "score"), "p99_error_m"), num(node(clean, "score"), "max_error_m"),
+                  num(est, "fixes_refused_by_map"), num(est, "map_overrulings"), num(node(clean, "score"), "p99_error_m"), num(node(clean, "score"), "max_error_m"),
                   clean.wall_s > 0 ? clean.sim_s / clean.wall_s : 0.0);
       print_map_honesty("clean", clean);
+      // Healthy GNSS overruled by the map: the map was wrong past the gate for a second on end.
+      if (num(est, "map_overrulings") > 0) {
+        std::printf("FAIL: the map overruled healthy GNSS in the clean run (first at %.2f s)\n\n", num(est, "map_first_overrule_s"));
+        all_ok = false;
+      }
       std::fflush(stdout);
       if (!clean.ok || laps.size() < 3) {
         all_ok = false;

@@ -47,6 +47,8 @@ std::vector<std::pair<std::string, double>> summary_metrics(const Localizer& loc
     m.emplace_back("fixes_refused_by_map", static_cast<double>(w.refusals()));
     m.emplace_back("map_refusal_stretches", static_cast<double>(w.refusal_stretches()));
     m.emplace_back("map_first_refusal_s", w.first_refusal_s());
+    m.emplace_back("map_overrulings", static_cast<double>(w.overrulings()));
+    m.emplace_back("map_first_overrule_s", w.first_overrule_s());
   }
   if (policy == Policy::resilient) {
     m.emplace_back("epsilon_m", selection.epsilon);

@@ -1,5 +1,6 @@
 #include "localizer.hpp"
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 
 #include <algorithm>
@@ -73,6 +74,7 @@ bool Localizer::scan_pose(double stamp, const Eigen::Vector2d& xy, const Eigen::
   if (p_.witness.enabled) {
     const Eigen::Matrix2d W = witness_.floored(turned);
     witness_.observe({t_, e, W, filter_.innovation_cov(W)}, gnss_accepted());
+    if (witness_.overrules(t_)) overrule_fixes(e, W);
     // A standing map that agrees with the filter is a witness of the position from this frame
     // on, before its poses are taken (scan_after_s): at a bias's onset every fix is refused at
     // once, and EMERGENCY must not race the first pose taken.
@@ -92,6 +94,13 @@ bool Localizer::scan_pose(double stamp, const Eigen::Vector2d& xy, const Eigen::
   manager_.on_witness(t_);
   ++scan_updates_;
   return true;
+}
+
+void Localizer::overrule_fixes(const Eigen::Vector2d& offset, const Eigen::Matrix2d& map_cov) {
+  filter_.reset_position(filter_.position() + offset, std::sqrt(Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(map_cov).eigenvalues().maxCoeff()));
+  witness_.relocated(t_, offset);
+  reacquisition_.reset();
+  manager_.on_witness(t_);
 }
 
 void Localizer::scan_unlocated() {

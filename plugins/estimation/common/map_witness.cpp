@@ -53,11 +53,21 @@ void MapWitness::observe(const MapPoseNow& m, bool gnss_accepted) {
     agree_since_ = -1;
     disagreements_ += gnss_accepted;
   }
+  if (!verified_ || agrees) disagree_since_ = -1;
+  else if (disagree_since_ < 0) disagree_since_ = m.t;
   if (verified_) last_verified_t_ = m.t;
   agrees_ = agrees;
   last_t_ = m.t;
   offset_ = m.offset;
   cov_ = m.cov;
+}
+
+void MapWitness::relocated(double t, const Eigen::Vector2d& shift) {
+  offset_ -= shift;
+  agrees_ = true;
+  disagree_since_ = -1;
+  ++overrulings_;
+  if (first_overrule_ < 0) first_overrule_ = t;
 }
 
 bool MapWitness::refuses(double t, const Eigen::Vector2d& base, const Eigen::Matrix2d& R, const Eigen::Vector2d& filter_xy) {

@@ -25,6 +25,12 @@
 //              odd one out and refuses nothing). No reacquisition may take the fixes' position
 //              meanwhile. What the map cannot tell (a straight between parallel walls) is in its
 //              covariance, so it refuses nothing along it.
+//   overrule   verified and continuous (no jump), its poses have disagreed with the filter for
+//              overrule_s on end: the fixes drifted and took the filter along (both receivers
+//              pulled off together, slowly: multipath), which agreement alone cannot tell, since
+//              the filter follows them; or, GNSS out, dead reckoning drifted past what the filter
+//              believes and it refuses the map's poses. The filter is put on the map's position;
+//              the map then agrees with it and stands, and refuses the drifting fixes.
 // The map's position now is its latest pose's offset from the filter laid on the filter's position
 // now: between two frames the filter only predicts, or takes fixes that agree with the map.
 #include <Eigen/Core>
@@ -42,6 +48,7 @@ struct WitnessParams {
   double verify_sigma = 1.0; // m: without accepted fixes, agreement counts only with the filter this sure
   double hold_reacquire_s = 5.0;  // s after the map last stood: no reacquisition
   double mismatch_s = 10.0;  // s of map poses with GNSS accepted, never verified: not this track's map
+  double overrule_s = 1.0;   // s a verified map disagrees with the filter before the filter is put on it (0: never)
 };
 
 // A covariance whose spread in every direction is at least `sigma`: its eigenvalues floored. (A
@@ -76,6 +83,14 @@ class MapWitness {
   // Not verified within mismatch_s of frames with GNSS accepted (none located, or located off
   // the fixes): a map of another track, or one that does not register. Latched.
   bool mismatch() const { return mismatch_; }
+  // Standing, and has disagreed with the filter for overrule_s on end, no jump since it
+  // verified: the filter drifted (with the fixes, or on dead reckoning).
+  bool overrules(double t) const {
+    return p_.overrule_s > 0 && standing(t) && disagree_since_ >= 0 && t - disagree_since_ >= p_.overrule_s;
+  }
+  // The filter moved by `shift` onto the map's position at t: the latest offset from it is
+  // less by that (no jump), and it agrees.
+  void relocated(double t, const Eigen::Vector2d& shift);
   Eigen::Matrix2d floored(const Eigen::Matrix2d& cov) const { return with_floor(cov, p_.sigma_floor); }
 
   bool ever_verified() const { return ever_verified_; }
@@ -84,6 +99,8 @@ class MapWitness {
   double first_refusal_s() const { return first_refusal_; }
   std::uint64_t disagreements() const { return disagreements_; }  // poses off accepted GNSS
   std::uint64_t jumps() const { return jumps_; }
+  std::uint64_t overrulings() const { return overrulings_; }
+  double first_overrule_s() const { return first_overrule_; }  // -1: never
 
  private:
   // The time since the previous frame, located or not (0 after a gap), counted towards mismatch.
@@ -91,10 +108,10 @@ class MapWitness {
 
   WitnessParams p_;
   bool verified_ = false, ever_verified_ = false, mismatch_ = false, agrees_ = false;
-  double last_t_ = -1, agree_since_ = -1, last_frame_t_ = -1, unverified_s_ = 0, last_verified_t_ = -1e300;
+  double last_t_ = -1, agree_since_ = -1, disagree_since_ = -1, first_overrule_ = -1, last_frame_t_ = -1, unverified_s_ = 0, last_verified_t_ = -1e300;
   Eigen::Vector2d offset_ = Eigen::Vector2d::Zero();
   Eigen::Matrix2d cov_ = Eigen::Matrix2d::Identity();
-  std::uint64_t refusals_ = 0, stretches_ = 0, disagreements_ = 0, jumps_ = 0;
+  std::uint64_t refusals_ = 0, stretches_ = 0, disagreements_ = 0, jumps_ = 0, overrulings_ = 0;
   double first_refusal_ = -1, last_refusal_ = -1e300;
 };
 

@@ -61,6 +61,9 @@ template <Policy P> ParamBinding<Settings> bindings() {
       .doc("without accepted fixes, the map's agreement counts towards verifying it only with the filter's position this sure");
   b.bind("witness_mismatch_s", &Settings::loc, &L::witness, &W::mismatch_s).in_unit("s").range(0.1, 3600)
       .doc("frames with GNSS accepted and the map never verified this long: the map is not this track's (reported)");
+  b.bind("witness_overrule_s", &Settings::loc, &L::witness, &W::overrule_s).in_unit("s").range(0, 3600)
+      .doc("a verified map that disagrees this long with the filter overrules it: the filter is put on the map "
+           "(both receivers drifting together, or dead reckoning drifted in an outage); 0: never");
   b.bind("scan_min_sigma", &Settings::loc, &L::scan_min_sigma).in_unit("m").range(0.001, 100).doc("floor on a scan pose's spread");
   b.bind("epoch_pair_s", &Settings::epoch_pair_s).in_unit("s").range(0, 1)
       .doc("real clock: two receivers' fixes stamped this close are one epoch (each carried from its own stamp)");

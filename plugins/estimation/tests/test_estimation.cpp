@@ -874,13 +874,14 @@ struct WitnessDrive {
   double seconds = 30, worst_after = 1e9;  // the largest error after this time
   double worst = 0, emergency_s = 0;
 
-  Localizer run(bool witness) {
+  Localizer run(bool witness, const std::function<void(LocalizerParams&)>& tune = {}) {
     worst = emergency_s = 0;
     LocalizerParams p;
     p.manager.receivers = 2;
     p.manager.witness_timeout_s = 0.3;
     p.roll_filter_s = 0;
     p.witness.enabled = witness;
+    if (tune) tune(p);
     Localizer loc(p);
     const double v = 20;
     for (int k = 0; k * 0.01 < seconds; ++k) {
@@ -964,6 +965,41 @@ TEST(Localizer, AMapThatDoesNotMatchIsReportedAndNotUsed) {
   EXPECT_GT(loc.scan_unverified(), 0u);
   EXPECT_EQ(loc.witness().refusals(), 0u);
   EXPECT_LT(d.worst, 1.5) << "5 s of dead reckoning on wheels 1 % high, then GNSS again";
+}
+
+// Both receivers drifting together from 10 s on at 0.3 m/s across the road, claiming RTK-fixed
+// (multipath): the filter follows them, so the map disagrees with both. Once it has disagreed for
+// overrule_s past the gate (1.86 m for an RTK filter and the map's 0.5 m floor), the filter is put
+// on the map and the drifting fixes are refused from then on. Without the rule the filter ends 6 m
+// off.
+TEST(Localizer, AMapOverrulesReceiversDriftingTogether) {
+  WitnessDrive d;
+  d.fix_error = [](double t) { return t >= 10 ? Eigen::Vector2d(0, 0.3 * (t - 10)) : Eigen::Vector2d::Zero(); };
+  d.worst_after = 5;
+  d.run(true, [](LocalizerParams& p) { p.witness.overrule_s = 0; });
+  EXPECT_GT(d.worst, 5.0) << "without the rule the filter follows the receivers";
+  const Localizer loc = d.run(true);
+  EXPECT_EQ(loc.witness().overrulings(), 1u);
+  EXPECT_GT(loc.witness().first_overrule_s(), 15.0) << "not before the drift is past the gate";
+  EXPECT_LT(loc.witness().first_overrule_s(), 19.0);
+  EXPECT_LT(d.worst, 2.8) << "the drift past the gate, and a second of it";
+  d.worst_after = loc.witness().first_overrule_s() + 0.5;
+  d.run(true);
+  EXPECT_LT(d.worst, 0.5) << "on the map from the overrule on";
+  EXPECT_GT(loc.witness().refusals(), 100u) << "the drifting fixes refused";
+  EXPECT_EQ(loc.reacquisitions(), 0u);
+}
+
+// A map off by 1.5 m for 10 s (a stretch its mapping drive got wrong) with GNSS healthy: under
+// the gate, so it never overrules, and no fix is refused.
+TEST(Localizer, AMapOffUnderTheGateNeverOverrules) {
+  WitnessDrive d;
+  d.map_error = [](double t) { return t >= 10 && t < 20 ? Eigen::Vector2d(0, 1.5) : Eigen::Vector2d::Zero(); };
+  d.worst_after = 5;
+  const Localizer loc = d.run(true);
+  EXPECT_EQ(loc.witness().overrulings(), 0u);
+  EXPECT_EQ(loc.witness().refusals(), 0u);
+  EXPECT_LT(d.worst, 0.2);
 }
 
 // A registration that slips (3 m for a second) while GNSS is healthy: the map loses its standing
