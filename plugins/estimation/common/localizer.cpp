@@ -97,7 +97,8 @@ bool Localizer::scan_pose(double stamp, const Eigen::Vector2d& xy, const Eigen::
 }
 
 void Localizer::overrule_fixes(const Eigen::Vector2d& offset, const Eigen::Matrix2d& map_cov) {
-  filter_.reset_position(filter_.position() + offset, std::sqrt(Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(map_cov).eigenvalues().maxCoeff()));
+  const double spread = std::sqrt(Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(map_cov).eigenvalues().maxCoeff());
+  filter_.reset_position(filter_.position() + offset, spread);
   witness_.relocated(t_, offset);
   reacquisition_.reset();
   manager_.on_witness(t_);

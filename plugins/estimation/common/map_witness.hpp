@@ -108,7 +108,8 @@ class MapWitness {
 
   WitnessParams p_;
   bool verified_ = false, ever_verified_ = false, mismatch_ = false, agrees_ = false;
-  double last_t_ = -1, agree_since_ = -1, disagree_since_ = -1, first_overrule_ = -1, last_frame_t_ = -1, unverified_s_ = 0, last_verified_t_ = -1e300;
+  double last_t_ = -1, agree_since_ = -1, last_frame_t_ = -1, unverified_s_ = 0, last_verified_t_ = -1e300;
+  double disagree_since_ = -1, first_overrule_ = -1;
   Eigen::Vector2d offset_ = Eigen::Vector2d::Zero();
   Eigen::Matrix2d cov_ = Eigen::Matrix2d::Identity();
   std::uint64_t refusals_ = 0, stretches_ = 0, disagreements_ = 0, jumps_ = 0, overrulings_ = 0;

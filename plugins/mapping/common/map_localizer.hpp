@@ -23,8 +23,9 @@ struct MapLocalizerParams {
   float scan_voxel = 0.4f;    // m: the frame thinned to one point (the mean) per voxel of this size
   double max_range = 60.0;    // m from the car: farther points are left out
   // How many independent points a frame counts as (its covariance; RegistrationParams::weight).
-  // At 200 the poses of single-wall stretches were off by 3 to 4 of their own sigmas (Monza and
-  // Spielberg, outer wall: docs/map-localization.md); at 20 their errors sit within them.
+  // At 200 a clean lap's poses were off by up to 9 of their own sigmas (Spielberg, outer wall,
+  // the road not yet levelled: NEES p99 88, docs/results-gnss-faults.md); at 20 every track's
+  // sit within them (NEES p99 at most 3.8).
   double points_worth = 20;
   double max_correction = 2.0;  // m: a pose farther from the guess in the plane is not taken
   double max_turn = 0.05;       // rad: nor one whose heading turned more
@@ -33,8 +34,8 @@ struct MapLocalizerParams {
   double unseen_sigma = 100;      // m: the spread reported along an unseen direction
   // m: the least spread reported in any direction of the position. The registration's own
   // covariance says what the frame's noise allows, not what the map's making does (voxel means,
-  // a wall mapped a few centimetres off): against the truth, poses it says are sure to 2 cm are
-  // off by 4 to 9 cm (rms) on the sweep's tracks.
+  // a wall mapped a few centimetres off): poses it said were sure to a centimetre or two were
+  // off by several against the truth.
   double min_sigma = 0.1;
   // A weak prior at the guess (1 sigma): it keeps the solution where the frame tells nothing (the
   // registration would wander there by aliasing) and weighs nothing where the frame tells.
@@ -47,7 +48,7 @@ struct MapLocalizerParams {
   double prior_sigma_turn = 0.1;  // rad
   // Surfaces within this of level (the road, in the map and in the frame) are made level: they
   // tell height, roll and pitch, never where the car is in the plane. A map's road is tilted
-  // where its mapping drive's attitude drifted (a sheet rising 16 % across the road in a
+  // where its mapping drive's attitude drifted (a sheet rising about 17 % across the road in a
   // hairpin of Spielberg's outer-wall map), and a frame's road matched onto it slides the pose
   // metres sideways with a covariance sure to 0.15 m; where the plane position comes from the
   // walls alone, the covariance says what the walls tell. 0: the road kept as it is.
