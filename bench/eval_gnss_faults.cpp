@@ -2,7 +2,7 @@
 // (configs/eval/gnss_faults.json: configs/race_on_map.json with its localization scored against
 // the truth) through GNSS faults, on every track in a folder, for both wall layouts. Per track and
 // layout: the track's map from a mapping drive (scripts/track-map, cached under --maps), a clean
-// race (the map must not overrule its healthy GNSS), then each fault class for each duration at
+// race (the map must neither refuse nor overrule its healthy GNSS), then each fault class for each duration at
 // --placements evenly spaced starts in lap 2 ("laps": the whole of laps 2 and 3). A row per track, layout, class and duration: runs that
 // finished clean, contacts, violations, least wall clearance, the slowest lap against the clean
 // run's same lap, localization error p99 and max (the worst run), the time the fusion took to flag
@@ -315,9 +315,11 @@ int main(int argc, char** argv) {
                   num(est, "fixes_refused_by_map"), num(est, "map_overrulings"), num(node(clean, "score"), "p99_error_m"), num(node(clean, "score"), "max_error_m"),
                   clean.wall_s > 0 ? clean.sim_s / clean.wall_s : 0.0);
       print_map_honesty("clean", clean);
-      // Healthy GNSS overruled by the map: the map was wrong past the gate for a second on end.
-      if (num(est, "map_overrulings") > 0) {
-        std::printf("FAIL: the map overruled healthy GNSS in the clean run (first at %.2f s)\n\n", num(est, "map_first_overrule_s"));
+      // Healthy GNSS refused or overruled by the map: the map was wrong past the gate (a false
+      // alarm that, in a race, throws good fixes away).
+      if (num(est, "fixes_refused_by_map") > 0 || num(est, "map_overrulings") > 0) {
+        std::printf("FAIL: the map refused or overruled healthy GNSS in the clean run (first refusal at %.2f s, first overrule at %.2f s)\n\n",
+                    num(est, "map_first_refusal_s"), num(est, "map_first_overrule_s"));
         all_ok = false;
       }
       std::fflush(stdout);
