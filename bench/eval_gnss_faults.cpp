@@ -2,11 +2,12 @@
 // (configs/eval/gnss_faults.json: configs/race_on_map.json with its localization scored against
 // the truth) through GNSS faults, on every track in a folder, for both wall layouts. Per track and
 // layout: the track's map from a mapping drive (scripts/track-map, cached under --maps), a clean
-// race (the map must neither refuse nor overrule its healthy GNSS), then each fault class for each duration at
-// --placements evenly spaced starts in lap 2 ("laps": the whole of laps 2 and 3). A row per track, layout, class and duration: runs that
-// finished clean, contacts, violations, least wall clearance, the slowest lap against the clean
-// run's same lap, localization error p99 and max (the worst run), the time the fusion took to flag
-// the fault, the longest time in each mode; "ok" or what missed the target.
+// race (the map must neither refuse nor overrule its healthy GNSS), then each fault class for
+// each duration at --placements evenly spaced starts in lap 2 ("laps": the whole of laps 2 and
+// 3). A row per track, layout, class and duration: runs that finished clean, contacts,
+// violations, least wall clearance, the slowest lap against the clean run's same lap,
+// localization error p99 and max (the worst run), the time the fusion took to flag the fault,
+// the longest time in each mode; "ok" or what missed the target.
 // usage: eval_gnss_faults [--tracks DIR] [--track NAME]... [--layout outer|both] [--faults a,b]
 //                         [--durations 7,60,laps] [--placements N] [--seed N] [--jobs N]
 //                         [--domain N] [--maps DIR] [--set NODE.PARAM=V]...
