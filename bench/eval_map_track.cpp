@@ -138,16 +138,13 @@ int main(int argc, char** argv) {
       const std::string dir = out + "/" + tf.name;
       fs::create_directories(dir);
       std::vector<std::string> a = brickyard::bench::track_args(tf.path, tf.name, tf.line, layout == "both");
-      if (tf.name != "IMS") a.insert(a.end(), {"bank_mode=none", "bank_deg=0"});
       const double fs0 = std::atof(fault.c_str());
       a.insert(a.end(), {"laps=2", "duration=900", "fault_start=" + fault, "fault_end=" + std::to_string(fs0 + 10),
                          "map_file=" + dir + "/map.pcd", "track_file=" + dir + "/track.csv"});
       std::remove((dir + "/track.csv").c_str());  // an earlier run's file must not stand for this one's
       runs[k] = brickyard::bench::run_race(host, graph, a, {}, seed, dir + "/run", domain);
       if (!runs[k].ok) continue;
-      const std::vector<std::string> race = brickyard::bench::track_args(tf.path, tf.name, tf.line, layout == "both");
-      std::vector<std::string> race_args = race;
-      if (tf.name != "IMS") race_args.insert(race_args.end(), {"bank_mode=none", "bank_deg=0"});
+      const std::vector<std::string> race_args = brickyard::bench::track_args(tf.path, tf.name, tf.line, layout == "both");
       const std::string race_graph = src + "/configs/race.json";
       on_truth[k] = brickyard::bench::run_race(host, race_graph, race_args, {}, seed, dir + "/race_true", domain);
       on_map[k] = brickyard::bench::run_race(host, race_graph, race_args, {"map.track=" + dir + "/track.csv", "map.bank_mode=file"}, seed,

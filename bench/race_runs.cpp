@@ -77,7 +77,9 @@ std::vector<std::string> track_args(const std::string& file, const std::string& 
                                     bool both_walls) {
   std::vector<std::string> a = {"track=" + file, std::string("wall_side=") + (track::counter_clockwise(c) ? "right" : "left"),
                                 std::string("inner_wall=") + (both_walls ? "true" : "false")};
+  // Always said: a graph's own default may differ (configs/map_ims.json banks every curve, as IMS is).
   if (name == "IMS") a.insert(a.end(), {"bank_mode=curvature", "bank_deg=9.2"});
+  else a.insert(a.end(), {"bank_mode=none", "bank_deg=0"});
   return a;
 }
 

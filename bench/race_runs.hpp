@@ -36,7 +36,8 @@ std::vector<TrackFile> track_files(const std::string& dir);
 
 // The race graph's arguments for a track file: the track, its outer wall's side (the outside of
 // the loop: right on an anticlockwise track), an inner wall too when `both_walls`. IMS is banked
-// as the simulator has it by default (9.2°); every other track is taken flat.
+// as the simulator has it by default (9.2°); every other track is flat, said so (a graph of its
+// own may default otherwise: configs/map_ims.json banks every curve).
 std::vector<std::string> track_args(const std::string& file, const std::string& name, const track::CenterLine& c,
                                     bool both_walls);
 

@@ -191,8 +191,17 @@ std::vector<bool> Localizer::refused_by_map(const std::vector<Fix>& epoch) {
   for (std::size_t i = 0; i < epoch.size(); ++i) {
     const Eigen::Vector2d base = filter_.base_from_antenna(epoch[i].antenna, epoch[i].lever);
     const Eigen::Matrix2d R = filter_.fix_variance(epoch[i].sigma) * Eigen::Matrix2d::Identity();
-    refused[i] = witness_.refuses(t_, base, R, filter_.position());
+    refused[i] = witness_.refuses(t_, base, R, filter_.position(), epoch[i].receiver, filter_.innovation_cov(Eigen::Matrix2d::Zero()));
   }
+  // A fix beside a refused one is as wrong (witness_.refuse_beside).
+  const double floor = p_.witness.sigma_floor * p_.witness.sigma_floor;
+  for (std::size_t i = 0; i < epoch.size(); ++i)
+    for (std::size_t j = 0; j < epoch.size() && !refused[i]; ++j) {
+      if (!refused[j]) continue;
+      const Eigen::Vector2d d = filter_.base_from_antenna(epoch[i].antenna, epoch[i].lever) - filter_.base_from_antenna(epoch[j].antenna, epoch[j].lever);
+      const double var = filter_.fix_variance(epoch[i].sigma) + filter_.fix_variance(epoch[j].sigma) + floor;
+      if (d.squaredNorm() <= p_.witness.gate * var) refused[i] = true, witness_.refuse_beside(t_, epoch[i].receiver);
+    }
   return refused;
 }
 

@@ -63,6 +63,7 @@ void MapWitness::observe(const MapPoseNow& m, bool gnss_accepted) {
 }
 
 void MapWitness::relocated(double t, const Eigen::Vector2d& shift) {
+  for (auto& c : caught_) c = {p_.retrust_s > 0, -1};
   offset_ -= shift;
   agrees_ = true;
   disagree_since_ = -1;
@@ -70,13 +71,43 @@ void MapWitness::relocated(double t, const Eigen::Vector2d& shift) {
   if (first_overrule_ < 0) first_overrule_ = t;
 }
 
-bool MapWitness::refuses(double t, const Eigen::Vector2d& base, const Eigen::Matrix2d& R, const Eigen::Vector2d& filter_xy) {
+bool MapWitness::refuses(double t, const Eigen::Vector2d& base, const Eigen::Matrix2d& R, const Eigen::Vector2d& filter_xy, int receiver,
+                         const Eigen::Matrix2d& filter_cov) {
+  if (receiver < 0) receiver = 0;
+  if (static_cast<std::size_t>(receiver) >= caught_.size()) caught_.resize(receiver + 1);
+  if (caught_[receiver].caught && still_caught(t, receiver, base, R, filter_xy, filter_cov)) {
+    count_refusal(t);
+    return true;
+  }
   if (!standing(t) || !agrees_ || within(base - (filter_xy + offset_), cov_ + R, p_.gate)) return false;
+  count_refusal(t);
+  caught_[receiver] = {p_.retrust_s > 0, -1};
+  return true;
+}
+
+bool MapWitness::still_caught(double t, int receiver, const Eigen::Vector2d& base, const Eigen::Matrix2d& R, const Eigen::Vector2d& filter_xy,
+                              const Eigen::Matrix2d& filter_cov) {
+  Caught& c = caught_[receiver];
+  if (!holds_reacquisition(t)) return (c = {}), false;  // no witness left
+  const Eigen::Matrix2d floor = Eigen::Matrix2d::Identity() * p_.sigma_floor * p_.sigma_floor;
+  if (!within(base - filter_xy, filter_cov + R + floor, p_.gate)) c.agree_since = -1;
+  else if (c.agree_since < 0) c.agree_since = t;
+  if (c.agree_since >= 0 && t - c.agree_since >= p_.retrust_s) c = {};
+  return c.caught;
+}
+
+void MapWitness::refuse_beside(double t, int receiver) {
+  if (receiver < 0) receiver = 0;
+  if (static_cast<std::size_t>(receiver) >= caught_.size()) caught_.resize(receiver + 1);
+  count_refusal(t);
+  if (!caught_[receiver].caught) caught_[receiver] = {p_.retrust_s > 0, -1};
+}
+
+void MapWitness::count_refusal(double t) {
   ++refusals_;
   if (first_refusal_ < 0) first_refusal_ = t;
   if (t - last_refusal_ > 1.0) ++stretches_;  // a new stretch: none refused for a second
   last_refusal_ = t;
-  return true;
 }
 
 }  // namespace brickyard::estimation

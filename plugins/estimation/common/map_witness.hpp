@@ -25,6 +25,17 @@
 //              odd one out and refuses nothing). No reacquisition may take the fixes' position
 //              meanwhile. What the map cannot tell (a straight between parallel walls) is in its
 //              covariance, so it refuses nothing along it.
+//   caught     a receiver whose fix the standing map refused, or every receiver when the map
+//              overruled the filter they had pulled: its fixes are refused from then on, map
+//              standing or not, until they have agreed with the filter (its own spread, the floor)
+//              for retrust_s on end. A drift caught across the road keeps drifting where the map
+//              sees less (along a straight, a turn with one wall far off): judged by the map's
+//              spread alone, its fixes would be let in again there and pull the filter, and the map
+//              (guessing each frame from the filter) would follow. Released when the map has not
+//              stood for hold_reacquire_s: with no witness left, the paper's rules judge them.
+//              A fix that agrees with a refused one of the same epoch is refused and its receiver
+//              caught too: receivers drifting together cross the gate a few epochs apart, and the
+//              one still inside would pull the filter meanwhile.
 //   overrule   verified and continuous (no jump), its poses have disagreed with the filter for
 //              overrule_s on end: the fixes drifted and took the filter along (both receivers
 //              pulled off together, slowly: multipath), which agreement alone cannot tell, since
@@ -36,6 +47,7 @@
 #include <Eigen/Core>
 
 #include <cstdint>
+#include <vector>
 
 namespace brickyard::estimation {
 
@@ -49,6 +61,7 @@ struct WitnessParams {
   double hold_reacquire_s = 5.0;  // s after the map last stood: no reacquisition
   double mismatch_s = 10.0;  // s of map poses with GNSS accepted, never verified: not this track's map
   double overrule_s = 1.0;   // s a verified map disagrees with the filter before the filter is put on it (0: never)
+  double retrust_s = 3.0;    // s a caught receiver's fixes agree with the filter before they are taken again (0: never caught)
 };
 
 // A covariance whose spread in every direction is at least `sigma`: its eigenvalues floored. (A
@@ -77,9 +90,16 @@ class MapWitness {
   // Standing, or was within hold_reacquire_s: the fixes' position is not taken by reacquisition
   // (a map that slipped for a frame during a bias must not let the biased fixes in meanwhile).
   bool holds_reacquisition(double t) const { return standing(t) || t - last_verified_t_ <= p_.hold_reacquire_s; }
-  // Whether the map, standing at t, refuses a fix's base_link position (covariance R) given the
-  // filter's position now. Counted.
-  bool refuses(double t, const Eigen::Vector2d& base, const Eigen::Matrix2d& R, const Eigen::Vector2d& filter_xy);
+  // Whether a fix of `receiver` (its base_link position, covariance R) is refused at t, given the
+  // filter's position now and its spread: by the standing map, or because the receiver is caught.
+  // Counted.
+  bool refuses(double t, const Eigen::Vector2d& base, const Eigen::Matrix2d& R, const Eigen::Vector2d& filter_xy, int receiver = 0,
+               const Eigen::Matrix2d& filter_cov = Eigen::Matrix2d::Zero());
+  // A fix refused with the one of `receiver` beside it: it agrees with a receiver the map caught
+  // (receivers wrong together drift together, one a little past the gate, the other not yet).
+  // Counted, and the receiver caught.
+  void refuse_beside(double t, int receiver);
+  bool caught(int receiver) const { return receiver >= 0 && receiver < static_cast<int>(caught_.size()) && caught_[receiver].caught; }
   // Not verified within mismatch_s of frames with GNSS accepted (none located, or located off
   // the fixes): a map of another track, or one that does not register. Latched.
   bool mismatch() const { return mismatch_; }
@@ -97,6 +117,7 @@ class MapWitness {
   std::uint64_t refusals() const { return refusals_; }
   std::uint64_t refusal_stretches() const { return stretches_; }
   double first_refusal_s() const { return first_refusal_; }
+  double last_refusal_s() const { return last_refusal_; }  // -1e300: never
   std::uint64_t disagreements() const { return disagreements_; }  // poses off accepted GNSS
   std::uint64_t jumps() const { return jumps_; }
   std::uint64_t overrulings() const { return overrulings_; }
@@ -105,6 +126,14 @@ class MapWitness {
  private:
   // The time since the previous frame, located or not (0 after a gap), counted towards mismatch.
   void count_frame(double t, bool gnss_accepted);
+  // A caught receiver's fix: still refused, or the agreement that releases it counted.
+  bool still_caught(double t, int receiver, const Eigen::Vector2d& base, const Eigen::Matrix2d& R, const Eigen::Vector2d& filter_xy,
+                    const Eigen::Matrix2d& filter_cov);
+  void count_refusal(double t);
+  struct Caught {
+    bool caught = false;
+    double agree_since = -1;
+  };
 
   WitnessParams p_;
   bool verified_ = false, ever_verified_ = false, mismatch_ = false, agrees_ = false;
@@ -114,6 +143,7 @@ class MapWitness {
   Eigen::Matrix2d cov_ = Eigen::Matrix2d::Identity();
   std::uint64_t refusals_ = 0, stretches_ = 0, disagreements_ = 0, jumps_ = 0, overrulings_ = 0;
   double first_refusal_ = -1, last_refusal_ = -1e300;
+  std::vector<Caught> caught_;  // by receiver
 };
 
 }  // namespace brickyard::estimation

@@ -64,6 +64,9 @@ template <Policy P> ParamBinding<Settings> bindings() {
   b.bind("witness_overrule_s", &Settings::loc, &L::witness, &W::overrule_s).in_unit("s").range(0, 3600)
       .doc("a verified map that disagrees this long with the filter overrules it: the filter is put on the map "
            "(both receivers drifting together, or dead reckoning drifted in an outage); 0: never");
+  b.bind("witness_retrust_s", &Settings::loc, &L::witness, &W::retrust_s).in_unit("s").range(0, 3600)
+      .doc("a receiver the map caught (a fix refused, or the filter it pulled overruled) stays refused until its fixes have "
+           "agreed with the filter this long; 0: judged fix by fix");
   b.bind("scan_min_sigma", &Settings::loc, &L::scan_min_sigma).in_unit("m").range(0.001, 100).doc("floor on a scan pose's spread");
   b.bind("epoch_pair_s", &Settings::epoch_pair_s).in_unit("s").range(0, 1)
       .doc("real clock: two receivers' fixes stamped this close are one epoch (each carried from its own stamp)");

@@ -714,9 +714,11 @@ TEST(EstimatorReport, TheSummarysMetricsInTheirOrder) {
 // ---- the prior map as a third witness (map_witness.hpp) ----
 namespace {
 
+// Fix by fix: a receiver caught lying stays refused (the catch rule has its own test).
 WitnessParams witness_on() {
   WitnessParams p;
   p.enabled = true;
+  p.retrust_s = 0;
   return p;
 }
 
@@ -757,6 +759,36 @@ TEST(MapWitness, VerifiedByAgreeingWithAcceptedGnssThenRefusesFixesOffTheMap) {
   odd.observe(map_pose(odd, t, {2.5, 0.1}), true);
   EXPECT_FALSE(odd.refuses(t, filter, rtk, filter));
   EXPECT_FALSE(w.refuses(t + 0.31, filter + Eigen::Vector2d(6, -8), rtk, filter));
+}
+
+// Caught: refused while the map stands or stood within hold_reacquire_s, whatever the map says
+// of the fix, until its fixes agree with the filter for retrust_s; with no witness left after
+// that, released (the paper's rules judge the fixes again).
+TEST(MapWitness, ACaughtReceiverIsRefusedUntilItAgreesOrNoWitnessIsLeft) {
+  WitnessParams p = witness_on();
+  p.retrust_s = 3.0;
+  MapWitness w(p);
+  const Eigen::Vector2d filter(0, 0);
+  const Eigen::Matrix2d rtk = Eigen::Matrix2d::Identity() * 0.02 * 0.02, sure = Eigen::Matrix2d::Identity() * 0.01;
+  double t = 0;
+  for (; t < 2.5; t += 0.1) w.observe(map_pose(w, t, {0, 0}), true);
+  ASSERT_TRUE(w.refuses(t, {0, 3}, rtk, filter, 1, sure));
+  EXPECT_TRUE(w.caught(1));
+  EXPECT_FALSE(w.caught(0));
+  EXPECT_FALSE(w.refuses(t, {0, 0.1}, rtk, filter, 0, sure)) << "the other receiver is judged as ever";
+  // Back at the filter's position: still refused for 3 s of agreement, then taken.
+  for (; t < 5.4; t += 0.1) {
+    w.observe(map_pose(w, t, {0, 0}), false);
+    EXPECT_TRUE(w.refuses(t, {0, 0.1}, rtk, filter, 1, sure)) << t;
+  }
+  w.observe(map_pose(w, t + 0.1, {0, 0}), false);
+  EXPECT_FALSE(w.refuses(t + 0.1, {0, 0.1}, rtk, filter, 1, sure));
+  EXPECT_FALSE(w.caught(1));
+  // Caught again; then the map silent for more than hold_reacquire_s: released.
+  ASSERT_TRUE(w.refuses(t + 0.1, {0, 3}, rtk, filter, 1, sure));
+  EXPECT_TRUE(w.refuses(t + 4, {0, 3}, rtk, filter, 1, sure)) << "the map stood 4 s ago: still caught";
+  EXPECT_FALSE(w.refuses(t + 6, {0, 3}, rtk, filter, 1, sure)) << "no witness for 6 s";
+  EXPECT_FALSE(w.caught(1));
 }
 
 TEST(MapWitness, RefusesNothingAlongWhatTheMapCannotTell) {
@@ -988,6 +1020,87 @@ TEST(Localizer, AMapOverrulesReceiversDriftingTogether) {
   EXPECT_LT(d.worst, 0.5) << "on the map from the overrule on";
   EXPECT_GT(loc.witness().refusals(), 100u) << "the drifting fixes refused";
   EXPECT_EQ(loc.reacquisitions(), 0u);
+}
+
+// A receiver the map caught lying stays refused where the map sees little. The drift of the test
+// above, overruled; then 4 s where the map's poses tell the car's position across to 3 m only (a
+// turn whose one wall is far off): judged by the map's spread alone, the fixes 2 to 3 m across
+// would be taken again and pull the filter. Caught, they are refused until they have agreed with
+// the filter for retrust_s: once the drift ends, 3 s later.
+TEST(Localizer, AReceiverCaughtLyingStaysRefusedWhereTheMapSeesLittle) {
+  WitnessDrive d;
+  d.seconds = 40;
+  d.fix_error = [](double t) { return t >= 10 && t < 30 ? Eigen::Vector2d(0, 0.3 * (t - 10)) : Eigen::Vector2d::Zero(); };
+  d.worst_after = 20;
+  // WitnessDrive's, with the map's poses unsure across from 20 to 24 s.
+  const auto run = [&d](double retrust) {
+    LocalizerParams p;
+    p.manager.receivers = 2;
+    p.manager.witness_timeout_s = 0.3;
+    p.roll_filter_s = 0;
+    p.witness.enabled = true;
+    p.witness.retrust_s = retrust;
+    Localizer loc(p);
+    double worst = 0;
+    for (int k = 0; k * 0.01 < d.seconds; ++k) {
+      const double t = 0.01 * k, v = 20;
+      loc.speed(v * 1.01);
+      loc.imu(t, 0.0, 0.0);
+      const Eigen::Vector2d truth(v * t, 0);
+      if (k % 5 == 0) loc.fixes(t, {Fix{0, truth + d.fix_error(t), p.lever[0], 0.02}, Fix{1, truth + d.fix_error(t), p.lever[1], 0.02}});
+      if (k % 10 == 5 && t > 1) {
+        const double stamp = t - 0.1;
+        const double across = stamp >= 20 && stamp < 24 ? 3.0 : 0.1;
+        loc.scan_pose(stamp, {v * stamp, 0}, Eigen::Vector2d(0.1 * 0.1, across * across).asDiagonal());
+      }
+      if (t > d.worst_after && t < 30) worst = std::max(worst, (loc.filter().position() - truth).norm());
+    }
+    return std::make_pair(worst, loc.witness());
+  };
+  const auto [let_in, before] = run(0);
+  EXPECT_GE(before.overrulings(), 1u) << "overruled, and again once pulled off";
+  EXPECT_GT(let_in, 2.0) << "without the rule the fixes are taken again where the map is unsure, and pull the filter";
+  const auto [worst, w] = run(3.0);
+  EXPECT_EQ(w.overrulings(), 1u);
+  EXPECT_LT(worst, 0.5) << "caught, the drifting fixes are refused throughout";
+  EXPECT_FALSE(w.caught(0));
+  EXPECT_FALSE(w.caught(1)) << "released once the drift ended";
+  EXPECT_GT(w.last_refusal_s(), 32.9) << "agreeing with the filter for 3 s first";
+  EXPECT_LT(w.last_refusal_s(), 33.2);
+}
+
+// Receivers wrong together are seldom wrong by exactly as much: from 10 s on, receiver 0 is 3 m
+// across and receiver 1 1.5 m, inside the map's gate (1.86 m). Judged alone, receiver 1's fixes
+// are taken and pull the filter 1.5 m off; beside receiver 0's refused ones, they are refused too.
+TEST(Localizer, AFixBesideARefusedOneIsRefusedToo) {
+  const auto run = [](bool beside) {
+    LocalizerParams p;
+    p.manager.receivers = 2;
+    p.roll_filter_s = 0;
+    p.witness.enabled = true;
+    Localizer loc(p);
+    double worst = 0;
+    for (int k = 0; k * 0.01 < 20; ++k) {
+      const double t = 0.01 * k, v = 20;
+      loc.speed(v * 1.01);
+      loc.imu(t, 0.0, 0.0);
+      const Eigen::Vector2d truth(v * t, 0), off = t >= 10 ? Eigen::Vector2d(0, 1) : Eigen::Vector2d::Zero();
+      std::vector<Fix> epoch = {Fix{0, truth + 3.0 * off, p.lever[0], 0.02}};
+      if (beside || t < 10) epoch.push_back(Fix{1, truth + 1.5 * off, p.lever[1], 0.02});
+      if (k % 5 == 0) loc.fixes(t, epoch);
+      if (!beside && t >= 10 && k % 5 == 0) loc.fixes(t + 1e-4, {Fix{1, truth + 1.5 * off, p.lever[1], 0.02}});
+      if (k % 10 == 5 && t > 1) loc.scan_pose(t - 0.1, {v * (t - 0.1), 0}, Eigen::Matrix2d::Identity() * 0.01);
+      if (t > 5) worst = std::max(worst, (loc.filter().position() - truth).norm());
+    }
+    return std::make_pair(worst, loc.witness());
+  };
+  const double alone = run(false).first;
+  EXPECT_GT(alone, 1.0) << "receiver 1 judged in an epoch of its own: taken, and the filter pulled off";
+  const auto [worst, w] = run(true);
+  EXPECT_LT(worst, 0.3);
+  EXPECT_TRUE(w.caught(0));
+  EXPECT_TRUE(w.caught(1));
+  EXPECT_NEAR(w.first_refusal_s(), 10.0, 1e-9) << "both at the first epoch";
 }
 
 // A map off by 1.5 m for 10 s (a stretch its mapping drive got wrong) with GNSS healthy: under

@@ -35,6 +35,7 @@ bool LocalizationScore::estimate(double t, double x, double y, int status, const
     tx = a.second.first + u * (tx - a.second.first);
     ty = a.second.second + u * (ty - a.second.second);
   }
+  last_truth_ = {tx, ty};
   if (t < p_.warmup_s) {
     last_status_ = status;
     return true;
@@ -78,6 +79,22 @@ double LocalizationScore::p99_error() const { return PerceptionScore::percentile
 
 double LocalizationScore::rmse() const {
   return n_ ? std::sqrt(sq_ / static_cast<double>(n_)) : std::numeric_limits<double>::quiet_NaN();
+}
+
+std::vector<std::pair<const char*, double>> score_metrics(const LocalizationScore& s) {
+  return {{"samples", static_cast<double>(s.samples())},
+          {"rmse_m", s.rmse()},
+          {"max_error_m", s.max_error()},
+          {"p99_error_m", s.p99_error()},
+          {"max_error_normal_m", s.max_error_normal()},
+          {"max_error_in_windows_m", s.max_error_in_windows()},
+          {"time_to_flag_s", s.time_to_flag()},
+          {"time_to_emergency_s", s.time_to_emergency()},
+          {"false_alarms", static_cast<double>(s.false_alarms())},
+          {"judged", static_cast<double>(s.judged())},
+          {"nees_p99", s.nees_p99()},
+          {"overconfident_share", s.overconfident_share()},
+          {"max_error_sure_m", s.max_error_sure()}};
 }
 
 }  // namespace brickyard::sim

@@ -49,6 +49,8 @@ class LocalizationScore {
   double nees_p99() const;                             // NaN without judged samples
   double overconfident_share() const;                  // of judged samples, NEES above 13.8; NaN without
   double max_error_sure() const { return max_sure_; }  // the largest error with a largest sigma <= sure_sigma_m
+  // The truth (x, y) the latest estimate() that returned true was scored against.
+  std::pair<double, double> last_truth() const { return last_truth_; }
 
  private:
   bool in_window(double t, double grace) const;
@@ -59,6 +61,10 @@ class LocalizationScore {
   std::vector<double> errors_, nees_;
   double sq_ = 0, max_ = 0, max_sure_ = 0, max_normal_ = 0, max_window_ = 0, flag_ = -1, emergency_ = -1;
   int false_alarms_ = 0, last_status_ = 0;
+  std::pair<double, double> last_truth_{0, 0};
 };
+
+// The score's figures as named metrics (the scorer plugin's).
+std::vector<std::pair<const char*, double>> score_metrics(const LocalizationScore& s);
 
 }  // namespace brickyard::sim

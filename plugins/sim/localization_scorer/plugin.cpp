@@ -6,6 +6,7 @@
 #include <brickyard/msgs/VehicleState.h>
 #include <brickyard/plugin.hpp>
 
+#include "sim/common/localization_samples.hpp"
 #include "sim/common/localization_score.hpp"
 
 #include <nlohmann/json.hpp>
@@ -35,6 +36,7 @@ struct Settings {
   ScoreParams score;
   double require_max_error_m = -1, require_emergency_within_s = -1, require_normal_error_below_m = -1;
   bool located_only = false;
+  std::string samples_file;
 };
 
 ParamBinding<Settings> bindings() {
@@ -48,6 +50,8 @@ ParamBinding<Settings> bindings() {
       .doc("an estimate whose covariance says this or less in every direction (1 sigma) is sure: max_error_sure_m is the largest error of those");
   b.bind("located_only", &Settings::located_only)
       .doc("estimates with update_case 0 are not scored (mapping.map_localizer's frames not located: the guess sent on)");
+  b.bind("samples_file", &Settings::samples_file)
+      .doc("CSV of every scored estimate beside its truth (localization_samples.hpp); empty: none");
   b.bind("require_max_error_m", &Settings::require_max_error_m).in_unit("m").range(-1000, 1000)
       .doc("fail the run above this max error; < 0: off");
   b.bind("require_emergency_within_s", &Settings::require_emergency_within_s).in_unit("s").range(-3600, 3600)
@@ -85,6 +89,9 @@ class Scorer : public Plugin {
     emergency_within_ = s.require_emergency_within_s;
     normal_below_ = s.require_normal_error_below_m;
     located_only_ = s.located_only;
+    try {
+      if (!s.samples_file.empty()) samples_.emplace(s.samples_file);
+    } catch (const std::runtime_error& e) { throw BadInput(std::string("parameter 'samples_file': ") + e.what()); }
     io_ = ports().connect(ctx);
   }
 
@@ -93,19 +100,8 @@ class Scorer : public Plugin {
   void deactivate(Context& ctx) override {
     drain();
     const auto& s = *score_;
-    ctx.metric("samples", static_cast<double>(s.samples()));
-    ctx.metric("rmse_m", s.rmse());
-    ctx.metric("max_error_m", s.max_error());
-    ctx.metric("p99_error_m", s.p99_error());
-    ctx.metric("max_error_normal_m", s.max_error_normal());
-    ctx.metric("max_error_in_windows_m", s.max_error_in_windows());
-    ctx.metric("time_to_flag_s", s.time_to_flag());
-    ctx.metric("time_to_emergency_s", s.time_to_emergency());
-    ctx.metric("false_alarms", static_cast<double>(s.false_alarms()));
-    ctx.metric("judged", static_cast<double>(s.judged()));
-    ctx.metric("nees_p99", s.nees_p99());
-    ctx.metric("overconfident_share", s.overconfident_share());
-    ctx.metric("max_error_sure_m", s.max_error_sure());
+    for (const auto& [name, value] : score_metrics(s)) ctx.metric(name, value);
+    if (samples_) samples_->finish();
     char b[200];
     if (max_error_ >= 0 && s.max_error() > max_error_) {
       std::snprintf(b, sizeof b, "max error %.3f m exceeds the required %.3f m", s.max_error(), max_error_);
@@ -131,11 +127,16 @@ class Scorer : public Plugin {
       if (located_only_ && e->update_case() == 0) continue;
       const auto& c = e->covariance();
       const PlanarSpread spread{c[0], c[1], c[4]};
-      score_->estimate(static_cast<double>(e->header().stamp_ns()) * 1e-9, e->x(), e->y(), e->status(), &spread);
+      const double t = static_cast<double>(e->header().stamp_ns()) * 1e-9;
+      if (score_->estimate(t, e->x(), e->y(), e->status(), &spread) && samples_) {
+        const auto [tx, ty] = score_->last_truth();
+        samples_->add({t, e->x(), e->y(), e->yaw(), c[0], c[1], c[4], c[8], e->status(), e->update_case(), tx, ty});
+      }
     }
   }
 
   std::optional<LocalizationScore> score_;
+  std::optional<SampleLog> samples_;
   double max_error_ = -1, emergency_within_ = -1, normal_below_ = -1;
   bool located_only_ = false;
   Ports io_;

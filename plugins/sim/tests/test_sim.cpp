@@ -6,6 +6,7 @@
 #include "sim/common/faults.hpp"
 #include "sim/common/gnss_receiver.hpp"
 #include "sim/common/lidar.hpp"
+#include "sim/common/localization_samples.hpp"
 #include "sim/common/localization_score.hpp"
 #include "sim/common/perception_score.hpp"
 #include "sim/common/race_judge.hpp"
@@ -23,7 +24,12 @@
 
 #include <array>
 #include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <sstream>
+
+#include <unistd.h>
 
 using namespace brickyard::sim;
 
@@ -755,6 +761,41 @@ TEST(LocalizationScore, JudgesAnEstimateByItsOwnCovariance) {
   brickyard::sim::LocalizationScore none(p);
   EXPECT_TRUE(std::isnan(none.overconfident_share()));
   EXPECT_TRUE(std::isnan(none.nees_p99()));
+}
+
+// The samples file names what was scored against what, and only a finished log has the name
+// asked for: a run that dies leaves none, and a folder that cannot be written is named.
+TEST(SampleLog, WritesTheFileOnlyWhenFinished) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / ("brickyard_samples_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const std::string path = (dir / "s.csv").string();
+  {
+    brickyard::sim::LocalizationScore score{brickyard::sim::ScoreParams{}};
+    for (int i = 0; i <= 10; ++i) score.truth(i, i, 0);
+    ASSERT_TRUE(score.estimate(2.5, 2.5, 0.3, 1));
+    brickyard::sim::SampleLog log(path);
+    const auto [tx, ty] = score.last_truth();
+    log.add({2.5, 2.5, 0.3, 0.0, 0.01, 0, 0.04, 0.0001, 1, 4, tx, ty});
+    EXPECT_FALSE(fs::exists(path)) << "not finished yet";
+    log.finish();
+  }
+  std::ifstream f(path);
+  std::string header, row;
+  std::getline(f, header);
+  std::getline(f, row);
+  EXPECT_EQ(header, "t,x,y,yaw,cov_xx,cov_xy,cov_yy,var_yaw,status,update_case,truth_x,truth_y,error_m");
+  EXPECT_EQ(row, "2.5000,2.5000,0.3000,0.00000,0.01,0,0.04,0.0001,1,4,2.5000,0.0000,0.3000");
+  { brickyard::sim::SampleLog dies((dir / "dies.csv").string()); }
+  EXPECT_FALSE(fs::exists(dir / "dies.csv"));
+  EXPECT_FALSE(fs::exists(dir / "dies.csv.part"));
+  try {
+    brickyard::sim::SampleLog nowhere((dir / "missing" / "s.csv").string());
+    ADD_FAILURE() << "a folder that does not exist was written";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("missing/s.csv"), std::string::npos) << e.what();
+  }
+  fs::remove_all(dir);
 }
 
 // The car's side of the command contract: the newest command holds while commands keep coming;
