@@ -97,11 +97,17 @@ bool Localizer::scan_pose(double stamp, const Eigen::Vector2d& xy, const Eigen::
 }
 
 void Localizer::overrule_fixes(const Eigen::Vector2d& offset, const Eigen::Matrix2d& map_cov) {
-  const double spread = std::sqrt(Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(map_cov).eigenvalues().maxCoeff());
-  filter_.reset_position(filter_.position() + offset, spread);
-  witness_.relocated(t_, offset);
+  const Eigen::Vector2d before = filter_.position();
+  filter_.relocate(before + offset, map_cov);
+  witness_.relocated(t_, filter_.position() - before);
   reacquisition_.reset();
   manager_.on_witness(t_);
+}
+
+void Localizer::relocate_on_catch() {
+  const Eigen::Vector2d before = filter_.position();
+  filter_.relocate(before + witness_.offset(), witness_.cov());
+  witness_.shifted(filter_.position() - before);
 }
 
 void Localizer::scan_unlocated() {
@@ -167,7 +173,10 @@ void Localizer::fixes(double t, const std::vector<Fix>& epoch_in) {
     last_accepted_t_ = t;
     return;
   }
+  const bool caught_before = witness_.any_caught();
   const std::vector<bool> refused = refused_by_map(epoch);
+  // Caught now: the filter took their fixes until this epoch, so the map's position is the better.
+  if (!caught_before && witness_.any_caught() && witness_.standing(t_)) relocate_on_catch();
   EpochResult r = apply_judged(epoch, refused);
   // A standing map says where the car is: fixes it refused are not taken back by reacquisition.
   if (p_.policy == Policy::resilient && witness_.holds_reacquisition(t_)) reacquisition_.reset();
@@ -186,18 +195,19 @@ void Localizer::fixes(double t, const std::vector<Fix>& epoch_in) {
 }
 
 std::vector<bool> Localizer::refused_by_map(const std::vector<Fix>& epoch) {
-  std::vector<bool> refused(epoch.size(), false);
+  std::vector<bool> refused(epoch.size(), false), off(epoch.size(), false);
   if (!p_.witness.enabled) return refused;
   for (std::size_t i = 0; i < epoch.size(); ++i) {
     const Eigen::Vector2d base = filter_.base_from_antenna(epoch[i].antenna, epoch[i].lever);
     const Eigen::Matrix2d R = filter_.fix_variance(epoch[i].sigma) * Eigen::Matrix2d::Identity();
     refused[i] = witness_.refuses(t_, base, R, filter_.position(), epoch[i].receiver, filter_.innovation_cov(Eigen::Matrix2d::Zero()));
+    off[i] = refused[i] && witness_.refused_off();
   }
   // A fix beside a refused one is as wrong (witness_.refuse_beside).
   const double floor = p_.witness.sigma_floor * p_.witness.sigma_floor;
   for (std::size_t i = 0; i < epoch.size(); ++i)
     for (std::size_t j = 0; j < epoch.size() && !refused[i]; ++j) {
-      if (!refused[j]) continue;
+      if (!off[j]) continue;
       const Eigen::Vector2d d = filter_.base_from_antenna(epoch[i].antenna, epoch[i].lever) - filter_.base_from_antenna(epoch[j].antenna, epoch[j].lever);
       const double var = filter_.fix_variance(epoch[i].sigma) + filter_.fix_variance(epoch[j].sigma) + floor;
       if (d.squaredNorm() <= p_.witness.gate * var) refused[i] = true, witness_.refuse_beside(t_, epoch[i].receiver);

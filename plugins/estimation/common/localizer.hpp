@@ -107,6 +107,8 @@ class Localizer {
   // The map witness overrules the fixes: the filter put on the map's position (`offset` from the
   // filter's, spread `map_cov`).
   void overrule_fixes(const Eigen::Vector2d& offset, const Eigen::Matrix2d& map_cov);
+  // A receiver caught lying this epoch: the filter moved onto the map's position (relocate).
+  void relocate_on_catch();
 
   LocalizerParams p_;
   PoseFilter filter_;

@@ -64,7 +64,7 @@ void MapWitness::observe(const MapPoseNow& m, bool gnss_accepted) {
 
 void MapWitness::relocated(double t, const Eigen::Vector2d& shift) {
   for (auto& c : caught_) c = {p_.retrust_s > 0, -1};
-  offset_ -= shift;
+  shifted(shift);
   agrees_ = true;
   disagree_since_ = -1;
   ++overrulings_;
@@ -77,10 +77,12 @@ bool MapWitness::refuses(double t, const Eigen::Vector2d& base, const Eigen::Mat
   if (static_cast<std::size_t>(receiver) >= caught_.size()) caught_.resize(receiver + 1);
   if (caught_[receiver].caught && still_caught(t, receiver, base, R, filter_xy, filter_cov)) {
     count_refusal(t);
+    refused_off_ = caught_[receiver].agree_since < 0;
     return true;
   }
   if (!standing(t) || !agrees_ || within(base - (filter_xy + offset_), cov_ + R, p_.gate)) return false;
   count_refusal(t);
+  refused_off_ = true;
   caught_[receiver] = {p_.retrust_s > 0, -1};
   return true;
 }

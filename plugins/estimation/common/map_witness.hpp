@@ -99,6 +99,21 @@ class MapWitness {
   // (receivers wrong together drift together, one a little past the gate, the other not yet).
   // Counted, and the receiver caught.
   void refuse_beside(double t, int receiver);
+  // Whether the latest refusal was of a fix off where it should be (off the map, or a caught
+  // receiver's off the filter), not of one already agreeing that waits out retrust_s: only those
+  // make the fixes beside them suspect (two receivers back at the truth would otherwise keep each
+  // other caught).
+  bool refused_off() const { return refused_off_; }
+  bool any_caught() const {
+    for (const auto& c : caught_)
+      if (c.caught) return true;
+    return false;
+  }
+  // The latest pose's offset from the filter, and its covariance (floored).
+  const Eigen::Vector2d& offset() const { return offset_; }
+  const Eigen::Matrix2d& cov() const { return cov_; }
+  // The filter moved by `shift` towards the map (the offset less by it), not overruling it.
+  void shifted(const Eigen::Vector2d& shift) { offset_ -= shift; }
   bool caught(int receiver) const { return receiver >= 0 && receiver < static_cast<int>(caught_.size()) && caught_[receiver].caught; }
   // Not verified within mismatch_s of frames with GNSS accepted (none located, or located off
   // the fixes): a map of another track, or one that does not register. Latched.
@@ -144,6 +159,7 @@ class MapWitness {
   std::uint64_t refusals_ = 0, stretches_ = 0, disagreements_ = 0, jumps_ = 0, overrulings_ = 0;
   double first_refusal_ = -1, last_refusal_ = -1e300;
   std::vector<Caught> caught_;  // by receiver
+  bool refused_off_ = false;
 };
 
 }  // namespace brickyard::estimation

@@ -89,6 +89,16 @@ void PoseFilter::reset_position(const Eigen::Vector2d& z, double sigma) {
   P_(X, X) = P_(Y, Y) = sigma * sigma;
 }
 
+void PoseFilter::relocate(const Eigen::Vector2d& z, const Eigen::Matrix2d& R) {
+  if (!initialized_) return;
+  const Eigen::Vector2d off = z - x_.head<2>();
+  const Eigen::Matrix2d widened = P_.topLeftCorner<2, 2>() + off * off.transpose();
+  P_.topRows<2>().setZero();
+  P_.leftCols<2>().setZero();
+  P_.topLeftCorner<2, 2>() = widened;
+  update_position(z, R);
+}
+
 void PoseFilter::reset_pose(const Eigen::Vector2d& z, double turn, double sigma) {
   x_(YAW) = std::remainder(x_(YAW) + turn, 2 * M_PI);
   reset_position(z, sigma);

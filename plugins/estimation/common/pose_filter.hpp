@@ -45,6 +45,11 @@ class PoseFilter {
   Eigen::Matrix2d innovation_cov(const Eigen::Matrix2d& R) const { return P_.topLeftCorner<2, 2>() + R; }
   // Kalman update with a base_link position z and its covariance R.
   void update_position(const Eigen::Vector2d& z, const Eigen::Matrix2d& R);
+  // The position z (covariance R) of a witness the filter had been pulled away from (fixes that
+  // lied): the position's ties to the other states dropped (a metre's innovation through them
+  // would kick the heading and the sideslip gain), its covariance widened by the distance to z,
+  // then z taken. Where R is wide (a direction the witness cannot tell) the filter keeps its own.
+  void relocate(const Eigen::Vector2d& z, const Eigen::Matrix2d& R);
   // Re-acquisition: the position is z (sigma m, uncorrelated with the rest); heading, speed, yaw
   // rate and sideslip gain keep their estimates.
   void reset_position(const Eigen::Vector2d& z, double sigma);

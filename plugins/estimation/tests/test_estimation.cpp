@@ -984,6 +984,32 @@ TEST(Localizer, OneBiasedReceiverIsRefusedAndTheOtherKept) {
   EXPECT_EQ(loc.scan_updates(), 0u) << "receiver 0 accepted throughout";
 }
 
+// One receiver biased for 5 s, then back: caught, it waits out retrust_s beside the healthy one
+// (both at the truth then: neither makes the other suspect), and is taken again 3 s after.
+TEST(Localizer, ABiasedReceiverBackAtTheTruthIsTakenAgain) {
+  LocalizerParams p;
+  p.manager.receivers = 2;
+  p.roll_filter_s = 0;
+  p.witness.enabled = true;
+  Localizer loc(p);
+  std::uint64_t refused_at_13 = 0;
+  for (int k = 0; k * 0.01 < 25; ++k) {
+    const double t = 0.01 * k;
+    loc.speed(20 * 1.01);
+    loc.imu(t, 0.0, 0.0);
+    const Eigen::Vector2d bias = t >= 10 && t < 15 ? Eigen::Vector2d(3, 4) : Eigen::Vector2d::Zero();
+    if (k % 5 == 0) loc.fixes(t, {Fix{0, {20 * t, 0}, p.lever[0], 0.02}, Fix{1, Eigen::Vector2d(20 * t, 0) + bias, p.lever[1], 0.02}});
+    if (k % 10 == 0 && t > 1) loc.scan_pose(t - 0.1, {20 * (t - 0.1), 0}, Eigen::Matrix2d::Identity() * 0.01);
+    if (k == 1300) refused_at_13 = loc.witness().refusals();
+  }
+  EXPECT_FALSE(loc.witness().caught(0)) << "the healthy receiver never";
+  EXPECT_FALSE(loc.witness().caught(1)) << "released";
+  EXPECT_NEAR(loc.witness().last_refusal_s(), 18.0, 0.06) << "3 s of agreement after the bias ended";
+  const std::uint64_t since_13 = loc.witness().refusals() - refused_at_13;
+  EXPECT_GE(since_13, 99u) << "receiver 1's 5 s at 20 Hz from 13 s on";
+  EXPECT_LE(since_13, 101u) << "and none of receiver 0's";
+}
+
 // A map of another track: never verified, reported, never used; the car stays on GNSS, and in an
 // outage dead reckons as it would without a map.
 TEST(Localizer, AMapThatDoesNotMatchIsReportedAndNotUsed) {
