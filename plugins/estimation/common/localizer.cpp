@@ -203,16 +203,21 @@ std::vector<bool> Localizer::refused_by_map(const std::vector<Fix>& epoch) {
     refused[i] = witness_.refuses(t_, base, R, filter_.position(), epoch[i].receiver, filter_.innovation_cov(Eigen::Matrix2d::Zero()));
     off[i] = refused[i] && witness_.refused_off();
   }
-  // A fix beside a refused one is as wrong (witness_.refuse_beside).
+  refuse_beside(epoch, off, refused);
+  return refused;
+}
+
+void Localizer::refuse_beside(const std::vector<Fix>& epoch, const std::vector<bool>& off, std::vector<bool>& refused) {
   const double floor = p_.witness.sigma_floor * p_.witness.sigma_floor;
+  auto base = [&](const Fix& f) { return filter_.base_from_antenna(f.antenna, f.lever); };
   for (std::size_t i = 0; i < epoch.size(); ++i)
     for (std::size_t j = 0; j < epoch.size() && !refused[i]; ++j) {
       if (!off[j]) continue;
-      const Eigen::Vector2d d = filter_.base_from_antenna(epoch[i].antenna, epoch[i].lever) - filter_.base_from_antenna(epoch[j].antenna, epoch[j].lever);
       const double var = filter_.fix_variance(epoch[i].sigma) + filter_.fix_variance(epoch[j].sigma) + floor;
-      if (d.squaredNorm() <= p_.witness.gate * var) refused[i] = true, witness_.refuse_beside(t_, epoch[i].receiver);
+      if ((base(epoch[i]) - base(epoch[j])).squaredNorm() > p_.witness.gate * var) continue;
+      refused[i] = true;
+      witness_.refuse_beside(t_, epoch[i].receiver);
     }
-  return refused;
 }
 
 EpochResult Localizer::apply_judged(const std::vector<Fix>& epoch, const std::vector<bool>& refused) {

@@ -101,6 +101,9 @@ class Localizer {
   void reacquire(double t, const std::vector<Fix>& epoch, EpochResult& r);
   // The epoch's fixes that the map witness refuses (all false without a standing map).
   std::vector<bool> refused_by_map(const std::vector<Fix>& epoch);
+  // A fix within the gate of one refused for being off (`off`) is refused too, its receiver
+  // caught (MapWitness::refuse_beside).
+  void refuse_beside(const std::vector<Fix>& epoch, const std::vector<bool>& off, std::vector<bool>& refused);
   // apply_fixes on the fixes not refused; the refused ones rejected, at their distance.
   EpochResult apply_judged(const std::vector<Fix>& epoch, const std::vector<bool>& refused);
   bool gnss_accepted() const { return t_ - last_accepted_t_ < p_.scan_after_s; }

@@ -73,23 +73,27 @@ void MapWitness::relocated(double t, const Eigen::Vector2d& shift) {
 
 bool MapWitness::refuses(double t, const Eigen::Vector2d& base, const Eigen::Matrix2d& R, const Eigen::Vector2d& filter_xy, int receiver,
                          const Eigen::Matrix2d& filter_cov) {
-  if (receiver < 0) receiver = 0;
-  if (static_cast<std::size_t>(receiver) >= caught_.size()) caught_.resize(receiver + 1);
-  if (caught_[receiver].caught && still_caught(t, receiver, base, R, filter_xy, filter_cov)) {
+  Caught& c = entry(receiver);
+  if (c.caught && still_caught(t, c, base, R, filter_xy, filter_cov)) {
     count_refusal(t);
-    refused_off_ = caught_[receiver].agree_since < 0;
+    refused_off_ = c.agree_since < 0;
     return true;
   }
   if (!standing(t) || !agrees_ || within(base - (filter_xy + offset_), cov_ + R, p_.gate)) return false;
   count_refusal(t);
   refused_off_ = true;
-  caught_[receiver] = {p_.retrust_s > 0, -1};
+  c = {p_.retrust_s > 0, -1};
   return true;
 }
 
-bool MapWitness::still_caught(double t, int receiver, const Eigen::Vector2d& base, const Eigen::Matrix2d& R, const Eigen::Vector2d& filter_xy,
+MapWitness::Caught& MapWitness::entry(int receiver) {
+  const std::size_t i = receiver < 0 ? 0 : static_cast<std::size_t>(receiver);
+  if (i >= caught_.size()) caught_.resize(i + 1);
+  return caught_[i];
+}
+
+bool MapWitness::still_caught(double t, Caught& c, const Eigen::Vector2d& base, const Eigen::Matrix2d& R, const Eigen::Vector2d& filter_xy,
                               const Eigen::Matrix2d& filter_cov) {
-  Caught& c = caught_[receiver];
   if (!holds_reacquisition(t)) return (c = {}), false;  // no witness left
   const Eigen::Matrix2d floor = Eigen::Matrix2d::Identity() * p_.sigma_floor * p_.sigma_floor;
   if (!within(base - filter_xy, filter_cov + R + floor, p_.gate)) c.agree_since = -1;
@@ -99,10 +103,9 @@ bool MapWitness::still_caught(double t, int receiver, const Eigen::Vector2d& bas
 }
 
 void MapWitness::refuse_beside(double t, int receiver) {
-  if (receiver < 0) receiver = 0;
-  if (static_cast<std::size_t>(receiver) >= caught_.size()) caught_.resize(receiver + 1);
   count_refusal(t);
-  if (!caught_[receiver].caught) caught_[receiver] = {p_.retrust_s > 0, -1};
+  Caught& c = entry(receiver);
+  if (!c.caught) c = {p_.retrust_s > 0, -1};
 }
 
 void MapWitness::count_refusal(double t) {

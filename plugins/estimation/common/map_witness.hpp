@@ -141,14 +141,15 @@ class MapWitness {
  private:
   // The time since the previous frame, located or not (0 after a gap), counted towards mismatch.
   void count_frame(double t, bool gnss_accepted);
-  // A caught receiver's fix: still refused, or the agreement that releases it counted.
-  bool still_caught(double t, int receiver, const Eigen::Vector2d& base, const Eigen::Matrix2d& R, const Eigen::Vector2d& filter_xy,
-                    const Eigen::Matrix2d& filter_cov);
-  void count_refusal(double t);
   struct Caught {
     bool caught = false;
     double agree_since = -1;
   };
+  Caught& entry(int receiver);  // the receiver's, made when first asked (a negative id is 0's)
+  // A caught receiver's fix: still refused, or the agreement that releases it counted.
+  bool still_caught(double t, Caught& c, const Eigen::Vector2d& base, const Eigen::Matrix2d& R, const Eigen::Vector2d& filter_xy,
+                    const Eigen::Matrix2d& filter_cov);
+  void count_refusal(double t);
 
   WitnessParams p_;
   bool verified_ = false, ever_verified_ = false, mismatch_ = false, agrees_ = false;

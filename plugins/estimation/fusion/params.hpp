@@ -21,6 +21,30 @@ struct Settings {
   LocalizerParams loc;
 };
 
+// The map witness's parameters (map_witness.hpp; docs/algorithms.md).
+inline void bind_witness(ParamBinding<Settings>& b) {
+  using L = LocalizerParams;
+  using W = WitnessParams;
+  b.bind("scan_pose_witness", &Settings::loc, &L::witness, &W::enabled)
+      .doc("scan_pose is an independent witness (a prior map's localizer, not the scan mapper): once its poses have agreed with "
+           "accepted fixes for witness_verify_s, fixes that disagree with it are refused (receivers wrong together); a map that "
+           "never verifies is not used (docs/algorithms.md)");
+  b.bind("witness_verify_s", &Settings::loc, &L::witness, &W::verify_s).in_unit("s").range(0, 3600)
+      .doc("the map's poses agree with the filter this long (fixes accepted, or the filter sure to witness_verify_sigma) before it may refuse a fix");
+  b.bind("witness_sigma_floor", &Settings::loc, &L::witness, &W::sigma_floor).in_unit("m").range(0.01, 100)
+      .doc("floor on the map pose's spread in every direction when judging fixes");
+  b.bind("witness_verify_sigma", &Settings::loc, &L::witness, &W::verify_sigma).in_unit("m").range(0.01, 1000)
+      .doc("without accepted fixes, the map's agreement counts towards verifying it only with the filter's position this sure");
+  b.bind("witness_mismatch_s", &Settings::loc, &L::witness, &W::mismatch_s).in_unit("s").range(0.1, 3600)
+      .doc("frames with GNSS accepted and the map never verified this long: the map is not this track's (reported)");
+  b.bind("witness_overrule_s", &Settings::loc, &L::witness, &W::overrule_s).in_unit("s").range(0, 3600)
+      .doc("a verified map that disagrees this long with the filter overrules it: the filter is put on the map "
+           "(both receivers drifting together, or dead reckoning drifted in an outage); 0: never");
+  b.bind("witness_retrust_s", &Settings::loc, &L::witness, &W::retrust_s).in_unit("s").range(0, 3600)
+      .doc("a receiver the map caught (a fix refused, or the filter it pulled overruled) stays refused until its fixes have "
+           "agreed with the filter this long; 0: judged fix by fix");
+}
+
 // The three estimators' parameters: the common ones, then their policy's.
 template <Policy P> ParamBinding<Settings> bindings() {
   using L = LocalizerParams;
@@ -48,25 +72,7 @@ template <Policy P> ParamBinding<Settings> bindings() {
   b.bind("scan_pose_trusted_s", &Settings::loc, &L::manager, &M::witness_timeout_s).in_unit("s").range(0, 60)
       .doc("a scan pose taken within this long keeps the status at WARNING (the car on its path) while every receiver is lost: "
            "for an independent witness, the map localizer's (docs/algorithms.md); 0: EMERGENCY as without one");
-  using W = WitnessParams;
-  b.bind("scan_pose_witness", &Settings::loc, &L::witness, &W::enabled)
-      .doc("scan_pose is an independent witness (a prior map's localizer, not the scan mapper): once its poses have agreed with "
-           "accepted fixes for witness_verify_s, fixes that disagree with it are refused (receivers wrong together); a map that "
-           "never verifies is not used (docs/algorithms.md)");
-  b.bind("witness_verify_s", &Settings::loc, &L::witness, &W::verify_s).in_unit("s").range(0, 3600)
-      .doc("the map's poses agree with the filter this long (fixes accepted, or the filter sure to witness_verify_sigma) before it may refuse a fix");
-  b.bind("witness_sigma_floor", &Settings::loc, &L::witness, &W::sigma_floor).in_unit("m").range(0.01, 100)
-      .doc("floor on the map pose's spread in every direction when judging fixes");
-  b.bind("witness_verify_sigma", &Settings::loc, &L::witness, &W::verify_sigma).in_unit("m").range(0.01, 1000)
-      .doc("without accepted fixes, the map's agreement counts towards verifying it only with the filter's position this sure");
-  b.bind("witness_mismatch_s", &Settings::loc, &L::witness, &W::mismatch_s).in_unit("s").range(0.1, 3600)
-      .doc("frames with GNSS accepted and the map never verified this long: the map is not this track's (reported)");
-  b.bind("witness_overrule_s", &Settings::loc, &L::witness, &W::overrule_s).in_unit("s").range(0, 3600)
-      .doc("a verified map that disagrees this long with the filter overrules it: the filter is put on the map "
-           "(both receivers drifting together, or dead reckoning drifted in an outage); 0: never");
-  b.bind("witness_retrust_s", &Settings::loc, &L::witness, &W::retrust_s).in_unit("s").range(0, 3600)
-      .doc("a receiver the map caught (a fix refused, or the filter it pulled overruled) stays refused until its fixes have "
-           "agreed with the filter this long; 0: judged fix by fix");
+  bind_witness(b);
   b.bind("scan_min_sigma", &Settings::loc, &L::scan_min_sigma).in_unit("m").range(0.001, 100).doc("floor on a scan pose's spread");
   b.bind("epoch_pair_s", &Settings::epoch_pair_s).in_unit("s").range(0, 1)
       .doc("real clock: two receivers' fixes stamped this close are one epoch (each carried from its own stamp)");
