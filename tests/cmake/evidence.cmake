@@ -124,7 +124,7 @@ if(BRICKYARD_BENCH)  # bench/ is built with the simulator only
   add_test(NAME evidence.map_track_true_poses COMMAND eval_map_track --true-poses IMS --out ${RUNS}/map_track_true_poses)
   # Issue 41 (docs/results-gnss-faults.md): racing on the map through GNSS faults on one road
   # course. Spielberg with its outer wall only (one wall and the road for long stretches: the
-  # harder layout for the map, where a tilted map road once slid its poses), mapped by a
+  # harder layout for the map), mapped by a
   # mapping drive, raced clean, then with both receivers gone for 60 s, both biased together by
   # 10 m claiming RTK-fixed, and one biased; each row held to the issue's targets (laps,
   # contacts, error, the bias found within 1 s).

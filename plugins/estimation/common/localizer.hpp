@@ -107,8 +107,8 @@ class Localizer {
   // apply_fixes on the fixes not refused; the refused ones rejected, at their distance.
   EpochResult apply_judged(const std::vector<Fix>& epoch, const std::vector<bool>& refused);
   bool gnss_accepted() const { return t_ - last_accepted_t_ < p_.scan_after_s; }
-  // The map witness overrules the fixes: the filter put on the map's position (`offset` from the
-  // filter's, spread `map_cov`).
+  // The map witness overrules the fixes: the filter relocated onto the map's position (`offset`
+  // from the filter's, covariance `map_cov`).
   void overrule_fixes(const Eigen::Vector2d& offset, const Eigen::Matrix2d& map_cov);
   // A receiver caught lying this epoch: the filter moved onto the map's position (relocate).
   void relocate_on_catch();

@@ -40,8 +40,9 @@
 //              overrule_s on end: the fixes drifted and took the filter along (both receivers
 //              pulled off together, slowly: multipath), which agreement alone cannot tell, since
 //              the filter follows them; or, GNSS out, dead reckoning drifted past what the filter
-//              believes and it refuses the map's poses. The filter is put on the map's position;
-//              the map then agrees with it and stands, and refuses the drifting fixes.
+//              believes and it refuses the map's poses. The filter is moved onto the map's
+//              position (PoseFilter::relocate, as on a catch); the map then agrees with it and
+//              stands, and refuses the drifting fixes.
 // The map's position now is its latest pose's offset from the filter laid on the filter's position
 // now: between two frames the filter only predicts, or takes fixes that agree with the map.
 #include <Eigen/Core>

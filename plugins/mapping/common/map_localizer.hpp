@@ -23,9 +23,10 @@ struct MapLocalizerParams {
   float scan_voxel = 0.4f;    // m: the frame thinned to one point (the mean) per voxel of this size
   double max_range = 60.0;    // m from the car: farther points are left out
   // How many independent points a frame counts as (its covariance; RegistrationParams::weight).
-  // At 200 a clean lap's poses were off by up to 9 of their own sigmas (Spielberg, outer wall,
-  // the road not yet levelled: NEES p99 88, docs/results-gnss-faults.md); at 20 every track's
-  // sit within them (NEES p99 at most 3.8).
+  // At 200 a clean lap's poses were off by up to 9 of their own sigmas (Spielberg, outer wall, a
+  // map whose curves were banked, the road not yet levelled: NEES p99 88); at 20 every track's
+  // sit within them, cautiously on maps of the race's own world (NEES p99 at most 0.5,
+  // docs/results-gnss-faults.md).
   double points_worth = 20;
   double max_correction = 2.0;  // m: a pose farther from the guess in the plane is not taken
   double max_turn = 0.05;       // rad: nor one whose heading turned more
@@ -47,10 +48,10 @@ struct MapLocalizerParams {
   double prior_sigma = 1.0;       // m
   double prior_sigma_turn = 0.1;  // rad
   // Surfaces within this of level (the road, in the map and in the frame) are made level: they
-  // tell height, roll and pitch, never where the car is in the plane. A map's road is tilted
-  // where its mapping drive's attitude drifted (a sheet rising about 17 % across the road in a
-  // hairpin of Spielberg's outer-wall map), and a frame's road matched onto it slides the pose
-  // metres sideways with a covariance sure to 0.15 m; where the plane position comes from the
+  // tell height, roll and pitch, never where the car is in the plane. A map's road can lie
+  // otherwise than the frame's (a mapping drive's attitude drifts; a map made banked where the
+  // race is flat rose about 17 % across the road in a bend of Spielberg), and a frame's road
+  // matched onto it slides the pose metres sideways with a covariance sure to 0.15 m; where the plane position comes from the
   // walls alone, the covariance says what the walls tell. 0: the road kept as it is.
   double ground_tilt = 0.45;  // rad
   CovarianceParams covariances;
