@@ -10,7 +10,11 @@
 //  3. The whole stack, configs/race.json on Spielberg (walls at both edges, no fault): the same
 //     factor, the executive's default threads against --threads 1 and against the simulator alone
 //     (target: 15x).
-// usage: bench_sim [--quick]
+//  4. With --map FILE (the track's map: scripts/track-map Spielberg both), the stack on its map,
+//     configs/race_on_map.json, beside race.json, runs alternating: each factor once started
+//     (sim seconds over the wall seconds past those of a 0.1 s run of the same graph: the map read
+//     and its voxels built, once a race), and their ratio (issue 41: at least 15x).
+// usage: bench_sim [--quick] [--map FILE]
 #include "sim/common/lidar.hpp"
 #include "sim/common/track.hpp"
 
@@ -56,7 +60,11 @@ std::vector<Pose> poses_around(const Track& t, int count, double d) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const bool quick = argc > 1 && std::strcmp(argv[1], "--quick") == 0;
+  bool quick = false;
+  std::string map;
+  for (int i = 1; i < argc; ++i)
+    if (std::strcmp(argv[i], "--quick") == 0) quick = true;
+    else if (std::strcmp(argv[i], "--map") == 0 && i + 1 < argc) map = argv[++i];
   const std::string src = BRICKYARD_SOURCE_DIR;
   WorldSpec w;
   w.line = load_centerline_csv(src + "/data/tracks/IMS.csv");
@@ -159,5 +167,36 @@ int main(int argc, char** argv) {
   std::printf("%-34s %14.1f\n", "the simulator alone (above)", median(factors));
   std::printf("ratio ours / one thread: %.2f; ours / the simulator alone: %.2f\n", median(stack) / median(stack_one),
               median(stack) / median(factors));
+  if (map.empty()) return 0;
+
+  // The stack on its map: wall seconds of a run of `seconds`, less those of a 0.1 s run.
+  auto wall_s = [&](const std::string& graph, double seconds, double& out) {
+    const std::string dir = "/tmp/bench_sim_run";
+    const std::string cmd = by + " run " + src + "/configs/" + graph + " " + race +
+                            (graph == "race.json" ? "" : " --arg map_file=" + map) + " --duration " + std::to_string(seconds) +
+                            " --out " + dir + " > /dev/null 2>&1";
+    std::system(cmd.c_str());
+    std::ifstream f(dir + "/summary.json");
+    if (!f) return std::printf("run failed: %s\n", cmd.c_str()), false;
+    out = nlohmann::json::parse(f)["wall_time_s"].get<double>();
+    return true;
+  };
+  std::vector<double> plain, on_map, ratio;
+  for (int i = 0; i < (quick ? 1 : 5); ++i) {
+    double f[2] = {0, 0};
+    for (int g = 0; g < 2; ++g) {
+      const char* graph = g == 0 ? "race.json" : "race_on_map.json";
+      double whole = 0, start = 0;
+      if (!wall_s(graph, duration, whole) || !wall_s(graph, 0.1, start)) return 1;
+      f[g] = (duration - 0.1) / (whole - start);
+    }
+    plain.push_back(f[0]), on_map.push_back(f[1]), ratio.push_back(f[1] / f[0]);
+  }
+  std::printf("\nthe stack on its map (configs/race_on_map.json, Spielberg, walls at both edges, %.0f s, %zu runs each, started)\n",
+              duration, plain.size());
+  std::printf("%-34s %14s\n", "", "x real time");
+  std::printf("%-34s %14.1f\n", "ours: race_on_map.json", median(on_map));
+  std::printf("%-34s %14.1f\n", "baseline: race.json (no map)", median(plain));
+  std::printf("ratio on the map / without (median of the runs' own): %.2f\n", median(ratio));
   return 0;
 }

@@ -8,19 +8,21 @@ namespace brickyard::mapping {
 
 MapLocalizationRun::MapLocalizationRun(const Points& map, const MapLocalizationRunParams& p)
     : localizer_(map, p.localizer), max_age_ns_(static_cast<std::int64_t>(p.max_estimate_age * 1e9)),
-      min_interval_ns_(static_cast<std::int64_t>(p.min_interval_s * 1e9)) {}
+      min_interval_ns_(static_cast<std::int64_t>(p.min_interval_s * 1e9)),
+      normal_interval_ns_(static_cast<std::int64_t>(std::max(p.min_interval_s, p.normal_interval_s) * 1e9)) {}
 
 void MapLocalizationRun::estimate(std::int64_t stamp_ns, const math::PlanarPose& pose, const EstimateExtras& extras) {
   estimates_.add(stamp_ns, pose, extras);
 }
 
 std::optional<FramePose> MapLocalizationRun::frame(std::int64_t stamp, const Points& pts) {
-  if (tried_ && stamp - last_tried_ns_ < min_interval_ns_ && stamp >= last_tried_ns_) {
+  const auto pose_at = estimates_.at(stamp);
+  const auto* est = pose_at ? pose_at->nearer : nullptr;
+  const bool normal = est && est->estimate.status == 0;
+  if (tried_ && stamp - last_tried_ns_ < (normal ? normal_interval_ns_ : min_interval_ns_) && stamp >= last_tried_ns_) {
     ++skipped_;
     return std::nullopt;
   }
-  const auto pose_at = estimates_.at(stamp);
-  const auto* est = pose_at ? pose_at->nearer : nullptr;
   if (!est || std::llabs(est->stamp_ns - stamp) > max_age_ns_ || !std::isfinite(pose_at->pose.x) ||
       !std::isfinite(pose_at->pose.y) || !std::isfinite(pose_at->pose.yaw)) {
     ++no_estimate_;

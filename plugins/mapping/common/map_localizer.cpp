@@ -12,6 +12,10 @@ namespace brickyard::mapping {
 
 namespace {
 constexpr double kHold = 1e6;  // a prior's information that holds a coordinate at the guess (1 mm)
+// The frame's height search stops at a height that holds this share of the frame's points, once
+// it has looked this far past it both ways (m).
+constexpr double kHeightShare = 0.6;
+constexpr double kHeightSettle = 1.5;
 
 // The heading turned from `a` to `b` (roll and pitch are the map's to say: the guess carries the
 // last frame's), wrapped to [-pi, pi].
@@ -59,16 +63,23 @@ MapLocalizer::MapLocalizer(const Points& map, MapLocalizerParams p)
 double MapLocalizer::height_on_map(const Points& near, const Eigen::Isometry3d& guess) const {
   const double step = 0.5 * coarse_.voxel_size(), z0 = guess.translation().z();
   const int reach = static_cast<int>(p_.height_search / step);
+  const int settle_steps = static_cast<int>(std::ceil(kHeightSettle / step));
   Points placed;
   for (std::size_t i = 0; i < near.size(); i += 8) placed.push_back((guess * near[i].cast<double>()).cast<float>());
   double best_z = z0;
   std::size_t best = 0;
+  int best_j = 0;
   for (int k = 0; k <= 2 * reach; ++k) {  // 0, +1, -1, +2, -2, ...: the nearest first
     const int j = (k + 1) / 2 * (k % 2 ? 1 : -1);
+    // Settled: a height most of the frame falls on, and none better within kHeightSettle past it
+    // either way. The guess carries the last frame's height, so this is found within a few
+    // steps; the whole search runs only where the map's height jumps (its loop's closure).
+    const int searched = k / 2 - 1;  // every step within this of the guess's height
+    if (k % 2 == 0 && searched >= std::abs(best_j) + settle_steps && best >= kHeightShare * placed.size()) break;
     const Eigen::Vector3f up(0, 0, static_cast<float>(j * step));
     std::size_t hits = 0;
     for (const Point& q : placed) hits += coarse_.target(Eigen::Vector3f(q + up)) != nullptr;
-    if (hits > best) best = hits, best_z = z0 + j * step;
+    if (hits > best) best = hits, best_z = z0 + j * step, best_j = j;
   }
   return best_z;
 }

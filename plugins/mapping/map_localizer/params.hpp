@@ -28,6 +28,8 @@ inline ParamBinding<LocalizerSettings> localizer_bindings() {
   b.bind("coarse_voxel", &S::localizer, &M::coarse_voxel).in_unit("m").range(0.05, 10)
       .doc("the map registered on first, from the estimate: reaches far");
   b.bind("fine_voxel", &S::localizer, &M::fine_voxel).in_unit("m").range(0.02, 10).doc("then on this one, accurate near the answer");
+  b.bind("scan_voxel", &S::localizer, &M::scan_voxel).in_unit("m").range(0.05, 10)
+      .doc("the frame thinned to one point (the mean) per voxel of this size: the localizer's cost goes with the points left");
   b.bind("max_range", &S::localizer, &M::max_range).in_unit("m").range(1, 1000).doc("points farther from the car are left out");
   b.bind("max_correction", &S::localizer, &M::max_correction).in_unit("m").range(0, 100)
       .doc("a pose farther from the estimate is not taken");
@@ -46,6 +48,8 @@ inline ParamBinding<LocalizerSettings> localizer_bindings() {
       .doc("a frame with no estimate within this of its stamp is left out");
   b.bind("min_interval_s", &S::min_interval_s).in_unit("s").range(0, 10)
       .doc("a frame within this of the last one tried is left out (0: every frame): the localizer's cost is per frame");
+  b.bind("normal_interval_s", &S::normal_interval_s).in_unit("s").range(0, 10)
+      .doc("the same while the estimate is NORMAL (GNSS taken; the map a witness): at least min_interval_s");
   b.not_above("fine_voxel", "coarse_voxel");
   return b;
 }

@@ -15,6 +15,7 @@
 #include <map>
 #include <random>
 #include <string>
+#include <vector>
 
 using namespace brickyard::mapping;
 using namespace brickyard::mapping::scenes;
@@ -35,13 +36,21 @@ Points map_file_of(const Points& scene, const std::string& name) {
 
 Eigen::Matrix3d planar_of(const Located& r) { return planar_covariance(r.covariance); }
 
+// The scenes are a few tens of metres across, sampled every 0.2 m: their frames are thinned at
+// 0.4 m, as a track's 100 m of LiDAR returns are at the default 0.8 m.
+MapLocalizerParams scene_params() {
+  MapLocalizerParams p;
+  p.scan_voxel = 0.4f;
+  return p;
+}
+
 }  // namespace
 
 // In the yard (walls and boxes tell every direction) a frame is located from a guess 0.7 m and
 // 2 degrees off to within centimetres, and its covariance is the registration's: small, and no
 // smaller than min_sigma in any direction.
 TEST(MapLocalizer, LocatesAFrameFromAGuessThatIsOff) {
-  const MapLocalizer loc(map_file_of(yard(0.15, 0.01, 1), "yard"));
+  const MapLocalizer loc(map_file_of(yard(0.15, 0.01, 1), "yard"), scene_params());
   const Eigen::Isometry3d truth = planar(2.0, 0.5, 3.0);
   const Points frame = moved(yard(0.2, 0.01, 2), truth.inverse());
   const Located r = loc.locate(frame, planar(2.6, 0.1, 1.0));
@@ -67,11 +76,11 @@ TEST(MapLocalizer, FindsTheFramesHeightOnTheMapFirst) {
   const Points frame = moved(yard(0.2, 0.01, 2), planar(2.0, 0.5, 3.0).inverse());
   Eigen::Isometry3d guess = planar(2.3, 0.3, 2.0);
   guess.translation().z() = 3.4;
-  const Located r = MapLocalizer(map).locate(frame, guess);
+  const Located r = MapLocalizer(map, scene_params()).locate(frame, guess);
   ASSERT_TRUE(r.registered) << failure_name(r.failure);
   EXPECT_NEAR(r.pose.translation().x(), 2.0, 0.03);
   EXPECT_NEAR(r.pose.translation().z(), 0.0, 0.05);
-  MapLocalizerParams fixed;
+  MapLocalizerParams fixed = scene_params();
   fixed.height_search = 0;
   EXPECT_FALSE(MapLocalizer(map, fixed).locate(frame, guess).registered);
 }
@@ -80,7 +89,7 @@ TEST(MapLocalizer, FindsTheFramesHeightOnTheMapFirst) {
 // far along: there the pose is the guess's and the covariance says unseen_sigma, never a
 // confident coordinate the frame does not support.
 TEST(MapLocalizer, SaysWhatTheMapCannotTellAlongACorridor) {
-  const MapLocalizer loc(map_file_of(corridor(0.15, 1), "corridor"));
+  const MapLocalizer loc(map_file_of(corridor(0.15, 1), "corridor"), scene_params());
   const Points frame = moved(corridor(0.2, 2), planar(2.0, 0.0, 0.0).inverse());
   const Located r = loc.locate(frame, planar(2.4, 0.3, 1.0));
   ASSERT_TRUE(r.registered) << failure_name(r.failure);
@@ -121,10 +130,10 @@ Points bend(double step, double ramp, unsigned seed) {
 TEST(MapLocalizer, AMapsTiltedRoadDoesNotSlideThePose) {
   const Points map = map_file_of(bend(0.15, 0.17, 1), "tilted_bend");
   const Points frame = bend(0.2, 0.0, 2);
-  MapLocalizerParams kept;
+  MapLocalizerParams kept = scene_params();
   kept.ground_tilt = 0;
   kept.max_correction = 10;
-  const Located level = MapLocalizer(map).locate(frame, Eigen::Isometry3d::Identity());
+  const Located level = MapLocalizer(map, scene_params()).locate(frame, Eigen::Isometry3d::Identity());
   const Located slid = MapLocalizer(map, kept).locate(frame, Eigen::Isometry3d::Identity());
   ASSERT_TRUE(level.registered) << failure_name(level.failure);
   EXPECT_NEAR(level.pose.translation().y(), 0.0, 0.1);
@@ -136,7 +145,7 @@ TEST(MapLocalizer, AMapsTiltedRoadDoesNotSlideThePose) {
 // A map of somewhere else (the yard 500 m away: another track's) locates nothing; an empty frame
 // neither. Each is counted by why, and the pose is the guess.
 TEST(MapLocalizer, AMapOfElsewhereOrAnEmptyFrameLocatesNothing) {
-  const MapLocalizer loc(moved(map_file_of(yard(0.15, 0.01, 1), "far"), planar(500, 0, 0)));
+  const MapLocalizer loc(moved(map_file_of(yard(0.15, 0.01, 1), "far"), planar(500, 0, 0)), scene_params());
   const Points frame = yard(0.2, 0.01, 2);
   const Located r = loc.locate(frame, Eigen::Isometry3d::Identity());
   EXPECT_FALSE(r.registered);
@@ -149,7 +158,7 @@ TEST(MapLocalizer, AMapOfElsewhereOrAnEmptyFrameLocatesNothing) {
 // A guess farther off than max_correction is not corrected (a frame that "locates" 5 m away is
 // more likely a wrong match than a right one): implausible, the guess kept.
 TEST(MapLocalizer, ACorrectionBeyondTheBoundIsRefused) {
-  MapLocalizerParams p;
+  MapLocalizerParams p = scene_params();
   p.max_correction = 0.3;
   const MapLocalizer loc(map_file_of(yard(0.15, 0.01, 1), "yard_bound"), p);
   const Points frame = moved(yard(0.2, 0.01, 2), planar(2.0, 0.5, 0).inverse());
@@ -161,7 +170,9 @@ TEST(MapLocalizer, ACorrectionBeyondTheBoundIsRefused) {
 // Over a drive: each frame from the estimate at its stamp; without one near it, left out and
 // counted; the height, roll and pitch found carried to the next frame's guess; the summary.
 TEST(MapLocalizationRun, FramesFromTheEstimateAtTheirStampAndTheSummary) {
-  MapLocalizationRun run(map_file_of(yard(0.15, 0.01, 1), "run"), {});
+  MapLocalizationRunParams scene;
+  scene.localizer = scene_params();
+  MapLocalizationRun run(map_file_of(yard(0.15, 0.01, 1), "run"), scene);
   const Points frame = moved(yard(0.2, 0.01, 2), planar(2.0, 0.5, 3.0).inverse());
   EXPECT_FALSE(run.frame(1'000'000'000, frame)) << "no estimate yet";
   EstimateExtras extras;
@@ -185,20 +196,30 @@ TEST(MapLocalizationRun, FramesFromTheEstimateAtTheirStampAndTheSummary) {
   EXPECT_EQ(m["frames_skipped"], 0);
 }
 
-// min_interval_s: a frame within it of the last one tried is left out and counted.
+// min_interval_s: a frame within it of the last one tried is left out and counted; while the
+// estimate is NORMAL (GNSS taken, the map a witness), within normal_interval_s; the first frame
+// after it leaves NORMAL is located at once.
 TEST(MapLocalizationRun, FramesWithinTheIntervalAreLeftOut) {
   MapLocalizationRunParams p;
+  p.localizer = scene_params();
   p.min_interval_s = 0.1;
+  p.normal_interval_s = 0.3;
   MapLocalizationRun run(map_file_of(yard(0.15, 0.01, 1), "run_interval"), p);
   const Points frame = moved(yard(0.2, 0.01, 2), planar(2.0, 0.5, 3.0).inverse());
   EstimateExtras extras;
   extras.covariance = {0.25, 0, 0, 0, 0.25, 0, 0, 0, 0.01};
-  for (std::int64_t t = 1'000'000'000; t <= 1'300'000'000; t += 50'000'000) run.estimate(t, {2.1, 0.5, 3.0 * M_PI / 180}, extras);
-  int published = 0;
-  for (std::int64_t t = 1'000'000'000; t <= 1'300'000'000; t += 50'000'000) published += run.frame(t, frame).has_value();
-  EXPECT_EQ(published, 4) << "frames at 0, 0.1, 0.2, 0.3 s; those at 0.05, 0.15, 0.25 s left out";
+  auto ms = [](int t) { return std::int64_t{t} * 1'000'000; };
+  for (int t = 1000; t <= 1800; t += 50) {
+    extras.status = t < 1500 ? 0 : 1;  // NORMAL, then WARNING from 1.5 s
+    run.estimate(ms(t), {2.1, 0.5, 3.0 * M_PI / 180}, extras);
+  }
+  std::vector<int> located;
+  for (int t = 1000; t <= 1800; t += 50)
+    if (run.frame(ms(t), frame)) located.push_back(t);
+  EXPECT_EQ(located, (std::vector<int>{1000, 1300, 1500, 1600, 1700, 1800}))
+      << "NORMAL: every 0.3 s; WARNING: at once, then every 0.1 s";
   std::map<std::string, double> m;
   for (const auto& [name, value] : run.metrics()) m[name] = value;
-  EXPECT_EQ(m["frames_skipped"], 3);
-  EXPECT_EQ(m["frames"], 4);
+  EXPECT_EQ(m["frames_skipped"], 17 - 6);
+  EXPECT_EQ(m["frames"], 6);
 }
