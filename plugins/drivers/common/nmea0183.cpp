@@ -97,17 +97,14 @@ std::optional<size_t> Nmea0183Decoder::try_sentence(size_t at) {
 }
 
 std::optional<size_t> Nmea0183Decoder::finish_sentence(size_t at, size_t star) {
-  size_t end = star + 1 + kChecksumDigits;
-  unsigned stated = 0;
-  for (size_t j = star + 1; j < std::min(end, buffer_.size()); ++j) {
-    int digit = hex_digit_value(static_cast<char>(buffer_[j]));
-    if (digit < 0) {
-      ++counters_.truncated;  // the checksum itself was cut short
-      return j - at;
-    }
-    stated = stated << 4 | static_cast<unsigned>(digit);
+  const size_t end = star + 1 + kChecksumDigits;
+  const HexCheck check = read_hex_check(buffer_, star + 1, kChecksumDigits);
+  if (check.state == HexCheck::State::cut_short) {
+    ++counters_.truncated;  // the checksum itself was cut short
+    return check.cut_at - at;
   }
-  if (buffer_.size() < end) return std::nullopt;
+  if (check.state == HexCheck::State::incomplete) return std::nullopt;
+  const unsigned stated = check.value;
   std::string_view text(reinterpret_cast<const char*>(buffer_.data() + at + 1), star - at - 1);
   if (nmea_checksum(text) != stated) {
     ++counters_.bad_checksum;

@@ -224,17 +224,14 @@ std::optional<size_t> NovatelOem7Decoder::try_ascii(size_t at) {
 }
 
 std::optional<size_t> NovatelOem7Decoder::finish_ascii(size_t at, size_t star) {
-  size_t end = star + 1 + kAsciiCrcDigits;
-  uint32_t stated = 0;
-  for (size_t j = star + 1; j < std::min(end, buffer_.size()); ++j) {
-    int digit = hex_digit_value(static_cast<char>(buffer_[j]));
-    if (digit < 0) {
-      ++counters_.truncated;  // the CRC itself was cut short
-      return j - at;
-    }
-    stated = stated << 4 | static_cast<uint32_t>(digit);
+  const size_t end = star + 1 + kAsciiCrcDigits;
+  const HexCheck check = read_hex_check(buffer_, star + 1, kAsciiCrcDigits);
+  if (check.state == HexCheck::State::cut_short) {
+    ++counters_.truncated;  // the CRC itself was cut short
+    return check.cut_at - at;
   }
-  if (buffer_.size() < end) return std::nullopt;
+  if (check.state == HexCheck::State::incomplete) return std::nullopt;
+  const uint32_t stated = check.value;
   const uint8_t* text = buffer_.data() + at + 1;
   size_t text_bytes = star - at - 1;
   if (oem7_crc32(text, text_bytes) != stated) {

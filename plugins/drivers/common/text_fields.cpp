@@ -55,4 +55,20 @@ int hex_digit_value(char c) {
   return -1;
 }
 
+HexCheck read_hex_check(const std::vector<uint8_t>& bytes, size_t from, size_t digits) {
+  HexCheck h;
+  const size_t end = from + digits;
+  for (size_t j = from; j < end && j < bytes.size(); ++j) {
+    const int digit = hex_digit_value(static_cast<char>(bytes[j]));
+    if (digit < 0) {
+      h.state = HexCheck::State::cut_short;
+      h.cut_at = j;
+      return h;
+    }
+    h.value = h.value << 4 | static_cast<uint32_t>(digit);
+  }
+  if (bytes.size() >= end) h.state = HexCheck::State::complete;
+  return h;
+}
+
 }  // namespace brickyard::drivers

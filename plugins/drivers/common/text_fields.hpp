@@ -2,6 +2,7 @@
 // Reading the comma-separated text of OEM7 ASCII logs and NMEA 0183 sentences without exceptions
 // or locales: every reader says whether the whole field was a valid value, so a decoder can
 // refuse the message instead of guessing.
+#include <cstddef>
 #include <cstdint>
 #include <string_view>
 #include <vector>
@@ -20,5 +21,15 @@ bool read_uint(std::string_view field, uint64_t max, uint64_t& value, int base =
 bool read_int(std::string_view field, int64_t min, int64_t max, int64_t& value);
 // One hexadecimal digit's value, or -1.
 int hex_digit_value(char c);
+
+// A check value written as `digits` hex digits from `from` in a stream's buffered bytes (an OEM7
+// ASCII log's CRC, an NMEA sentence's checksum, after their '*'): its value once every digit has
+// come; where a byte is not a hex digit, that byte's index (the check value cut short).
+struct HexCheck {
+  enum class State { incomplete, complete, cut_short } state = State::incomplete;
+  uint32_t value = 0;
+  size_t cut_at = 0;  // cut_short: the index of the byte that is not a digit
+};
+HexCheck read_hex_check(const std::vector<uint8_t>& bytes, size_t from, size_t digits);
 
 }  // namespace brickyard::drivers
