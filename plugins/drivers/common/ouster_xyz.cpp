@@ -75,6 +75,9 @@ void ouster_frame_to_cloud(const OusterFrame& frame, const OusterXyzTable& table
   if (frame.width != table.width() || frame.height != table.height() || range.size() != table.direction().size() / 3) {
     return;  // a frame of another sensor or mode: no points rather than wrong ones
   }
+  for (auto* v : {&cloud.x, &cloud.y, &cloud.z, &cloud.intensity}) v->reserve(range.size());
+  cloud.time_ns.reserve(range.size());
+  cloud.pixel.reserve(range.size());
   const float* dir = table.direction().data();
   const float* off = table.offset_mm().data();
   for (size_t i = 0; i < range.size(); ++i) {
