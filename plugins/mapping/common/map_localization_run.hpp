@@ -24,7 +24,7 @@ struct MapLocalizationRunParams {
   double min_interval_s = 0;
   // s: the same while the estimate is NORMAL (its GNSS taken): the map is then a witness, and a
   // witness needs a fresh pose, not every frame's. The frame after the estimate leaves NORMAL is
-  // located: through an outage the fusion steers on every frame (at seven a second, IMS's outer
+  // located: through an outage the fusion steers on every frame (at ten a second, IMS's outer
   // wall alone, all of laps 2 and 3: p99 0.32 m against 0.27 m at twenty). Not sparser: at one
   // frame in 0.2 s both receivers drifting together on Hockenheim's outer wall were caught 5.7 s
   // in, the car 3 m off and 4 s on the wall follower; at 0.1 s, 4.6 s in and 1.3 m, as at 0.
