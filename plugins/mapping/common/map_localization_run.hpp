@@ -27,7 +27,8 @@ struct MapLocalizationRunParams {
   // located: through an outage the fusion steers on every frame (at ten a second, IMS's outer
   // wall alone, all of laps 2 and 3: p99 0.32 m against 0.27 m at twenty). Not sparser: at one
   // frame in 0.2 s both receivers drifting together on Hockenheim's outer wall were caught 5.7 s
-  // in, the car 3 m off and 4 s on the wall follower; at 0.1 s, 4.6 s in and 1.3 m, as at 0.
+  // in, the car 3 m off and 4 s on the wall follower; at 0.1 s, 4.6 s in and 1.3 m, as at 0
+  // (frames thinned at 0.8 m then: docs/map-localization.md).
   double normal_interval_s = 0.1;
 };
 
