@@ -20,6 +20,8 @@ std::string find_data_file(const std::string& graph_file, std::string_view path)
   std::error_code ec;
   if (p.is_absolute()) {
     if (fs::is_regular_file(p, ec)) return p.string();
+    // A FIFO or a device (/dev/zero) is there but cannot be a data file: a read would hang or never end.
+    if (fs::exists(p, ec)) throw BadInput(p.string() + ": not a regular file");
     throw BadInput("file not found: " + p.string());
   }
   std::vector<fs::path> tried;

@@ -60,6 +60,16 @@ add_test(NAME bad_input.json_source_too_big COMMAND sh -c "mkdir -p ${RUNS} && t
   ${NETNS} ${EXPECT} 2 "node 'path' \\(testing.json_source\\): file .*too_big.json: larger than 256 MiB"
   -- ${BY} run ${CMAKE_CURRENT_SOURCE_DIR}/graphs/expect_tracker_straight.json --set path.file=${RUNS}/too_big.json --domain ${d})
 bad_input(any_to_any "any_to_any.json#/wires/0: src.out and check.in both take any message type: nothing says which \\(set src's parameter 'type'\\)" run ${BAD}/any_to_any.json)
+# The sensor drivers: a device that cannot be opened, a source or datum that cannot be right, a
+# recording that is not a regular file, a metadata file missing or malformed (docs/drivers.md).
+set(DRIVER_GNSS ${CMAKE_CURRENT_SOURCE_DIR}/graphs/expect_drivers_gnss_log.json)
+set(DRIVER_OUSTER ${CMAKE_CURRENT_SOURCE_DIR}/graphs/expect_drivers_ouster_pcap.json)
+bad_config(driver_serial_missing "node 'gnss' \\(drivers.gnss\\): parameter 'source': serial:///dev/ttyBY_NONE: cannot open: No such file or directory" run ${DRIVER_GNSS} --set gnss.source=serial:///dev/ttyBY_NONE)
+bad_config(driver_source_port "node 'gnss' \\(drivers.gnss\\): parameter 'source': .*udp://127.0.0.1:70000.*70000" validate ${DRIVER_GNSS} --set gnss.source=udp://127.0.0.1:70000)
+bad_config(driver_datum "node 'gnss' \\(drivers.gnss\\): parameter 'datum': latitude outside \\[-90, 90\\] deg" validate ${DRIVER_GNSS} --set gnss.datum=[91,0,0])
+bad_config(driver_log_not_regular "node 'gnss' \\(drivers.gnss\\): /dev/zero: not a regular file" run ${DRIVER_GNSS} --set gnss.source=file:///dev/zero)
+bad_config(driver_metadata_missing "node 'lidar' \\(drivers.ouster_lidar\\): .*nowhere_metadata.json" validate ${DRIVER_OUSTER} --set lidar.metadata=nowhere_metadata.json)
+bad_config(driver_metadata_malformed "node 'lidar' \\(drivers.ouster_lidar\\): parameter 'metadata': .*malformed.json: metadata: not a JSON object" validate ${DRIVER_OUSTER} --set lidar.metadata=${BAD}/malformed.json)
 if(BRICKYARD_SIM)  # the nodes that find these live in simulator graphs
   # The world's track file and pylons: read at validation, so nothing starts.
   bad_input(track_bad_row   "error: node 'world' \\(sim.world\\): track file .*bad_track.csv:4: field 3 is not a number: 'abc'" run ${BAD}/bad_track.json)

@@ -1,0 +1,91 @@
+#include "gnss_fix_values.hpp"
+
+#include "gnss_time.hpp"
+
+#include <cmath>
+
+namespace brickyard::drivers {
+
+namespace {
+
+// The header's time when the receiver knows GPS time (from "fine" on the time status scale of the
+// OEM7 reference: coarse times can be off by more than a LiDAR frame).
+std::optional<double> header_time(const Oem7Header& h) {
+  if (static_cast<int>(h.time_status) < static_cast<int>(TimeStatus::fine_adjusting)) return std::nullopt;
+  return gps_seconds(gps_time_from_week_ms(h.week, h.milliseconds));
+}
+
+bool finite_position(double lat, double lon, double h) {
+  return std::isfinite(lat) && std::isfinite(lon) && std::isfinite(h) && std::abs(lat) <= 90 && std::abs(lon) <= 180;
+}
+
+void place(GnssFixValues& f, const LocalDatum& datum, double lat, double lon, double height) {
+  const Eigen::Vector3d p = datum.to_map({lat, lon, height});
+  f.x = p.x(), f.y = p.y(), f.z = p.z();
+}
+
+}  // namespace
+
+uint8_t fix_type_of(PositionType type) {
+  switch (type) {
+    case PositionType::none: return 0;
+    case PositionType::l1_int: case PositionType::wide_int: case PositionType::narrow_int:
+    case PositionType::rtk_direct_ins: case PositionType::ins_rtkfixed: return 3;
+    case PositionType::l1_float: case PositionType::ionofree_float: case PositionType::narrow_float:
+    case PositionType::ins_rtkfloat: return 2;
+    default: return 1;
+  }
+}
+
+uint8_t fix_type_of_gga(int quality) {
+  switch (quality) {
+    case 4: return 3;
+    case 5: return 2;
+    case 1: case 2: case 6: case 9: return 1;
+    default: return 0;
+  }
+}
+
+std::optional<GnssFixValues> fix_from(const BestPos& m, const LocalDatum& datum) {
+  if (m.datum_id != kDatumWgs84) return std::nullopt;
+  const double height = m.height_msl_m + m.undulation_m;
+  if (!finite_position(m.latitude_deg, m.longitude_deg, height)) return std::nullopt;
+  GnssFixValues f;
+  place(f, datum, m.latitude_deg, m.longitude_deg, height);
+  f.sigma_x = m.longitude_sigma_m, f.sigma_y = m.latitude_sigma_m, f.sigma_z = m.height_sigma_m;
+  f.valid = m.solution_status == SolutionStatus::computed && m.position_type != PositionType::none;
+  f.fix_type = f.valid ? fix_type_of(m.position_type) : 0;
+  f.device_time_s = header_time(m.header);
+  return f;
+}
+
+std::optional<GnssFixValues> fix_from(const InsPvaX& m, const LocalDatum& datum) {
+  const double height = m.height_msl_m + m.undulation_m;
+  if (!finite_position(m.latitude_deg, m.longitude_deg, height)) return std::nullopt;
+  GnssFixValues f;
+  place(f, datum, m.latitude_deg, m.longitude_deg, height);
+  f.sigma_x = m.longitude_sigma_m, f.sigma_y = m.latitude_sigma_m, f.sigma_z = m.height_sigma_m;
+  f.valid = (m.ins_status == InsStatus::solution_good || m.ins_status == InsStatus::solution_free) &&
+            m.position_type != PositionType::none;
+  f.fix_type = f.valid ? fix_type_of(m.position_type) : 0;
+  f.device_time_s = header_time(m.header);
+  return f;
+}
+
+std::optional<GnssFixValues> fix_from(const NmeaGga& m, const LocalDatum& datum, const GgaSigmas& sigmas) {
+  if (!m.latitude_deg || !m.longitude_deg || !m.hdop) return std::nullopt;
+  const double height = m.altitude_msl_m.value_or(0) + m.undulation_m.value_or(0);
+  if (!finite_position(*m.latitude_deg, *m.longitude_deg, height) || !std::isfinite(*m.hdop) || *m.hdop < 0) return std::nullopt;
+  GnssFixValues f;
+  place(f, datum, *m.latitude_deg, *m.longitude_deg, height);
+  f.fix_type = fix_type_of_gga(m.quality);
+  f.valid = f.fix_type > 0 && m.altitude_msl_m.has_value();
+  const double error = f.fix_type == 3 ? sigmas.rtk_fixed_m : f.fix_type == 2 ? sigmas.rtk_float_m
+                       : m.quality == 2 || m.quality == 9 ? sigmas.differential_m : sigmas.single_m;
+  f.sigma_x = f.sigma_y = *m.hdop * error;
+  f.sigma_z = 2 * f.sigma_x;
+  if (m.utc) f.device_time_s = m.utc->hours * 3600.0 + m.utc->minutes * 60.0 + m.utc->seconds;
+  return f;
+}
+
+}  // namespace brickyard::drivers

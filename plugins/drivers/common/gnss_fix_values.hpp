@@ -1,0 +1,45 @@
+#pragma once
+// A receiver's report to the stack's fix, framework-free: OEM7 BESTPOS and INSPVAX, NMEA GGA, each
+// to a position in the map frame (local_datum.hpp) with a 1-sigma per axis and the stack's fix
+// type (GnssFix: 0 none, 1 single, 2 float RTK, 3 fixed RTK). The rules, with their sources, are
+// in docs/drivers-formats.md ("From a log to a fix").
+#include "local_datum.hpp"
+#include "nmea0183_messages.hpp"
+#include "oem7_messages.hpp"
+
+#include <cstdint>
+#include <optional>
+
+namespace brickyard::drivers {
+
+struct GnssFixValues {
+  double x = 0, y = 0, z = 0;                    // map frame, m
+  double sigma_x = 0, sigma_y = 0, sigma_z = 0;  // east, north, up, m
+  uint8_t fix_type = 0;
+  bool valid = false;
+  // When the receiver measured it, in its own time scale (GPS seconds since 1980-01-06 for OEM7;
+  // UTC seconds of the day for NMEA), if the report says.
+  std::optional<double> device_time_s;
+};
+
+// The stack's fix type of an OEM7 position type: RTK integer solutions (with or without the INS)
+// 3, RTK float 2, any other solution 1 (single, differential, SBAS, PPP, propagated), none 0.
+uint8_t fix_type_of(PositionType type);
+// Of a GGA quality indicator: 4 fixed RTK 3, 5 float RTK 2, 1/2/6/9 (GNSS, differential, dead
+// reckoning, SBAS) 1; 0 (no fix), 7 (manual input) and 8 (simulator mode) none.
+uint8_t fix_type_of_gga(int quality);
+
+// BESTPOS: its sigmas as reported (longitude's east, latitude's north). Nothing for a datum other
+// than WGS84, which the map's datum is given in (the caller counts it).
+std::optional<GnssFixValues> fix_from(const BestPos& m, const LocalDatum& datum);
+// INSPVAX: the INS's position; valid while the INS says its solution is good (or free-running).
+std::optional<GnssFixValues> fix_from(const InsPvaX& m, const LocalDatum& datum);
+
+// GGA carries no sigma: HDOP times a user range error per quality (GgaSigmas), the height's
+// twice the horizontal (no VDOP in GGA). A GGA without a position or a HDOP is not a fix.
+struct GgaSigmas {
+  double rtk_fixed_m = 0.02, rtk_float_m = 0.2, differential_m = 0.7, single_m = 3.0;  // per unit HDOP
+};
+std::optional<GnssFixValues> fix_from(const NmeaGga& m, const LocalDatum& datum, const GgaSigmas& sigmas = {});
+
+}  // namespace brickyard::drivers

@@ -1,0 +1,150 @@
+// drivers.ouster_lidar: an Ouster sensor on its wire (lidar packets of any profile, the sensor's
+// metadata JSON for its geometry) to one PointCloud per rotation, in the sensor frame with the
+// sensor's mount on the car. The lidar port is polled without blocking each period; a packet
+// capture (pcap) replays at its pace. A sensor silent for longer than `silent_after_s` is reported.
+// Formats: docs/drivers-formats.md; the devices: docs/drivers-transports.md.
+#include <brickyard/msgs/PointCloud.h>
+#include <brickyard/plugin.hpp>
+
+#include "drivers/driver_metrics.hpp"
+#include "drivers/ouster_source.hpp"
+#include "drivers/source_param.hpp"
+#include "io/bounded_read.hpp"
+#include "vehicle_param.hpp"
+
+#include <cmath>
+#include <optional>
+
+namespace {
+
+using namespace brickyard;
+using namespace brickyard::drivers;
+
+struct Settings {
+  std::string source = "udp://0.0.0.0:7502";
+  std::string metadata;
+  std::uint8_t sensor_id = 0;
+  std::string vehicle = plugins::default_vehicle_file;
+  std::string vehicle_mount = "lidar_front";
+  std::vector<double> mount, mount_rpy_deg;  // empty: the vehicle file's mount
+  bool second_return = false, device_time = true;
+  double silent_after_s = 0.3;
+};
+
+ParamBinding<Settings> bindings() {
+  ParamBinding<Settings> b;
+  b.bind("source", &Settings::source).doc(kSourceDoc);
+  b.bind_required("metadata", &Settings::metadata).doc("the sensor's metadata JSON (its geometry and packet format)");
+  b.bind("sensor_id", &Settings::sensor_id).range(0, 255);
+  plugins::bind_vehicle(b, &Settings::vehicle).doc("the car's description file: where its sensors sit");
+  b.bind("vehicle_mount", &Settings::vehicle_mount).doc("the sensor's mount in the vehicle file");
+  b.bind("mount", &Settings::mount).in_unit("m").range(-100, 100).doc("sensor position in base_link, m (x, y, z); empty: vehicle_mount's");
+  b.bind("mount_rpy_deg", &Settings::mount_rpy_deg).in_unit("deg").range(-360, 360).doc("sensor roll, pitch, yaw, deg; empty: vehicle_mount's");
+  b.bind("second_return", &Settings::second_return).doc("dual-return profile: the second return's points");
+  b.bind("device_time", &Settings::device_time).doc("stamp each frame at its measurement by the sensor's clock (else at receipt)");
+  b.bind("silent_after_s", &Settings::silent_after_s).in_unit("s").range(0.01, 60).doc("no frame for this long: the sensor is reported silent");
+  b.declare(ParamSpec::number("rate_hz", 1000).in_unit("Hz").range(1, 10000).doc("how often the port is polled"));
+  return b;
+}
+
+template <class Files> OusterSourceSettings source_settings(const Files& files, const Settings& s) {
+  OusterSourceSettings o;
+  o.source = parse_source_param(s.source);
+  if (o.source.kind != SourceSpec::Kind::udp && o.source.kind != SourceSpec::Kind::pcap)
+    throw BadInput("parameter 'source': " + s.source + ": an Ouster sensor is read from udp:// or pcap://");
+  if (o.source.kind == SourceSpec::Kind::pcap) o.capture_path = files.find_file(o.source.path);
+  const std::string path = files.find_file(s.metadata);
+  std::vector<std::uint8_t> bytes;
+  std::string error;
+  if (!io::read_regular_file(path, 16 << 20, bytes, error)) throw BadInput("parameter 'metadata': " + error);
+  if (!parse_ouster_metadata(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), o.metadata, error))
+    throw BadInput("parameter 'metadata': " + path + ": " + error);
+  o.second_return = s.second_return;
+  if (s.second_return && o.metadata.profile != OusterProfile::dual_return)
+    throw BadInput("parameter 'second_return': " + path + ": the profile " + to_string(o.metadata.profile) + " has one return");
+  o.device_time = s.device_time;
+  return o;
+}
+
+void check(const CheckView& v) { source_settings(v, bindings().read(v.params())); }
+
+struct Ports {
+  Output<msgs::PointCloud> cloud;
+};
+
+PortBinding<Ports> ports() {
+  PortBinding<Ports> b;
+  b.output("cloud", &Ports::cloud).doc("one frame a rotation, sensor frame, the mount in the message");
+  return b;
+}
+
+class OusterLidar : public Plugin {
+ public:
+  static Manifest manifest() {
+    return Manifest("drivers.ouster_lidar", "1.0.0")
+        .describe("an Ouster LiDAR on its wire (UDP lidar packets or a pcap capture, the sensor's metadata) to one cloud a rotation")
+        .with_ports(ports())
+        .plays(roles::lidar_driver)
+        .parameters(bindings())
+        .check(&check)
+        .periodic("rate_hz");
+  }
+
+  void configure(Context& ctx) override {
+    const Settings s = bindings().read(ctx.params());
+    id_ = s.sensor_id;
+    const vehicle::Vehicle car = plugins::read_vehicle(ctx, s.vehicle);
+    xyz_ = plugins::sensor_place(car, s.vehicle, s.vehicle_mount, "vehicle_mount", s.mount, "mount");
+    rpy_ = plugins::sensor_place(car, s.vehicle, s.vehicle_mount, "vehicle_mount", s.mount_rpy_deg, "mount_rpy_deg", true);
+    silent_after_ns_ = static_cast<std::int64_t>(s.silent_after_s * 1e9);
+    try {
+      source_.emplace(source_settings(ctx, s));
+    } catch (const std::runtime_error& e) {
+      throw BadInput("parameter 'source': " + std::string(e.what()));
+    }
+    io_ = ports().connect(ctx);
+  }
+
+  void step(Context& ctx) override {
+    const std::int64_t now = ctx.now_ns();
+    if (last_frame_ns_ < 0) last_frame_ns_ = now;
+    for (StampedCloud& c : source_->poll(now)) publish(std::move(c), now);
+    if (!source_->device_error().empty() && !error_logged_)
+      ctx.log(LogLevel::error, "source " + source_->device_error() + ": no more frames from it"), error_logged_ = true;
+    if (!silent_ && !source_->replay_finished() && now - last_frame_ns_ >= silent_after_ns_) {
+      silent_ = true, ++silences_;
+      ctx.log(LogLevel::warn, "lidar " + std::to_string(id_) + " silent: no frame for " + std::to_string((now - last_frame_ns_) / 1000000) + " ms");
+    }
+  }
+
+  void deactivate(Context& ctx) override { report_ouster(ctx, *source_, frames_, silences_); }
+
+ private:
+  void publish(StampedCloud c, std::int64_t now) {
+    constexpr double kDeg = M_PI / 180;
+    auto m = std::make_shared<msgs::PointCloud>();
+    m->header().stamp_ns(c.stamp_ns);
+    m->header().seq(frames_++);
+    m->header().frame_id("lidar_" + std::to_string(id_));
+    m->sensor_id(id_);
+    m->sensor_x(xyz_[0]), m->sensor_y(xyz_[1]), m->sensor_z(xyz_[2]);
+    m->sensor_roll(rpy_[0] * kDeg), m->sensor_pitch(rpy_[1] * kDeg), m->sensor_yaw(rpy_[2] * kDeg);
+    m->x(std::move(c.cloud.x)), m->y(std::move(c.cloud.y)), m->z(std::move(c.cloud.z)), m->intensity(std::move(c.cloud.intensity));
+    io_.cloud.publish(std::shared_ptr<const msgs::PointCloud>(std::move(m)));
+    last_frame_ns_ = now;
+    silent_ = false;
+  }
+
+  std::uint8_t id_ = 0;
+  std::array<double, 3> xyz_{}, rpy_{};
+  std::optional<OusterSource> source_;
+  Ports io_;
+  std::uint32_t frames_ = 0;
+  std::int64_t silent_after_ns_ = 0, last_frame_ns_ = -1;
+  bool silent_ = false, error_logged_ = false;
+  std::uint64_t silences_ = 0;
+};
+
+}  // namespace
+
+BRICKYARD_PLUGINS(OusterLidar)

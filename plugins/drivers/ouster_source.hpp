@@ -1,0 +1,69 @@
+#pragma once
+// Plugin-side (SDK-free): an Ouster sensor's frames as points, from its lidar port (UDP) or a
+// packet capture replayed at its pace, each stamped by the time rule (common/device_clock.hpp) at
+// the middle of its rotation (the stack takes a frame as measured at one time; the sweep's ends
+// are half a rotation either side of it).
+#include "drivers/common/device_clock.hpp"
+#include "drivers/common/ouster_packets.hpp"
+#include "drivers/common/ouster_xyz.hpp"
+#include "drivers/common/pcap_reader.hpp"
+#include "drivers/common/replay_pacer.hpp"
+#include "drivers/io/byte_source.hpp"
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace brickyard::drivers {
+
+struct OusterSourceSettings {
+  SourceSpec source;
+  std::string capture_path;  // pcap://: the capture found
+  OusterMetadata metadata;
+  bool second_return = false;
+  bool device_time = true;
+  DeviceClockParams clock;
+};
+
+struct StampedCloud {
+  OusterCloud cloud;
+  int64_t stamp_ns = 0;
+  bool complete = false;
+};
+
+class OusterSource {
+ public:
+  // Opens the port or reads the capture; throws std::runtime_error naming it when it cannot.
+  explicit OusterSource(const OusterSourceSettings& s);
+
+  // The frames completed by `now_ns`, stamped.
+  std::vector<StampedCloud> poll(int64_t now_ns);
+
+  const OusterLidarDecoder& decoder() const { return decoder_; }
+  const PcapCounters* capture() const { return capture_ ? &capture_->counters() : nullptr; }
+  const std::vector<double>& delays_s() const { return delays_s_; }
+  const std::string& device_error() const { return device_error_; }
+  bool replay_finished() const { return capture_ && capture_done_; }
+
+ private:
+  void feed_due_packets(int64_t now_ns);
+  void feed_live_packets();
+  StampedCloud cloud_of(const OusterFrame& frame, int64_t receive_ns);
+
+  OusterSourceSettings s_;
+  OusterLidarDecoder decoder_;
+  OusterXyzTable table_;
+  DeviceClock clock_;
+  std::unique_ptr<ByteSource> device_;
+  std::vector<uint8_t> capture_bytes_;
+  std::optional<PcapReader> capture_;
+  std::optional<UdpDatagram> pending_;  // read from the capture, not yet due
+  bool capture_done_ = false;
+  ReplayPacer pacer_;
+  std::vector<double> delays_s_;
+  std::string device_error_;
+};
+
+}  // namespace brickyard::drivers

@@ -1,0 +1,160 @@
+// From a receiver's report to the stack's fix: the datum (checked against the ellipsoid's
+// meridian and parallel radii, worked out here from WGS84's constants, not from GeographicLib),
+// the fix's sigmas, type and time from NovAtel's real BESTPOSA logs (data/gnss), GGA's sigma rule,
+// the time rule (device_clock.hpp) on a stream of known delays, and replay pacing.
+#include "drivers/common/device_clock.hpp"
+#include "drivers/common/gnss_fix_values.hpp"
+#include "drivers/common/gnss_stream.hpp"
+#include "drivers/common/gnss_time.hpp"
+#include "drivers/common/replay_pacer.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <iterator>
+#include <random>
+#include <string>
+
+using namespace brickyard::drivers;
+
+namespace {
+
+std::string read_gnss_file(const char* name) {
+  std::ifstream in(std::string(BRICKYARD_SOURCE_DIR) + "/data/gnss/" + name, std::ios::binary);
+  EXPECT_TRUE(in.good()) << name;
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+// The first log of novatel_BESTPOS.GPS: 51.11637049360, -114.03827102462, 1059.7447 m above MSL,
+// undulation -16.9 m: 1042.8447 m above the ellipsoid.
+const Datum kFirstLog{51.11637049360, -114.03827102462, 1059.7447 - 16.9};
+
+constexpr double kA = 6378137.0, kF = 1 / 298.257223563;  // WGS84
+constexpr double kE2 = kF * (2 - kF);
+constexpr double kDeg = M_PI / 180;
+
+}  // namespace
+
+TEST(LocalDatum, SmallStepsNorthAndEastAreTheEllipsoidsRadiiTimesTheAngle) {
+  const LocalDatum d(kFirstLog);
+  const Eigen::Vector3d origin = d.to_map({kFirstLog.latitude_deg, kFirstLog.longitude_deg, kFirstLog.height_m});
+  EXPECT_NEAR(origin.norm(), 0, 1e-9);
+  const double s = std::sin(kFirstLog.latitude_deg * kDeg);
+  const double meridian = kA * (1 - kE2) / std::pow(1 - kE2 * s * s, 1.5) + kFirstLog.height_m;  // m per rad north
+  const double parallel = (kA / std::sqrt(1 - kE2 * s * s) + kFirstLog.height_m) * std::cos(kFirstLog.latitude_deg * kDeg);
+  const double step = 1e-4;  // deg: 11 m north, 7 m east; the curvature's share is under 0.01 mm
+  const Eigen::Vector3d north = d.to_map({kFirstLog.latitude_deg + step, kFirstLog.longitude_deg, kFirstLog.height_m});
+  const Eigen::Vector3d east = d.to_map({kFirstLog.latitude_deg, kFirstLog.longitude_deg + step, kFirstLog.height_m});
+  EXPECT_NEAR(north.y(), meridian * step * kDeg, 1e-4);
+  EXPECT_NEAR(north.x(), 0, 1e-6);
+  EXPECT_NEAR(east.x(), parallel * step * kDeg, 1e-4);
+  EXPECT_NEAR(east.y(), 0, 1e-4);
+  const Eigen::Vector3d up = d.to_map({kFirstLog.latitude_deg, kFirstLog.longitude_deg, kFirstLog.height_m + 10});
+  EXPECT_NEAR(up.z(), 10, 1e-6);
+  const Geodetic back = d.to_geodetic(Eigen::Vector3d(1234.5, -678.9, 12.3));
+  EXPECT_NEAR((d.to_map(back) - Eigen::Vector3d(1234.5, -678.9, 12.3)).norm(), 0, 1e-6);
+  EXPECT_STREQ(datum_problem(kFirstLog), "");
+  EXPECT_STRNE(datum_problem({91, 0, 0}), "");
+  EXPECT_STRNE(datum_problem({0, NAN, 0}), "");
+}
+
+TEST(GnssFix, TheRealBestposLogsBecomeFixesWithTheirSigmasTypeAndGpsTime) {
+  GnssStream stream({GnssProtocol::novatel_oem7, Oem7PositionLog::bestpos, kFirstLog, {}});
+  stream.feed(read_gnss_file("novatel_BESTPOS.GPS"));
+  stream.finish();
+  std::vector<GnssFixValues> fixes;
+  while (auto f = stream.next()) fixes.push_back(*f);
+  ASSERT_EQ(fixes.size(), 1000u);
+  EXPECT_EQ(stream.counters().fixes, 1000u);
+  EXPECT_EQ(stream.counters().unusable + stream.counters().other_datum + stream.counters().other_reports, 0u);
+  const GnssFixValues& f = fixes.front();
+  EXPECT_NEAR(std::hypot(f.x, f.y, f.z), 0, 1e-6);
+  EXPECT_FLOAT_EQ(f.sigma_x, 1.5644f);  // east: the longitude's sigma
+  EXPECT_FLOAT_EQ(f.sigma_y, 1.8736f);  // north: the latitude's
+  EXPECT_FLOAT_EQ(f.sigma_z, 2.8763f);
+  EXPECT_EQ(f.fix_type, 1);  // SINGLE
+  EXPECT_TRUE(f.valid);
+  ASSERT_TRUE(f.device_time_s);
+  EXPECT_DOUBLE_EQ(*f.device_time_s, 1984 * kSecondsPerGpsWeek + 450849.5);
+  // A receiver standing still, single-point: every fix within a few of its sigmas of the first.
+  for (const GnssFixValues& g : fixes) EXPECT_LT(std::hypot(g.x, g.y), 30.0);
+}
+
+TEST(GnssFix, FixTypesAndValidityFollowTheSolution) {
+  const LocalDatum d(kFirstLog);
+  BestPos p;
+  p.latitude_deg = kFirstLog.latitude_deg, p.longitude_deg = kFirstLog.longitude_deg;
+  p.solution_status = SolutionStatus::computed;
+  const std::pair<PositionType, int> types[] = {{PositionType::narrow_int, 3}, {PositionType::ins_rtkfixed, 3},
+                                                {PositionType::narrow_float, 2}, {PositionType::l1_float, 2},
+                                                {PositionType::psrdiff, 1}, {PositionType::ppp, 1}};
+  for (const auto& [type, expected] : types) {
+    p.position_type = type;
+    EXPECT_EQ(fix_from(p, d)->fix_type, expected) << static_cast<int>(type);
+  }
+  p.solution_status = SolutionStatus::insufficient_obs;
+  EXPECT_FALSE(fix_from(p, d)->valid);
+  EXPECT_EQ(fix_from(p, d)->fix_type, 0);
+  p.header.time_status = TimeStatus::coarse;  // a coarse time is no measurement time
+  EXPECT_FALSE(fix_from(p, d)->device_time_s);
+  p.datum_id = kDatumUser;
+  EXPECT_FALSE(fix_from(p, d));
+  p.datum_id = kDatumWgs84, p.latitude_deg = NAN;
+  EXPECT_FALSE(fix_from(p, d));
+}
+
+TEST(GnssFix, GgaSigmaIsHdopTimesTheQualitysErrorAndItsTimeTheTimeOfDay) {
+  const LocalDatum d({44.068843333, -121.314191667, 1127.7 - 19.6});
+  NmeaGga g;
+  g.latitude_deg = 44.068843333, g.longitude_deg = -121.314191667;
+  g.altitude_msl_m = 1127.7, g.undulation_m = -19.6, g.hdop = 0.98, g.quality = 4;
+  g.utc = NmeaTime{20, 26, 40.5};
+  auto f = fix_from(g, d);
+  ASSERT_TRUE(f);
+  EXPECT_NEAR(std::hypot(f->x, f->y, f->z), 0, 1e-6);
+  EXPECT_EQ(f->fix_type, 3);
+  EXPECT_DOUBLE_EQ(f->sigma_x, 0.98 * 0.02);
+  EXPECT_DOUBLE_EQ(f->sigma_z, 2 * 0.98 * 0.02);
+  EXPECT_DOUBLE_EQ(*f->device_time_s, 20 * 3600 + 26 * 60 + 40.5);
+  g.quality = 2;
+  EXPECT_DOUBLE_EQ(fix_from(g, d)->sigma_y, 0.98 * 0.7);
+  g.quality = 8;  // simulator mode: no fix
+  EXPECT_FALSE(fix_from(g, d)->valid);
+  g.hdop.reset();
+  EXPECT_FALSE(fix_from(g, d));
+}
+
+TEST(DeviceClock, StampsCarryTheLeastDelaySeenNeverMoreThanTheReceiveTime) {
+  // A receiver at 20 Hz whose clock is 1.4e9 s ahead of the run's; each log delayed 2 to 30 ms
+  // on the wire, one in ten by exactly 2 ms.
+  DeviceClock clock;
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> late(0.002, 0.030);
+  const double ahead = 1.4e9;
+  for (int k = 0; k < 400; ++k) {
+    const double measured = 10 + 0.05 * k;  // run clock, s
+    const double delay = k % 10 == 0 ? 0.002 : late(rng);
+    const int64_t receive = std::llround((measured + delay) * 1e9);
+    const int64_t stamp = clock.stamp_ns(measured + ahead, receive);
+    EXPECT_LE(stamp, receive);
+    if (k > 0) {
+      EXPECT_NEAR(static_cast<double>(stamp) * 1e-9, measured + 0.002, 2e-6) << k;  // the least delay's error
+    }
+  }
+  EXPECT_EQ(clock.restarts(), 0u);
+  // The receiver's time steps back a day (NMEA's midnight): the estimate starts again.
+  const int64_t receive = std::llround(30.0 * 1e9);
+  EXPECT_EQ(clock.stamp_ns(30.0 - 0.01 + ahead - 86400, receive), receive);
+  EXPECT_EQ(clock.restarts(), 1u);
+}
+
+TEST(ReplayPacer, RecordsFallDueAtTheirRecordedSpacingOverTheRate) {
+  ReplayPacer twice(2.0);
+  EXPECT_TRUE(twice.due(1000.0, 5'000'000'000));      // the first: at once
+  EXPECT_FALSE(twice.due(1001.0, 5'400'000'000));     // 1 s later in the recording: 0.5 s later in the run
+  EXPECT_TRUE(twice.due(1001.0, 5'500'000'000));
+  ReplayPacer all(0);
+  EXPECT_TRUE(all.due(1.0, 0));
+  EXPECT_TRUE(all.due(1e6, 0));
+}
