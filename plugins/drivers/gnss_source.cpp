@@ -28,8 +28,8 @@ GnssSource::GnssSource(const GnssSourceSettings& s) : s_(s), stream_(s.stream), 
 }
 
 StampedFix GnssSource::stamped(const GnssFixValues& f, int64_t receive_ns) {
-  if (!s_.device_time || !f.device_time_s) return {f, receive_ns};
-  const int64_t stamp = clock_.stamp_ns(*f.device_time_s, receive_ns);
+  if (!s_.device_time || !f.device_time_ns) return {f, receive_ns};
+  const int64_t stamp = clock_.stamp_ns(*f.device_time_ns, receive_ns);
   delays_s_.push_back(clock_.last_delay_s());
   return {f, stamp};
 }
@@ -37,7 +37,7 @@ StampedFix GnssSource::stamped(const GnssFixValues& f, int64_t receive_ns) {
 void GnssSource::replay_due(int64_t now_ns, std::vector<StampedFix>& out) {
   while (replayed_ < recorded_.size()) {
     const GnssFixValues& f = recorded_[replayed_];
-    const double recorded_s = f.device_time_s.value_or(static_cast<double>(replayed_) * s_.replay_period_s);
+    const double recorded_s = f.device_time_ns ? static_cast<double>(*f.device_time_ns) * 1e-9 : static_cast<double>(replayed_) * s_.replay_period_s;
     if (!pacer_.due(recorded_s, now_ns)) break;
     out.push_back(stamped(f, now_ns));
     ++replayed_;

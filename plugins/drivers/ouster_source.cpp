@@ -10,8 +10,8 @@ namespace {
 constexpr size_t kMaxCaptureBytes = size_t{4} << 30;
 constexpr size_t kMaxPollBytes = size_t{16} << 20;  // per step: several frames of the largest sensor
 
-// The middle of the frame's arrived columns in the sensor's clock, s; nothing when none arrived.
-std::optional<double> mid_time_s(const OusterFrame& f) {
+// The middle of the frame's arrived columns in the sensor's clock, ns; nothing when none arrived.
+std::optional<int64_t> mid_time_ns(const OusterFrame& f) {
   uint64_t first = 0, last = 0;
   bool any = false;
   for (size_t c = 0; c < f.received.size(); ++c) {
@@ -22,7 +22,7 @@ std::optional<double> mid_time_s(const OusterFrame& f) {
     any = true;
   }
   if (!any) return std::nullopt;
-  return (static_cast<double>(first) + static_cast<double>(last - first) / 2) * 1e-9;
+  return static_cast<int64_t>(first + (last - first) / 2);
 }
 }  // namespace
 
@@ -66,7 +66,7 @@ StampedCloud OusterSource::cloud_of(const OusterFrame& frame, int64_t receive_ns
   ouster_frame_to_cloud(frame, table_, out.cloud, s_.second_return);
   out.complete = frame.complete();
   out.stamp_ns = receive_ns;
-  const std::optional<double> measured = mid_time_s(frame);
+  const std::optional<int64_t> measured = mid_time_ns(frame);
   if (s_.device_time && measured) {
     out.stamp_ns = clock_.stamp_ns(*measured, receive_ns);
     delays_s_.push_back(clock_.last_delay_s());

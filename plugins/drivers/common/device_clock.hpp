@@ -22,18 +22,19 @@ class DeviceClock {
  public:
   explicit DeviceClock(DeviceClockParams p = {}) : p_(p) {}
 
-  // The run-clock stamp (ns) of a message measured at `device_s` and received at `receive_ns`.
-  int64_t stamp_ns(double device_s, int64_t receive_ns);
+  // The run-clock stamp of a message measured at `device_ns` (the device's clock) and received at
+  // `receive_ns` (the run's). Integers throughout: a stamp lands on its instant to the nanosecond.
+  int64_t stamp_ns(int64_t device_ns, int64_t receive_ns);
   // Of the last message: how long before its receipt it is stamped, s (the delay it is credited).
-  double last_delay_s() const { return last_delay_s_; }
+  double last_delay_s() const { return static_cast<double>(last_delay_ns_) * 1e-9; }
   uint64_t restarts() const { return restarts_; }
 
  private:
   DeviceClockParams p_;
-  // (receive time s, receive - device s), offsets increasing from front to back: the front is the
+  // (receive time, receive - device), ns, offsets increasing from front to back: the front is the
   // least within the window (a monotonic queue: each message enters and leaves it once).
-  std::deque<std::pair<double, double>> offsets_;
-  double last_delay_s_ = 0;
+  std::deque<std::pair<int64_t, int64_t>> offsets_;
+  int64_t last_delay_ns_ = 0;
   uint64_t restarts_ = 0;
 };
 

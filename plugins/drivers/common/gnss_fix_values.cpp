@@ -1,7 +1,5 @@
 #include "gnss_fix_values.hpp"
 
-#include "gnss_time.hpp"
-
 #include <cmath>
 
 namespace brickyard::drivers {
@@ -10,9 +8,9 @@ namespace {
 
 // The header's time when the receiver knows GPS time (from "fine" on the time status scale of the
 // OEM7 reference: coarse times can be off by more than a LiDAR frame).
-std::optional<double> header_time(const Oem7Header& h) {
+std::optional<int64_t> header_time(const Oem7Header& h) {
   if (static_cast<int>(h.time_status) < static_cast<int>(TimeStatus::fine_adjusting)) return std::nullopt;
-  return gps_seconds(gps_time_from_week_ms(h.week, h.milliseconds));
+  return (static_cast<int64_t>(h.week) * 604800000 + h.milliseconds) * 1000000;
 }
 
 bool finite_position(double lat, double lon, double h) {
@@ -55,7 +53,7 @@ std::optional<GnssFixValues> fix_from(const BestPos& m, const LocalDatum& datum)
   f.sigma_x = m.longitude_sigma_m, f.sigma_y = m.latitude_sigma_m, f.sigma_z = m.height_sigma_m;
   f.valid = m.solution_status == SolutionStatus::computed && m.position_type != PositionType::none;
   f.fix_type = f.valid ? fix_type_of(m.position_type) : 0;
-  f.device_time_s = header_time(m.header);
+  f.device_time_ns = header_time(m.header);
   return f;
 }
 
@@ -68,7 +66,7 @@ std::optional<GnssFixValues> fix_from(const InsPvaX& m, const LocalDatum& datum)
   f.valid = (m.ins_status == InsStatus::solution_good || m.ins_status == InsStatus::solution_free) &&
             m.position_type != PositionType::none;
   f.fix_type = f.valid ? fix_type_of(m.position_type) : 0;
-  f.device_time_s = header_time(m.header);
+  f.device_time_ns = header_time(m.header);
   return f;
 }
 
@@ -84,7 +82,7 @@ std::optional<GnssFixValues> fix_from(const NmeaGga& m, const LocalDatum& datum,
                        : m.quality == 2 || m.quality == 9 ? sigmas.differential_m : sigmas.single_m;
   f.sigma_x = f.sigma_y = *m.hdop * error;
   f.sigma_z = 2 * f.sigma_x;
-  if (m.utc) f.device_time_s = m.utc->hours * 3600.0 + m.utc->minutes * 60.0 + m.utc->seconds;
+  if (m.utc) f.device_time_ns = (m.utc->hours * 3600 + m.utc->minutes * 60) * int64_t{1000000000} + std::llround(m.utc->seconds * 1e9);
   return f;
 }
 

@@ -17,9 +17,10 @@ struct GnssFixValues {
   double sigma_x = 0, sigma_y = 0, sigma_z = 0;  // east, north, up, m
   uint8_t fix_type = 0;
   bool valid = false;
-  // When the receiver measured it, in its own time scale (GPS seconds since 1980-01-06 for OEM7;
-  // UTC seconds of the day for NMEA), if the report says.
-  std::optional<double> device_time_s;
+  // When the receiver measured it, in its own time scale (GPS time since 1980-01-06 for OEM7;
+  // UTC time of day for NMEA), ns, if the report says. Integer nanoseconds: a double of GPS
+  // seconds (1.4e9) has steps of 0.24 us, and a stamp carried through it would miss its instant.
+  std::optional<int64_t> device_time_ns;
 };
 
 // The stack's fix type of an OEM7 position type: RTK integer solutions (with or without the INS)

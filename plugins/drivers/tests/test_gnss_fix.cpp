@@ -4,6 +4,7 @@
 // the time rule (device_clock.hpp) on a stream of known delays, and replay pacing.
 #include "drivers/common/device_clock.hpp"
 #include "drivers/common/gnss_fix_values.hpp"
+#include "drivers/common/gnss_report.hpp"
 #include "drivers/common/gnss_stream.hpp"
 #include "drivers/common/gnss_time.hpp"
 #include "drivers/common/replay_pacer.hpp"
@@ -75,8 +76,8 @@ TEST(GnssFix, TheRealBestposLogsBecomeFixesWithTheirSigmasTypeAndGpsTime) {
   EXPECT_FLOAT_EQ(f.sigma_z, 2.8763f);
   EXPECT_EQ(f.fix_type, 1);  // SINGLE
   EXPECT_TRUE(f.valid);
-  ASSERT_TRUE(f.device_time_s);
-  EXPECT_DOUBLE_EQ(*f.device_time_s, 1984 * kSecondsPerGpsWeek + 450849.5);
+  ASSERT_TRUE(f.device_time_ns);
+  EXPECT_EQ(*f.device_time_ns, (1984 * 604800 + 450849) * int64_t{1000000000} + 500000000);
   // A receiver standing still, single-point: every fix within a few of its sigmas of the first.
   for (const GnssFixValues& g : fixes) EXPECT_LT(std::hypot(g.x, g.y), 30.0);
 }
@@ -97,7 +98,7 @@ TEST(GnssFix, FixTypesAndValidityFollowTheSolution) {
   EXPECT_FALSE(fix_from(p, d)->valid);
   EXPECT_EQ(fix_from(p, d)->fix_type, 0);
   p.header.time_status = TimeStatus::coarse;  // a coarse time is no measurement time
-  EXPECT_FALSE(fix_from(p, d)->device_time_s);
+  EXPECT_FALSE(fix_from(p, d)->device_time_ns);
   p.datum_id = kDatumUser;
   EXPECT_FALSE(fix_from(p, d));
   p.datum_id = kDatumWgs84, p.latitude_deg = NAN;
@@ -116,7 +117,7 @@ TEST(GnssFix, GgaSigmaIsHdopTimesTheQualitysErrorAndItsTimeTheTimeOfDay) {
   EXPECT_EQ(f->fix_type, 3);
   EXPECT_DOUBLE_EQ(f->sigma_x, 0.98 * 0.02);
   EXPECT_DOUBLE_EQ(f->sigma_z, 2 * 0.98 * 0.02);
-  EXPECT_DOUBLE_EQ(*f->device_time_s, 20 * 3600 + 26 * 60 + 40.5);
+  EXPECT_EQ(*f->device_time_ns, (20 * 3600 + 26 * 60 + 40) * int64_t{1000000000} + 500000000);
   g.quality = 2;
   EXPECT_DOUBLE_EQ(fix_from(g, d)->sigma_y, 0.98 * 0.7);
   g.quality = 8;  // simulator mode: no fix
@@ -127,25 +128,25 @@ TEST(GnssFix, GgaSigmaIsHdopTimesTheQualitysErrorAndItsTimeTheTimeOfDay) {
 
 TEST(DeviceClock, StampsCarryTheLeastDelaySeenNeverMoreThanTheReceiveTime) {
   // A receiver at 20 Hz whose clock is 1.4e9 s ahead of the run's; each log delayed 2 to 30 ms
-  // on the wire, one in ten by exactly 2 ms.
+  // on the wire (whole microseconds), one in ten by exactly 2 ms: every stamp but the first lands
+  // exactly 2 ms after its measurement (the least delay is the rule's error), none after receipt.
   DeviceClock clock;
   std::mt19937 rng(7);
-  std::uniform_real_distribution<double> late(0.002, 0.030);
-  const double ahead = 1.4e9;
+  std::uniform_int_distribution<int64_t> late_us(2000, 30000);
+  const int64_t ahead = int64_t{1400000000} * 1000000000;
   for (int k = 0; k < 400; ++k) {
-    const double measured = 10 + 0.05 * k;  // run clock, s
-    const double delay = k % 10 == 0 ? 0.002 : late(rng);
-    const int64_t receive = std::llround((measured + delay) * 1e9);
-    const int64_t stamp = clock.stamp_ns(measured + ahead, receive);
-    EXPECT_LE(stamp, receive);
+    const int64_t measured = (10000 + 50 * k) * int64_t{1000000};  // run clock, ns
+    const int64_t delay = (k % 10 == 0 ? 2000 : late_us(rng)) * 1000;
+    const int64_t stamp = clock.stamp_ns(measured + ahead, measured + delay);
+    EXPECT_LE(stamp, measured + delay);
     if (k > 0) {
-      EXPECT_NEAR(static_cast<double>(stamp) * 1e-9, measured + 0.002, 2e-6) << k;  // the least delay's error
+      EXPECT_EQ(stamp, measured + 2000000) << k;
     }
   }
   EXPECT_EQ(clock.restarts(), 0u);
   // The receiver's time steps back a day (NMEA's midnight): the estimate starts again.
-  const int64_t receive = std::llround(30.0 * 1e9);
-  EXPECT_EQ(clock.stamp_ns(30.0 - 0.01 + ahead - 86400, receive), receive);
+  const int64_t receive = int64_t{30} * 1000000000;
+  EXPECT_EQ(clock.stamp_ns(receive - 10000000 + ahead - int64_t{86400} * 1000000000, receive), receive);
   EXPECT_EQ(clock.restarts(), 1u);
 }
 
@@ -157,4 +158,34 @@ TEST(ReplayPacer, RecordsFallDueAtTheirRecordedSpacingOverTheRate) {
   ReplayPacer all(0);
   EXPECT_TRUE(all.due(1.0, 0));
   EXPECT_TRUE(all.due(1e6, 0));
+}
+
+TEST(GnssReport, AFixSentAsBestposbIsReadBackAsTheSameFix) {
+  // The simulator's side of the wire and the driver's, end to end through the binary log's bytes.
+  const Datum datum{39.7930, -86.2389, 220.0};  // near Indianapolis
+  const LocalDatum d(datum);
+  GnssStream stream({GnssProtocol::novatel_oem7, Oem7PositionLog::bestpos, datum, {}});
+  const double x[] = {0.0, 812.345, -1504.25, 2999.999};
+  for (int k = 0; k < 4; ++k) {
+    GnssFixValues f;
+    f.x = x[k], f.y = -0.5 * x[k] + 3.25, f.z = 1.5 + 0.001 * k;
+    f.sigma_x = 0.02, f.sigma_y = 0.03, f.sigma_z = 0.05;
+    f.fix_type = static_cast<uint8_t>(k);
+    f.valid = k > 0;
+    const GpsTime t{2400, 1234.05 + 0.05 * k};
+    const std::vector<uint8_t> bytes = encode_oem7_binary(bestpos_of(f, d, t));
+    stream.feed(bytes.data(), bytes.size());
+    const auto back = stream.next();
+    ASSERT_TRUE(back) << k;
+    EXPECT_NEAR(back->x, f.x, 1e-6);
+    EXPECT_NEAR(back->y, f.y, 1e-6);
+    EXPECT_NEAR(back->z, f.z, 1e-6);
+    EXPECT_FLOAT_EQ(back->sigma_x, 0.02f);
+    EXPECT_FLOAT_EQ(back->sigma_y, 0.03f);
+    EXPECT_FLOAT_EQ(back->sigma_z, 0.05f);
+    EXPECT_EQ(back->fix_type, k);
+    EXPECT_EQ(back->valid, k > 0);
+    EXPECT_EQ(*back->device_time_ns, (2400 * 604800 + 1234) * int64_t{1000000000} + (50 + 50 * k) * int64_t{1000000});
+  }
+  EXPECT_EQ(stream.decoder().refused(), 0u);
 }

@@ -1,6 +1,8 @@
 // sim.gnss_checker: an assertion node for tests. Checks every GNSS fix against the ground truth
 // at the same instant: fix = antenna position + the expected fault offset (bias / drift windows,
-// same syntax as sim.gnss faults), within a tolerance. Fails the run on the first mismatch.
+// same syntax as sim.gnss faults), within a tolerance. Fails the run on the first mismatch. With
+// `stamp_tolerance_s`, a fix that crossed a wire (drivers.gnss) is held against the truth within
+// that much of its stamp that it matches best, and how far its stamp was off is measured.
 #include <brickyard/msgs/GnssFix.h>
 #include <brickyard/plugin.hpp>
 
@@ -28,6 +30,7 @@ struct Settings {
   FaultSchedule faults{"[]", 3, kFaultTypes};  // as declared: no window
   double tolerance_m = 1e-9;
   std::int64_t min_checked = 1;
+  double stamp_tolerance_s = 0;
 };
 
 ParamBinding<Settings> bindings() {
@@ -40,6 +43,8 @@ ParamBinding<Settings> bindings() {
               [](const Params& p, Settings& s) { s.faults = read_faults(p, 3, kFaultTypes); });
   b.bind("tolerance_m", &Settings::tolerance_m).in_unit("m").range(0, 100);
   b.bind("min_checked", &Settings::min_checked).range(0, 1e9);
+  b.bind("stamp_tolerance_s", &Settings::stamp_tolerance_s).in_unit("s").range(0, 1)
+      .doc("0: the truth at the fix's stamp; else the truth within this of it that the fix matches best (its stamp's error measured)");
   return b;
 }
 
@@ -73,6 +78,7 @@ class GnssChecker : public Plugin {
     expect_ = s.faults;
     tol_ = s.tolerance_m;
     min_checked_ = s.min_checked;
+    stamp_tol_ns_ = std::llround(s.stamp_tolerance_s * 1e9);
     io_ = ports().connect(ctx);
   }
 
@@ -81,40 +87,54 @@ class GnssChecker : public Plugin {
       truth_at_[stamp(*s)] = s;
       if (truth_at_.size() > 512) truth_at_.erase(truth_at_.begin());
     }
-    for (const auto& f : io_.fix.take()) {
-      auto it = truth_at_.find(f->header().stamp_ns());
-      if (it == truth_at_.end()) continue;
-      const double t = static_cast<double>(f->header().stamp_ns()) * 1e-9;
-      Rng unused;
-      FaultEffect e = expect_.at(t, unused);
-      const Eigen::Vector3d want = body_pose(*it->second) * antenna_ + Eigen::Vector3d(e.offset[0], e.offset[1], e.offset[2]);
-      const double err = (Eigen::Vector3d(f->x(), f->y(), f->z()) - want).norm();
-      max_err_ = std::max(max_err_, err);
-      ++checked_;
-      bool in_window = false;
-      for (const auto& w : expect_.windows()) in_window = in_window || w.active(t);
-      if (in_window) ++in_window_;
-      if (err > tol_) {
-        char b[200];
-        std::snprintf(b, sizeof b, "fix at t = %.3f s is %.3g m from the expected position (tolerance %.3g m)", t, err, tol_);
-        ctx.fail(b);
-      }
-    }
+    for (const auto& f : io_.fix.take()) check(ctx, *f);
   }
 
   void deactivate(Context& ctx) override {
     ctx.metric("checked", static_cast<double>(checked_));
     ctx.metric("checked_in_windows", static_cast<double>(in_window_));
     ctx.metric("max_error_m", max_err_);
+    ctx.metric("max_stamp_error_s", static_cast<double>(max_stamp_err_ns_) * 1e-9);
     if (checked_ < min_checked_)
       ctx.fail("checked " + std::to_string(checked_) + " fixes, expected at least " + std::to_string(min_checked_));
   }
 
  private:
+  // The fix against the truth at its stamp (or, within stamp_tol_ns_, where it matches best).
+  void check(Context& ctx, const msgs::GnssFix& f) {
+    const std::int64_t at = f.header().stamp_ns();
+    double err = INFINITY;
+    std::int64_t best = at;
+    for (auto it = truth_at_.lower_bound(at - stamp_tol_ns_); it != truth_at_.end() && it->first <= at + stamp_tol_ns_; ++it) {
+      const double e = error_at(f, *it->second, static_cast<double>(it->first) * 1e-9);
+      if (e < err) err = e, best = it->first;
+    }
+    if (!std::isfinite(err)) return;
+    max_err_ = std::max(max_err_, err);
+    max_stamp_err_ns_ = std::max<std::int64_t>(max_stamp_err_ns_, std::llabs(at - best));
+    ++checked_;
+    const double t = static_cast<double>(at) * 1e-9;
+    bool in_window = false;
+    for (const auto& w : expect_.windows()) in_window = in_window || w.active(t);
+    if (in_window) ++in_window_;
+    if (err > tol_) {
+      char b[200];
+      std::snprintf(b, sizeof b, "fix at t = %.3f s is %.3g m from the expected position (tolerance %.3g m)", t, err, tol_);
+      ctx.fail(b);
+    }
+  }
+
+  double error_at(const msgs::GnssFix& f, const msgs::VehicleState& truth, double t) const {
+    Rng unused;
+    const FaultEffect e = expect_.at(t, unused);
+    const Eigen::Vector3d want = body_pose(truth) * antenna_ + Eigen::Vector3d(e.offset[0], e.offset[1], e.offset[2]);
+    return (Eigen::Vector3d(f.x(), f.y(), f.z()) - want).norm();
+  }
+
   Eigen::Vector3d antenna_;
   FaultSchedule expect_;
   double tol_ = 1e-9, max_err_ = 0;
-  std::int64_t min_checked_ = 1, checked_ = 0, in_window_ = 0;
+  std::int64_t min_checked_ = 1, checked_ = 0, in_window_ = 0, stamp_tol_ns_ = 0, max_stamp_err_ns_ = 0;
   std::map<std::int64_t, std::shared_ptr<const msgs::VehicleState>> truth_at_;
   Ports io_;
 };

@@ -1,0 +1,114 @@
+// sim.gnss_wire: the simulator's receiver speaking its real wire. Each fix of a simulated
+// receiver (sim.gnss, map frame) goes out as the NovAtel OEM7 BESTPOS binary log a receiver would
+// send (latitude and longitude by the datum, its sigmas, its fix type; the header's GPS time the
+// fix's measurement time plus `gps_start_s`), down the `sink`: a UDP port or a serial line
+// (a pty's slave the driver opens). drivers.gnss on the other end reads it as it reads a car's
+// receiver (docs/drivers.md).
+#include <brickyard/msgs/GnssFix.h>
+#include <brickyard/plugin.hpp>
+
+#include "drivers/common/gnss_report.hpp"
+#include "drivers/common/novatel_oem7.hpp"
+#include "drivers/io/byte_source.hpp"
+
+#include <memory>
+#include <optional>
+
+namespace {
+
+using namespace brickyard;
+using namespace brickyard::drivers;
+
+struct Settings {
+  std::string sink;
+  std::vector<double> datum;
+  // GPS time at the run's zero, s since 1980-01-06: week 2400 (2026-01-04). A whole number of
+  // milliseconds, so the log's millisecond field carries the fix's time exactly.
+  double gps_start_s = 2400 * 604800.0;
+};
+
+ParamBinding<Settings> bindings() {
+  ParamBinding<Settings> b;
+  b.bind_required("sink", &Settings::sink).doc("where the logs go: udp://HOST:PORT, or tcp://HOST:PORT to listen on (docs/drivers-transports.md)");
+  b.bind_required("datum", &Settings::datum).doc("the map frame's origin: latitude, longitude (deg, WGS84), height above the ellipsoid (m)");
+  b.bind("gps_start_s", &Settings::gps_start_s).in_unit("s").range(0, 1e10).doc("GPS time at the run's zero");
+  return b;
+}
+
+Datum datum_of(const Settings& s) {
+  if (s.datum.size() != 3) throw BadInput("parameter 'datum': " + std::to_string(s.datum.size()) + " numbers, not 3 (latitude, longitude, height)");
+  const Datum d{s.datum[0], s.datum[1], s.datum[2]};
+  if (const std::string why = datum_problem(d); !why.empty()) throw BadInput("parameter 'datum': " + why);
+  return d;
+}
+
+void check(const CheckView& v) {
+  const Settings s = bindings().read(v.params());
+  datum_of(s);
+  if (const ParsedSource p = parse_source(s.sink); !p.spec) throw BadInput("parameter 'sink': " + p.error);
+}
+
+struct Ports {
+  Input<msgs::GnssFix> fix;
+};
+
+PortBinding<Ports> ports() {
+  PortBinding<Ports> b;
+  b.input("fix", &Ports::fix).doc("the simulated receiver's fixes, map frame").depth(64);
+  return b;
+}
+
+class GnssWire : public Plugin {
+ public:
+  static Manifest manifest() {
+    return Manifest("sim.gnss_wire", "1.0.0")
+        .describe("a simulated receiver's fixes sent as NovAtel OEM7 BESTPOSB logs down a UDP port or a TCP listener, as a car's receiver sends them")
+        .with_ports(ports())
+        .parameters(bindings())
+        .check(&check)
+        .on_input("fix");
+  }
+
+  void configure(Context& ctx) override {
+    const Settings s = bindings().read(ctx.params());
+    datum_.emplace(datum_of(s));
+    gps_start_ms_ = std::llround(s.gps_start_s * 1000);
+    std::string error;
+    sink_ = open_sink(*parse_source(s.sink).spec, error);
+    if (!sink_) throw BadInput("parameter 'sink': " + error);
+    io_ = ports().connect(ctx);
+  }
+
+  void step(Context& ctx) override {
+    for (const auto& f : io_.fix.take()) send(*f);
+    if (!sink_->error().empty() && !error_logged_) ctx.log(LogLevel::error, "sink " + sink_->error()), error_logged_ = true;
+  }
+
+  void deactivate(Context& ctx) override {
+    ctx.metric("logs_sent", static_cast<double>(sent_));
+    ctx.metric("bytes_dropped", static_cast<double>(sink_->dropped()));
+  }
+
+ private:
+  void send(const msgs::GnssFix& f) {
+    const std::int64_t ms = gps_start_ms_ + f.header().stamp_ns() / 1000000;
+    const GpsTime t{static_cast<std::uint32_t>(ms / 604800000), static_cast<double>(ms % 604800000) / 1000};
+    GnssFixValues v;
+    v.x = f.x(), v.y = f.y(), v.z = f.z();
+    v.sigma_x = f.sigma_x(), v.sigma_y = f.sigma_y(), v.sigma_z = f.sigma_z();
+    v.fix_type = f.fix_type(), v.valid = f.valid();
+    const std::vector<std::uint8_t> log = encode_oem7_binary(bestpos_of(v, *datum_, t));
+    if (sink_->send(log.data(), log.size())) ++sent_;
+  }
+
+  std::optional<LocalDatum> datum_;
+  std::int64_t gps_start_ms_ = 0;
+  std::unique_ptr<ByteSink> sink_;
+  Ports io_;
+  std::uint64_t sent_ = 0;
+  bool error_logged_ = false;
+};
+
+}  // namespace
+
+BRICKYARD_PLUGINS(GnssWire)
