@@ -19,7 +19,8 @@ GnssSource::GnssSource(const GnssSourceSettings& s) : s_(s), stream_(s.stream), 
     bytes_ = bytes.size();
     stream_.feed(bytes.data(), bytes.size());
     stream_.finish();
-    while (auto f = stream_.next()) recorded_.push_back(*f);
+    while (auto f = stream_.next()) fixes_.all.push_back(*f);
+    while (auto v = stream_.next_imu()) imu_.all.push_back(*v);
     return;
   }
   std::string error;
@@ -27,25 +28,37 @@ GnssSource::GnssSource(const GnssSourceSettings& s) : s_(s), stream_(s.stream), 
   if (!device_) throw std::runtime_error(error);
 }
 
-StampedFix GnssSource::stamped(const GnssFixValues& f, int64_t receive_ns) {
-  if (!s_.device_time || !f.device_time_ns) return {f, receive_ns};
-  const int64_t stamp = clock_.stamp_ns(*f.device_time_ns, receive_ns);
+int64_t GnssSource::stamp(std::optional<int64_t> device_ns, int64_t receive_ns) {
+  if (!s_.device_time || !device_ns) return receive_ns;
+  const int64_t stamped = clock_.stamp_ns(*device_ns, receive_ns);
   delays_s_.push_back(clock_.last_delay_s());
-  return {f, stamp};
+  return stamped;
 }
 
-void GnssSource::replay_due(int64_t now_ns, std::vector<StampedFix>& out) {
-  while (replayed_ < recorded_.size()) {
-    const GnssFixValues& f = recorded_[replayed_];
-    const double recorded_s = f.device_time_ns ? static_cast<double>(*f.device_time_ns) * 1e-9 : static_cast<double>(replayed_) * s_.replay_period_s;
-    if (!pacer_.due(recorded_s, now_ns)) break;
-    out.push_back(stamped(f, now_ns));
-    ++replayed_;
+void GnssSource::drain(int64_t receive_ns, GnssPoll& out) {
+  while (auto f = stream_.next()) out.fixes.push_back({*f, stamp(f->device_time_ns, receive_ns)});
+  while (auto v = stream_.next_imu()) out.imu.push_back({*v, stamp(v->device_time_ns, receive_ns)});
+}
+
+void GnssSource::replay_due(int64_t now_ns, GnssPoll& out) {
+  // Reports without a time go out one per replay_period_s, in order.
+  auto recorded_s = [&](std::optional<int64_t> t, size_t at) {
+    return t ? static_cast<double>(*t) * 1e-9 : static_cast<double>(at) * s_.replay_period_s;
+  };
+  for (; !fixes_.done(); ++fixes_.sent) {
+    const GnssFixValues& f = fixes_.all[fixes_.sent];
+    if (!pacer_.due(recorded_s(f.device_time_ns, fixes_.sent), now_ns)) break;
+    out.fixes.push_back({f, stamp(f.device_time_ns, now_ns)});
+  }
+  for (; !imu_.done(); ++imu_.sent) {
+    const ImuValues& v = imu_.all[imu_.sent];
+    if (!pacer_.due(recorded_s(v.device_time_ns, imu_.sent), now_ns)) break;
+    out.imu.push_back({v, stamp(v.device_time_ns, now_ns)});
   }
 }
 
-std::vector<StampedFix> GnssSource::poll(int64_t now_ns) {
-  std::vector<StampedFix> out;
+GnssPoll GnssSource::poll(int64_t now_ns) {
+  GnssPoll out;
   if (!device_) {
     replay_due(now_ns, out);
     return out;
@@ -57,7 +70,7 @@ std::vector<StampedFix> GnssSource::poll(int64_t now_ns) {
     bytes_ += c.size();
     stream_.feed(c.data(), c.size());
   }
-  while (auto f = stream_.next()) out.push_back(stamped(*f, now_ns));
+  drain(now_ns, out);
   return out;
 }
 

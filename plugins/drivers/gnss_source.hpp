@@ -1,7 +1,7 @@
 #pragma once
-// Plugin-side (SDK): a GNSS driver's fixes, from a live device or a recorded log, each stamped by
-// the time rule (common/device_clock.hpp). Kept apart from the node so that plugin.cpp is the
-// ports and parameters only.
+// Plugin-side (SDK-free): a GNSS receiver's fixes and IMU samples, from a live device or a
+// recorded log, each stamped by the time rule (common/device_clock.hpp: one clock, the
+// receiver's, for both). Kept apart from the node so that plugin.cpp is the ports and parameters.
 #include "drivers/common/device_clock.hpp"
 #include "drivers/common/gnss_stream.hpp"
 #include "drivers/common/replay_pacer.hpp"
@@ -20,6 +20,16 @@ struct StampedFix {
   int64_t stamp_ns = 0;
 };
 
+struct StampedImu {
+  ImuValues imu;
+  int64_t stamp_ns = 0;
+};
+
+struct GnssPoll {
+  std::vector<StampedFix> fixes;
+  std::vector<StampedImu> imu;
+};
+
 struct GnssSourceSettings {
   SourceSpec source;
   std::string file_path;  // file://: the log found (Context::find_file)
@@ -34,25 +44,33 @@ class GnssSource {
   // Opens the device or reads the log; throws std::runtime_error naming it when it cannot.
   explicit GnssSource(const GnssSourceSettings& s);
 
-  // The fixes that arrived (live) or fell due (replay) by `now_ns`, stamped.
-  std::vector<StampedFix> poll(int64_t now_ns);
+  // What arrived (live) or fell due (replay) by `now_ns`, stamped.
+  GnssPoll poll(int64_t now_ns);
 
   const GnssStream& stream() const { return stream_; }
-  const std::vector<double>& delays_s() const { return delays_s_; }  // credited to each device-timed fix
+  const std::vector<double>& delays_s() const { return delays_s_; }  // credited to each device-timed message
   const std::string& device_error() const { return device_error_; }   // set once a live device failed
   uint64_t bytes() const { return bytes_; }
-  bool replay_finished() const { return !device_ && replayed_ == recorded_.size(); }
+  bool replay_finished() const { return !device_ && fixes_.done() && imu_.done(); }
 
  private:
-  StampedFix stamped(const GnssFixValues& f, int64_t receive_ns);
-  void replay_due(int64_t now_ns, std::vector<StampedFix>& out);
+  // A recording's messages of one kind, in order, and how many went out.
+  template <class T> struct Recorded {
+    std::vector<T> all;
+    size_t sent = 0;
+    bool done() const { return sent == all.size(); }
+  };
+
+  int64_t stamp(std::optional<int64_t> device_ns, int64_t receive_ns);
+  void drain(int64_t receive_ns, GnssPoll& out);
+  void replay_due(int64_t now_ns, GnssPoll& out);
 
   GnssSourceSettings s_;
   GnssStream stream_;
   DeviceClock clock_;
   std::unique_ptr<ByteSource> device_;
-  std::vector<GnssFixValues> recorded_;  // file://: every fix of the log, in order
-  size_t replayed_ = 0;
+  Recorded<GnssFixValues> fixes_;  // file://: every fix of the log
+  Recorded<ImuValues> imu_;        // and every IMU sample
   ReplayPacer pacer_;
   std::vector<double> delays_s_;
   std::string device_error_;

@@ -30,6 +30,13 @@ std::optional<GnssFixValues> GnssStream::next() {
   return f;
 }
 
+std::optional<ImuValues> GnssStream::next_imu() {
+  if (imu_ready_.empty()) return std::nullopt;
+  ImuValues v = imu_ready_.front();
+  imu_ready_.pop_front();
+  return v;
+}
+
 void GnssStream::drain() {
   if (p_.protocol == GnssProtocol::novatel_oem7)
     while (auto m = oem7_.next()) take(*m);
@@ -53,6 +60,10 @@ void GnssStream::take(const Oem7Message& m) {
     else keep(fix_from(*pos, datum_));
   } else if (const auto* ins = std::get_if<InsPvaX>(&m); ins && p_.position_log == Oem7PositionLog::inspvax) {
     keep(fix_from(*ins, datum_));
+  } else if (const auto* raw = std::get_if<RawImuSX>(&m)) {
+    const std::optional<ImuValues> v = imu_from(*raw, p_.imu);
+    if (v) imu_ready_.push_back(*v), ++counters_.imu_samples;
+    else ++counters_.imu_unscaled;
   } else {
     ++counters_.other_reports;
   }

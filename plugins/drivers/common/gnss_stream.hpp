@@ -6,6 +6,7 @@
 #include "gnss_fix_values.hpp"
 #include "novatel_oem7.hpp"
 #include "nmea0183.hpp"
+#include "raw_imu.hpp"
 
 #include <cstddef>
 #include <cstdint>
@@ -24,6 +25,7 @@ struct GnssStreamParams {
   Oem7PositionLog position_log = Oem7PositionLog::bestpos;
   Datum datum;
   GgaSigmas gga;
+  RawImuScale imu;  // RAWIMUSX's scale: unset, its samples are counted and dropped
 };
 
 struct GnssStreamCounters {
@@ -32,6 +34,8 @@ struct GnssStreamCounters {
   uint64_t other_datum = 0;   // BESTPOS in a datum other than WGS84: dropped
   uint64_t unusable = 0;      // a position that is not one (non-finite, out of range, GGA without HDOP)
   uint64_t other_reports = 0; // decoded reports that are not the position (BESTVEL, RMC, VTG, ...)
+  uint64_t imu_samples = 0;   // RAWIMUSX samples handed out
+  uint64_t imu_unscaled = 0;  // RAWIMUSX samples dropped: no scale given
 };
 
 class GnssStream {
@@ -41,6 +45,7 @@ class GnssStream {
   void feed(const uint8_t* data, size_t size);
   void feed(std::string_view text) { feed(reinterpret_cast<const uint8_t*>(text.data()), text.size()); }
   std::optional<GnssFixValues> next();
+  std::optional<ImuValues> next_imu();
   void finish();  // the stream ended: a report cut short is counted truncated
 
   const GnssStreamCounters& counters() const { return counters_; }
@@ -57,6 +62,7 @@ class GnssStream {
   NovatelOem7Decoder oem7_;
   Nmea0183Decoder nmea_;
   std::deque<GnssFixValues> ready_;
+  std::deque<ImuValues> imu_ready_;
   GnssStreamCounters counters_;
 };
 

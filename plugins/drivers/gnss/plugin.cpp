@@ -1,13 +1,16 @@
 // drivers.gnss: a GNSS receiver on its wire (NovAtel OEM7 logs, binary or ASCII, or NMEA 0183) to
-// GnssFix in the map frame. The device is polled without blocking each period (`rate_hz` bounds
-// the delay a fix waits); a recorded log replays at its own pace. A receiver silent for longer
-// than `silent_after_s` is reported (the estimator sees no fix: the receiver is lost to it).
-// Formats, the datum and the time rule: docs/drivers-formats.md; the devices: docs/drivers-transports.md.
+// GnssFix in the map frame, and a SPAN receiver's RAWIMUSX to Imu in the vehicle frame. The device
+// is polled without blocking each period (`rate_hz` bounds the delay a message waits); a recorded
+// log replays at its own pace. A receiver silent for longer than `silent_after_s` is reported (the
+// estimator sees no fix: the receiver is lost to it). Formats, the datum, the IMU's scale and the
+// time rule: docs/drivers.md.
 #include <brickyard/msgs/GnssFix.h>
+#include <brickyard/msgs/Imu.h>
 #include <brickyard/plugin.hpp>
 
 #include "drivers/driver_metrics.hpp"
 #include "drivers/gnss_source.hpp"
+#include "drivers/silence_watch.hpp"
 #include "drivers/source_param.hpp"
 
 #include <optional>
@@ -25,6 +28,8 @@ struct Settings {
   std::vector<double> datum;
   bool device_time = true;
   double silent_after_s = 0.25;
+  RawImuScale imu;
+  std::vector<double> imu_rpy_deg{0, 0, 0};
 };
 
 ParamBinding<Settings> bindings() {
@@ -35,8 +40,13 @@ ParamBinding<Settings> bindings() {
       .doc("OEM7: the receiver's position (BESTPOS) or the INS's (INSPVAX)");
   b.bind("receiver_id", &Settings::receiver_id).range(0, 255);
   b.bind_required("datum", &Settings::datum).doc("the map frame's origin: latitude, longitude (deg, WGS84), height above the ellipsoid (m)");
-  b.bind("device_time", &Settings::device_time).doc("stamp each fix at its measurement by the receiver's time (else at receipt)");
+  b.bind("device_time", &Settings::device_time).doc("stamp each message at its measurement by the receiver's time (else at receipt)");
   b.bind("silent_after_s", &Settings::silent_after_s).in_unit("s").range(0.01, 60).doc("no fix for this long: the receiver is reported silent");
+  b.bind("imu_accel_per_count", &Settings::imu, &RawImuScale::accel_per_count).in_unit("m/s").range(0, 1)
+      .doc("RAWIMUSX: the IMU's velocity scale factor (NovAtel's Raw IMU Scale Factors table); 0: IMU samples dropped");
+  b.bind("imu_gyro_per_count", &Settings::imu, &RawImuScale::gyro_per_count).in_unit("rad").range(0, 1).doc("RAWIMUSX: the angle scale factor");
+  b.bind("imu_rate_hz", &Settings::imu, &RawImuScale::rate_hz).in_unit("Hz").range(0, 10000).doc("RAWIMUSX: the IMU's output rate");
+  b.bind("imu_rpy_deg", &Settings::imu_rpy_deg).in_unit("deg").range(-360, 360).doc("the IMU body frame's roll, pitch, yaw in the vehicle's");
   b.declare(ParamSpec::number("rate_hz", 500).in_unit("Hz").range(1, 10000).doc("how often the device is polled"));
   return b;
 }
@@ -50,9 +60,10 @@ template <class Files> GnssSourceSettings source_settings(const Files& files, co
   if (s.datum.size() != 3) throw BadInput("parameter 'datum': " + std::to_string(s.datum.size()) + " numbers, not 3 (latitude, longitude, height)");
   g.stream.datum = {s.datum[0], s.datum[1], s.datum[2]};
   if (const std::string why = datum_problem(g.stream.datum); !why.empty()) throw BadInput("parameter 'datum': " + why);
-  g.stream.protocol = s.protocol;
-  g.stream.position_log = s.position_log;
-  g.device_time = s.device_time;
+  if (s.imu_rpy_deg.size() != 3) throw BadInput("parameter 'imu_rpy_deg': needs 3 numbers (roll, pitch, yaw)");
+  g.stream.imu = s.imu;
+  g.stream.imu.imu_to_vehicle = imu_mount(s.imu_rpy_deg[0], s.imu_rpy_deg[1], s.imu_rpy_deg[2]);
+  g.stream.protocol = s.protocol, g.stream.position_log = s.position_log, g.device_time = s.device_time;
   return g;
 }
 
@@ -60,11 +71,13 @@ void check(const CheckView& v) { source_settings(v, bindings().read(v.params()))
 
 struct Ports {
   Output<msgs::GnssFix> fix;
+  Output<msgs::Imu> imu;
 };
 
 PortBinding<Ports> ports() {
   PortBinding<Ports> b;
   b.output("fix", &Ports::fix).doc("position fixes in the map frame, stamped at their measurement");
+  b.output("imu", &Ports::imu).doc("RAWIMUSX samples in the vehicle frame (needs the imu_* scale parameters)");
   return b;
 }
 
@@ -83,7 +96,7 @@ class GnssDriver : public Plugin {
   void configure(Context& ctx) override {
     const Settings s = bindings().read(ctx.params());
     id_ = s.receiver_id;
-    silent_after_ns_ = static_cast<std::int64_t>(s.silent_after_s * 1e9);
+    silence_ = SilenceWatch("gnss" + std::to_string(id_), s.silent_after_s);
     try {
       source_.emplace(source_settings(ctx, s));
     } catch (const std::runtime_error& e) {
@@ -94,50 +107,41 @@ class GnssDriver : public Plugin {
 
   void step(Context& ctx) override {
     const std::int64_t now = ctx.now_ns();
-    if (first_step_ns_ < 0) first_step_ns_ = now;
-    for (const StampedFix& f : source_->poll(now)) publish(f, now);
-    if (!source_->device_error().empty() && !device_error_logged_) {
-      ctx.log(LogLevel::error, "source " + source_->device_error() + ": no more fixes from it");
-      device_error_logged_ = true;
-    }
-    watch_silence(ctx, now);
+    const GnssPoll got = source_->poll(now);
+    for (const StampedFix& f : got.fixes) publish(f), silence_.heard(now);
+    for (const StampedImu& v : got.imu) publish(v);
+    if (!source_->device_error().empty() && !device_error_logged_)
+      ctx.log(LogLevel::error, "source " + source_->device_error() + ": no more fixes from it"), device_error_logged_ = true;
+    silence_.check(ctx, now, !source_->replay_finished());
   }
 
-  void deactivate(Context& ctx) override { report_gnss(ctx, *source_, fixes_, silences_); }
+  void deactivate(Context& ctx) override { report_gnss(ctx, *source_, fixes_, silence_.silences()); }
 
  private:
-  void publish(const StampedFix& f, std::int64_t now) {
+  void publish(const StampedFix& f) {
     msgs::GnssFix m;
-    m.header().stamp_ns(f.stamp_ns);
-    m.header().seq(fixes_++);
-    m.header().frame_id("map");
+    m.header().stamp_ns(f.stamp_ns), m.header().seq(fixes_++), m.header().frame_id("map");
     m.receiver_id(id_);
     m.x(f.fix.x), m.y(f.fix.y), m.z(f.fix.z);
     m.sigma_x(f.fix.sigma_x), m.sigma_y(f.fix.sigma_y), m.sigma_z(f.fix.sigma_z);
-    m.fix_type(f.fix.fix_type);
-    m.valid(f.fix.valid);
+    m.fix_type(f.fix.fix_type), m.valid(f.fix.valid);
     io_.fix.publish(std::move(m));
-    last_fix_ns_ = now;
-    silent_ = false;
   }
 
-  // Silent: no fix for silent_after_s since the last one (or since the start): said once a silence.
-  void watch_silence(Context& ctx, std::int64_t now) {
-    const std::int64_t since = last_fix_ns_ >= 0 ? last_fix_ns_ : first_step_ns_;
-    if (silent_ || source_->replay_finished() || now - since < silent_after_ns_) return;
-    silent_ = true;
-    ++silences_;
-    ctx.log(LogLevel::warn, "receiver " + std::to_string(id_) + " silent: no fix for " + std::to_string((now - since) / 1000000) + " ms");
-    ctx.status("gnss" + std::to_string(id_), "silent");
+  void publish(const StampedImu& v) {
+    msgs::Imu m;
+    m.header().stamp_ns(v.stamp_ns), m.header().seq(imu_samples_++), m.header().frame_id("base_link");
+    m.accel_x(v.imu.accel.x()), m.accel_y(v.imu.accel.y()), m.accel_z(v.imu.accel.z());
+    m.gyro_x(v.imu.gyro.x()), m.gyro_y(v.imu.gyro.y()), m.gyro_z(v.imu.gyro.z());
+    io_.imu.publish(std::move(m));
   }
 
   std::uint8_t id_ = 0;
   std::optional<GnssSource> source_;
   Ports io_;
-  std::uint32_t fixes_ = 0;
-  std::int64_t silent_after_ns_ = 0, last_fix_ns_ = -1, first_step_ns_ = -1;
-  bool silent_ = false, device_error_logged_ = false;
-  std::uint64_t silences_ = 0;
+  SilenceWatch silence_;
+  std::uint32_t fixes_ = 0, imu_samples_ = 0;
+  bool device_error_logged_ = false;
 };
 
 }  // namespace

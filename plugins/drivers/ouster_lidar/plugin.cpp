@@ -8,6 +8,7 @@
 
 #include "drivers/driver_metrics.hpp"
 #include "drivers/ouster_source.hpp"
+#include "drivers/silence_watch.hpp"
 #include "drivers/source_param.hpp"
 #include "io/bounded_read.hpp"
 #include "vehicle_param.hpp"
@@ -96,7 +97,7 @@ class OusterLidar : public Plugin {
     const vehicle::Vehicle car = plugins::read_vehicle(ctx, s.vehicle);
     xyz_ = plugins::sensor_place(car, s.vehicle, s.vehicle_mount, "vehicle_mount", s.mount, "mount");
     rpy_ = plugins::sensor_place(car, s.vehicle, s.vehicle_mount, "vehicle_mount", s.mount_rpy_deg, "mount_rpy_deg", true);
-    silent_after_ns_ = static_cast<std::int64_t>(s.silent_after_s * 1e9);
+    silence_ = SilenceWatch("lidar" + std::to_string(id_), s.silent_after_s);
     try {
       source_.emplace(source_settings(ctx, s));
     } catch (const std::runtime_error& e) {
@@ -107,20 +108,16 @@ class OusterLidar : public Plugin {
 
   void step(Context& ctx) override {
     const std::int64_t now = ctx.now_ns();
-    if (last_frame_ns_ < 0) last_frame_ns_ = now;
-    for (StampedCloud& c : source_->poll(now)) publish(std::move(c), now);
+    for (StampedCloud& c : source_->poll(now)) publish(std::move(c)), silence_.heard(now);
     if (!source_->device_error().empty() && !error_logged_)
       ctx.log(LogLevel::error, "source " + source_->device_error() + ": no more frames from it"), error_logged_ = true;
-    if (!silent_ && !source_->replay_finished() && now - last_frame_ns_ >= silent_after_ns_) {
-      silent_ = true, ++silences_;
-      ctx.log(LogLevel::warn, "lidar " + std::to_string(id_) + " silent: no frame for " + std::to_string((now - last_frame_ns_) / 1000000) + " ms");
-    }
+    silence_.check(ctx, now, !source_->replay_finished());
   }
 
-  void deactivate(Context& ctx) override { report_ouster(ctx, *source_, frames_, silences_); }
+  void deactivate(Context& ctx) override { report_ouster(ctx, *source_, frames_, silence_.silences()); }
 
  private:
-  void publish(StampedCloud c, std::int64_t now) {
+  void publish(StampedCloud c) {
     constexpr double kDeg = M_PI / 180;
     auto m = std::make_shared<msgs::PointCloud>();
     m->header().stamp_ns(c.stamp_ns);
@@ -131,8 +128,6 @@ class OusterLidar : public Plugin {
     m->sensor_roll(rpy_[0] * kDeg), m->sensor_pitch(rpy_[1] * kDeg), m->sensor_yaw(rpy_[2] * kDeg);
     m->x(std::move(c.cloud.x)), m->y(std::move(c.cloud.y)), m->z(std::move(c.cloud.z)), m->intensity(std::move(c.cloud.intensity));
     io_.cloud.publish(std::shared_ptr<const msgs::PointCloud>(std::move(m)));
-    last_frame_ns_ = now;
-    silent_ = false;
   }
 
   std::uint8_t id_ = 0;
@@ -140,9 +135,8 @@ class OusterLidar : public Plugin {
   std::optional<OusterSource> source_;
   Ports io_;
   std::uint32_t frames_ = 0;
-  std::int64_t silent_after_ns_ = 0, last_frame_ns_ = -1;
-  bool silent_ = false, error_logged_ = false;
-  std::uint64_t silences_ = 0;
+  SilenceWatch silence_;
+  bool error_logged_ = false;
 };
 
 }  // namespace

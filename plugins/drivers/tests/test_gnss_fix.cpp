@@ -7,6 +7,7 @@
 #include "drivers/common/gnss_report.hpp"
 #include "drivers/common/gnss_stream.hpp"
 #include "drivers/common/gnss_time.hpp"
+#include "drivers/common/raw_imu.hpp"
 #include "drivers/common/replay_pacer.hpp"
 
 #include <gtest/gtest.h>
@@ -61,7 +62,7 @@ TEST(LocalDatum, SmallStepsNorthAndEastAreTheEllipsoidsRadiiTimesTheAngle) {
 }
 
 TEST(GnssFix, TheRealBestposLogsBecomeFixesWithTheirSigmasTypeAndGpsTime) {
-  GnssStream stream({GnssProtocol::novatel_oem7, Oem7PositionLog::bestpos, kFirstLog, {}});
+  GnssStream stream({GnssProtocol::novatel_oem7, Oem7PositionLog::bestpos, kFirstLog, {}, {}});
   stream.feed(read_gnss_file("novatel_BESTPOS.GPS"));
   stream.finish();
   std::vector<GnssFixValues> fixes;
@@ -164,7 +165,7 @@ TEST(GnssReport, AFixSentAsBestposbIsReadBackAsTheSameFix) {
   // The simulator's side of the wire and the driver's, end to end through the binary log's bytes.
   const Datum datum{39.7930, -86.2389, 220.0};  // near Indianapolis
   const LocalDatum d(datum);
-  GnssStream stream({GnssProtocol::novatel_oem7, Oem7PositionLog::bestpos, datum, {}});
+  GnssStream stream({GnssProtocol::novatel_oem7, Oem7PositionLog::bestpos, datum, {}, {}});
   const double x[] = {0.0, 812.345, -1504.25, 2999.999};
   for (int k = 0; k < 4; ++k) {
     GnssFixValues f;
@@ -188,4 +189,31 @@ TEST(GnssReport, AFixSentAsBestposbIsReadBackAsTheSameFix) {
     EXPECT_EQ(*back->device_time_ns, (2400 * 604800 + 1234) * int64_t{1000000000} + (50 + 50 * k) * int64_t{1000000});
   }
   EXPECT_EQ(stream.decoder().refused(), 0u);
+}
+
+TEST(RawImu, ASampleSentAsRawimusxIsReadBackInTheVehicleFrameToItsQuantum) {
+  // An IMU mounted turned 90 deg (its x along the car's y), its Y axis sent negated on the wire.
+  RawImuScale scale{1e-7, 1e-9, 125, imu_mount(0, 0, 90)};
+  ImuValues v;
+  v.accel = {3.5, -12.25, 9.81};
+  v.gyro = {0.01, -0.2, 0.75};
+  v.device_time_ns = (2400 * int64_t{604800} + 77) * 1000000000 + 8000000;
+  const RawImuSX raw = raw_imu_of(v, scale, 41);
+  // In the IMU's axes the car's x is the IMU's -y: sent negated, a positive count.
+  EXPECT_EQ(raw.accel_minus_y_counts, std::llround(3.5 / (1e-7 * 125)));
+  EXPECT_EQ(raw.accel_x_counts, std::llround(-12.25 / (1e-7 * 125)));
+  GnssStream stream({GnssProtocol::novatel_oem7, Oem7PositionLog::bestpos, kFirstLog, {}, scale});
+  const std::vector<uint8_t> bytes = encode_oem7_binary(raw);
+  stream.feed(bytes.data(), bytes.size());
+  const auto back = stream.next_imu();
+  ASSERT_TRUE(back);
+  EXPECT_LT((back->accel - v.accel).norm(), 1e-7 * 125);  // a count's worth
+  EXPECT_LT((back->gyro - v.gyro).norm(), 1e-9 * 125);
+  EXPECT_EQ(back->device_time_ns, v.device_time_ns);
+  EXPECT_EQ(stream.counters().imu_samples, 1u);
+  // Without a scale the sample is counted and dropped.
+  GnssStream unscaled({GnssProtocol::novatel_oem7, Oem7PositionLog::bestpos, kFirstLog, {}, {}});
+  unscaled.feed(bytes.data(), bytes.size());
+  EXPECT_FALSE(unscaled.next_imu());
+  EXPECT_EQ(unscaled.counters().imu_unscaled, 1u);
 }

@@ -1,14 +1,17 @@
 // sim.gnss_wire: the simulator's receiver speaking its real wire. Each fix of a simulated
 // receiver (sim.gnss, map frame) goes out as the NovAtel OEM7 BESTPOS binary log a receiver would
 // send (latitude and longitude by the datum, its sigmas, its fix type; the header's GPS time the
-// fix's measurement time plus `gps_start_s`), down the `sink`: a UDP port or a serial line
-// (a pty's slave the driver opens). drivers.gnss on the other end reads it as it reads a car's
-// receiver (docs/drivers.md).
+// fix's measurement time plus `gps_start_s`), and each sample of a simulated IMU (sim.imu, when
+// wired) as the RAWIMUSX log a SPAN receiver sends (its counts by the `imu_*` scale), down the
+// `sink`: a UDP port or a TCP listener. drivers.gnss on the other end reads them as it reads a
+// car's receiver (docs/drivers.md).
 #include <brickyard/msgs/GnssFix.h>
+#include <brickyard/msgs/Imu.h>
 #include <brickyard/plugin.hpp>
 
 #include "drivers/common/gnss_report.hpp"
 #include "drivers/common/novatel_oem7.hpp"
+#include "drivers/common/raw_imu.hpp"
 #include "drivers/io/byte_source.hpp"
 
 #include <memory>
@@ -25,6 +28,8 @@ struct Settings {
   // GPS time at the run's zero, s since 1980-01-06: week 2400 (2026-01-04). A whole number of
   // milliseconds, so the log's millisecond field carries the fix's time exactly.
   double gps_start_s = 2400 * 604800.0;
+  RawImuScale imu;
+  int imu_type = 0;
 };
 
 ParamBinding<Settings> bindings() {
@@ -32,6 +37,10 @@ ParamBinding<Settings> bindings() {
   b.bind_required("sink", &Settings::sink).doc("where the logs go: udp://HOST:PORT, or tcp://HOST:PORT to listen on (docs/drivers-transports.md)");
   b.bind_required("datum", &Settings::datum).doc("the map frame's origin: latitude, longitude (deg, WGS84), height above the ellipsoid (m)");
   b.bind("gps_start_s", &Settings::gps_start_s).in_unit("s").range(0, 1e10).doc("GPS time at the run's zero");
+  b.bind("imu_accel_per_count", &Settings::imu, &RawImuScale::accel_per_count).in_unit("m/s").range(0, 1).doc("RAWIMUSX's velocity scale factor");
+  b.bind("imu_gyro_per_count", &Settings::imu, &RawImuScale::gyro_per_count).in_unit("rad").range(0, 1).doc("RAWIMUSX's angle scale factor");
+  b.bind("imu_rate_hz", &Settings::imu, &RawImuScale::rate_hz).in_unit("Hz").range(0, 10000).doc("the IMU's output rate");
+  b.bind("imu_type", &Settings::imu_type).range(0, 255).doc("RAWIMUSX's IMU type field");
   return b;
 }
 
@@ -50,11 +59,13 @@ void check(const CheckView& v) {
 
 struct Ports {
   Input<msgs::GnssFix> fix;
+  Input<msgs::Imu> imu;
 };
 
 PortBinding<Ports> ports() {
   PortBinding<Ports> b;
-  b.input("fix", &Ports::fix).doc("the simulated receiver's fixes, map frame").depth(64);
+  b.input("fix", &Ports::fix).doc("the simulated receiver's fixes, map frame").depth(64).steps();
+  b.input("imu", &Ports::imu).doc("the simulated IMU's samples, vehicle frame (needs the imu_* scale)").optional().depth(64).steps();
   return b;
 }
 
@@ -65,22 +76,24 @@ class GnssWire : public Plugin {
         .describe("a simulated receiver's fixes sent as NovAtel OEM7 BESTPOSB logs down a UDP port or a TCP listener, as a car's receiver sends them")
         .with_ports(ports())
         .parameters(bindings())
-        .check(&check)
-        .on_input("fix");
+        .check(&check);
   }
 
   void configure(Context& ctx) override {
     const Settings s = bindings().read(ctx.params());
     datum_.emplace(datum_of(s));
     gps_start_ms_ = std::llround(s.gps_start_s * 1000);
+    imu_ = s.imu, imu_type_ = static_cast<std::uint8_t>(s.imu_type);
     std::string error;
     sink_ = open_sink(*parse_source(s.sink).spec, error);
     if (!sink_) throw BadInput("parameter 'sink': " + error);
     io_ = ports().connect(ctx);
+    if (io_.imu.connected() && !imu_.set()) throw BadInput("parameter 'imu_accel_per_count': the imu input is wired: imu_accel_per_count, imu_gyro_per_count and imu_rate_hz are needed");
   }
 
   void step(Context& ctx) override {
     for (const auto& f : io_.fix.take()) send(*f);
+    for (const auto& v : io_.imu.take()) send(*v);
     if (!sink_->error().empty() && !error_logged_) ctx.log(LogLevel::error, "sink " + sink_->error()), error_logged_ = true;
   }
 
@@ -101,8 +114,19 @@ class GnssWire : public Plugin {
     if (sink_->send(log.data(), log.size())) ++sent_;
   }
 
+  void send(const msgs::Imu& m) {
+    ImuValues v;
+    v.accel = {m.accel_x(), m.accel_y(), m.accel_z()};
+    v.gyro = {m.gyro_x(), m.gyro_y(), m.gyro_z()};
+    v.device_time_ns = gps_start_ms_ * 1000000 + m.header().stamp_ns();
+    const std::vector<std::uint8_t> log = encode_oem7_binary(raw_imu_of(v, imu_, imu_type_));
+    if (sink_->send(log.data(), log.size())) ++sent_;
+  }
+
   std::optional<LocalDatum> datum_;
   std::int64_t gps_start_ms_ = 0;
+  RawImuScale imu_;
+  std::uint8_t imu_type_ = 0;
   std::unique_ptr<ByteSink> sink_;
   Ports io_;
   std::uint64_t sent_ = 0;
