@@ -63,6 +63,27 @@ TEST(Vehicle, TheAv21FileHoldsTheCar) {
   EXPECT_DOUBLE_EQ(v.mount("gnss_left").xyz[0], 1.606);
   EXPECT_DOUBLE_EQ(v.mount("lidar_left").rpy_deg[2], 120);
   EXPECT_THROW(v.mount("lidar_rear"), vehicle::VehicleFileError);
+  ASSERT_TRUE(v.drive_by_wire);
+  EXPECT_DOUBLE_EQ(v.drive_by_wire->max_brake_pressure_kpa, 6000);
+  EXPECT_DOUBLE_EQ(v.drive_by_wire->tyre_radius, 0.3);
+  EXPECT_DOUBLE_EQ(v.drive_by_wire->final_drive, 3.0);
+  EXPECT_EQ(v.drive_by_wire->gear_ratios, (std::vector<double>{2.9167, 1.875, 1.3809, 1.1154, 0.96, 0.8889}));
+  EXPECT_DOUBLE_EQ(v.drive_by_wire->redline_rpm, 7500);
+}
+
+// The drive-by-wire's section is optional (a car only simulated needs none), and read as strictly
+// as the rest when it is there.
+TEST(Vehicle, TheDriveByWireSectionIsOptionalAndChecked) {
+  std::string t = av21_text();
+  t.erase(t.find(",\n  \"drive_by_wire\""), t.rfind('}') - t.find(",\n  \"drive_by_wire\""));
+  EXPECT_FALSE(vehicle::parse_vehicle(t, "car.json").drive_by_wire);
+  EXPECT_EQ(error_of("\"final_drive\": 3.0,", ""), "car.json: /drive_by_wire: missing key \"final_drive\"");
+  EXPECT_EQ(error_of("\"final_drive\": 3.0,", "\"final_drive\": 3.0, \"clutch\": 1,"), "car.json: /drive_by_wire/clutch: unknown key");
+  EXPECT_EQ(error_of("[2.9167, 1.875,", "[2.9167, 3.1,"), "car.json: /drive_by_wire/gear_ratios/1: each gear's ratio must be below the one before");
+  EXPECT_EQ(error_of("[2.9167, 1.875, 1.3809, 1.1154, 0.96, 0.8889]", "[]"), "car.json: /drive_by_wire/gear_ratios: expected 1 to 16 numbers");
+  EXPECT_EQ(error_of("[2.9167,", "[-1,"), "car.json: /drive_by_wire/gear_ratios/0: expected a ratio above 0, at most 50");
+  EXPECT_EQ(error_of("\"max_brake_pressure_kpa\": 6000", "\"max_brake_pressure_kpa\": 0"),
+            "car.json: /drive_by_wire/max_brake_pressure_kpa: expected a number from 1 to 100000, found 0");
 }
 
 TEST(Vehicle, BadFilesNameTheFileAndThePointer) {

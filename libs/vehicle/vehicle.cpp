@@ -164,6 +164,28 @@ void read_mounts(Section& top, const std::string& file, Vehicle& v) {
   }
 }
 
+// Optional: the drive-by-wire's maps (a car that is only simulated has none). Gear ratios strictly
+// decreasing from first gear: a gearbox whose gears do not go up cannot be shifted by rpm.
+void read_drive_by_wire(Section& top, const std::string& file, Vehicle& v) {
+  Section d(top.at("drive_by_wire"), "/drive_by_wire", file);
+  DriveByWire w;
+  w.source = d.string("source");
+  w.max_brake_pressure_kpa = d.number("max_brake_pressure_kpa", 1, 1e5);
+  w.tyre_radius = d.number("tyre_radius_m", 0.05, 2);
+  w.final_drive = d.number("final_drive", 0.1, 50);
+  const json& gears = d.at("gear_ratios");
+  if (!gears.is_array() || gears.empty() || gears.size() > 16) d.fail("/drive_by_wire/gear_ratios", "expected 1 to 16 numbers");
+  for (std::size_t i = 0; i < gears.size(); ++i) {
+    const std::string ptr = "/drive_by_wire/gear_ratios/" + std::to_string(i);
+    if (!gears[i].is_number() || !std::isfinite(gears[i].get<double>()) || gears[i].get<double>() <= 0 || gears[i].get<double>() > 50)
+      d.fail(ptr, "expected a ratio above 0, at most 50");
+    if (i > 0 && gears[i].get<double>() >= w.gear_ratios.back()) d.fail(ptr, "each gear's ratio must be below the one before");
+    w.gear_ratios.push_back(gears[i].get<double>());
+  }
+  w.redline_rpm = d.number("redline_rpm", 100, 1e5);
+  v.drive_by_wire = std::move(w);
+}
+
 }  // namespace
 
 const Mount& Vehicle::mount(const std::string& n) const {
@@ -191,6 +213,7 @@ Vehicle parse_vehicle(const std::string& text, const std::string& file) {
   read_powertrain(top, file, v);
   read_limits(top, file, v);
   read_mounts(top, file, v);
+  if (j.contains("drive_by_wire")) read_drive_by_wire(top, file, v);
   return v;
 }
 

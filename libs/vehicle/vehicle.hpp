@@ -5,8 +5,10 @@
 // from here; no vehicle constant is written anywhere else. Framework-free.
 #include <array>
 #include <map>
+#include <optional>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace brickyard::vehicle {
 
@@ -19,6 +21,17 @@ class VehicleFileError : public std::runtime_error {
 struct Mount {
   std::array<double, 3> xyz{};      // m in base_link (rear-axle centre; x forward, y left, z up)
   std::array<double, 3> rpy_deg{};  // roll, pitch, yaw
+};
+
+// How the car's drive-by-wire is driven (the vehicle interface's maps, docs/vehicle-interface.md):
+// an optional section of the file, since a simulated car needs none of it.
+struct DriveByWire {
+  std::string source;                 // where the numbers come from
+  double max_brake_pressure_kpa = 0;  // the brake pressure a brake pedal of 1 commands (linear map)
+  double tyre_radius = 0;             // m, rolling radius: wheel speed to engine speed
+  double final_drive = 0;             // ratio after the gearbox
+  std::vector<double> gear_ratios;    // first gear first
+  double redline_rpm = 0;             // the engine's limit
 };
 
 struct Vehicle {
@@ -51,6 +64,7 @@ struct Vehicle {
   // The envelope planning may use: top speed, lateral grip and braking with a margin.
   double v_max = 0, a_lat = 0, a_decel = 0;
   std::map<std::string, Mount> mounts;  // gnss_left, lidar_front, ...
+  std::optional<DriveByWire> drive_by_wire;  // "drive_by_wire": absent for a car that is only simulated
 
   // The named mount; throws VehicleFileError naming the car and the mount when there is none.
   const Mount& mount(const std::string& name) const;

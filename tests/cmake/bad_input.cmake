@@ -70,6 +70,14 @@ bad_config(driver_datum "node 'gnss' \\(drivers.gnss\\): parameter 'datum': lati
 bad_config(driver_log_not_regular "node 'gnss' \\(drivers.gnss\\): /dev/zero: not a regular file" run ${DRIVER_GNSS} --set gnss.source=file:///dev/zero)
 bad_config(driver_metadata_missing "node 'lidar' \\(drivers.ouster_lidar\\): .*nowhere_metadata.json" validate ${DRIVER_OUSTER} --set lidar.metadata=nowhere_metadata.json)
 bad_config(driver_metadata_malformed "node 'lidar' \\(drivers.ouster_lidar\\): parameter 'metadata': .*malformed.json: metadata: not a JSON object" validate ${DRIVER_OUSTER} --set lidar.metadata=${BAD}/malformed.json)
+# The vehicle interface (docs/vehicle-interface.md): a DBC without a message the mapping needs, at
+# validation; a SocketCAN interface that does not exist, when configure opens it; a vehicle file
+# without the drive-by-wire's section; shift rules the car's gears cannot follow. No simulator.
+set(RAPTOR ${BAD}/raptor_dbw_no_can.json)
+bad_config(raptor_dbw_no_can_interface "node 'vehicle' \\(vehicle_interface.raptor_dbw\\): parameter 'bus': can://bynocan0: no such network interface" run ${RAPTOR})
+bad_config(raptor_dbw_dbc_missing_message "node 'vehicle' \\(vehicle_interface.raptor_dbw\\): parameter 'dbc': .*raptor_no_steering.dbc: no message steering_cmd \\(the vehicle interface needs" validate ${RAPTOR} --set vehicle.dbc=${BAD}/raptor_no_steering.dbc)
+bad_config(raptor_dbw_vehicle_without_dbw "node 'vehicle' \\(vehicle_interface.raptor_dbw\\): parameter 'vehicle': .*car_without_dbw.json: /drive_by_wire: missing" validate ${RAPTOR} --set vehicle.vehicle=${BAD}/car_without_dbw.json)
+bad_config(raptor_dbw_shift_hunts "node 'vehicle' \\(vehicle_interface.raptor_dbw\\): parameter 'shift_down_rpm': 4600 rpm must be below 4500 rpm, where an upshift at 7000 rpm lands" validate ${RAPTOR} --set vehicle.shift_down_rpm=4600)
 if(BRICKYARD_SIM)  # the nodes that find these live in simulator graphs
   # The world's track file and pylons: read at validation, so nothing starts.
   bad_input(track_bad_row   "error: node 'world' \\(sim.world\\): track file .*bad_track.csv:4: field 3 is not a number: 'abc'" run ${BAD}/bad_track.json)

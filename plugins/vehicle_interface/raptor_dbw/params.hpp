@@ -1,0 +1,82 @@
+#pragma once
+// vehicle_interface.raptor_dbw's parameters and what they name, read the same way at validation
+// (Manifest::check) and in configure: the DBC and the vehicle file read and held against each
+// other, the bus parsed (not opened: that is configure's). Plugin-side (SDK).
+#include <brickyard/plugin.hpp>
+
+#include "vehicle_interface/bus/can_bus.hpp"
+#include "vehicle_interface/common/raptor_interface.hpp"
+#include "vehicle_interface/mapping_param.hpp"
+
+#include <optional>
+#include <string>
+
+namespace brickyard::vehicle_interface {
+
+struct Settings {
+  std::string dbc = default_dbc_file;
+  std::string vehicle = plugins::default_vehicle_file;
+  std::string bus, send_to;
+  double brake_hz = 100, accelerator_hz = 100, steering_hz = 100, gear_hz = 100, ct_report_hz = 100;
+  double status_hz = 50;
+  RaptorInterfaceParams iface;
+};
+
+inline ParamBinding<Settings> bindings() {
+  using I = RaptorInterfaceParams;
+  using W = DbwWatchdogParams;
+  using G = ShiftParams;
+  ParamBinding<Settings> b;
+  b.bind("dbc", &Settings::dbc).doc("the car's DBC (data/vehicle_interface/)");
+  plugins::bind_vehicle(b, &Settings::vehicle).doc("the car's description file: steering ratio, drive_by_wire (brake pressure, gears)");
+  b.bind_required("bus", &Settings::bus).doc("can://IFNAME (SocketCAN), or udp://HOST:PORT to receive cannelloni datagrams on");
+  b.bind("send_to", &Settings::send_to).doc("udp:// bus: where the frames go, udp://HOST:PORT");
+  b.declare(ParamSpec::number("rate_hz", 500).in_unit("Hz").range(1, 10000).doc("how often the bus is polled and the commands due are sent"));
+  for (auto [name, member] : {std::pair{"brake_hz", &Settings::brake_hz}, {"accelerator_hz", &Settings::accelerator_hz},
+                              {"steering_hz", &Settings::steering_hz}, {"gear_hz", &Settings::gear_hz}, {"ct_report_hz", &Settings::ct_report_hz}})
+    b.bind(name, member).in_unit("Hz").range(1, 1000).doc("the rate of this command on the bus");
+  b.bind("status_hz", &Settings::status_hz).in_unit("Hz").range(1, 1000).doc("how often VehicleStatus is published");
+  b.bind("command_timeout_s", &Settings::iface, &I::watchdog, &W::timeout_s).in_unit("s").range(0.005, 10)
+      .doc("commands older than this: throttle off, brake to a stop");
+  b.bind("first_command_timeout_s", &Settings::iface, &I::watchdog, &W::first_timeout_s).in_unit("s").range(0.01, 3600)
+      .doc("no command this long after the start: the same");
+  b.bind("stop_decel_mps2", &Settings::iface, &I::watchdog, &W::stop_decel_mps2).in_unit("m/s^2").range(0.5, 20)
+      .doc("the stop's deceleration by the brakes alone");
+  b.bind("stopped_speed_mps", &Settings::iface, &I::watchdog, &W::stopped_speed_mps).in_unit("m/s").range(0, 5);
+  b.bind("hold_stopped_s", &Settings::iface, &I::watchdog, &W::hold_s).in_unit("s").range(0, 60)
+      .doc("standing this long after a stop: the heartbeat stops (the drive-by-wire's safety takes over)");
+  b.bind("report_timeout_s", &Settings::iface, &I::report_timeout_s).in_unit("s").range(0.005, 60).doc("a report silent this long is named");
+  b.bind("shift_up_rpm", &Settings::iface, &I::shift, &G::up_rpm).in_unit("rpm").range(100, 1e5);
+  b.bind("shift_down_rpm", &Settings::iface, &I::shift, &G::down_rpm).in_unit("rpm").range(0, 1e5);
+  b.bind("min_shift_interval_s", &Settings::iface, &I::shift, &G::min_interval_s).in_unit("s").range(0, 10);
+  b.bind("fixed_gear", &Settings::iface, &I::shift, &G::fixed_gear).range(0, 16).doc("0: shift by rpm; N: hold gear N");
+  b.bind("ct_state", &Settings::iface, &I::ct_state).range(0, 65535).doc("the team's state in ct_report (the event's rules give the codes)");
+  b.bind("vehicle_number", &Settings::iface, &I::vehicle_number).range(0, 255).doc("ct_report's veh_num");
+  b.not_above("shift_down_rpm", "shift_up_rpm");
+  return b;
+}
+
+struct Setup {
+  std::optional<VehicleCanMapping> mapping;
+  RaptorInterfaceParams params;
+  BusSpec bus;
+};
+
+// Everything the parameters name, read and checked; BadInput naming the parameter otherwise.
+template <class Files> Setup read_setup(const Files& files, const Settings& s) {
+  Setup out;
+  vehicle::Vehicle car;
+  out.mapping.emplace(read_mapping(files, s.dbc, s.vehicle, car));
+  out.params = s.iface;
+  out.params.rates_hz = {s.brake_hz, s.accelerator_hz, s.steering_hz, s.gear_hz, s.ct_report_hz};
+  out.params.watchdog.v_max_mps = car.v_max;
+  if (const ShiftProblem p = shift_problem(s.iface.shift, out.mapping->maps()); !p.what.empty())
+    throw BadInput("parameter '" + p.param + "': " + p.what + " (" + s.vehicle + ")");
+  std::string error, param;
+  std::optional<BusSpec> bus = parse_bus(s.bus, s.send_to, error, param);
+  if (!bus) throw BadInput("parameter '" + param + "': " + error);
+  out.bus = *bus;
+  return out;
+}
+
+}  // namespace brickyard::vehicle_interface
