@@ -139,7 +139,10 @@ bool live_option(Args& a, const std::string& f, Cursor& c) {
 bool tool_option(Args& a, const std::string& f, Cursor& c) {
   if (f == "--rate") {
     a.rate = parse_number(f, c.value());
-    if (!(a.rate > 0)) usage_error("--rate", "expected a factor of the recorded speed, more than 0");
+    // capture play may send as fast as it can (0); bag play's DDS writers are always paced.
+    if (a.command == "capture") {
+      if (!(a.rate >= 0 && a.rate <= 1e6)) usage_error("--rate", "expected a factor of the recorded pace, from 0 (as fast as possible) to 1e6");
+    } else if (!(a.rate > 0)) usage_error("--rate", "expected a factor of the recorded speed, more than 0");
   } else if (f == "--only") a.only = patterns(f, c.value());
   else if (f == "--count") {
     const std::string v = c.value();
@@ -162,6 +165,21 @@ bool tool_option(Args& a, const std::string& f, Cursor& c) {
   return true;
 }
 
+// The options of capture info and play; false: not one of these.
+bool capture_option(Args& a, const std::string& f, Cursor& c) {
+  if (f == "--to") a.to = c.value();
+  else if (f == "--metadata") a.metadata = c.value();
+  else if (f == "--loop") a.loop = true;
+  else if (f == "--port") {
+    const std::string v = c.value();
+    if (v.empty() || v.size() > 5 || v.find_first_not_of("0123456789") != std::string::npos || std::stoi(v) < 1 || std::stoi(v) > 65535)
+      usage_error("--port " + v, "expected a UDP port from 1 to 65535");
+    a.port = std::stoi(v);
+  }
+  else return false;
+  return true;
+}
+
 // The flags every command takes; false: not one of these.
 bool output_option(Args& a, const std::string& f) {
   if (f == "--json") a.json = true;
@@ -176,7 +194,9 @@ bool output_option(Args& a, const std::string& f) {
 void positional(Args& a, const std::string& f) {
   if (f.rfind("--", 0) == 0) usage_error(f, "unknown option (see brickyard --help)");
   else if (a.target.empty()) a.target = f;
-  else if (a.command == "map" || a.command == "bag" || a.command == "topic" || a.command == "security") a.more.push_back(f);
+  else if (a.command == "map" || a.command == "bag" || a.command == "topic" || a.command == "security" ||
+           a.command == "capture")
+    a.more.push_back(f);
   else usage_error(f, "unexpected argument");
 }
 
@@ -191,7 +211,8 @@ Args parse_args(int argc, char** argv) {
     const std::string& f = v[i];
     Cursor c{v, i};
     note_child_flag(a, v, i);
-    if (!run_option(a, f, c) && !record_option(a, f, c) && !live_option(a, f, c) && !tool_option(a, f, c) && !output_option(a, f))
+    if (!run_option(a, f, c) && !record_option(a, f, c) && !live_option(a, f, c) && !tool_option(a, f, c) && !capture_option(a, f, c) &&
+        !output_option(a, f))
       positional(a, f);
   }
   return a;

@@ -30,6 +30,9 @@ struct Args {
   std::vector<std::string> child_flags;  // what a supervised run's children are given as they are
   std::string security, identity, protect = "sign";  // security init; topic and bag play against a secured graph
   int days = 365;
+  std::string to, metadata;         // capture play's sink; capture info's Ouster metadata
+  std::optional<int> port;          // capture: a pcap's UDP destination port
+  bool loop = false;                // capture play: start again at the end
 };
 
 // Bad input on the command line: throws InvalidInput (exit 2) naming `where`.

@@ -13,6 +13,7 @@ int cmd_report(const Args& a);                   // report RUN_DIR
 int cmd_new_plugin(const Args& a);               // new-plugin NAME --dir DIR
 int cmd_map(const Args& a);                      // map build RECORDING --out DIR
 int cmd_bag(const Args& a);                      // bag info | play RECORDING
+int cmd_capture(const Args& a);                  // capture info | play FILE (a pcap or a GNSS log)
 int cmd_security(const Args& a);                 // security init GRAPH --out DIR
 int cmd_topic(const Args& a);                    // topic list | echo | hz
 

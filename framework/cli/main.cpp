@@ -24,9 +24,10 @@ int dispatch(const cli::Args& a) {
   if (a.command == "new-plugin") return cli::cmd_new_plugin(a);
   if (a.command == "map") return cli::cmd_map(a);
   if (a.command == "bag") return cli::cmd_bag(a);
+  if (a.command == "capture") return cli::cmd_capture(a);
   if (a.command == "security") return cli::cmd_security(a);
   if (a.command == "topic") return cli::cmd_topic(a);
-  cli::usage_error(a.command, "unknown command (commands: run, validate, plugins, graph, report, map, bag, topic, security, new-plugin)");
+  cli::usage_error(a.command, "unknown command (commands: run, validate, plugins, graph, report, map, bag, capture, topic, security, new-plugin)");
 }
 
 }  // namespace

@@ -14,6 +14,16 @@ usage:
                                            bytes)
   brickyard bag play RECORDING             republish its topics over DDS at the recorded times
                                            (--rate X, --only NODE.PORT,..., --domain N)
+  brickyard capture info FILE [--json]     a sensor's capture: a pcap's UDP datagrams by port, span, rate
+                                           and refusals (--metadata OUSTER.json: its lidar port's packets
+                                           decoded into frames; --port P: that port's), or a GNSS log's
+                                           OEM7 logs or NMEA sentences by type, refusals and time span
+  brickyard capture play FILE --to udp://HOST:PORT
+                                           send it again at its recorded pace: a pcap's UDP payloads,
+                                           a GNSS log's bytes by its logs' times (--rate R, 0 as fast as
+                                           possible; --port P: only a pcap's datagrams to P; --loop until
+                                           Ctrl-C). It sends to --to only, any host named there (tcp://
+                                           and serial:// sinks too; docs/drivers.md)
   brickyard map build RECORDING --out DIR  a track file and a point map from a recorded drive:
                                            DIR/track.csv, DIR/map.pcd, DIR/summary.json
                                            (configs/map_build.json; docs/mapping.md)
