@@ -39,7 +39,7 @@ ParamBinding<Settings> bindings() {
   b.bind_choice("position_log", {{"BESTPOS", Oem7PositionLog::bestpos}, {"INSPVAX", Oem7PositionLog::inspvax}}, &Settings::position_log)
       .doc("OEM7: the receiver's position (BESTPOS) or the INS's (INSPVAX)");
   b.bind("receiver_id", &Settings::receiver_id).range(0, 255);
-  b.bind_required("datum", &Settings::datum).doc("the map frame's origin: latitude, longitude (deg, WGS84), height above the ellipsoid (m)");
+  b.bind_required("datum", &Settings::datum).range(-1000, 10000).doc("the map frame's origin: latitude, longitude (deg, WGS84), height above the ellipsoid (m)");
   b.bind("device_time", &Settings::device_time).doc("stamp each message at its measurement by the receiver's time (else at receipt)");
   b.bind("silent_after_s", &Settings::silent_after_s).in_unit("s").range(0.01, 60).doc("no fix for this long: the receiver is reported silent");
   b.bind("imu_accel_per_count", &Settings::imu, &RawImuScale::accel_per_count).in_unit("m/s").range(0, 1)

@@ -35,7 +35,7 @@ struct Settings {
 ParamBinding<Settings> bindings() {
   ParamBinding<Settings> b;
   b.bind_required("sink", &Settings::sink).doc("where the logs go: udp://HOST:PORT, or tcp://HOST:PORT to listen on (docs/drivers-transports.md)");
-  b.bind_required("datum", &Settings::datum).doc("the map frame's origin: latitude, longitude (deg, WGS84), height above the ellipsoid (m)");
+  b.bind_required("datum", &Settings::datum).range(-1000, 10000).doc("the map frame's origin: latitude, longitude (deg, WGS84), height above the ellipsoid (m)");
   b.bind("gps_start_s", &Settings::gps_start_s).in_unit("s").range(0, 1e10).doc("GPS time at the run's zero");
   b.bind("imu_accel_per_count", &Settings::imu, &RawImuScale::accel_per_count).in_unit("m/s").range(0, 1).doc("RAWIMUSX's velocity scale factor");
   b.bind("imu_gyro_per_count", &Settings::imu, &RawImuScale::gyro_per_count).in_unit("rad").range(0, 1).doc("RAWIMUSX's angle scale factor");
