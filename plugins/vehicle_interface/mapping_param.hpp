@@ -13,14 +13,21 @@ namespace brickyard::vehicle_interface {
 
 inline constexpr const char* default_dbc_file = "vehicle_interface/CAN1-INDY-V14.dbc";
 
-// `files` finds a named file (Context, CheckView). `car` gets the vehicle file's car.
+// The DBC a `dbc` parameter names, read; BadInput naming the file and the line otherwise.
+// `files` finds a named file (Context, CheckView).
+template <class Files> DbcDatabase load_car_dbc(const Files& files, const std::string& dbc_file) {
+  const std::string dbc_path = files.find_file(dbc_file);
+  DbcReadResult read = load_dbc_file(dbc_path);
+  if (!read.ok()) throw BadInput("parameter 'dbc': " + (read.errors.empty() ? dbc_path : read.errors.front().text()));
+  return std::move(*read.database);
+}
+
+// `car` gets the vehicle file's car.
 template <class Files>
 VehicleCanMapping read_mapping(const Files& files, const std::string& dbc_file, const std::string& vehicle_file, vehicle::Vehicle& car) {
-  const std::string dbc_path = files.find_file(dbc_file);
-  const DbcReadResult read = load_dbc_file(dbc_path);
-  if (!read.ok()) throw BadInput("parameter 'dbc': " + (read.errors.empty() ? dbc_path : read.errors.front().text()));
+  const DbcDatabase db = load_car_dbc(files, dbc_file);
   std::string error;
-  std::optional<RaptorDbc> dbc = RaptorDbc::make(*read.database, dbc_file, error);
+  std::optional<RaptorDbc> dbc = RaptorDbc::make(db, dbc_file, error);
   if (!dbc) throw BadInput("parameter 'dbc': " + error);
   car = plugins::read_vehicle_file(files.find_file(vehicle_file));
   std::optional<DbwMaps> maps = dbw_maps(car, vehicle_file, error);

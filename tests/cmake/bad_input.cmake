@@ -77,8 +77,13 @@ set(RAPTOR ${BAD}/raptor_dbw_no_can.json)
 bad_config(raptor_dbw_no_can_interface "node 'vehicle' \\(vehicle_interface.raptor_dbw\\): parameter 'bus': can://bynocan0: no such network interface" run ${RAPTOR})
 bad_config(raptor_dbw_dbc_missing_message "node 'vehicle' \\(vehicle_interface.raptor_dbw\\): parameter 'dbc': .*raptor_no_steering.dbc: no message steering_cmd \\(the vehicle interface needs" validate ${RAPTOR} --set vehicle.dbc=${BAD}/raptor_no_steering.dbc)
 bad_config(raptor_dbw_vehicle_without_dbw "node 'vehicle' \\(vehicle_interface.raptor_dbw\\): parameter 'vehicle': .*car_without_dbw.json: /drive_by_wire: missing" validate ${RAPTOR} --set vehicle.vehicle=${BAD}/car_without_dbw.json)
+# Race control (docs/race-control.md): the DBC must carry base_to_car_summary, the codes must tell the flags apart.
+bad_config(raptor_dbw_dbc_no_race_control "node 'vehicle' \\(vehicle_interface.raptor_dbw\\): parameter 'dbc': .*raptor_no_race_control.dbc: no message base_to_car_summary" validate ${RAPTOR} --set vehicle.dbc=${BAD}/raptor_no_race_control.dbc)
+bad_config(raptor_dbw_flag_codes_twice "node 'vehicle' \\(vehicle_interface.raptor_dbw\\): parameter 'track_flag_green': code 3 is 'track_flag_yellow' already" validate ${RAPTOR} --set vehicle.track_flag_green=3)
+bad_config(raptor_dbw_race_control_bus_not_udp "node 'vehicle' \\(vehicle_interface.raptor_dbw\\): parameter 'race_control_bus': 'can://can0': udp://HOST:PORT" validate ${RAPTOR} --set vehicle.race_control_bus=can://can0)
 bad_config(raptor_dbw_shift_hunts "node 'vehicle' \\(vehicle_interface.raptor_dbw\\): parameter 'shift_down_rpm': 4600 rpm must be below 4500 rpm, where an upshift at 7000 rpm lands" validate ${RAPTOR} --set vehicle.shift_down_rpm=4600)
 if(BRICKYARD_SIM)  # the nodes that find these live in simulator graphs
+  bad_config(race_control_bad_script "node 'race_control' \\(sim.race_control\\): parameter 'script' /1/track_flag: 'blue' is no flag of this field \\(.*race_control_bad_script.json#/nodes/race_control/params/script/1/track_flag\\)" validate ${BAD}/race_control_bad_script.json)
   # The world's track file and pylons: read at validation, so nothing starts.
   bad_input(track_bad_row   "error: node 'world' \\(sim.world\\): track file .*bad_track.csv:4: field 3 is not a number: 'abc'" run ${BAD}/bad_track.json)
   bad_input(track_missing   "node 'world' \\(sim.world\\): file 'tracks/NoSuchTrack.csv' not found; looked in:" run ${BAD}/missing_track.json)

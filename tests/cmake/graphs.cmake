@@ -32,7 +32,16 @@ set(race_can_ims_want "info referee: lap 1: (59\\.[3-9]|60\\.[0-5])[0-9]* s.*dbw
 set(race_can_ims_lossy_want "info referee: lap 1: (59\\.[3-9]|60\\.[0-5])[0-9]* s.*dbw +sim.drive_by_wire .* lost_in [1-9][0-9]+ · lost_out [1-9][0-9]+ .* steering_cmd_counter_skips [1-9][0-9]+ · .* timeouts 0.*vehicle +vehicle_interface.raptor_dbw .* steering_report_counter_skips [1-9][0-9]+ .* watchdog_trips 0.*\\[brickyard\\] success")
 # The stack falls silent: the interface stops the car, then its heartbeat; the drive-by-wire holds it.
 set(can_stack_silent_stops_want "vehicle: commands: ACTIVE -> STOPPING.*vehicle: commands: STOPPING -> HANDED_OVER: stopped in [0-9.]+ m and [0-9.]+ s; ct_report's heartbeat stops.*dbw: drive-by-wire: commands or heartbeat lost: braking.*\\[brickyard\\] success")
-foreach(g race_can_ims race_can_ims_lossy can_stack_silent_stops sim_gnss_wire)
+# Race control's flags through the same bus (docs/race-control.md): sim.race_control's judge says
+# each flag met within the distance the car needs (and fails the run otherwise); the manager's
+# transition, and the acknowledgement the simulated drive-by-wire read back in ct_report.
+set(race_control_yellow_want "manager: race control: RACING -> CAUTION at t = 8\\.0[0-9]+ s: track flag YELLOW: speed capped at 26\\.8 m/s.*race_control: YELLOW at 8\\.000 s from [0-9.]+ m/s: 26\\.8 m/s reached after [0-9.]+ m, within the [0-9.]+ m allowed.*dbw +sim\\.drive_by_wire .* track_cond_ack 3 · veh_sig_ack 1.*manager +control\\.system_manager .* race_state CAUTION.*\\[brickyard\\] success")
+set(race_control_red_want "manager: race control: RACING -> STOPPING at t = 8\\.0[0-9]+ s: track flag RED, vehicle flag NONE: a controlled stop at 6 m/s\\^2.*race_control: RED \\(1\\), NONE \\(1\\), 0 mph at 8\\.000 s from [0-9.]+ m/s: stopped after [0-9.]+ m, within the [0-9.]+ m allowed.*dbw +sim\\.drive_by_wire .* track_cond_ack 1 · veh_sig_ack 1.*\\[brickyard\\] success")
+set(race_control_checkered_want "manager: race control: RACING -> FINISHING at t = 3\\.0[0-9]+ s: CHECKERED at lap count 0.*race_control: checkered at 3\\.000 s: the lap finished at [0-9.]+ s \\(lap count 1\\).*manager: race control: FINISHING -> FINISHED.*race_control: checkered at 3\\.000 s: after the line: stopped after [0-9.]+ m, within the [0-9.]+ m allowed.*dbw +sim\\.drive_by_wire .* track_cond_ack 4 · veh_sig_ack 4.*\\[brickyard\\] success")
+set(race_control_silent_want "vehicle: race control lost: its heartbeat unchanged for 1 s.*manager: race control: RACING -> STOPPING at t = [0-9.]+ s: race control lost \\(its heartbeat stopped\\).*race_control: silence at 8\\.000 s from [0-9.]+ m/s: stopped after [0-9.]+ m, within the [0-9.]+ m allowed.*\\[brickyard\\] success")
+set(fail_race_control_red_soft_brake_why "node 'race_control' \\(sim\\.race_control\\): RED \\(1\\), NONE \\(1\\), 0 mph at 8\\.000 s from [0-9.]+ m/s: still [0-9.]+ m/s after the [0-9.]+ m allowed \\(the car needs [0-9.]+ m at 6 m/s\\^2\\)")
+foreach(g race_can_ims race_can_ims_lossy can_stack_silent_stops sim_gnss_wire race_control_yellow race_control_red race_control_checkered
+        race_control_silent fail_race_control_red_soft_brake)
   set(${g}_args --threads 1)
 endforeach()
 file(GLOB graph_files CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/graphs/*.json)

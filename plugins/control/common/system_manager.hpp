@@ -13,7 +13,8 @@
 // not a healthy one); WARNING keeps the path tracker. A controller whose commands have come and
 // then stopped (it died or hangs) is not forwarded: its last command would hold the car's last
 // throttle; nor is it handed the car back until its commands come again. Every transition is returned with its
-// reason so the plugin can log and count it.
+// reason so the plugin can log and count it. Race control's flags act on the mode's command after
+// (flag_gate.hpp: a yellow's cap, a controlled stop).
 #include <string>
 
 namespace brickyard::control {

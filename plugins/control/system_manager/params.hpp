@@ -3,7 +3,12 @@
 // (common/system_manager.hpp). Plugin-side (SDK).
 #include <brickyard/plugin.hpp>
 
+#include "control/common/flag_gate.hpp"
 #include "control/common/system_manager.hpp"
+#include "vehicle_param.hpp"
+
+#include <algorithm>
+#include <string>
 
 namespace brickyard::control {
 
@@ -11,7 +16,27 @@ struct Settings {
   double rate_hz = 100;
   double step_deadline_s = 0.5;
   ManagerParams manager;
+  std::string vehicle = plugins::default_vehicle_file;  // the stop's brake: mass and brake force
+  FlagParams flags;
 };
+
+// The brake pedal that decelerates the car at `decel` by its brakes alone (the vehicle file's mass
+// and brake force; the simulator's brake force is linear in the pedal, docs/vehicle-interface.md).
+inline double stop_brake(const vehicle::Vehicle& car, double decel) { return std::clamp(decel * car.mass / car.max_brake_force, 0.0, 1.0); }
+
+// Race control (docs/race-control.md): what the manager does with the flags.
+inline void bind_flags(ParamBinding<Settings>& b) {
+  using F = FlagParams;
+  plugins::bind_vehicle(b, &Settings::vehicle).doc("the car's description file: the stop's brake from its mass and brake force");
+  b.bind("stop_decel_mps2", &Settings::flags, &F::stop_decel_mps2).in_unit("m/s^2").range(0.5, 20)
+      .doc("race control's stops (red, a lost heartbeat, the checkered lap's end): the deceleration, by the brakes alone; a slow-down to a yellow's target brakes at most this hard");
+  b.bind("race_control_timeout_s", &Settings::flags, &F::timeout_s).in_unit("s").range(0.01, 60)
+      .doc("no RaceControl message this long: race control lost, a controlled stop");
+  b.bind("cap_speed_gain", &Settings::flags, &F::speed_gain).range(0.01, 10)
+      .doc("a yellow's cap: pedal per m/s of speed error (brake over the target, at most the throttle under it)");
+  b.bind("speed_timeout_s", &Settings::flags, &F::speed_timeout_s).in_unit("s").range(0.01, 10)
+      .doc("a yellow's cap needs the car's speed (the estimate input): one older than this is none, and the car stops");
+}
 
 inline ParamBinding<Settings> bindings() {
   using M = ManagerParams;
@@ -43,6 +68,7 @@ inline ParamBinding<Settings> bindings() {
       .doc("wall_pedals cautious, stop_steering wall_or_path: a path command older than this is not used");
   b.bind("controller_timeout_s", &Settings::manager, &M::controller_timeout_s).in_unit("s").range(0.01, 3600)
       .doc("a controller whose commands have come and then not for this long is silent: not forwarded (to the wall follower, or SAFE_STOP)");
+  bind_flags(b);
   return b;
 }
 

@@ -80,6 +80,7 @@ class DriveByWire : public Plugin {
       ctx.metric(n + "_received", c.received[i]), ctx.metric(n + "_counter_skips", c.skips[i]), ctx.metric(n + "_counter_repeats", c.repeats[i]);
     }
     ctx.metric("timeouts", c.timeouts), ctx.metric("heartbeat_losses", c.heartbeat_losses);
+    ctx.metric("track_cond_ack", dbw_->setpoint().track_ack), ctx.metric("veh_sig_ack", dbw_->setpoint().vehicle_ack);  // the last ct_report's
   }
 
  private:

@@ -31,6 +31,8 @@ std::optional<drivers::SourceSpec> udp_spec(const std::string& text, std::string
 
 }  // namespace
 
+std::optional<drivers::SourceSpec> parse_udp_address(const std::string& text, std::string& error) { return udp_spec(text, error); }
+
 std::optional<BusSpec> parse_bus(const std::string& bus, const std::string& send_to, std::string& error, std::string& param) {
   BusSpec spec;
   spec.text = bus;

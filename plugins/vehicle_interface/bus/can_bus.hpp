@@ -53,6 +53,15 @@ class CanBus {
 // Opens the bus: null and `error` naming it ("can://can9: no such network interface") when it cannot.
 std::unique_ptr<CanBus> open_bus(const BusSpec& spec, std::string& error);
 
+// One udp://HOST:PORT alone ("'tcp://x:1': a bus is can://IFNAME, or udp://HOST:PORT ...").
+std::optional<drivers::SourceSpec> parse_udp_address(const std::string& text, std::string& error);
+// Cannelloni over UDP one way only: a receiver (send() takes no frames: false, error() says so)
+// for a second peer's frames on a port of their own, a sender (poll() finds none) for a peer that
+// only talks (the simulated race control). Each peer numbers its datagrams: two on one port would
+// garble the count of datagrams lost.
+std::unique_ptr<CanBus> open_udp_receiver(const drivers::SourceSpec& listen, std::string& error);
+std::unique_ptr<CanBus> open_udp_sender(const drivers::SourceSpec& to, std::string& error);
+
 // The two kinds, each in its own file.
 std::unique_ptr<CanBus> open_udp_bus(const BusSpec& spec, std::string& error);
 std::unique_ptr<CanBus> open_socketcan_bus(const BusSpec& spec, std::string& error);

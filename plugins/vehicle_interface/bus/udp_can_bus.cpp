@@ -1,5 +1,6 @@
 // udp://HOST:PORT + send_to: CAN frames in cannelloni's UDP datagrams, received on one port and
-// sent to another, through the drivers' non-blocking UDP source and sink.
+// sent to another, through the drivers' non-blocking UDP source and sink; or one way only (a
+// receiver has no sink, a sender no source).
 #include "can_bus.hpp"
 
 #include "vehicle_interface/common/cannelloni.hpp"
@@ -15,6 +16,7 @@ class UdpCanBus final : public CanBus {
 
   bool poll(std::vector<CanFrame>& frames, size_t max_frames) override {
     if (!error_.empty()) return false;
+    if (!in_) return true;  // a sender: nothing comes
     datagrams_.clear();
     // A datagram holds at most 1472 bytes of frames, over 100 classic frames: max_frames * 16
     // bytes reads at least max_frames frames' worth.
@@ -38,6 +40,10 @@ class UdpCanBus final : public CanBus {
   bool send(const std::vector<CanFrame>& frames) override {
     if (!error_.empty()) return false;
     if (frames.empty()) return true;
+    if (!out_) {
+      error_ = name_ + ": receives only";
+      return false;
+    }
     const CannelloniEncoding e = encode_cannelloni(frames, sequence_);
     if (!e.error.empty()) {  // a frame no bus carries: the interface never makes one
       counts_.frames_dropped += frames.size();
@@ -79,6 +85,18 @@ std::unique_ptr<CanBus> open_udp_bus(const BusSpec& spec, std::string& error) {
   std::unique_ptr<drivers::ByteSink> out = drivers::open_sink(spec.send_to, error);
   if (!out) return nullptr;
   return std::make_unique<UdpCanBus>(std::move(in), std::move(out), spec.text);
+}
+
+std::unique_ptr<CanBus> open_udp_receiver(const drivers::SourceSpec& listen, std::string& error) {
+  std::unique_ptr<drivers::ByteSource> in = drivers::open_source(listen, error);
+  if (!in) return nullptr;
+  return std::make_unique<UdpCanBus>(std::move(in), nullptr, listen.text);
+}
+
+std::unique_ptr<CanBus> open_udp_sender(const drivers::SourceSpec& to, std::string& error) {
+  std::unique_ptr<drivers::ByteSink> out = drivers::open_sink(to, error);
+  if (!out) return nullptr;
+  return std::make_unique<UdpCanBus>(nullptr, std::move(out), to.text);
 }
 
 }  // namespace brickyard::vehicle_interface

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <utility>
 
 namespace brickyard::vehicle_interface {
 
@@ -28,12 +29,14 @@ std::string state_change(DbwState from, const DbwWatchdog& w) {
 
 }  // namespace
 
-RaptorInterface::RaptorInterface(VehicleCanMapping mapping, RaptorInterfaceParams p)
+RaptorInterface::RaptorInterface(VehicleCanMapping mapping, RaptorInterfaceParams p, std::optional<RaceControlDbc> race)
     : mapping_(std::move(mapping)),
       p_(p),
       watchdog_(p.watchdog, brake_for_deceleration(mapping_.maps(), p.watchdog.stop_decel_mps2)),
       shifter_(p.shift, mapping_.maps()),
-      monitor_(static_cast<int64_t>(std::llround(p.report_timeout_s * 1e9)), report_moduli(mapping_.dbc())) {
+      monitor_(static_cast<int64_t>(std::llround(p.report_timeout_s * 1e9)), report_moduli(mapping_.dbc())),
+      race_dbc_(std::move(race)),
+      race_(p.race_control, race_dbc_ ? race_dbc_->heartbeat_modulus() : 16) {
   for (size_t i = 0; i < kRaptorCommands.size(); ++i) {
     counters_[i] = CounterSender(mapping_.dbc().counter_modulus(kRaptorCommands[i]));
     period_ns_[i] = static_cast<int64_t>(std::llround(1e9 / p.rates_hz[i]));
@@ -59,6 +62,7 @@ std::vector<std::string> RaptorInterface::receive(const std::vector<CanFrame>& f
     if (!what.empty() && problems_said_ < kProblemsSaid) ++problems_said_, said.push_back(std::move(what));
   };
   for (const CanFrame& f : frames) {
+    if (race_frame(f, now_ns, say)) continue;
     const std::optional<ReadFrame> r = mapping_.read_report(f, reports_);
     if (!r) {
       ++counts_.other_frames;
@@ -73,6 +77,20 @@ std::vector<std::string> RaptorInterface::receive(const std::vector<CanFrame>& f
     say(monitor_.received(r->message, now_ns, r->counter));
   }
   return said;
+}
+
+bool RaptorInterface::race_frame(const CanFrame& f, int64_t now_ns, const std::function<void(std::string)>& say) {
+  if (!race_dbc_ || !race_dbc_->is_summary(f)) return false;
+  const RaceSummaryRead r = race_dbc_->read(f);
+  if (!r.error.empty() || !r.out_of_range.empty()) {
+    ++counts_.bad_reports;
+    race_.bad_frame();
+    say(std::string("base_to_car_summary: ") + (r.error.empty() ? "out of range: " + r.out_of_range.front() : r.error));
+    if (!r.error.empty()) return true;
+  }
+  if (std::string note = race_.received(r.summary, now_ns); !note.empty()) race_notes_.push_back(std::move(note));
+  race_read_ = true;
+  return true;
 }
 
 bool RaptorInterface::fresh_report(RaptorMessage m, int64_t now_ns) const {
@@ -121,6 +139,14 @@ InterfaceStep RaptorInterface::step(int64_t now_ns) {
     last_state_ = w.state;
   }
   setpoint_.actuation = to_actuation(w.command, mapping_.maps());
+  if (std::string heard = race_.check(now_ns); !heard.empty()) {
+    (race_.state().heard ? race_notes_ : out.warnings).push_back(std::move(heard));
+    race_read_ = true;
+  }
+  out.notes = std::move(race_notes_);
+  race_notes_.clear();
+  out.race_control_changed = std::exchange(race_read_, false);
+  setpoint_.track_ack = race_.track_ack(), setpoint_.vehicle_ack = race_.vehicle_ack();
   const bool pt = fresh_report(RaptorMessage::pt_report_1, now_ns);
   setpoint_.gear = shifter_.update(now_s, pt ? reports_.gear : 0, pt ? reports_.engine_rpm : -1, v.value_or(0));
   send_due(now_ns, w.heartbeat, out);

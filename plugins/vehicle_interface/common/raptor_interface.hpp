@@ -2,17 +2,20 @@
 // The car's side of the drive-by-wire, without the bus or the framework: the stack's commands in,
 // the Raptor's reports in, and each step the frames due out — the three actuator commands, the
 // gear and the team's heartbeat (ct_report), each at its own rate with its rolling counter — as
-// the command watchdog allows (dbw_watchdog.hpp) and the gear shifter chooses (gear_shifter.hpp).
+// the command watchdog allows (dbw_watchdog.hpp) and the gear shifter chooses (gear_shifter.hpp);
+// race control's base_to_car_summary read and its flags looped back in ct_report (race_control.hpp).
 // The plugin (vehicle_interface.raptor_dbw) moves the frames to and from a bus and the values to
 // and from messages. docs/vehicle-interface.md. Framework-free; times in ns of the run's clock.
 #include "dbw_watchdog.hpp"
 #include "gear_shifter.hpp"
+#include "race_control.hpp"
 #include "report_monitor.hpp"
 #include "rolling_counter.hpp"
 #include "vehicle_can_mapping.hpp"
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -27,12 +30,15 @@ struct RaptorInterfaceParams {
   double report_timeout_s = 0.1;  // a report silent this long is named
   int ct_state = 1;               // the team's state in ct_report (the car's rules give the codes)
   int vehicle_number = 0;         // ct_report's veh_num
+  RaceControlParams race_control;  // the flag codes and the heartbeat's timeout
 };
 
 struct InterfaceStep {
   std::vector<CanFrame> frames;        // due now, in kRaptorCommands' order
   std::vector<std::string> warnings;   // reports fallen silent
   std::string state_change;            // the watchdog's change, if any (with the stop's distance and time)
+  std::vector<std::string> notes;      // race control's flags changed, or it is heard again
+  bool race_control_changed = false;   // a base_to_car_summary read, or race control heard or lost
 };
 
 struct InterfaceCounts {
@@ -47,7 +53,8 @@ struct InterfaceCounts {
 
 class RaptorInterface {
  public:
-  RaptorInterface(VehicleCanMapping mapping, RaptorInterfaceParams p);
+  // Without `race`, base_to_car_summary frames are other frames and the acks stay 0.
+  RaptorInterface(VehicleCanMapping mapping, RaptorInterfaceParams p, std::optional<RaceControlDbc> race = std::nullopt);
 
   // A command from the stack: "" or why it was refused (then it does not count as a fresh command).
   std::string command(const motion::Command& c);
@@ -64,12 +71,15 @@ class RaptorInterface {
   const GearShifter& shifter() const { return shifter_; }
   const InterfaceCounts& counts() const { return counts_; }
   const DbwSetpoint& setpoint() const { return setpoint_; }
+  const RaceControlMonitor& race_control() const { return race_; }
   // The car's speed from the reports heard within report_timeout_s (the wheels' mean, else the
   // powertrain's), if any.
   std::optional<double> speed(int64_t now_ns) const;
 
  private:
   bool fresh_report(RaptorMessage m, int64_t now_ns) const;
+  // A race control frame: true when `f` was one (read into race_, its problem said).
+  bool race_frame(const CanFrame& f, int64_t now_ns, const std::function<void(std::string)>& say);
   void send_due(int64_t now_ns, bool heartbeat, InterfaceStep& out);
 
   VehicleCanMapping mapping_;
@@ -87,6 +97,10 @@ class RaptorInterface {
   InterfaceCounts counts_;
   DbwState last_state_ = DbwState::waiting;
   uint64_t problems_said_ = 0;
+  std::optional<RaceControlDbc> race_dbc_;
+  RaceControlMonitor race_;
+  std::vector<std::string> race_notes_;  // since the last step
+  bool race_read_ = false;
 };
 
 }  // namespace brickyard::vehicle_interface

@@ -82,8 +82,8 @@ SignalValues command_values(RaptorMessage m, const DbwSetpoint& s) {
     case RaptorMessage::accelerator_cmd: return {{"acc_pedal_cmd", s.actuation.accelerator_pct}};
     case RaptorMessage::steering_cmd: return {{"steering_motor_ang_cmd", s.actuation.steer_motor_deg}};
     case RaptorMessage::gear_shift_cmd: return {{"desired_gear", s.gear}};
-    case RaptorMessage::ct_report:  // race control's flags are not acknowledged yet: 0
-      return {{"ct_state", s.ct_state}, {"veh_num", s.vehicle_number}, {"track_cond_ack", 0}, {"veh_sig_ack", 0}};
+    case RaptorMessage::ct_report:  // race control's flags looped back (docs/race-control.md)
+      return {{"ct_state", s.ct_state}, {"veh_num", s.vehicle_number}, {"track_cond_ack", s.track_ack}, {"veh_sig_ack", s.vehicle_ack}};
     default: return {};
   }
 }
@@ -97,6 +97,7 @@ void take_command(const RaptorFrame& f, DbwSetpoint& s) {
     case RaptorMessage::gear_shift_cmd: s.gear = static_cast<int>(v.at("desired_gear")); break;
     case RaptorMessage::ct_report:
       s.ct_state = static_cast<int>(v.at("ct_state")), s.vehicle_number = static_cast<int>(v.at("veh_num"));
+      s.track_ack = static_cast<int>(v.at("track_cond_ack")), s.vehicle_ack = static_cast<int>(v.at("veh_sig_ack"));
       break;
     default: break;
   }

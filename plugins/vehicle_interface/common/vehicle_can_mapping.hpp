@@ -19,6 +19,8 @@ struct DbwSetpoint {
   int gear = 0;            // gear_shift_cmd: desired_gear
   int ct_state = 0;        // ct_report: the team's state
   int vehicle_number = 0;  // ct_report: veh_num
+  int track_ack = 0;       // ct_report: track_cond_ack, race control's track flag code looped back
+  int vehicle_ack = 0;     // ct_report: veh_sig_ack, its vehicle flag code looped back
 };
 
 // What the reports carry.

@@ -1,6 +1,7 @@
 #pragma once
 // vehicle_interface.raptor_dbw's messages and metrics from the interface's state. Plugin-side (SDK).
 #include <brickyard/context.hpp>
+#include <brickyard/msgs/RaceControl.h>
 #include <brickyard/msgs/VehicleStatus.h>
 
 #include "vehicle_interface/bus/can_bus.hpp"
@@ -36,6 +37,37 @@ inline msgs::VehicleStatus status_message(const RaptorInterface& iface, std::int
   m.counter_skips(static_cast<std::uint32_t>(iface.monitor().total_skips()));
   m.silences(static_cast<std::uint32_t>(iface.monitor().total_silences()));
   return m;
+}
+
+inline msgs::RaceControl race_control_message(const RaceControlMonitor& rc, std::int64_t now_ns, std::uint32_t seq) {
+  const RaceControlState& st = rc.state();
+  msgs::RaceControl m;
+  m.header().stamp_ns(now_ns);
+  m.header().seq(seq);
+  m.header().frame_id("vehicle");
+  m.heard(st.heard);
+  m.heartbeat_age_s(rc.heartbeat_age_s(now_ns));
+  m.heartbeat(static_cast<std::uint8_t>(st.last.heartbeat));
+  m.frames(static_cast<std::uint32_t>(st.frames));
+  m.track_flag(static_cast<std::uint8_t>(st.track)), m.track_flag_name(track_flag_name(st.track));
+  m.track_flag_code(static_cast<std::uint8_t>(st.last.track_code));
+  m.vehicle_flag(static_cast<std::uint8_t>(st.vehicle)), m.vehicle_flag_name(vehicle_flag_name(st.vehicle));
+  m.vehicle_flag_code(static_cast<std::uint8_t>(st.last.vehicle_code));
+  m.target_speed(st.target_speed_mps), m.target_speed_mph(static_cast<std::uint8_t>(st.last.target_mph));
+  m.lap(static_cast<std::uint8_t>(st.last.lap)), m.lap_distance(static_cast<std::uint16_t>(st.last.lap_distance_m));
+  m.rank(static_cast<std::uint8_t>(st.last.rank));
+  return m;
+}
+
+inline void report_race_control(Context& ctx, const RaceControlMonitor& rc, const BusCounts* bus) {
+  const RaceControlState& st = rc.state();
+  ctx.metric("race_control_frames", static_cast<double>(st.frames));
+  ctx.metric("race_control_bad_frames", static_cast<double>(st.bad_frames));
+  ctx.metric("race_control_heartbeat_repeats", static_cast<double>(st.heartbeat_repeats));
+  ctx.metric("race_control_heartbeat_skips", static_cast<double>(st.heartbeat_skips));
+  ctx.metric("race_control_losses", static_cast<double>(st.losses));
+  ctx.metric("track_cond_ack", rc.track_ack()), ctx.metric("veh_sig_ack", rc.vehicle_ack());
+  if (bus) ctx.metric("race_control_bus_datagrams_lost", static_cast<double>(bus->datagrams_lost));
 }
 
 inline void report_interface(Context& ctx, const RaptorInterface& iface, const BusCounts& bus) {

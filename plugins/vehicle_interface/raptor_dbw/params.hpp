@@ -7,6 +7,7 @@
 #include "vehicle_interface/bus/can_bus.hpp"
 #include "vehicle_interface/common/raptor_interface.hpp"
 #include "vehicle_interface/mapping_param.hpp"
+#include "vehicle_interface/race_control_param.hpp"
 
 #include <optional>
 #include <string>
@@ -16,7 +17,7 @@ namespace brickyard::vehicle_interface {
 struct Settings {
   std::string dbc = default_dbc_file;
   std::string vehicle = plugins::default_vehicle_file;
-  std::string bus, send_to;
+  std::string bus, send_to, race_control_bus;
   double brake_hz = 100, accelerator_hz = 100, steering_hz = 100, gear_hz = 100, ct_report_hz = 100;
   double status_hz = 50;
   RaptorInterfaceParams iface;
@@ -52,14 +53,21 @@ inline ParamBinding<Settings> bindings() {
   b.bind("fixed_gear", &Settings::iface, &I::shift, &G::fixed_gear).range(0, 16).doc("0: shift by rpm; N: hold gear N");
   b.bind("ct_state", &Settings::iface, &I::ct_state).range(0, 65535).doc("the team's state in ct_report (the event's rules give the codes)");
   b.bind("vehicle_number", &Settings::iface, &I::vehicle_number).range(0, 255).doc("ct_report's veh_num");
+  b.bind("race_control_bus", &Settings::race_control_bus)
+      .doc("udp://HOST:PORT: race control's frames come here, a peer of their own (the simulator's); empty: on the bus");
+  b.bind("race_control_timeout_s", &Settings::iface, &I::race_control, &RaceControlParams::timeout_s).in_unit("s").range(0.01, 60)
+      .doc("race control's heartbeat unchanged this long: race control lost (RaceControl.heard false)");
+  bind_flag_codes(b, &Settings::iface, &I::race_control, &RaceControlParams::codes);
   b.not_above("shift_down_rpm", "shift_up_rpm");
   return b;
 }
 
 struct Setup {
   std::optional<VehicleCanMapping> mapping;
+  std::optional<RaceControlDbc> race_control;
   RaptorInterfaceParams params;
   BusSpec bus;
+  std::optional<drivers::SourceSpec> race_control_bus;  // none: race control's frames come on `bus`
 };
 
 // Everything the parameters name, read and checked; BadInput naming the parameter otherwise.
@@ -76,6 +84,14 @@ template <class Files> Setup read_setup(const Files& files, const Settings& s) {
   std::optional<BusSpec> bus = parse_bus(s.bus, s.send_to, error, param);
   if (!bus) throw BadInput("parameter '" + param + "': " + error);
   out.bus = *bus;
+  out.race_control.emplace(read_race_control_dbc(files, s.dbc));
+  check_flag_codes(s.iface.race_control.codes);
+  if (!s.race_control_bus.empty()) {
+    if (!s.race_control_bus.starts_with("udp://"))
+      throw BadInput("parameter 'race_control_bus': '" + s.race_control_bus + "': udp://HOST:PORT (on a CAN bus race control's frames come on 'bus')");
+    out.race_control_bus = parse_udp_address(s.race_control_bus, error);
+    if (!out.race_control_bus) throw BadInput("parameter 'race_control_bus': " + error);
+  }
   return out;
 }
 

@@ -1,8 +1,9 @@
 // vehicle_interface.raptor_dbw: the stack's ControlCommand to the car's drive-by-wire (New Eagle's
 // Raptor on the AV-21) over CAN, from the car's DBC, and its reports back as WheelSpeeds and
-// VehicleStatus. Each period the bus is read without blocking and the commands due are sent
-// (common/raptor_interface.hpp: rates, rolling counters, the gear, the team's heartbeat, the
-// command watchdog). docs/vehicle-interface.md.
+// VehicleStatus, and race control's flags as RaceControl (acknowledged in ct_report). Each period
+// the bus is read without blocking and the commands due are sent (common/raptor_interface.hpp:
+// rates, rolling counters, the gear, the team's heartbeat, the command watchdog, race control).
+// docs/vehicle-interface.md, docs/race-control.md.
 #include <brickyard/msgs/ControlCommand.h>
 #include <brickyard/msgs/VehicleStatus.h>
 #include <brickyard/msgs/WheelSpeeds.h>
@@ -24,6 +25,7 @@ struct Ports {
   Input<msgs::ControlCommand> command;
   Output<msgs::WheelSpeeds> speeds;
   Output<msgs::VehicleStatus> status;
+  Output<msgs::RaceControl> race_control;
 };
 
 PortBinding<Ports> ports() {
@@ -31,6 +33,7 @@ PortBinding<Ports> ports() {
   b.input("command", &Ports::command).doc("steer, throttle, brake: driven until command_timeout_s old, then a stop").depth(16);
   b.output("speeds", &Ports::speeds).doc("the four wheel speeds of wheel_speed_report, m/s, stamped at receipt");
   b.output("status", &Ports::status).doc("the reports (steering, brakes, gear, rpm, diagnostics) and the interface's state, at status_hz");
+  b.output("race_control", &Ports::race_control).doc("race control's flags, target speed, lap and heartbeat: on each frame, at status_hz");
   return b;
 }
 
@@ -53,7 +56,9 @@ class RaptorDbw : public Plugin {
     std::string error;
     bus_ = open_bus(setup.bus, error);
     if (!bus_) throw BadInput("parameter 'bus': " + error);
-    iface_.emplace(std::move(*setup.mapping), setup.params);
+    if (setup.race_control_bus && !(race_bus_ = open_udp_receiver(*setup.race_control_bus, error)))
+      throw BadInput("parameter 'race_control_bus': " + error);
+    iface_.emplace(std::move(*setup.mapping), setup.params, std::move(setup.race_control));
     status_period_ns_ = static_cast<std::int64_t>(1e9 / s.status_hz);
     io_ = ports().connect(ctx);
   }
@@ -64,30 +69,36 @@ class RaptorDbw : public Plugin {
       if (std::string why = iface_->command({c->steer(), c->throttle(), c->brake(), c->target_speed()}); !why.empty())
         if (iface_->counts().bad_commands <= 20) warn(ctx, "command refused: " + why);  // then only counted
     frames_.clear();
-    if (!bus_->poll(frames_)) device_failed(ctx);
+    if (!bus_->poll(frames_) || (race_bus_ && !race_bus_->poll(frames_))) device_failed(ctx);
     for (const std::string& w : iface_->receive(frames_, now)) warn(ctx, w);
     const std::uint64_t wheel_reports = iface_->monitor().counts(RaptorMessage::wheel_speed_report).received;
     if (wheel_reports != wheel_reports_) publish_speeds(now), wheel_reports_ = wheel_reports;
     const InterfaceStep out = iface_->step(now);
     for (const std::string& w : out.warnings) warn(ctx, w);
+    for (const std::string& n : out.notes) ctx.log(LogLevel::info, n);
     const bool changed = !out.state_change.empty();
     if (changed) {
       ctx.log(iface_->watchdog().state() == DbwState::active ? LogLevel::info : LogLevel::warn, out.state_change);
       ctx.status("dbw", dbw_state_name(iface_->watchdog().state()));
     }
     if (!bus_->send(out.frames)) device_failed(ctx);
+    if (out.race_control_changed || now >= next_status_ns_)
+      io_.race_control.publish(race_control_message(iface_->race_control(), now, race_seq_++));
     if (changed || now >= next_status_ns_) publish_status(now), next_status_ns_ = now + status_period_ns_;
   }
 
   void deactivate(Context& ctx) override {
-    if (iface_) report_interface(ctx, *iface_, bus_->counts());
+    if (!iface_) return;
+    report_interface(ctx, *iface_, bus_->counts());
+    report_race_control(ctx, iface_->race_control(), race_bus_ ? &race_bus_->counts() : nullptr);
   }
 
  private:
   void warn(Context& ctx, const std::string& what) { ctx.log(LogLevel::warn, what); }
 
   void device_failed(Context& ctx) {
-    if (!bus_error_logged_) ctx.log(LogLevel::error, "bus " + bus_->error() + ": no more frames to or from the car");
+    const std::string& why = bus_->error().empty() && race_bus_ ? race_bus_->error() : bus_->error();
+    if (!bus_error_logged_) ctx.log(LogLevel::error, "bus " + why + ": no more frames to or from the car");
     bus_error_logged_ = true;
   }
 
@@ -104,11 +115,11 @@ class RaptorDbw : public Plugin {
   void publish_status(std::int64_t now) { io_.status.publish(status_message(*iface_, now, status_seq_++)); }
 
   std::optional<RaptorInterface> iface_;
-  std::unique_ptr<CanBus> bus_;
+  std::unique_ptr<CanBus> bus_, race_bus_;
   std::vector<CanFrame> frames_;
   Ports io_;
   std::uint64_t wheel_reports_ = 0;
-  std::uint32_t speeds_seq_ = 0, status_seq_ = 0;
+  std::uint32_t speeds_seq_ = 0, status_seq_ = 0, race_seq_ = 0;
   std::int64_t status_period_ns_ = 0, next_status_ns_ = 0;
   bool bus_error_logged_ = false;
 };
