@@ -50,7 +50,7 @@ CanFrame frame_of(uint32_t id, std::vector<uint8_t> bytes) {
   CanFrame f;
   f.id = id;
   f.length = static_cast<uint8_t>(bytes.size());
-  std::memcpy(f.data.data(), bytes.data(), bytes.size());
+  if (!bytes.empty()) std::memcpy(f.data.data(), bytes.data(), bytes.size());  // data() of an empty vector may be null
   return f;
 }
 
