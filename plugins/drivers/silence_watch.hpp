@@ -1,7 +1,8 @@
 #pragma once
-// Plugin-side (SDK): a sensor that falls silent, reported once a silence. Silent: nothing heard
-// for `after_s` since the last message (or since the first look). Not a silence: a recording
-// that has ended (`expected` false).
+// Plugin-side (SDK): a sensor that falls silent, reported once a silence, and the progress line's
+// status ("silent", then "heard" when it speaks again). Silent: nothing heard for `after_s` since
+// the last message (or since the first look). Not a silence: a recording that has ended
+// (`expected` false).
 #include <brickyard/context.hpp>
 
 #include <cstdint>
@@ -21,11 +22,13 @@ class SilenceWatch {
 
   void check(Context& ctx, int64_t now_ns, bool expected = true) {
     if (last_ns_ < 0) last_ns_ = now_ns;
+    if (shown_silent_ && !silent_) ctx.status(sensor_, "heard"), shown_silent_ = false;
     if (silent_ || !expected || now_ns - last_ns_ < after_ns_) return;
     silent_ = true;
     ++silences_;
     ctx.log(LogLevel::warn, sensor_ + " silent: nothing for " + std::to_string((now_ns - last_ns_) / 1000000) + " ms");
     ctx.status(sensor_, "silent");
+    shown_silent_ = true;
   }
 
   uint64_t silences() const { return silences_; }
@@ -33,7 +36,7 @@ class SilenceWatch {
  private:
   std::string sensor_;
   int64_t after_ns_ = 0, last_ns_ = -1;
-  bool silent_ = false;
+  bool silent_ = false, shown_silent_ = false;
   uint64_t silences_ = 0;
 };
 

@@ -1,9 +1,10 @@
 #pragma once
 // Adapter shared by the simulated sensors: reads the `faults` parameter into a FaultSchedule and
-// turns its errors into BadInput naming the parameter.
+// turns its errors into BadInput naming the parameter. Its windows are in the run's time (RunTime).
 #include <brickyard/context.hpp>
 
 #include "sim/common/faults.hpp"
+#include "sim/run_time.hpp"
 
 namespace brickyard::sim {
 

@@ -15,8 +15,13 @@ const char* mode_name(Mode m) {
 
 void SystemManager::status(double t, LocStatus s) {
   // A status good enough to resume at holds from its first report after a worse one, or a silence.
+  // The run's first such status hands the car over at once: a car held for want of its first
+  // status (the stack started before its sensors) has lost nothing to recover from, as a stack
+  // whose status comes from its first step drives at once.
   const bool silent = have_status_ && t - status_t_ > p_.status_timeout_s;
-  if (s <= p_.resume_at && (!have_status_ || status_ > p_.resume_at || silent)) normal_since_ = t;
+  if (s <= p_.resume_at && (!have_status_ || status_ > p_.resume_at || silent))
+    normal_since_ = was_resumable_ ? t : t - p_.recover_after_s;
+  was_resumable_ = was_resumable_ || s <= p_.resume_at;
   status_ = s;
   status_t_ = t;
   have_status_ = true;
@@ -42,7 +47,7 @@ Transition SystemManager::go(Mode to, std::string reason) {
 }
 
 Transition SystemManager::update(double t) {
-  const bool stale = have_status_ ? t - status_t_ > p_.status_timeout_s : t > p_.status_timeout_s;
+  const bool stale = t - (have_status_ ? status_t_ : start_t_) > p_.status_timeout_s;
   const bool emergency = stale || status_ == LocStatus::emergency;
   const bool wall_ok = t - wall_valid_t_ <= p_.wall_timeout_s;
   // A controller is silent once its commands have come and then stopped for controller_timeout_s.

@@ -71,6 +71,9 @@ class SystemManager {
  public:
   explicit SystemManager(ManagerParams p = {}) : p_(p) {}
   const ManagerParams& params() const { return p_; }
+  // The run's start, when not the clock's zero (the real clock's is the epoch's): a status that
+  // has not come status_timeout_s after it is a silence.
+  void started(double t) { start_t_ = t; }
   // Inputs as they arrive (t in seconds on the run's clock).
   void status(double t, LocStatus s);
   void wall(double t, bool valid);
@@ -86,9 +89,11 @@ class SystemManager {
   Mode mode_ = Mode::path;
   LocStatus status_ = LocStatus::normal;
   double status_t_ = -1e300, normal_since_ = -1e300, wall_valid_t_ = -1e300;
+  double start_t_ = 0;  // the run's start: no status since then is a silence too
   double wall_valid_since_ = 1e300;  // the start of the reports' current run of valid walls; 1e300: none
   double path_cmd_t_ = -1e300, wall_cmd_t_ = -1e300;  // -1e300: none yet (not silent: not started)
   bool have_status_ = false;
+  bool was_resumable_ = false;  // a status good enough to resume at has come this run
 };
 
 }  // namespace brickyard::control

@@ -65,6 +65,7 @@ class SystemManagerNode : public Plugin {
 
   void step(Context& ctx) override {
     const double t = ctx.now_s();
+    if (!ctx.sim_clock() && !started_) manager_.started(t), started_ = true;
     take_inputs();
     const Transition tr = manager_.update(t);
     if (tr.happened) ctx.log(LogLevel::info, transition_line(tr, t));
@@ -134,6 +135,7 @@ class SystemManagerNode : public Plugin {
   }
 
   SystemManager manager_;
+  bool started_ = false;
   std::optional<FlagGate> gate_;
   std::uint64_t race_transitions_ = 0;
   ModeStats stats_;

@@ -450,6 +450,28 @@ TEST(SystemManager, NormalAfterASilenceHoldsItsTimeAgain) {
   EXPECT_EQ(m.update(13.0).to, Mode::path);  // ...but 2 s after the first NORMAL that followed it
 }
 
+// A stack started before its sensors: held for want of a status, then handed to the path
+// tracker at the run's first NORMAL (nothing was lost), and WARNING before it does not count as
+// that first; a later silence holds its full time again.
+TEST(SystemManager, TheFirstNormalOfARunDrivesAtOnce) {
+  SystemManager m;  // recover 2 s, status timeout 0.5 s
+  const double t0 = 1.8e9;                            // the real clock: seconds since the epoch
+  m.started(t0);
+  EXPECT_FALSE(m.update(t0).happened);                // nothing heard yet, within the timeout
+  EXPECT_EQ(m.update(t0 + 0.6).to, Mode::safe_stop);  // nothing heard: no localization status
+  m.status(t0 + 1.5, LocStatus::warning);             // initialized, heading not known yet
+  EXPECT_FALSE(m.update(t0 + 1.5).happened);
+  m.status(t0 + 1.8, LocStatus::normal);
+  EXPECT_EQ(m.update(t0 + 1.8).to, Mode::path);
+  EXPECT_EQ(m.update(t0 + 3.0).to, Mode::safe_stop);  // silent since 1.8
+  for (double t = 3.0; t < 4.9; t += 0.25) {
+    m.status(t0 + t, LocStatus::normal);
+    EXPECT_FALSE(m.update(t0 + t).happened) << t;
+  }
+  m.status(t0 + 5.0, LocStatus::normal);
+  EXPECT_EQ(m.update(t0 + 5.0).to, Mode::path);
+}
+
 TEST(WallFollower, AMalformedWallBrakes) {
   WallFollower f;
   f.engage(0, 40);

@@ -8,6 +8,7 @@
 #include <brickyard/msgs/Imu.h>
 #include <brickyard/plugin.hpp>
 
+#include "drivers/datum_param.hpp"
 #include "drivers/driver_metrics.hpp"
 #include "drivers/gnss_source.hpp"
 #include "drivers/silence_watch.hpp"
@@ -57,9 +58,7 @@ template <class Files> GnssSourceSettings source_settings(const Files& files, co
   g.source = parse_source_param(s.source);
   if (g.source.kind == SourceSpec::Kind::pcap) throw BadInput("parameter 'source': " + s.source + ": a GNSS log is read with file://, not pcap://");
   if (g.source.kind == SourceSpec::Kind::file) g.file_path = files.find_file(g.source.path);
-  if (s.datum.size() != 3) throw BadInput("parameter 'datum': " + std::to_string(s.datum.size()) + " numbers, not 3 (latitude, longitude, height)");
-  g.stream.datum = {s.datum[0], s.datum[1], s.datum[2]};
-  if (const std::string why = datum_problem(g.stream.datum); !why.empty()) throw BadInput("parameter 'datum': " + why);
+  g.stream.datum = read_datum_param(s.datum);
   if (s.imu_rpy_deg.size() != 3) throw BadInput("parameter 'imu_rpy_deg': needs 3 numbers (roll, pitch, yaw)");
   g.stream.imu = s.imu;
   g.stream.imu.imu_to_vehicle = imu_mount(s.imu_rpy_deg[0], s.imu_rpy_deg[1], s.imu_rpy_deg[2]);

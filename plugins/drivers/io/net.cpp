@@ -3,6 +3,7 @@
 #include "transports.hpp"
 
 #include <arpa/inet.h>
+#include <cerrno>
 #include <sys/socket.h>
 
 namespace brickyard::drivers {
@@ -15,5 +16,16 @@ bool ipv4_address(const std::string& host, uint16_t port, sockaddr_in& address) 
 }
 
 UniqueFd ipv4_socket(int type) { return UniqueFd(::socket(AF_INET, type | SOCK_NONBLOCK | SOCK_CLOEXEC, 0)); }
+
+UniqueFd ipv4_socket_for(const std::string& host, uint16_t port, int type, const std::string& name, sockaddr_in& address,
+                         std::string& error) {
+  if (!ipv4_address(host, port, address)) {
+    error = device_error(name, "'" + host + "' is not an IPv4 address", 0);
+    return UniqueFd();
+  }
+  UniqueFd fd = ipv4_socket(type);
+  if (!fd.valid()) error = device_error(name, "cannot create a socket", errno);
+  return fd;
+}
 
 }  // namespace brickyard::drivers

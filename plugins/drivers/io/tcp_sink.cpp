@@ -80,15 +80,8 @@ class TcpSink final : public ByteSink {
 
 std::unique_ptr<ByteSink> open_tcp_sink(const SourceSpec& spec, const std::string& name, std::string& error) {
   sockaddr_in address{};
-  if (!ipv4_address(spec.host, spec.port, address)) {
-    error = device_error(name, "'" + spec.host + "' is not an IPv4 address", 0);
-    return nullptr;
-  }
-  UniqueFd fd = ipv4_socket(SOCK_STREAM);
-  if (!fd.valid()) {
-    error = device_error(name, "cannot create a socket", errno);
-    return nullptr;
-  }
+  UniqueFd fd = ipv4_socket_for(spec.host, spec.port, SOCK_STREAM, name, address, error);
+  if (!fd.valid()) return nullptr;
   int on = 1;  // a simulator restarted at once listens again despite the last run's TIME_WAIT
   ::setsockopt(fd.get(), SOL_SOCKET, SO_REUSEADDR, &on, sizeof on);
   if (::bind(fd.get(), reinterpret_cast<const sockaddr*>(&address), sizeof address) != 0) {

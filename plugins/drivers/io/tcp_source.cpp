@@ -12,15 +12,8 @@ namespace brickyard::drivers {
 // first poll's error ("connection failed: Connection refused").
 std::unique_ptr<ByteSource> open_tcp_source(const SourceSpec& spec, const std::string& name, std::string& error) {
   sockaddr_in address{};
-  if (!ipv4_address(spec.host, spec.port, address)) {
-    error = device_error(name, "'" + spec.host + "' is not an IPv4 address", 0);
-    return nullptr;
-  }
-  UniqueFd fd = ipv4_socket(SOCK_STREAM);
-  if (!fd.valid()) {
-    error = device_error(name, "cannot create a socket", errno);
-    return nullptr;
-  }
+  UniqueFd fd = ipv4_socket_for(spec.host, spec.port, SOCK_STREAM, name, address, error);
+  if (!fd.valid()) return nullptr;
   int rc = ::connect(fd.get(), reinterpret_cast<const sockaddr*>(&address), sizeof address);
   if (rc != 0 && errno != EINPROGRESS && errno != EINTR) {
     error = device_error(name, "cannot connect", errno);

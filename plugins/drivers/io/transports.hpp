@@ -33,5 +33,9 @@ std::unique_ptr<ByteSink> make_fd_sink(UniqueFd fd, std::string name);
 bool ipv4_address(const std::string& host, uint16_t port, sockaddr_in& address);
 // A non-blocking, close-on-exec IPv4 socket of `type` (SOCK_DGRAM, SOCK_STREAM), or an invalid one with errno set.
 UniqueFd ipv4_socket(int type);
+// Both: the address of HOST:PORT and a socket of `type` for it, or an invalid one with `error`
+// naming the device and why (the host no IPv4 address, no socket to be had).
+UniqueFd ipv4_socket_for(const std::string& host, uint16_t port, int type, const std::string& name, sockaddr_in& address,
+                         std::string& error);
 
 }  // namespace brickyard::drivers

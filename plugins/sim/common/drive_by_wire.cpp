@@ -79,6 +79,7 @@ motion::Command SimDriveByWire::command(int64_t now_ns) {
   if (stop) {
     applied_.throttle = 0;
     applied_.brake = p_.timeout_brake;
+    if (p_.centre_steering) applied_.steer = 0;
   }
   return applied_;
 }

@@ -24,6 +24,11 @@ struct SimDbwParams {
   double heartbeat_timeout_s = 0.2;      // ct_report
   double first_command_timeout_s = 2.0;  // from the first step, before any command came
   double timeout_brake = 0.6;            // the brake pedal (0..1) of its own stop, as sim.vehicle's watchdog
+  // Its own stop's wheel: false, the last commanded angle held; true, centred (straight ahead).
+  // The real Raptor's is not public; each fails somewhere: a held angle of a fraction of a degree
+  // on a straight at 84 m/s curves into the wall within 140 m, a centred wheel in a turn runs to
+  // its outside wall (docs/car-on-wires.md).
+  bool centre_steering = false;
   double loss = 0;                       // share of frames lost each way
 };
 

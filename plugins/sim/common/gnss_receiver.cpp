@@ -27,13 +27,14 @@ GnssReceiver::GnssReceiver(const Eigen::Vector3d& antenna, GnssNoise noise, Faul
       faults_(std::move(faults)),
       rng_(rng) {}
 
-GnssReceiver::Epoch GnssReceiver::epoch(std::int64_t stamp_ns, const BodyState& truth, std::int64_t truth_stamp_ns) {
+GnssReceiver::Epoch GnssReceiver::epoch(std::int64_t stamp_ns, const BodyState& truth, std::int64_t truth_stamp_ns,
+                                        std::int64_t run_start_ns) {
   // The position at the fix's stamp. On the sim clock the newest truth is of this instant; on
   // the real clock it is a millisecond or two old (the car's step ran before), and the car moves
   // 8 cm in 2 ms at 40 m/s: the truth is carried to the stamp by the car's motion.
   BodyState at = truth;
   if (const double dt = static_cast<double>(stamp_ns - truth_stamp_ns) * 1e-9; dt != 0) at = carried(truth, dt);
-  const double t = static_cast<double>(stamp_ns) * 1e-9;
+  const double t = static_cast<double>(stamp_ns - run_start_ns) * 1e-9;
   // Noise is drawn every epoch, faulty or not, so a fault window leaves the rest of the run's
   // noise sequence as it would have been.
   const double n[3] = {rng_.normal(), rng_.normal(), rng_.normal()};

@@ -48,8 +48,9 @@ class GnssReceiver {
 
   enum class Epoch { dropped, frozen, fresh };
   // The epoch stamped stamp_ns from the truth stamped truth_stamp_ns: dropped (no fix), frozen
-  // (the last fresh fix again) or fresh (in fix()).
-  Epoch epoch(std::int64_t stamp_ns, const BodyState& truth, std::int64_t truth_stamp_ns);
+  // (the last fresh fix again) or fresh (in fix()). The fault windows are in seconds from
+  // run_start_ns (the sim clock's zero; on the real clock, the run's start: sim/run_time.hpp).
+  Epoch epoch(std::int64_t stamp_ns, const BodyState& truth, std::int64_t truth_stamp_ns, std::int64_t run_start_ns = 0);
   const GnssFixValues& fix() const { return fix_; }  // the last fresh fix
 
   std::uint64_t fixes() const { return fixes_; }  // fresh ones

@@ -3,9 +3,12 @@
 #include <brickyard/msgs/ControlCommand.h>
 #include <brickyard/plugin.hpp>
 
+#include "sim/run_time.hpp"
+
 namespace {
 
 using namespace brickyard;
+using brickyard::sim::RunTime;
 
 struct Settings {
   double steer = 0, throttle = 0, brake = 0, start_s = 0;
@@ -49,7 +52,7 @@ class ConstantCommand : public Plugin {
     io_ = ports().connect(ctx);
   }
   void step(Context& ctx) override {
-    if (ctx.now_s() < start_) return;
+    if (run_.now_s(ctx) < start_) return;
     msgs::ControlCommand m;
     m.header().stamp_ns(ctx.now_ns());
     m.header().seq(seq_++);
@@ -64,6 +67,7 @@ class ConstantCommand : public Plugin {
   double steer_ = 0, throttle_ = 0, brake_ = 0, start_ = 0;
   std::uint32_t seq_ = 0;
   Ports io_;
+  RunTime run_;
 };
 
 }  // namespace

@@ -37,6 +37,8 @@ inline ParamBinding<Settings> bindings() {
       .doc("ct_report's counter still this long: its own stop, adlink_hb_lost reported");
   b.bind("first_command_timeout_s", &Settings::dbw, &SimDbwParams::first_command_timeout_s).in_unit("s").range(0.01, 3600);
   b.bind("timeout_brake", &Settings::dbw, &SimDbwParams::timeout_brake).range(0, 1).doc("the brake pedal of its own stop");
+  b.bind_choice("stop_steering", {{"hold", false}, {"centre", true}}, &Settings::dbw, &SimDbwParams::centre_steering)
+      .doc("its own stop's wheel: the last angle held, or centred");
   b.bind("loss", &Settings::dbw, &SimDbwParams::loss).range(0, 1).doc("share of the frames lost each way, at random (seeded)");
   return b;
 }

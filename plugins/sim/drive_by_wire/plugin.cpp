@@ -9,9 +9,11 @@
 #include <brickyard/msgs/WheelSpeeds.h>
 #include <brickyard/plugin.hpp>
 
+#include "sim/common/stop_meter.hpp"
 #include "sim/drive_by_wire/params.hpp"
 #include "sim/world_msg.hpp"
 
+#include <cstdio>
 #include <optional>
 
 namespace {
@@ -64,6 +66,7 @@ class DriveByWire : public Plugin {
     const motion::Command c = dbw_->command(now);
     if (dbw_->stopping() != was_stopping)
       ctx.log(LogLevel::warn, dbw_->stopping() ? "drive-by-wire: commands or heartbeat lost: braking" : "drive-by-wire: commands back");
+    measure_stop(ctx, was_stopping);
     publish(c, now);
     if (now < next_report_ns_) return;
     next_report_ns_ = now + report_period_ns_;
@@ -80,6 +83,9 @@ class DriveByWire : public Plugin {
       ctx.metric(n + "_received", c.received[i]), ctx.metric(n + "_counter_skips", c.skips[i]), ctx.metric(n + "_counter_repeats", c.repeats[i]);
     }
     ctx.metric("timeouts", c.timeouts), ctx.metric("heartbeat_losses", c.heartbeat_losses);
+    if (stop_.stood() || stop_.measuring())
+      ctx.metric("stop_from_speed_mps", stop_.from_speed_mps()), ctx.metric("stop_distance_m", stop_.distance_m());
+    ctx.metric("stop_stood", stop_.stood() ? 1.0 : 0.0);
     ctx.metric("track_cond_ack", dbw_->setpoint().track_ack), ctx.metric("veh_sig_ack", dbw_->setpoint().vehicle_ack);  // the last ct_report's
   }
 
@@ -90,6 +96,23 @@ class DriveByWire : public Plugin {
     if (const auto w = newest(io_.wheels))
       r.wheel_fl = w->front_left(), r.wheel_fr = w->front_right(), r.wheel_rl = w->rear_left(), r.wheel_rr = w->rear_right();
     return r;
+  }
+
+  // Its own stop measured from the car's truth: from the speed it began at to standstill.
+  void measure_stop(Context& ctx, bool was_stopping) {
+    const auto t = newest(io_.truth);
+    if (!t) return;
+    const double at = static_cast<double>(stamp(*t)) * 1e-9;
+    if (dbw_->stopping() && !was_stopping) stop_.begin(at, t->vx());
+    else if (!dbw_->stopping() && was_stopping) stop_.abandon();
+    else stop_.sample(at, t->vx());
+    if (stop_.stood() && !stood_said_) {
+      char b[96];
+      std::snprintf(b, sizeof b, "drive-by-wire: stopped from %.1f m/s in %.1f m", stop_.from_speed_mps(), stop_.distance_m());
+      ctx.log(LogLevel::info, b);
+      stood_said_ = true;
+    }
+    if (stop_.measuring()) stood_said_ = false;
   }
 
   void publish(const motion::Command& c, std::int64_t now) {
@@ -108,6 +131,8 @@ class DriveByWire : public Plugin {
   }
 
   std::optional<SimDriveByWire> dbw_;
+  StopMeter stop_;
+  bool stood_said_ = false;
   std::unique_ptr<vi::CanBus> bus_;
   std::vector<vi::CanFrame> frames_;
   Ports io_;

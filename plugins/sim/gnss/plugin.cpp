@@ -83,7 +83,7 @@ class Gnss : public Plugin {
     if (!s) return;
     const BodyState truth{s->x(), s->y(), s->z(), s->yaw(), s->pitch(), s->roll(), s->vx(), s->vy(), s->yaw_rate()};
     const std::int64_t stamp_ns = ctx.now_ns();
-    const GnssReceiver::Epoch e = receiver_->epoch(stamp_ns, truth, stamp(*s));
+    const GnssReceiver::Epoch e = receiver_->epoch(stamp_ns, truth, stamp(*s), run_.start_ns(ctx));
     if (e == GnssReceiver::Epoch::frozen) publish(*last_, stamp_ns);
     if (e != GnssReceiver::Epoch::fresh) return;
     const GnssFixValues& f = receiver_->fix();
@@ -120,6 +120,7 @@ class Gnss : public Plugin {
   std::uint32_t seq_ = 0;
   std::shared_ptr<msgs::GnssFix> last_;
   Ports io_;
+  RunTime run_;
 };
 
 }  // namespace

@@ -12,6 +12,7 @@
 #include "drivers/common/gnss_report.hpp"
 #include "drivers/common/novatel_oem7.hpp"
 #include "drivers/common/raw_imu.hpp"
+#include "drivers/datum_param.hpp"
 #include "drivers/io/byte_source.hpp"
 
 #include <memory>
@@ -44,16 +45,9 @@ ParamBinding<Settings> bindings() {
   return b;
 }
 
-Datum datum_of(const Settings& s) {
-  if (s.datum.size() != 3) throw BadInput("parameter 'datum': " + std::to_string(s.datum.size()) + " numbers, not 3 (latitude, longitude, height)");
-  const Datum d{s.datum[0], s.datum[1], s.datum[2]};
-  if (const std::string why = datum_problem(d); !why.empty()) throw BadInput("parameter 'datum': " + why);
-  return d;
-}
-
 void check(const CheckView& v) {
   const Settings s = bindings().read(v.params());
-  datum_of(s);
+  read_datum_param(s.datum);
   if (const ParsedSource p = parse_source(s.sink); !p.spec) throw BadInput("parameter 'sink': " + p.error);
 }
 
@@ -81,7 +75,7 @@ class GnssWire : public Plugin {
 
   void configure(Context& ctx) override {
     const Settings s = bindings().read(ctx.params());
-    datum_.emplace(datum_of(s));
+    datum_.emplace(read_datum_param(s.datum));
     gps_start_ms_ = std::llround(s.gps_start_s * 1000);
     imu_ = s.imu, imu_type_ = static_cast<std::uint8_t>(s.imu_type);
     std::string error;

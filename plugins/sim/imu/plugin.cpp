@@ -79,7 +79,7 @@ class ImuSensor : public Plugin {
     if (!s) return;
     double n[6];
     for (double& v : n) v = rng_.normal();
-    FaultEffect e = faults_.at(ctx.now_s(), rng_);
+    FaultEffect e = faults_.at(run_.now_s(ctx), rng_);
     if (e.drop) return;
     msgs::Imu m;
     if (e.freeze && last_) {
@@ -112,6 +112,7 @@ class ImuSensor : public Plugin {
   std::uint32_t seq_ = 0;
   std::shared_ptr<msgs::Imu> last_;
   Ports io_;
+  RunTime run_;
 };
 
 }  // namespace

@@ -52,8 +52,7 @@ ParamBinding<Settings> bindings() {
   b.bind("max_range", &Settings::spec, &L::max_range).in_unit("m").range(1, 1000);
   b.bind("range_noise", &Settings::spec, &L::range_noise).in_unit("m").range(0, 100).doc("1 sigma");
   b.bind("dropout", &Settings::spec, &L::dropout).range(0, 1).doc("probability that a return is lost");
-  b.bind("threads", &Settings::spec, &L::threads).range(1, 2)
-      .doc("threads the columns are marched on (the AVX2 path); the frame is the same bit for bit");
+  b.bind("threads", &Settings::spec, &L::threads).range(1, 2).doc("threads the columns are marched on (AVX2); the same bits");
   // The windows are parsed as the parameters are read: a bad one is refused naming its JSON pointer.
   b.bind_with(ParamSpec::json("faults", "[]").doc("windows: noise (range sigma x factor), frame_loss, freeze, dropout"),
               [](const Params& p, Settings& s) { s.faults = read_faults(p, 1, kLidarFaultTypes); });
@@ -106,7 +105,7 @@ class Lidar : public Plugin {
     }
     auto s = newest(io_.truth);
     if (!s) return;
-    const Scanner::Frame f = scanner_.frame(ctx.now_s(), body_pose(*s), s->x(), s->y());
+    const Scanner::Frame f = scanner_.frame(run_.now_s(ctx), body_pose(*s), s->x(), s->y());
     if (f == Scanner::Frame::lost) return;
     // A frozen sensor sends its last frame again, stamped now (a published one is shared: left as it is).
     auto m = f == Scanner::Frame::fresh ? fresh_cloud() : std::make_shared<msgs::PointCloud>(*last_);
@@ -143,6 +142,7 @@ class Lidar : public Plugin {
   std::uint32_t seq_ = 0;
   std::shared_ptr<const msgs::PointCloud> last_;  // the last fresh frame, as published
   Ports io_;
+  RunTime run_;
 };
 
 }  // namespace

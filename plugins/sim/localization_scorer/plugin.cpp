@@ -8,6 +8,7 @@
 
 #include "sim/common/localization_samples.hpp"
 #include "sim/common/localization_score.hpp"
+#include "sim/run_time.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -95,10 +96,10 @@ class Scorer : public Plugin {
     io_ = ports().connect(ctx);
   }
 
-  void step(Context&) override { drain(); }
+  void step(Context& ctx) override { drain(ctx); }
 
   void deactivate(Context& ctx) override {
-    drain();
+    drain(ctx);
     const auto& s = *score_;
     for (const auto& [name, value] : score_metrics(s)) ctx.metric(name, value);
     if (samples_) samples_->finish();
@@ -121,13 +122,13 @@ class Scorer : public Plugin {
   }
 
  private:
-  void drain() {
-    for (const auto& s : io_.truth.take()) score_->truth(static_cast<double>(s->header().stamp_ns()) * 1e-9, s->x(), s->y());
+  void drain(const Context& ctx) {
+    for (const auto& s : io_.truth.take()) score_->truth(run_.of(ctx, s->header().stamp_ns()), s->x(), s->y());
     for (const auto& e : io_.estimate.take()) {
       if (located_only_ && e->update_case() == 0) continue;
       const auto& c = e->covariance();
       const PlanarSpread spread{c[0], c[1], c[4]};
-      const double t = static_cast<double>(e->header().stamp_ns()) * 1e-9;
+      const double t = run_.of(ctx, e->header().stamp_ns());
       if (score_->estimate(t, e->x(), e->y(), e->status(), &spread) && samples_) {
         const auto [tx, ty] = score_->last_truth();
         samples_->add({t, e->x(), e->y(), e->yaw(), c[0], c[1], c[4], c[8], e->status(), e->update_case(), tx, ty});
@@ -140,6 +141,7 @@ class Scorer : public Plugin {
   double max_error_ = -1, emergency_within_ = -1, normal_below_ = -1;
   bool located_only_ = false;
   Ports io_;
+  RunTime run_;
 };
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include <brickyard/plugin.hpp>
 
 #include "sim/race_control/params.hpp"
+#include "sim/run_time.hpp"
 #include "sim/world_msg.hpp"
 
 #include <cmath>
@@ -51,15 +52,15 @@ class RaceControlNode : public Plugin {
 
   void step(Context& ctx) override {
     for (const auto& s : io_.truth.take()) {
-      const double t = static_cast<double>(stamp(*s)) * 1e-9;
+      const double t = run_.of(ctx, stamp(*s));
       rc_->station(s->s());
       say(ctx, judge_->truth(t, s->x(), s->y(), std::hypot(s->vx(), s->vy())));
       if (rc_->laps() != laps_) say(ctx, judge_->lap(t, laps_ = rc_->laps()));
     }
-    const SimRaceControl::Tick tick = rc_->step(ctx.now_ns());
+    const SimRaceControl::Tick tick = rc_->step(run_.now_ns(ctx));
     if (tick.began) {
       ctx.log(LogLevel::info, "race control: " + tick.began->text);
-      say(ctx, judge_->flag(ctx.now_s(), *tick.began));
+      say(ctx, judge_->flag(run_.now_s(ctx), *tick.began));
     }
     if (!tick.frame) return;
     const vi::PackResult p = dbc_->pack(*tick.frame);
@@ -69,7 +70,7 @@ class RaceControlNode : public Plugin {
 
   void deactivate(Context& ctx) override {
     if (!judge_) return;
-    say(ctx, judge_->run_ended(ctx.now_s()));
+    say(ctx, judge_->run_ended(run_.now_s(ctx)));
     ctx.metric("frames_sent", static_cast<double>(frames_));
     ctx.metric("laps", rc_->laps());
     ctx.metric("flags_judged", judge_->judged());
@@ -95,6 +96,7 @@ class RaceControlNode : public Plugin {
   std::optional<FlagJudge> judge_;
   std::unique_ptr<vi::CanBus> bus_;
   Ports io_;
+  RunTime run_;
   int laps_ = 0;
   std::uint64_t frames_ = 0;
   bool error_logged_ = false;

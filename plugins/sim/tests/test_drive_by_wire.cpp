@@ -3,6 +3,7 @@
 // raw step of each signal, the reports come back, counters in order; its own stop when commands,
 // their counters or the heartbeat stop; a lossy bus counted on both sides.
 #include "sim/common/drive_by_wire.hpp"
+#include "sim/common/stop_meter.hpp"
 #include "vehicle_interface/common/raptor_interface.hpp"
 
 #include "av21.hpp"
@@ -17,6 +18,7 @@ using namespace brickyard::vehicle_interface;
 using brickyard::sim::SimCarReading;
 using brickyard::sim::SimDbwParams;
 using brickyard::sim::SimDriveByWire;
+using brickyard::sim::StopMeter;
 
 namespace {
 
@@ -104,6 +106,22 @@ TEST(SimDriveByWire, BrakesOnItsOwnWhenTheFramesStop) {
   EXPECT_NEAR(loop.applied.throttle, 0.8, 0.0001);
 }
 
+// stop_steering centre: its own stop straightens the wheel; the commands back steer again.
+TEST(SimDriveByWire, ItsOwnStopCanCentreTheWheel) {
+  SimDbwParams p;
+  p.centre_steering = true;
+  Loop loop(p);
+  const motion::Command c{0.01, 0.8, 0, 30};
+  loop.run(0, 1000 * kMs, [&](int64_t t) { return every_10ms(t, c); }, [](int64_t) { return true; });
+  EXPECT_NEAR(loop.applied.steer, 0.01, 0.001);
+  loop.run(1000 * kMs, 1300 * kMs, [&](int64_t t) { return every_10ms(t, c); }, [](int64_t) { return false; });
+  EXPECT_TRUE(loop.dbw.stopping());
+  EXPECT_EQ(loop.applied.steer, 0);
+  EXPECT_EQ(loop.applied.brake, 0.6);
+  loop.run(1300 * kMs, 1400 * kMs, [&](int64_t t) { return every_10ms(t, c); }, [](int64_t) { return true; });
+  EXPECT_NEAR(loop.applied.steer, 0.01, 0.001);
+}
+
 // The stack stops commanding: the interface brakes the car to a stop and, standing, stops the
 // heartbeat; the simulated drive-by-wire then holds the car with its own stop.
 TEST(SimDriveByWire, TheInterfacesHandoverIsTheDriveByWiresStop) {
@@ -159,4 +177,25 @@ TEST(SimDriveByWire, ALossyBusIsCountedAndStillDrives) {
   EXPECT_GT(loop.iface.monitor().counts(RaptorMessage::steering_report).skips, 50u);
   EXPECT_EQ(loop.iface.monitor().total_silences(), 0u);
   EXPECT_NEAR(loop.applied.throttle, 0.6, 0.0001);
+}
+
+// A stop from 40 m/s at a steady 8 m/s^2, sampled at 500 Hz: v0^2 / (2 a) = 100 m.
+TEST(StopMeter, MeasuresTheDistanceToStandstill) {
+  StopMeter m;
+  m.begin(10.0, 40.0);
+  for (int k = 1; k <= 3000; ++k) m.sample(10.0 + k * 0.002, std::max(0.0, 40.0 - 8.0 * k * 0.002));
+  EXPECT_TRUE(m.stood());
+  EXPECT_FALSE(m.measuring());
+  EXPECT_DOUBLE_EQ(m.from_speed_mps(), 40.0);
+  EXPECT_NEAR(m.distance_m(), 100.0, 0.01);
+}
+
+TEST(StopMeter, AStopCalledOffMeasuresNothing) {
+  StopMeter m;
+  m.begin(0.0, 30.0);
+  m.sample(0.5, 28.0);
+  m.abandon();
+  m.sample(1.0, 0.0);
+  EXPECT_FALSE(m.stood());
+  EXPECT_NEAR(m.distance_m(), 14.5, 1e-9);  // what it ran before the stop was called off
 }

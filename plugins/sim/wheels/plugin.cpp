@@ -79,7 +79,7 @@ class Wheels : public Plugin {
     if (!s) return;
     double n[4];
     for (double& v : n) v = rng_.normal();
-    FaultEffect e = faults_.at(ctx.now_s(), rng_);
+    FaultEffect e = faults_.at(run_.now_s(ctx), rng_);
     if (e.drop) return;
     msgs::WheelSpeeds m;
     if (e.freeze && last_) {
@@ -115,6 +115,7 @@ class Wheels : public Plugin {
   std::uint32_t seq_ = 0;
   std::shared_ptr<msgs::WheelSpeeds> last_;
   Ports io_;
+  RunTime run_;
 };
 
 }  // namespace

@@ -12,6 +12,8 @@
 #include "vehicle_interface/common/can_signal.hpp"
 #include "vehicle_interface/common/dbc.hpp"
 
+#include "can_frames.hpp"
+
 #include <gtest/gtest.h>
 
 #include <bit>
@@ -45,14 +47,6 @@ const DbcMessage& car_message(uint32_t id) {
 }
 
 std::vector<uint8_t> payload(const CanFrame& f) { return std::vector<uint8_t>(f.data.begin(), f.data.begin() + f.length); }
-
-CanFrame frame_of(uint32_t id, std::vector<uint8_t> bytes) {
-  CanFrame f;
-  f.id = id;
-  f.length = static_cast<uint8_t>(bytes.size());
-  if (!bytes.empty()) std::memcpy(f.data.data(), bytes.data(), bytes.size());  // data() of an empty vector may be null
-  return f;
-}
 
 // The first error of a hand-written file, as "file:line: what".
 std::string first_error(const std::string& text) {

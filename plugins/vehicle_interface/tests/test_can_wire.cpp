@@ -4,6 +4,8 @@
 #include "vehicle_interface/common/candump_log.hpp"
 #include "vehicle_interface/common/cannelloni.hpp"
 
+#include "can_frames.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -14,15 +16,6 @@
 using namespace brickyard::vehicle_interface;
 
 namespace {
-
-CanFrame frame_of(uint32_t id, std::vector<uint8_t> bytes, bool extended = false) {
-  CanFrame f;
-  f.id = id;
-  f.extended = extended;
-  f.length = static_cast<uint8_t>(bytes.size());
-  std::copy(bytes.begin(), bytes.end(), f.data.begin());
-  return f;
-}
 
 CandumpRecord parsed(const std::string& line) {
   const CandumpLine l = parse_candump_line(line);

@@ -9,6 +9,7 @@
 #include "vehicle_interface/common/vehicle_can_mapping.hpp"
 
 #include "av21.hpp"
+#include "can_frames.hpp"
 
 #include <gtest/gtest.h>
 
@@ -48,14 +49,6 @@ VehicleCanMapping av21_mapping() {
 }
 
 std::vector<uint8_t> payload(const CanFrame& f) { return {f.data.begin(), f.data.begin() + f.length}; }
-
-CanFrame frame_of(uint32_t id, std::vector<uint8_t> bytes) {
-  CanFrame f;
-  f.id = id;
-  f.length = static_cast<uint8_t>(bytes.size());
-  if (!bytes.empty()) std::memcpy(f.data.data(), bytes.data(), bytes.size());  // data() of an empty vector may be null
-  return f;
-}
 
 // The steer (rad) whose motor angle is `deg` on the AV-21 (ratio 15).
 double steer_for_motor_deg(double deg) { return deg / 15 * std::numbers::pi / 180; }
