@@ -5,6 +5,8 @@
 #include "vehicle_interface/bus/can_bus.hpp"
 #include "vehicle_interface/common/cannelloni.hpp"
 
+#include "free_port.hpp"
+
 #include <gtest/gtest.h>
 
 #include <arpa/inet.h>
@@ -24,19 +26,6 @@ std::string refusal(const std::string& bus, const std::string& send_to, std::str
   EXPECT_FALSE(parse_bus(bus, send_to, error, param)) << bus;
   if (param_out) *param_out = param;
   return error;
-}
-
-// A port on 127.0.0.1 free a moment ago: the kernel's pick for port 0.
-uint16_t free_port() {
-  int fd = ::socket(AF_INET, SOCK_DGRAM, 0);
-  sockaddr_in address{};
-  address.sin_family = AF_INET;
-  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  socklen_t size = sizeof address;
-  EXPECT_EQ(::bind(fd, reinterpret_cast<sockaddr*>(&address), size), 0);
-  EXPECT_EQ(::getsockname(fd, reinterpret_cast<sockaddr*>(&address), &size), 0);
-  ::close(fd);
-  return ntohs(address.sin_port);
 }
 
 std::unique_ptr<CanBus> udp_bus(uint16_t listen, uint16_t to) {

@@ -4,6 +4,8 @@
 // kernel; the transports never do.
 #include "drivers/io/byte_source.hpp"
 
+#include "free_port.hpp"
+
 #include <gtest/gtest.h>
 
 #include <arpa/inet.h>
@@ -36,19 +38,6 @@ std::string refusal(std::string_view text) {
   ParsedSource parsed = parse_source(text);
   EXPECT_FALSE(parsed.spec) << text;
   return parsed.error;
-}
-
-// A port on 127.0.0.1 free a moment ago: the kernel's pick for port 0.
-uint16_t free_port(int type) {
-  int fd = ::socket(AF_INET, type, 0);
-  sockaddr_in address{};
-  address.sin_family = AF_INET;
-  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  socklen_t size = sizeof address;
-  EXPECT_EQ(::bind(fd, reinterpret_cast<sockaddr*>(&address), size), 0);
-  EXPECT_EQ(::getsockname(fd, reinterpret_cast<sockaddr*>(&address), &size), 0);
-  ::close(fd);
-  return ntohs(address.sin_port);
 }
 
 // Polls (short sleeps, two seconds at most) until `want` bytes have come; the entries read.
