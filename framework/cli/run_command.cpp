@@ -71,6 +71,11 @@ int supervise_run(const Args& a, const GraphDecl& g) {
   so.child_flags = a.child_flags;
   so.duration_s = a.duration ? a.duration : g.clock.duration_s;
   so.domain = a.domain.value_or(g.transport.domain);
+  // Each process takes a participant id of its own, up to 119 (cli/supervisor.cpp): on domain 232
+  // their ports would pass 65535 and Fast DDS would refuse them once the run had started.
+  if (so.domain > kLastSupervisedDomain)
+    usage_error(a.domain ? "--domain" : a.target + "#/transport/domain", "a run split into processes needs a DDS domain id from 0 to " +
+                                                                 std::to_string(kLastSupervisedDomain) + ", found " + std::to_string(so.domain));
   so.out = a.out;
   so.quiet = a.quiet;
   return supervise(g, so);

@@ -182,7 +182,7 @@ void Supervisor::spawn(Child& c) {
   c.black_box = (fs::path(tmp_) / (c.name + "." + std::to_string(c.restarts) + ".box")).string();
   env.push_back("BRICKYARD_BLACKBOX=" + c.black_box);
   // A participant id of its own, never a dead process's (transport/dds.cpp says why).
-  env.push_back("BRICKYARD_PARTICIPANT_ID=" + std::to_string(spawns_++ % 120));
+  env.push_back("BRICKYARD_PARTICIPANT_ID=" + std::to_string(spawns_++ % kSupervisedParticipants));
   std::vector<char*> av, ev;
   for (auto& s : argv) av.push_back(s.data());
   for (auto& s : env) ev.push_back(s.data());

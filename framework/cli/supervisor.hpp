@@ -15,6 +15,12 @@
 
 namespace brickyard::fw {
 
+// Every process the supervisor starts gets a participant id of its own, the restarted ones too,
+// below kSupervisedParticipants; their ports, 7400 + 250 domain + 11 + 2 id, fit under 65536 on
+// domains up to kLastSupervisedDomain (Fast DDS refuses the run's participants past it).
+constexpr int kSupervisedParticipants = 120;
+constexpr int kLastSupervisedDomain = 231;
+
 struct SuperviseOptions {
   std::string graph_file;               // as given on the command line
   std::vector<std::string> child_flags;  // passed to every child as they are (--set, --arg, --seed, ...)

@@ -134,6 +134,10 @@ bad_input(security_protect      "--protect nope: expected sign or encrypt" secur
 bad_input(security_observer     "node 'src' runs in process 'observer'" security init ${BAD}/security_observer_process.json --out /tmp/by_security_observer)
 bad_input(security_missing      "security_missing.json#/transport/security: .*no_such_keys is not a folder: make it with .brickyard security init" validate ${BAD}/security_missing.json)
 bad_input(supervised_record   "--record: a supervised run records each process into --out DIR/PROCESS/recording.mcap" run ${CMAKE_CURRENT_SOURCE_DIR}/graphs/multiprocess/two_process.json --record /tmp/x.mcap)
+# The graph's own domain (bad_case adds --domain): no network namespace needed, nothing starts.
+add_test(NAME bad_input.supervised_domain COMMAND ${EXPECT} 2
+  "supervised_domain.json#/transport/domain: a run split into processes needs a DDS domain id from 0 to 231, found 232"
+  "${NOT_STARTED}" -- ${BY} run ${BAD}/supervised_domain.json)
 bad_input(bad_deadline          "bad_deadline.json#/nodes/fault/deadline_s: expected seconds, more than 0 and at most 3600, found -1" run ${BAD}/bad_deadline.json)
 bad_input(bad_live_port         "bad_live_port.json#/live/port: expected a port from 0 to 65535, found 70000" run ${BAD}/bad_live_port.json)
 bad_input(bad_live_cloud_hz     "bad_live_cloud_hz.json#/live/cloud_hz: expected clouds a second from 0 \\(every one\\) to 1000, found -5" run ${BAD}/bad_live_cloud_hz.json)
