@@ -69,9 +69,7 @@ evidence_script(stack_restart stack_restart.sh ${CMAKE_CURRENT_SOURCE_DIR}/graph
 # car's process killed at full speed, is not a test yet: it does not hold, docs/car-on-wires.md.)
 # Each run takes three domains (car, simulator, direct graph).
 foreach(mode race)
-  by_next_domain(d)
-  by_next_domain(unused)
-  by_next_domain(unused)
+  by_next_domains(d 3)
   add_test(NAME evidence.car_on_wires_${mode}
     COMMAND ${NETNS} ${CMAKE_CURRENT_SOURCE_DIR}/cli/car_on_wires.sh ${BY} ${PROJECT_SOURCE_DIR}/configs
             ${CMAKE_CURRENT_SOURCE_DIR}/graphs/car_direct.json ${d} ${RUNS}/car_on_wires_${mode} ${mode}
