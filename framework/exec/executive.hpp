@@ -93,6 +93,8 @@ class Executive final : public NodeHost {
   void run_sim();
   std::int64_t sim_end_ns() const;  // the sim clock's end (INT64_MAX: none)
   void run_real();
+  // The real clock: a node's next trigger, waited for (real_scheduler.cpp); none once the run stops.
+  std::optional<Trigger> next_real_trigger(NodeRuntime& n, std::chrono::steady_clock::time_point& next);
   void step(NodeRuntime& n, Trigger t);
   bool step_body(NodeRuntime& n, Trigger t);  // step without counting it: whether it returned
   void host_log(const std::string& msg);

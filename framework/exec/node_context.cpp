@@ -1,7 +1,12 @@
 #include "exec/node_context.hpp"
 #include "exec/node_runtime.hpp"
 
+#include <sys/eventfd.h>
+
+#include <cerrno>
 #include <cmath>
+#include <cstring>
+#include <stdexcept>
 
 namespace brickyard::fw {
 
@@ -26,6 +31,17 @@ std::string NodeContext::find_file(std::string_view path) const { return e_.find
 void NodeContext::status(std::string_view field, std::string_view value) { e_.set_status(n_.name, field, value); }
 void NodeContext::fail(std::string_view reason) {
   e_.request_stop(RunResult::failed, "node '" + n_.name + "' (" + n_.plugin_name() + "): " + std::string(reason));
+}
+
+void NodeContext::wake_on_readable(int fd) {
+  if (e_.sim()) return;  // the sim clock steps on periods and inputs alone: its runs stay the same bit for bit
+  std::lock_guard<std::mutex> l(n_.m);
+  if (fd >= 0 && n_.wake_event_fd < 0) {
+    n_.wake_event_fd = ::eventfd(0, EFD_NONBLOCK | EFD_CLOEXEC);
+    if (n_.wake_event_fd < 0) throw std::runtime_error("node '" + n_.name + "': wake_on_readable: eventfd: " + std::strerror(errno));
+  }
+  n_.device_fd = fd < 0 ? -1 : fd;
+  n_.wake_device_wait();  // a thread already waiting picks the new descriptor up
 }
 
 detail::InputChannel* NodeContext::input_channel(std::string_view port) {

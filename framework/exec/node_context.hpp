@@ -45,6 +45,7 @@ class NodeContext final : public Context {
   std::string find_file(std::string_view path) const override;
   void status(std::string_view field, std::string_view value) override;
   void fail(std::string_view reason) override;
+  void wake_on_readable(int fd) override;
 
  protected:
   detail::InputChannel* input_channel(std::string_view port) override;

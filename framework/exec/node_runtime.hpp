@@ -47,6 +47,17 @@ class NodeRuntime {
   std::condition_variable cv;
   bool input_pending = false;
   std::string pending_port;
+  // real: the device the node waits on (Context::wake_on_readable; -1 none), and the eventfd
+  // that wakes its wait for an input or the stop (made with the first device; closed with it).
+  int device_fd = -1;
+  int wake_event_fd = -1;
+
+  NodeRuntime() = default;
+  NodeRuntime(const NodeRuntime&) = delete;
+  NodeRuntime& operator=(const NodeRuntime&) = delete;
+  ~NodeRuntime();
+  // Wakes the thread of a node waiting on its device (an input arrived, the run stops). Under m.
+  void wake_device_wait() const;
 
   const std::string& plugin_name() const { return rn->plugin->manifest.name; }
   InputQueue* input(std::string_view port) {

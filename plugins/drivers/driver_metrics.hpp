@@ -3,6 +3,7 @@
 #include <brickyard/context.hpp>
 
 #include "drivers/common/decode_counters.hpp"
+#include "drivers/common/latency_spread.hpp"
 #include "drivers/gnss_source.hpp"
 #include "drivers/ouster_source.hpp"
 
@@ -32,7 +33,15 @@ inline void report_spread(Context& ctx, const std::string& name, std::vector<dou
   ctx.metric(name + "_max", values.back());
 }
 
-inline void report_gnss(Context& ctx, const GnssSource& source, uint64_t fixes, uint64_t silences) {
+// From a message's last bytes at the host to its publication (common/latency_spread.hpp).
+inline void report_wire_latency(Context& ctx, const LatencySpread& wire) {
+  if (wire.count() == 0) return;
+  ctx.metric("wire_to_message_s_p50", wire.quantile_s(0.5));
+  ctx.metric("wire_to_message_s_p99", wire.quantile_s(0.99));
+  ctx.metric("wire_to_message_s_max", wire.max_s());
+}
+
+inline void report_gnss(Context& ctx, const GnssSource& source, uint64_t fixes, uint64_t silences, const LatencySpread& wire) {
   const GnssStreamCounters& c = source.stream().counters();
   report_decoder(ctx, source.stream().decoder());
   ctx.metric("fixes", static_cast<double>(fixes));
@@ -45,9 +54,10 @@ inline void report_gnss(Context& ctx, const GnssSource& source, uint64_t fixes, 
   ctx.metric("bytes", static_cast<double>(source.bytes()));
   ctx.metric("silences", static_cast<double>(silences));
   report_spread(ctx, "stamp_delay_s", source.delays_s());
+  report_wire_latency(ctx, wire);
 }
 
-inline void report_ouster(Context& ctx, const OusterSource& source, uint64_t frames, uint64_t silences) {
+inline void report_ouster(Context& ctx, const OusterSource& source, uint64_t frames, uint64_t silences, const LatencySpread& wire) {
   const OusterCounters& c = source.decoder().counters();
   const std::pair<const char*, uint64_t> counts[] = {
       {"packets", c.packets}, {"decoded_packets", c.decoded}, {"bad_size", c.bad_size}, {"bad_crc", c.bad_crc},
@@ -63,6 +73,7 @@ inline void report_ouster(Context& ctx, const OusterSource& source, uint64_t fra
   ctx.metric("frames", static_cast<double>(frames));
   ctx.metric("silences", static_cast<double>(silences));
   report_spread(ctx, "stamp_delay_s", source.delays_s());
+  report_wire_latency(ctx, wire);
 }
 
 }  // namespace brickyard::drivers

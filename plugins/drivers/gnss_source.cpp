@@ -35,9 +35,9 @@ int64_t GnssSource::stamp(std::optional<int64_t> device_ns, int64_t receive_ns) 
   return stamped;
 }
 
-void GnssSource::drain(int64_t receive_ns, GnssPoll& out) {
-  while (auto f = stream_.next()) out.fixes.push_back({*f, stamp(f->device_time_ns, receive_ns)});
-  while (auto v = stream_.next_imu()) out.imu.push_back({*v, stamp(v->device_time_ns, receive_ns)});
+void GnssSource::drain(int64_t receive_ns, int64_t arrival_ns, GnssPoll& out) {
+  while (auto f = stream_.next()) out.fixes.push_back({*f, stamp(f->device_time_ns, receive_ns), arrival_ns});
+  while (auto v = stream_.next_imu()) out.imu.push_back({*v, stamp(v->device_time_ns, receive_ns), arrival_ns});
 }
 
 void GnssSource::replay_due(int64_t now_ns, GnssPoll& out) {
@@ -66,11 +66,13 @@ GnssPoll GnssSource::poll(int64_t now_ns) {
   if (!device_error_.empty()) return out;
   std::vector<std::vector<uint8_t>> chunks;
   if (!device_->poll(chunks, kMaxPollBytes)) device_error_ = device_->error();
-  for (const auto& c : chunks) {
-    bytes_ += c.size();
-    stream_.feed(c.data(), c.size());
+  // Chunk by chunk: what a chunk completes is credited to its arrival.
+  const std::vector<int64_t>& arrivals = device_->arrivals_ns();
+  for (size_t i = 0; i < chunks.size(); ++i) {
+    bytes_ += chunks[i].size();
+    stream_.feed(chunks[i].data(), chunks[i].size());
+    drain(now_ns, i < arrivals.size() ? arrivals[i] : -1, out);
   }
-  drain(now_ns, out);
   return out;
 }
 

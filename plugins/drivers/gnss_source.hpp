@@ -15,14 +15,17 @@
 
 namespace brickyard::drivers {
 
+// arrival_ns: the kernel's receive time of the bytes that completed it (udp), else -1.
 struct StampedFix {
   GnssFixValues fix;
   int64_t stamp_ns = 0;
+  int64_t arrival_ns = -1;
 };
 
 struct StampedImu {
   ImuValues imu;
   int64_t stamp_ns = 0;
+  int64_t arrival_ns = -1;
 };
 
 struct GnssPoll {
@@ -51,6 +54,7 @@ class GnssSource {
   const std::vector<double>& delays_s() const { return delays_s_; }  // credited to each device-timed message
   const std::string& device_error() const { return device_error_; }   // set once a live device failed
   uint64_t bytes() const { return bytes_; }
+  int fd() const { return device_ && device_error_.empty() ? device_->fd() : -1; }  // a live device's, to wait on
   bool replay_finished() const { return !device_ && fixes_.done() && imu_.done(); }
 
  private:
@@ -62,7 +66,7 @@ class GnssSource {
   };
 
   int64_t stamp(std::optional<int64_t> device_ns, int64_t receive_ns);
-  void drain(int64_t receive_ns, GnssPoll& out);
+  void drain(int64_t receive_ns, int64_t arrival_ns, GnssPoll& out);
   void replay_due(int64_t now_ns, GnssPoll& out);
 
   GnssSourceSettings s_;

@@ -2,6 +2,7 @@
 
 #include "io/bounded_read.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace brickyard::drivers {
@@ -59,6 +60,8 @@ void OusterSource::feed_live_packets() {
   std::vector<std::vector<uint8_t>> packets;
   if (!device_->poll(packets, kMaxPollBytes)) device_error_ = device_->error();
   for (const auto& p : packets) decoder_.feed(p.data(), p.size());
+  last_arrival_ns_ = -1;
+  for (int64_t a : device_->arrivals_ns()) last_arrival_ns_ = std::max(last_arrival_ns_, a);
 }
 
 StampedCloud OusterSource::cloud_of(const OusterFrame& frame, int64_t receive_ns) {
@@ -66,6 +69,7 @@ StampedCloud OusterSource::cloud_of(const OusterFrame& frame, int64_t receive_ns
   ouster_frame_to_cloud(frame, table_, out.cloud, s_.second_return);
   out.complete = frame.complete();
   out.stamp_ns = receive_ns;
+  out.arrival_ns = last_arrival_ns_;
   const std::optional<int64_t> measured = mid_time_ns(frame);
   if (s_.device_time && measured) {
     out.stamp_ns = clock_.stamp_ns(*measured, receive_ns);

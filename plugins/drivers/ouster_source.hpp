@@ -31,6 +31,7 @@ struct StampedCloud {
   OusterCloud cloud;
   int64_t stamp_ns = 0;
   bool complete = false;
+  int64_t arrival_ns = -1;  // the kernel's receive time of the newest packet the poll fed (udp), else -1
 };
 
 class OusterSource {
@@ -46,6 +47,7 @@ class OusterSource {
   const std::vector<double>& delays_s() const { return delays_s_; }
   const std::string& device_error() const { return device_error_; }
   bool replay_finished() const { return capture_ && capture_done_; }
+  int fd() const { return device_ && device_error_.empty() ? device_->fd() : -1; }  // a live device's, to wait on
 
  private:
   void feed_due_packets(int64_t now_ns);
@@ -64,6 +66,7 @@ class OusterSource {
   ReplayPacer pacer_;
   std::vector<double> delays_s_;
   std::string device_error_;
+  int64_t last_arrival_ns_ = -1;  // of the last poll's newest packet
 };
 
 }  // namespace brickyard::drivers

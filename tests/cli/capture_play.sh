@@ -3,7 +3,8 @@
 # namespace (scripts/netns-run: loopback only): an Ouster capture played to drivers.ouster_lidar
 # listening on UDP comes out as its three rotations; a receiver gets the pcap's datagrams to the
 # lidar port byte for byte, and a GNSS log's bytes whole, at the recorded pace times --rate; a
-# --loop play ends cleanly on SIGINT and on SIGTERM.
+# driver polling once a second, woken by its socket, publishes each fix as it arrives; a --loop
+# play ends cleanly on SIGINT and on SIGTERM.
 set -u
 by=$1; data=$2; graphs=$3; domain=$4; out=$5
 here=$(cd "$(dirname "$0")" && pwd)
@@ -47,7 +48,24 @@ receive nmea
 wait $receiver
 python3 "$here/capture_check.py" log "$out/nmea_midnight.txt" "$out/nmea" "$out/play_nmea.log" 10 9.0 11 || fail "the played NMEA log"
 
-# 4. --loop plays until a signal, then stops within a moment (its waits are 50 ms slices), exit 0,
+# 4. A driver woken by its device: drivers.gnss polls once a second, yet publishes each of the 20
+# fixes (50 ms apart) within milliseconds of its datagram's arrival (polled alone, up to a second).
+port=$(free_port)
+"$by" run "$graphs/gnss_woken.json" --set gnss.source=udp://127.0.0.1:$port --domain "$domain" --out "$out/woken" > "$out/woken.log" 2>&1 &
+run=$!
+for _ in $(seq 300); do grep -q "\[brickyard\] running" "$out/woken.log" && break; sleep 0.05; done
+"$by" capture play "$out/oem7_20hz.GPS" --to udp://127.0.0.1:$port 2> "$out/play_woken.log" || { cat "$out/play_woken.log"; fail "capture play to the woken driver"; }
+wait $run || { cat "$out/woken.log"; fail "drivers.gnss did not publish the 20 fixes"; }
+python3 - "$out/woken/summary.json" <<'PY' || { cat "$out/woken.log"; fail "the woken driver's latency"; }
+import json, sys
+m = json.load(open(sys.argv[1]))["nodes"]["gnss"]["metrics"]
+print(f"woken driver: {m['fixes']:.0f} fixes, wire to message p50 {m['wire_to_message_s_p50']*1e3:.2f} ms, "
+      f"p99 {m['wire_to_message_s_p99']*1e3:.2f} ms, max {m['wire_to_message_s_max']*1e3:.2f} ms")
+# Polled once a second, 20 fixes 50 ms apart would wait 0.5 s at the median.
+sys.exit(0 if m["fixes"] == 20 and m["wire_to_message_s_p50"] < 0.1 else 1)
+PY
+
+# 5. --loop plays until a signal, then stops within a moment (its waits are 50 ms slices), exit 0,
 # saying so.
 for sig in INT TERM; do
   "$by" capture play "$out/oem7_20hz.GPS" --to udp://127.0.0.1:$(free_port) --loop 2> "$out/loop_$sig.log" &

@@ -74,13 +74,15 @@ laps, ref = sim["referee"]["metrics"]["lap_times_s"], direct["referee"]["metrics
 worst = max(abs(a / b - 1) for a, b in zip(laps, ref))
 dbw, vi = sim["dbw"]["metrics"], car["vehicle"]["metrics"]
 delay = max(car[g]["metrics"]["stamp_delay_s_p99"] for g in ("gnss_left", "gnss_right"))
+wire = max(car[g]["metrics"]["wire_to_message_s_p99"] for g in ("gnss_left", "gnss_right"))
 refused = sum(v for k, v in vi.items() if k.endswith("_bad")) + vi["bus_datagrams_refused"] + dbw["bad_frames"]
 print(f"laps {', '.join(f'{a:.2f}' for a in laps)} s on the wires; {', '.join(f'{b:.2f}' for b in ref)} s direct "
       f"(worst {100 * worst:.2f} %); wall contacts {sim['referee']['metrics']['wall_contacts']:.0f}, least clearance "
       f"{sim['referee']['metrics']['min_wall_clearance_m']:.2f} m; drive-by-wire timeouts {dbw['timeouts']:.0f}, the "
       f"interface's watchdog trips {vi['watchdog_trips']:.0f}, frames refused {refused:.0f}; fixes rejected "
       f"{car['estimator']['metrics']['fixes_rejected']:.0f} (direct {direct['estimator']['metrics']['fixes_rejected']:.0f}); "
-      f"the receivers' stamp delay p99 {1000 * delay:.2f} ms")
+      f"the receivers' stamp delay p99 {1000 * delay:.2f} ms, their drivers' wire to message p99 {1000 * wire:.2f} ms; "
+      f"the command gap at most {1000 * vi['longest_command_gap_s']:.0f} ms")
 ok = len(laps) == len(ref) and worst <= 0.01 and sim["referee"]["metrics"]["wall_contacts"] == 0
 ok = ok and dbw["timeouts"] == 0 and vi["watchdog_trips"] == 0 and refused == 0
 sys.exit(0 if ok else 1)

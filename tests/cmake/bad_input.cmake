@@ -24,7 +24,7 @@ bad_input(unknown_plugin        "#/nodes/src/plugin: unknown plugin \"testing.no
 bad_input(latency_over_period "latency_over_period.json#/nodes/src/params/latency_s: latency 0.2 s is longer than the node's period \\(0.1 s\\)" run ${BAD}/latency_over_period.json)
 bad_input(not_shared_object     "libnot_elf.so: not a shared object"              run ${GOOD} --plugin-path ${FIXTURES}/not_elf)
 bad_input(missing_entry_point   "libfixture_no_entry.so: missing entry point brickyard_plugin_library" run ${GOOD} --plugin-path ${FIXTURES}/no_entry)
-bad_input(abi_major             "libfixture_abi_mismatch.so: built against plugin ABI 99.0 \\(SDK 99.0.0\\), this host's is 3.0" run ${GOOD} --plugin-path ${FIXTURES}/abi_mismatch)
+bad_input(abi_major             "libfixture_abi_mismatch.so: built against plugin ABI 99.0 \\(SDK 99.0.0\\), this host's is 3.1" run ${GOOD} --plugin-path ${FIXTURES}/abi_mismatch)
 bad_input(manifest_all_problems "libfixture_bad_manifest.so: .*declared twice.*unknown message type acme::Unknown.*constraint names 'mode', which is not a number param.*its defaults break its own constraint: parameter 'lo' \\(2\\) must be at most 'hi' \\(1\\).*not a number param.*declared twice" run ${GOOD} --plugin-path ${FIXTURES}/bad_manifest)
 # Two providers of one name in one folder: still an error (in an earlier folder it overrides: cli.plugin_override).
 file(MAKE_DIRECTORY ${FIXTURES}/duplicate_same_folder)

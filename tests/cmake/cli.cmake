@@ -7,7 +7,7 @@ endfunction()
 cli_test(plugin_override 0 "notice: plugin 'testing.transform' from .*/duplicate/libfixture_duplicate.so overrides the one in .*/libtesting_transform.so" plugins --plugin-path ${FIXTURES}/duplicate)
 cli_test(validate_ok 0 "chain.json: valid — 3 nodes, 2 wires" validate ${GOOD})
 # A plugin of ABI 2.4 (before roles) is refused at validation, naming the library and both versions.
-bad_input(older_abi "libfixture_older_abi.so: built against plugin ABI 2.4 \\(SDK 0.9.0\\), this host's is 3.0: rebuild the plugin against this SDK" validate ${CMAKE_CURRENT_SOURCE_DIR}/fixtures/older_abi_graph.json --plugin-path ${FIXTURES}/older_abi)
+bad_input(older_abi "libfixture_older_abi.so: built against plugin ABI 2.4 \\(SDK 0.9.0\\), this host's is 3.1: rebuild the plugin against this SDK" validate ${CMAKE_CURRENT_SOURCE_DIR}/fixtures/older_abi_graph.json --plugin-path ${FIXTURES}/older_abi)
 # Graphs that include graphs: run, and errors in the file that declared the value.
 set(COMPOSED ${CMAKE_CURRENT_SOURCE_DIR}/graphs/composed)
 by_next_domain(d)

@@ -1,14 +1,14 @@
 // drivers.gnss: a GNSS receiver on its wire (NovAtel OEM7 logs, binary or ASCII, or NMEA 0183) to
-// GnssFix in the map frame, and a SPAN receiver's RAWIMUSX to Imu in the vehicle frame. The device
-// is polled without blocking each period (`rate_hz` bounds the delay a message waits); a recorded
-// log replays at its own pace. A receiver silent for longer than `silent_after_s` is reported (the
-// estimator sees no fix: the receiver is lost to it). Formats, the datum, the IMU's scale and the
-// time rule: docs/drivers.md.
+// GnssFix in the map frame, and a SPAN receiver's RAWIMUSX to Imu in the vehicle frame. On the real
+// clock the node wakes as the device has bytes (and polls it each period besides); a recorded log
+// replays at its own pace. A receiver silent for `silent_after_s` is reported (the estimator sees
+// no fix: it is lost to it). Formats, the datum, the IMU's scale, the time rule: docs/drivers.md.
 #include <brickyard/msgs/GnssFix.h>
 #include <brickyard/msgs/Imu.h>
 #include <brickyard/plugin.hpp>
 
 #include "drivers/datum_param.hpp"
+#include "drivers/device_failure.hpp"
 #include "drivers/driver_metrics.hpp"
 #include "drivers/gnss_source.hpp"
 #include "drivers/silence_watch.hpp"
@@ -48,7 +48,7 @@ ParamBinding<Settings> bindings() {
   b.bind("imu_gyro_per_count", &Settings::imu, &RawImuScale::gyro_per_count).in_unit("rad").range(0, 1).doc("RAWIMUSX: the angle scale factor");
   b.bind("imu_rate_hz", &Settings::imu, &RawImuScale::rate_hz).in_unit("Hz").range(0, 10000).doc("RAWIMUSX: the IMU's output rate");
   b.bind("imu_rpy_deg", &Settings::imu_rpy_deg).in_unit("deg").range(-360, 360).doc("the IMU body frame's roll, pitch, yaw in the vehicle's");
-  b.declare(ParamSpec::number("rate_hz", 500).in_unit("Hz").range(1, 10000).doc("how often the device is polled"));
+  b.declare(ParamSpec::number("rate_hz", 500).in_unit("Hz").range(1, 10000).doc("how often the device is polled (on the real clock the node also wakes as bytes arrive)"));
   return b;
 }
 
@@ -102,19 +102,19 @@ class GnssDriver : public Plugin {
       throw BadInput("parameter 'source': " + std::string(e.what()));
     }
     io_ = ports().connect(ctx);
+    ctx.wake_on_readable(source_->fd());
   }
 
   void step(Context& ctx) override {
     const std::int64_t now = ctx.now_ns();
     const GnssPoll got = source_->poll(now);
-    for (const StampedFix& f : got.fixes) publish(f), silence_.heard(now);
-    for (const StampedImu& v : got.imu) publish(v);
-    if (!source_->device_error().empty() && !device_error_logged_)
-      ctx.log(LogLevel::error, "source " + source_->device_error() + ": no more fixes from it"), device_error_logged_ = true;
+    for (const StampedFix& f : got.fixes) publish(f), silence_.heard(now), wire_.add(ctx.now_ns(), f.arrival_ns);
+    for (const StampedImu& v : got.imu) publish(v), wire_.add(ctx.now_ns(), v.arrival_ns);
+    device_failure_.check(ctx, source_->device_error(), "fixes");
     silence_.check(ctx, now, !source_->replay_finished());
   }
 
-  void deactivate(Context& ctx) override { report_gnss(ctx, *source_, fixes_, silence_.silences()); }
+  void deactivate(Context& ctx) override { report_gnss(ctx, *source_, fixes_, silence_.silences(), wire_); }
 
  private:
   void publish(const StampedFix& f) {
@@ -139,8 +139,9 @@ class GnssDriver : public Plugin {
   std::optional<GnssSource> source_;
   Ports io_;
   SilenceWatch silence_;
+  LatencySpread wire_;
   std::uint32_t fixes_ = 0, imu_samples_ = 0;
-  bool device_error_logged_ = false;
+  DeviceFailure device_failure_;
 };
 
 }  // namespace

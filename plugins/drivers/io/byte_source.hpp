@@ -54,6 +54,14 @@ class ByteSource {
   virtual bool poll(std::vector<std::vector<uint8_t>>& out, size_t max_bytes = 1 << 20) = 0;
   virtual const std::string& error() const = 0;
   virtual bool datagrams() const = 0;  // true for udp: each entry is one packet
+  // The descriptor to wait on for more (Context::wake_on_readable); -1 once the device failed.
+  virtual int fd() const = 0;
+  // The kernel's receive time of each entry the last poll() appended (ns since the epoch: the
+  // real clock's), where the transport keeps one (udp: SO_TIMESTAMPNS); empty otherwise.
+  virtual const std::vector<int64_t>& arrivals_ns() const {
+    static const std::vector<int64_t> none;
+    return none;
+  }
 };
 // Opens a live device (udp, tcp, serial). Returns null with `error` naming the device and the OS error
 // ("serial:///dev/ttyUSB9: cannot open: No such file or directory"). file and pcap are not live: error says so.

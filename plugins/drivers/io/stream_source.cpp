@@ -44,6 +44,7 @@ class StreamSource final : public ByteSource {
 
   const std::string& error() const override { return error_; }
   bool datagrams() const override { return false; }
+  int fd() const override { return fd_.get(); }
 
  private:
   UniqueFd fd_;

@@ -2,9 +2,12 @@
 #include "transports.hpp"
 
 #include <sys/socket.h>
+#include <sys/uio.h>
 
 #include <algorithm>
 #include <cerrno>
+#include <cstring>
+#include <ctime>
 #include <optional>
 #include <utility>
 
@@ -22,15 +25,18 @@ class UdpSource final : public ByteSource {
   UdpSource(UniqueFd fd, std::string name) : fd_(std::move(fd)), name_(std::move(name)), scratch_(kMaxDatagram) {}
 
   bool poll(std::vector<std::vector<uint8_t>>& out, size_t max_bytes) override {
+    arrivals_.clear();
     if (!error_.empty()) return false;
     size_t total = 0;
     if (held_) {
       total += cost(held_->size());
       out.push_back(std::move(*held_));
+      arrivals_.push_back(held_arrival_);
       held_.reset();
     }
     while (total < max_bytes) {
-      ssize_t n = ::recv(fd_.get(), scratch_.data(), scratch_.size(), 0);
+      int64_t arrival = -1;
+      ssize_t n = receive(arrival);
       if (n < 0 && errno == EINTR) continue;
       if (n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK)) return true;
       if (n < 0) {
@@ -43,18 +49,40 @@ class UdpSource final : public ByteSource {
       // datagram larger than max_bytes is not stuck.
       if (total > 0 && total + cost(datagram.size()) > max_bytes) {
         held_ = std::move(datagram);
+        held_arrival_ = arrival;
         return true;
       }
       total += cost(datagram.size());
       out.push_back(std::move(datagram));
+      arrivals_.push_back(arrival);
     }
     return true;
   }
 
   const std::string& error() const override { return error_; }
   bool datagrams() const override { return true; }
+  int fd() const override { return fd_.get(); }
+  const std::vector<int64_t>& arrivals_ns() const override { return arrivals_; }
 
  private:
+  // One datagram into scratch_, with the kernel's receive time (-1 where none came with it).
+  ssize_t receive(int64_t& arrival) {
+    alignas(cmsghdr) char control[CMSG_SPACE(sizeof(timespec))];
+    iovec io{scratch_.data(), scratch_.size()};
+    msghdr m{};
+    m.msg_iov = &io, m.msg_iovlen = 1;
+    m.msg_control = control, m.msg_controllen = sizeof control;
+    const ssize_t n = ::recvmsg(fd_.get(), &m, 0);
+    if (n < 0) return n;
+    for (cmsghdr* c = CMSG_FIRSTHDR(&m); c; c = CMSG_NXTHDR(&m, c))
+      if (c->cmsg_level == SOL_SOCKET && c->cmsg_type == SCM_TIMESTAMPNS) {
+        timespec t;
+        std::memcpy(&t, CMSG_DATA(c), sizeof t);
+        arrival = static_cast<int64_t>(t.tv_sec) * 1000000000 + t.tv_nsec;
+      }
+    return n;
+  }
+
   // An empty datagram counts as one byte, so a flood of them still ends a poll.
   static size_t cost(size_t size) { return std::max<size_t>(size, 1); }
 
@@ -62,6 +90,8 @@ class UdpSource final : public ByteSource {
   std::string name_;
   std::vector<uint8_t> scratch_;
   std::optional<std::vector<uint8_t>> held_;  // read past the last poll's bound
+  int64_t held_arrival_ = -1;
+  std::vector<int64_t> arrivals_;  // of the last poll's entries
   std::string error_;
 };
 
@@ -98,6 +128,8 @@ std::unique_ptr<ByteSource> open_udp_source(const SourceSpec& spec, const std::s
   int on = 1;
   ::setsockopt(fd.get(), SOL_SOCKET, SO_REUSEADDR, &on, sizeof on);
   ::setsockopt(fd.get(), SOL_SOCKET, SO_RCVBUF, &kReceiveBuffer, sizeof kReceiveBuffer);
+  // Each datagram's receive time from the kernel: what the driver's own latency is measured from.
+  ::setsockopt(fd.get(), SOL_SOCKET, SO_TIMESTAMPNS, &on, sizeof on);
   if (::bind(fd.get(), reinterpret_cast<const sockaddr*>(&address), sizeof address) != 0) {
     error = device_error(name, "cannot bind " + bind_host + ":" + std::to_string(spec.port), errno);
     return nullptr;

@@ -1,11 +1,12 @@
 // drivers.ouster_lidar: an Ouster sensor on its wire (lidar packets of any profile, the sensor's
 // metadata JSON for its geometry) to one PointCloud per rotation, in the sensor frame with the
-// sensor's mount on the car. The lidar port is polled without blocking each period; a packet
-// capture (pcap) replays at its pace. A sensor silent for longer than `silent_after_s` is reported.
+// sensor's mount on the car. On the real clock the node wakes as packets arrive (and polls the
+// port each period besides); a packet capture (pcap) replays at its pace. A sensor silent for longer than `silent_after_s` is reported.
 // Formats: docs/drivers-formats.md; the devices: docs/drivers-transports.md.
 #include <brickyard/msgs/PointCloud.h>
 #include <brickyard/plugin.hpp>
 
+#include "drivers/device_failure.hpp"
 #include "drivers/driver_metrics.hpp"
 #include "drivers/ouster_source.hpp"
 #include "drivers/silence_watch.hpp"
@@ -44,7 +45,7 @@ ParamBinding<Settings> bindings() {
   b.bind("second_return", &Settings::second_return).doc("dual-return profile: the second return's points");
   b.bind("device_time", &Settings::device_time).doc("stamp each frame at its measurement by the sensor's clock (else at receipt)");
   b.bind("silent_after_s", &Settings::silent_after_s).in_unit("s").range(0.01, 60).doc("no frame for this long: the sensor is reported silent");
-  b.declare(ParamSpec::number("rate_hz", 1000).in_unit("Hz").range(1, 10000).doc("how often the port is polled"));
+  b.declare(ParamSpec::number("rate_hz", 1000).in_unit("Hz").range(1, 10000).doc("how often the port is polled (on the real clock the node also wakes as packets arrive)"));
   return b;
 }
 
@@ -104,20 +105,20 @@ class OusterLidar : public Plugin {
       throw BadInput("parameter 'source': " + std::string(e.what()));
     }
     io_ = ports().connect(ctx);
+    ctx.wake_on_readable(source_->fd());
   }
 
   void step(Context& ctx) override {
     const std::int64_t now = ctx.now_ns();
-    for (StampedCloud& c : source_->poll(now)) publish(std::move(c)), silence_.heard(now);
-    if (!source_->device_error().empty() && !error_logged_)
-      ctx.log(LogLevel::error, "source " + source_->device_error() + ": no more frames from it"), error_logged_ = true;
+    for (StampedCloud& c : source_->poll(now)) publish(ctx, std::move(c)), silence_.heard(now);
+    device_failure_.check(ctx, source_->device_error(), "frames");
     silence_.check(ctx, now, !source_->replay_finished());
   }
 
-  void deactivate(Context& ctx) override { report_ouster(ctx, *source_, frames_, silence_.silences()); }
+  void deactivate(Context& ctx) override { report_ouster(ctx, *source_, frames_, silence_.silences(), wire_); }
 
  private:
-  void publish(StampedCloud c) {
+  void publish(Context& ctx, StampedCloud c) {
     constexpr double kDeg = M_PI / 180;
     auto m = std::make_shared<msgs::PointCloud>();
     m->header().stamp_ns(c.stamp_ns);
@@ -128,6 +129,7 @@ class OusterLidar : public Plugin {
     m->sensor_roll(rpy_[0] * kDeg), m->sensor_pitch(rpy_[1] * kDeg), m->sensor_yaw(rpy_[2] * kDeg);
     m->x(std::move(c.cloud.x)), m->y(std::move(c.cloud.y)), m->z(std::move(c.cloud.z)), m->intensity(std::move(c.cloud.intensity));
     io_.cloud.publish(std::shared_ptr<const msgs::PointCloud>(std::move(m)));
+    wire_.add(ctx.now_ns(), c.arrival_ns);
   }
 
   std::uint8_t id_ = 0;
@@ -136,7 +138,8 @@ class OusterLidar : public Plugin {
   Ports io_;
   std::uint32_t frames_ = 0;
   SilenceWatch silence_;
-  bool error_logged_ = false;
+  LatencySpread wire_;
+  DeviceFailure device_failure_;
 };
 
 }  // namespace

@@ -5,6 +5,7 @@
 
 // 3.0: Manifest::roles appended (Manifest::plays, brickyard/roles.hpp); ports declared once
 //      through PortBinding (brickyard/port_binding.hpp). 2.x plugins must be rebuilt.
+// 3.1: Context::wake_on_readable and Trigger::Kind::readable (a driver woken by its device).
 // 2.0: Manifest::constraints appended (its layout changed: 1.x plugins must be rebuilt).
 // 2.1: TriggerSpec::Kind::latency (Manifest::delivered_after).
 // 2.2: TriggerSpec::Kind::deadline (Manifest::step_deadline).
@@ -14,7 +15,7 @@
 //      validation. The host ignores the field in an older plugin's manifest, which lacks it.
 // 2.x and 1.x history: 1.1 Context::find_file and BadInput; 1.2 Context::status.
 #define BRICKYARD_ABI_MAJOR 3u
-#define BRICKYARD_ABI_MINOR 0u
+#define BRICKYARD_ABI_MINOR 1u
 #define BRICKYARD_ENTRY_POINT_NAME "brickyard_plugin_library"
 #define BRICKYARD_EXPORT __attribute__((visibility("default")))
 

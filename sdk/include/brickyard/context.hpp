@@ -134,7 +134,8 @@ class BRICKYARD_EXPORT BadInput : public std::runtime_error {
 };
 
 struct Trigger {
-  enum class Kind { periodic, input };
+  // readable: the descriptor the node waits on (Context::wake_on_readable) has something to read.
+  enum class Kind { periodic, input, readable };
   Kind kind = Kind::periodic;
   std::string port;  // for input triggers
 };
@@ -202,6 +203,12 @@ class Context {
   // `brickyard run` shows the newest of each while it runs. Not kept in the summary (use metric).
   // Appended last so that plugins built against ABI 1.1 keep their vtable (ABI 1.2).
   virtual void status(std::string_view field, std::string_view value) = 0;
+  // A driver's device: on the real clock the node also steps as soon as `fd` has something to
+  // read (or has failed: a step then finds the error), not only on its period, so what arrives
+  // waits for no poll. One descriptor per node; -1 stops the waking (a device that failed would
+  // otherwise wake it without end). The node keeps owning the descriptor. On the sim clock a node
+  // steps on its period and inputs alone: this is ignored. Call it from configure or a step (ABI 3.1).
+  virtual void wake_on_readable(int fd) = 0;
 
  private:
   static void check_type(const std::string& declared, const char* requested, std::string_view port) {

@@ -11,6 +11,7 @@
 #include <arpa/inet.h>
 #include <fcntl.h>
 #include <netinet/in.h>
+#include <poll.h>
 #include <sys/socket.h>
 #include <termios.h>
 #include <unistd.h>
@@ -344,6 +345,46 @@ TEST(Udp, OnePollReadsAtMostMaxBytes) {
   }
   EXPECT_EQ(got, sent);
   EXPECT_EQ(per_poll, (std::vector<size_t>{200, 200, 200, 200, 200, 400}));
+}
+
+// Each datagram carries the kernel's receive time, on the real clock's scale (the epoch's), the
+// held one too; the descriptor is one poll() on it wakes for.
+TEST(Udp, EachDatagramHasItsArrivalAndTheDescriptorWakes) {
+  uint16_t port = free_port(SOCK_DGRAM);
+  std::string name = "udp://127.0.0.1:" + std::to_string(port);
+  std::string error;
+  auto source = open_source(spec_of(name), error);
+  auto sink = open_sink(spec_of(name), error);
+  ASSERT_TRUE(source && sink) << error;
+  ASSERT_GE(source->fd(), 0);
+  pollfd idle{source->fd(), POLLIN, 0};
+  EXPECT_EQ(::poll(&idle, 1, 0), 0);  // nothing yet
+  auto epoch_ns = [] { return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::system_clock::now().time_since_epoch()).count(); };
+  const int64_t before = epoch_ns();
+  for (int i = 0; i < 3; ++i) ASSERT_TRUE(sink->send(std::vector<uint8_t>(100, 1).data(), 100));
+  pollfd ready{source->fd(), POLLIN, 0};
+  ASSERT_EQ(::poll(&ready, 1, 2000), 1);
+  std::this_thread::sleep_for(20ms);
+  const int64_t after = epoch_ns();
+  Entries first, second;
+  ASSERT_TRUE(source->poll(first, 250));  // two fit: the third is held for the next poll
+  ASSERT_EQ(first.size(), 2u);
+  std::vector<int64_t> arrivals = source->arrivals_ns();
+  ASSERT_TRUE(source->poll(second, 250));
+  ASSERT_EQ(second.size(), 1u);
+  ASSERT_EQ(source->arrivals_ns().size(), 1u);
+  arrivals.push_back(source->arrivals_ns()[0]);
+  ASSERT_EQ(arrivals.size(), 3u);
+  for (int64_t a : arrivals) {
+    EXPECT_GE(a, before);
+    EXPECT_LE(a, after);
+  }
+  EXPECT_LE(arrivals[0], arrivals[1]);
+  EXPECT_LE(arrivals[1], arrivals[2]);
+  Entries none;
+  ASSERT_TRUE(source->poll(none));
+  EXPECT_TRUE(none.empty());
+  EXPECT_TRUE(source->arrivals_ns().empty());  // of the last poll only
 }
 
 // The group joined, and sent to, on loopback's interface (127.0.0.1) with a TTL of 1: it stays on the machine.
