@@ -85,8 +85,9 @@ bool run_option(Args& a, const std::string& f, Cursor& c) {
   else if (f == "--dir") a.dir = c.value();
   else if (f == "--role") a.role = c.value();
   else if (f == "--pace") {
+    // Bounded both ways: a factor of 1e-30 made the wait between steps overflow into none.
     a.pace = parse_number(f, c.value());
-    if (!(a.pace > 0)) usage_error("--pace", "expected a factor of real time, more than 0");
+    if (!(a.pace >= 1e-3 && a.pace <= 1e6)) usage_error("--pace", "expected a factor of real time from 0.001 to 1e6");
   }
   else if (f == "--no-report") a.no_report = true;
   else if (f == "--one-process") a.one_process = true;
@@ -141,8 +142,9 @@ bool tool_option(Args& a, const std::string& f, Cursor& c) {
     a.rate = parse_number(f, c.value());
     // capture play may send as fast as it can (0); bag play's DDS writers are always paced.
     if (a.command == "capture") {
-      if (!(a.rate >= 0 && a.rate <= 1e6)) usage_error("--rate", "expected a factor of the recorded pace, from 0 (as fast as possible) to 1e6");
-    } else if (!(a.rate > 0)) usage_error("--rate", "expected a factor of the recorded speed, more than 0");
+      if (!(a.rate == 0 || (a.rate >= 1e-3 && a.rate <= 1e6)))
+        usage_error("--rate", "expected a factor of the recorded pace, 0 (as fast as possible) or from 0.001 to 1e6");
+    } else if (!(a.rate >= 1e-3 && a.rate <= 1e6)) usage_error("--rate", "expected a factor of the recorded speed from 0.001 to 1e6");
   } else if (f == "--only") a.only = patterns(f, c.value());
   else if (f == "--count") {
     const std::string v = c.value();

@@ -72,7 +72,7 @@ options:
                        interface)
   --live-cloud-hz X    send each point-cloud channel at most X clouds a second of wall time
                        (default 20, a display's rate; 0: every cloud)
-  --pace X             sim clock: run at most X times real time, so a person can watch
+  --pace X             sim clock: run at most X times real time (0.001 to 1e6), so a person can watch
   --threads N          sim clock: step nodes that cannot see each other on N threads (default:
                        the machine's cores, at most 4); the run is the same on any number
   --profile            time each node's steps on the wall clock: a table at the end, sorted by

@@ -211,6 +211,10 @@ void apply_sets(json& root, const std::vector<std::string>& sets, Diagnostics& d
     }
     if (!n.contains("params")) n["params"] = json::object();
     if (!n["params"].is_object()) continue;
+    if (auto deep = find_excess_depth(text, kMaxValueDepth)) {
+      d.add("--set " + quoted_name(s), "the value: " + deep->message);
+      continue;
+    }
     // A value that parses as JSON is taken as such (numbers, true, [1,2]); anything else is a string.
     json v = json::parse(text, nullptr, false);
     if (v.is_discarded()) v = text;

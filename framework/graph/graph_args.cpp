@@ -1,6 +1,8 @@
 #include "graph/graph_args.hpp"
 
 #include "graph/graph.hpp"
+#include "graph/json_scan.hpp"
+#include "graph/names.hpp"
 
 #include <cctype>
 #include <map>
@@ -99,6 +101,10 @@ void apply_args(json& root, const std::vector<std::string>& args, const std::str
       std::string list;
       for (const auto& [n, v] : values) list += (list.empty() ? "" : ", ") + n;
       d.add("--arg " + a, "the graph declares no argument \"" + name + "\" (declared: " + (list.empty() ? "none" : list) + ")");
+      continue;
+    }
+    if (auto deep = find_excess_depth(a.substr(eq + 1), kMaxValueDepth)) {
+      d.add("--arg " + quoted_name(a), "the value: " + deep->message);
       continue;
     }
     // As --set: a value that parses as JSON is taken as such, anything else is a string.

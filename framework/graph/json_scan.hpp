@@ -19,6 +19,9 @@ struct ScanFinding {
 
 // First position where nesting exceeds max_depth, if any. Works on invalid JSON too.
 std::optional<ScanFinding> find_excess_depth(const std::string& text, int max_depth);
+// How deep a value given on the command line (--set, --arg) may nest: a parameter's value, placed
+// inside a graph whose files may nest 64 deep. Deeper, the JSON parser's recursion is the bound.
+constexpr int kMaxValueDepth = 32;
 // First duplicate key in any object. Expects syntactically valid JSON.
 std::optional<ScanFinding> find_duplicate_key(const std::string& text);
 // First number no double holds (1e999): the parser says only "number overflow", not where.

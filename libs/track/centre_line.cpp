@@ -1,9 +1,11 @@
 #include "centre_line.hpp"
 
 #include "band_overlap.hpp"
+#include "io/bounded_read.hpp"
 #include "io/whole_file.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -21,9 +23,10 @@ std::vector<double> parse_row(const std::string& row, std::size_t want, std::siz
     std::string cell = row.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
     cell.erase(0, cell.find_first_not_of(" \t\r"));
     cell.erase(cell.find_last_not_of(" \t\r") + 1);
-    char* end = nullptr;
-    double x = std::strtod(cell.c_str(), &end);
-    if (cell.empty() || *end != '\0')
+    // Decimal only (strtod also reads hexadecimal floats, 0x1p3, which no track file holds).
+    double x = 0;
+    const auto [end, err] = std::from_chars(cell.data(), cell.data() + cell.size(), x, std::chars_format::general);
+    if (cell.empty() || err != std::errc() || end != cell.data() + cell.size())
       throw TrackFileError(where + ": field " + std::to_string(v.size() + 1) + " is not a number: '" + cell + "'");
     if (!std::isfinite(x)) throw TrackFileError(where + ": field " + std::to_string(v.size() + 1) + " is not finite");
     v.push_back(x);
@@ -147,9 +150,15 @@ CenterLine parse(std::istream& in, const std::string& name, std::size_t fields) 
   return c;
 }
 
+// A track of 100,000 points is some 4 MB: 64 MiB is far past any, and a FIFO or /dev/zero is
+// refused before a byte is read (read whole, one would hang or grow without end).
+constexpr std::size_t kMaxTrackBytes = std::size_t{64} << 20;
+
 CenterLine load(const std::string& path, std::size_t fields) {
-  std::ifstream f(path);
-  if (!f) throw TrackFileError(path + ": cannot open");
+  std::vector<std::uint8_t> bytes;
+  std::string error;
+  if (!io::read_regular_file(path, kMaxTrackBytes, bytes, error)) throw TrackFileError(error);
+  std::istringstream f(std::string(bytes.begin(), bytes.end()));
   return parse(f, path, fields);
 }
 

@@ -45,4 +45,5 @@ echo "junk" > "$out/junk.db3"
 expect2 "junk.db3: not a readable recording" "$by" bag play "$out/junk.db3" --domain "$domain"
 expect2 "no recorded topic matches --only" "$by" bag play "$out/rec.mcap" --domain "$domain" --only 'nothing.*'
 expect2 "--rate: expected a factor of the recorded speed" "$by" bag play "$out/rec.mcap" --rate 0
+expect2 "--rate: expected a factor of the recorded speed from 0.001 to 1e6" "$by" bag play "$out/rec.mcap" --rate 1e-300
 echo "bag_play: ok"

@@ -67,7 +67,8 @@ expect2() {  # pattern, then the command
 }
 expect2 "--live 70000: expected a port from 0 to 65535" "$by" run "$graph" --live 70000
 expect2 "--live nope.example:8765: cannot listen (not an IP address)" "$by" run "$graph" --domain "$domain" --duration 1 --live 8765 --live-address nope.example
-expect2 "--pace: expected a factor of real time, more than 0" "$by" run "$graph" --pace 0
+expect2 "--pace: expected a factor of real time from 0.001 to 1e6" "$by" run "$graph" --pace 0
+expect2 "--pace: expected a factor of real time from 0.001 to 1e6" "$by" run "$graph" --pace 1e-30
 expect2 "--live-cloud-hz: expected clouds a second from 0 (every one) to 1000" "$by" run "$graph" --live-cloud-hz -1
 expect2 "--pace: the graph runs on the real clock" "$by" run "$configs/../tests/graphs/real_clock.json" --pace 2
 python3 -c "import socket,time; s=socket.socket(); s.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1); s.bind(('127.0.0.1', $port)); s.listen(); time.sleep(30)" &

@@ -165,6 +165,14 @@ bad_config(map_bad_row "node 'map' \\(map.track_file\\): track file .*bad_track.
 # The bank column (a mapped track's, docs/mapping.md): asked for of a file without it; dropped by one row.
 bad_config(map_bank_file_no_column "node 'map' \\(map.track_file\\): parameter 'bank_mode': .*IMS.csv: bank_mode 'file', but the track file has no bank_deg column" run ${BAD}/bank_file_no_column.json)
 bad_config(map_bank_column_dropped "node 'map' \\(map.track_file\\): track file .*bank_column_dropped.csv:5: 4 fields, expected 5" run ${BAD}/bank_column_dropped.json)
+# A value nested 60,000 deep (120 kB, under one argument's 128 KiB): refused before the JSON
+# parser's recursion meets it (it crashed validate and run).
+string(REPEAT "[" 60000 DEEP_OPEN)
+string(REPEAT "]" 60000 DEEP_CLOSE)
+bad_input(set_value_too_deep "--set src.rate_hz=\\[+… \\(120012 characters\\): the value: nesting deeper than 32 levels"
+          run ${GOOD} --set "src.rate_hz=${DEEP_OPEN}${DEEP_CLOSE}")
+bad_input(arg_value_too_deep "--arg track=\\[+… \\(120006 characters\\): the value: nesting deeper than 32 levels"
+          validate ${PROJECT_SOURCE_DIR}/configs/race.json --arg "track=${DEEP_OPEN}${DEEP_CLOSE}")
 # Graph arguments (configs/race.json): one never declared; a graph file beside a planned line.
 bad_input(arg_undeclared "--arg trak=x: the graph declares no argument \"trak\" \\(declared: bank_deg, .*track, wall_side\\)"
           run ${PROJECT_SOURCE_DIR}/configs/race.json --arg trak=x)

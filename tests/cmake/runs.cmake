@@ -19,8 +19,18 @@ add_test(NAME cli.plan_impossible_car COMMAND ${EXPECT} 2 "brickyard-plan: .*imp
   -- $<TARGET_FILE:brickyard-plan> line --track ${PROJECT_SOURCE_DIR}/data/tracks/IMS.csv --out ${RUNS}/x.csv --vehicle ${BAD}/impossible_car.json)
 add_test(NAME cli.plan_line_off_track COMMAND ${EXPECT} 2 "brickyard-plan: .*off_track_line.csv: the line leaves the track \\(.*IMS.csv\\): point 100 \\([-0-9.]+, [-0-9.]+\\) is [0-9.]+ m beyond the track's (left|right) edge at s = [0-9.]+ m"
   -- $<TARGET_FILE:brickyard-plan> graph --track ${PROJECT_SOURCE_DIR}/data/tracks/IMS.csv --raceline ${BAD}/off_track_line.csv --out ${RUNS}/x.byrg)
-add_test(NAME cli.plan_bad_track COMMAND ${EXPECT} 2 "brickyard-plan: .*missing.csv: cannot open"
+add_test(NAME cli.plan_bad_track COMMAND ${EXPECT} 2 "brickyard-plan: .*missing.csv: cannot be opened \\(No such file or directory\\)"
   -- $<TARGET_FILE:brickyard-plan> graph --track ${RUNS}/missing.csv --raceline x.csv --out ${RUNS}/x.byrg)
+# A device or a FIFO where a track is expected: refused before a byte is read (/dev/zero grew
+# the planner to 2 GB, a FIFO hung it).
+add_test(NAME cli.plan_track_device COMMAND ${EXPECT} 2 "brickyard-plan: /dev/zero: not a regular file"
+  -- $<TARGET_FILE:brickyard-plan> line --track /dev/zero --out ${RUNS}/x.csv)
+add_test(NAME cli.plan_track_fifo COMMAND sh -c "mkdir -p ${RUNS} && rm -f ${RUNS}/track.fifo && mkfifo ${RUNS}/track.fifo && exec \"$0\" \"$@\""
+  ${EXPECT} 2 "brickyard-plan: .*/track.fifo: not a regular file" -- $<TARGET_FILE:brickyard-plan> line --track ${RUNS}/track.fifo --out ${RUNS}/x.csv)
+set_tests_properties(cli.plan_track_device cli.plan_track_fifo PROPERTIES TIMEOUT 10)
+# A limit no car has (an --a-lat of 0 planned a lap of 39,970 s, exit 0).
+add_test(NAME cli.plan_limit_out_of_range COMMAND ${EXPECT} 2 "brickyard-plan: --a-lat 0: expected 0.5 to 100 m/s\\^2"
+  -- $<TARGET_FILE:brickyard-plan> line --track ${PROJECT_SOURCE_DIR}/data/tracks/IMS.csv --out ${RUNS}/x.csv --a-lat 0)
 # Any track in one step: line, profile and road graph for Spielberg and the AV-21.
 add_test(NAME cli.plan_track_one_step COMMAND ${EXPECT} 0
   "Spielberg_line.csv: [0-9]+ points.*Spielberg_profile.csv: lap time [0-9.]+ s.*Spielberg.byrg: [0-9]+ layers, [0-9]+ nodes, [0-9]+ edges"

@@ -73,6 +73,19 @@ double number(std::map<std::string, std::string>& o, const std::string& k, doubl
   return v;
 }
 
+// A number within what physics or the tool allows (an --a-lat of 0 planned a lap of 40,000 s):
+// outside [lo, hi] is refused with the range and its unit.
+double number_in(std::map<std::string, std::string>& o, const std::string& k, double def, double lo, double hi, const char* unit) {
+  const std::string given = o.count(k) ? o[k] : "";
+  const double v = number(o, k, def);
+  if (!given.empty() && !(v >= lo && v <= hi)) {
+    char range[96];
+    std::snprintf(range, sizeof range, "expected %g to %g %s", lo, hi, unit);
+    throw Usage("--" + k + " " + given + ": " + range);
+  }
+  return v;
+}
+
 std::string text(std::map<std::string, std::string>& o, const std::string& k) {
   auto it = o.find(k);
   if (it == o.end()) throw Usage("--" + k + " is required");
@@ -109,12 +122,13 @@ int line_cmd(std::map<std::string, std::string> o) {
   MinCurvatureParams p;
   p.margin = number(o, "margin", p.margin);
   VehicleLimits l = motion::vehicle_limits(car(o));  // the AV-21 unless told otherwise
-  l.v_max = number(o, "v-max", l.v_max);
-  l.a_lat = number(o, "a-lat", l.a_lat);
-  l.a_accel = number(o, "a-accel", l.a_accel);
-  l.a_decel = number(o, "a-decel", l.a_decel);
-  l.drag = number(o, "drag", l.drag);
-  l.power = number(o, "power", l.power);
+  // Bounds far past any race car's, and none that leaves a lap without a speed.
+  l.v_max = number_in(o, "v-max", l.v_max, 1, 200, "m/s");
+  l.a_lat = number_in(o, "a-lat", l.a_lat, 0.5, 100, "m/s^2");
+  l.a_accel = number_in(o, "a-accel", l.a_accel, 0.1, 100, "m/s^2");
+  l.a_decel = number_in(o, "a-decel", l.a_decel, 0.1, 100, "m/s^2");
+  l.drag = number_in(o, "drag", l.drag, 0, 0.1, "1/m");
+  l.power = number_in(o, "power", l.power, 0, 1e5, "W/kg");
   const std::string refine = o.count("min-time") ? text(o, "min-time") : "on";
   if (refine != "on" && refine != "off") throw Usage("--min-time " + refine + ": expected on or off");
   MinTimeParams mp;

@@ -56,7 +56,7 @@ WatchedCommand watch_command(CommandWatchdog& watchdog, double now, bool fresh, 
   if (watchdog.stopping() && !was)
     out.warning = "no command for " + std::to_string(now - watchdog.quiet_since()) + " s: throttle off, braking to a stop";
   if (was && !watchdog.stopping())
-    out.warning = "commands again: the stack drives (the longest gap between two so far: " + std::to_string(watchdog.longest_gap()) + " s)";
+    out.warning = "commands again: the stack drives (the longest gap between two so far: " + std::to_string(watchdog.longest_gap(now)) + " s)";
   return out;
 }
 

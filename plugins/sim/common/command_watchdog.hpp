@@ -42,8 +42,10 @@ class CommandWatchdog {
   // Since when it has heard nothing: the last command, or the car's first step before any.
   double quiet_since() const { return any_ ? heard_ : start_; }
   int trips() const { return trips_; }  // times the commands went stale
-  // The longest time between two commands: how long a stack that died and was restarted was gone.
-  double longest_gap() const { return longest_gap_; }
+  // The longest time without a command up to `now`, the one still open counted: how long a stack
+  // that died and was restarted was gone, or since when one that died for good has been.
+  double longest_gap(double now) const { return any_ ? std::max(longest_gap_, now - heard_) : longest_gap_; }
+  double last_command() const { return any_ ? heard_ : -1; }  // when the last one came (-1: none did)
 
  private:
   CommandWatchdogParams p_;

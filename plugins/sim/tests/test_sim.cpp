@@ -110,6 +110,9 @@ TEST(TrackFile, ValuesNoCircuitHasAreRefused) {
   EXPECT_EQ(error(square), "");
   EXPECT_EQ(error("0,0,7,7\n1e308,0,7,7\n50,50,7,7\n0,50,7,7\n"), "t.csv:2: a point more than 1000 km from the origin");
   EXPECT_EQ(error("0,0,7,7\n50,0,700,7\n50,50,7,7\n0,50,7,7\n"), "t.csv:2: a track width over 100 m");
+  // Decimal numbers only: a hexadecimal float (strtod's) is not a track's.
+  EXPECT_EQ(error("0,0,7,7\n0x1.9p5,0,7,7\n50,50,7,7\n0,50,7,7\n"), "t.csv:2: field 1 is not a number: '0x1.9p5'");
+  EXPECT_EQ(error("0,0,7,7\n50.0,-0.0,7e0,7.\n50,50,7,7\n0,50,7,7\n"), "");
   EXPECT_EQ(error("0,0,7,7\n500,0,7,7\n50,50,7,7\n0,50,7,7\n"), "t.csv:2: 500 m from the point of line 1 (points at most 200 m apart)");
   EXPECT_EQ(error("0,0,7,7\n150,0,7,7\n300,0,7,7\n450,0,7,7\n"),
             "t.csv: not a closed loop: its last point (line 4) is 450 m from its first (at most 200 m)");
@@ -821,7 +824,12 @@ TEST(CommandWatchdog, BrakesToAStopWhenCommandsStopAndHandsBackWhenTheyCome) {
   EXPECT_FALSE(w.stopping());
   EXPECT_DOUBLE_EQ(c.throttle, 0.8);
   EXPECT_EQ(w.trips(), 1);
-  EXPECT_NEAR(w.longest_gap(), t - silent_since, 0.011) << "the gap the stack was gone for";
+  EXPECT_NEAR(w.longest_gap(t), t - silent_since, 0.011) << "the gap the stack was gone for";
+  const double last = t;
+  EXPECT_DOUBLE_EQ(w.last_command(), last);
+  for (double end = t + 3; t < end; t += 0.002) c = w.apply(t, false, drive);
+  EXPECT_NEAR(w.longest_gap(t), t - last, 1e-9) << "a stack gone for good: the gap still open counts";
+  EXPECT_DOUBLE_EQ(w.last_command(), last);
   CommandWatchdog never;
   EXPECT_FALSE(never.stopping());
   for (t = 10; t < 11.9; t += 0.01) EXPECT_DOUBLE_EQ(never.apply(t, false, Command{}).brake, 0.0);

@@ -106,7 +106,8 @@ class Vehicle : public Plugin {
 
   void deactivate(Context& ctx) override {
     ctx.metric("command_watchdog_trips", static_cast<double>(watchdog_.trips()));
-    ctx.metric("longest_command_gap_s", watchdog_.longest_gap());
+    ctx.metric("longest_command_gap_s", watchdog_.longest_gap(ctx.now_s()));
+    ctx.metric("last_command_s", watchdog_.last_command());
     if (car_) ctx.metric("final_speed_mps", car_->state().vx);
   }
 

@@ -52,7 +52,9 @@ class DbwWatchdog {
   DbwState state() const { return state_; }
   int trips() const { return trips_; }            // times commands went stale (or never came)
   int recoveries() const { return recoveries_; }  // times they came back before the handover
-  double longest_gap_s() const { return longest_gap_; }
+  // The longest time without a command up to `now_s`, one still open counted (the stack gone for good).
+  double longest_gap_s(double now_s) const { return any_ ? std::max(longest_gap_, now_s - heard_s_) : longest_gap_; }
+  double last_command_s() const { return any_ ? heard_s_ : -1; }  // -1: none came
   // The distance and the time the last stop took, from the trip to the standstill (or the handover).
   double stop_distance_m() const { return stop_distance_; }
   double stop_time_s() const { return stop_end_s_ - trip_s_; }

@@ -83,7 +83,8 @@ inline void report_interface(Context& ctx, const RaptorInterface& iface, const B
     metric(n + "_counter_missed", r.missed), metric(n + "_counter_repeats", r.repeats), metric(n + "_bad", r.bad);
   }
   const DbwWatchdog& w = iface.watchdog();
-  metric("watchdog_trips", w.trips()), metric("watchdog_recoveries", w.recoveries()), metric("longest_command_gap_s", w.longest_gap_s());
+  metric("watchdog_trips", w.trips()), metric("watchdog_recoveries", w.recoveries());
+  metric("longest_command_gap_s", w.longest_gap_s(ctx.now_s())), metric("last_command_s", w.last_command_s());
   metric("handed_over", w.state() == DbwState::handed_over ? 1 : 0);
   if (w.trips() > 0) metric("stop_distance_m", w.stop_distance_m()), metric("stop_time_s", w.stop_time_s());
   metric("gear_shifts", iface.shifter().shifts());

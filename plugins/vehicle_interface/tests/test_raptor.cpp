@@ -399,6 +399,9 @@ TEST(DbwWatchdog, DrivesThenStopsThenHandsOver) {
   EXPECT_NEAR(w.stop_time_s(), 29.5 / 6, 0.004);
   EXPECT_NEAR(w.stop_distance_m(), 30.0 * 30.0 / 12, 0.1);
   EXPECT_EQ(o.command.brake, 0.2445);
+  // The commands stopped for good at 0.2 s: the gap still open is the longest, the last command's time kept.
+  EXPECT_NEAR(w.longest_gap_s(t), t - 0.2, 1e-12);
+  EXPECT_DOUBLE_EQ(w.last_command_s(), 0.2);
   o = w.update(t + 0.01, true, c, 0.0);  // latched
   EXPECT_EQ(o.state, DbwState::handed_over);
   EXPECT_FALSE(o.heartbeat);
