@@ -2,6 +2,7 @@
 // model against the analytical bicycle model, LiDAR ray casting, fault windows, the referee.
 #include "sim/common/car_on_track.hpp"
 #include "sim/common/command_watchdog.hpp"
+#include "sim/common/step_span.hpp"
 #include "sim/common/driver_line.hpp"
 #include "sim/common/faults.hpp"
 #include "sim/common/gnss_receiver.hpp"
@@ -1271,4 +1272,23 @@ TEST(GnssReceiver, ADropoutLeavesTheNoiseSequence) {
   EXPECT_DOUBLE_EQ(a.fix().sigma_z, noise.sigma_m * (noise.sigma_z_m / noise.sigma_m));
   EXPECT_EQ(a.fixes(), 2u);
   EXPECT_EQ(b.fixes(), 3u);
+}
+
+// The real clock's span of a car step: the time since the last, in equal steps of at most the
+// period, bounded; a step on time is one step of its own length.
+TEST(StepSpan, TheCarKeepsUpWithTheWallAfterAStall) {
+  const StepSpan on_time = real_clock_span(0.0021, 0.002);
+  EXPECT_EQ(on_time.steps, 2);
+  EXPECT_DOUBLE_EQ(on_time.dt, 0.00105);
+  const StepSpan exact = real_clock_span(0.002, 0.002);
+  EXPECT_EQ(exact.steps, 1);
+  EXPECT_DOUBLE_EQ(exact.dt, 0.002);
+  const StepSpan stall = real_clock_span(0.15, 0.002);  // 0.15 s without a step: 75 steps
+  EXPECT_EQ(stall.steps, 75);
+  EXPECT_NEAR(stall.steps * stall.dt, 0.15, 1e-12);
+  const StepSpan stopped = real_clock_span(30, 0.002);  // a process stopped for 30 s: 1 s of physics
+  EXPECT_NEAR(stopped.steps * stopped.dt, 1.0, 1e-12);
+  EXPECT_LE(stopped.dt, 0.002);
+  EXPECT_EQ(real_clock_span(-1, 0.002).steps, 1);  // a clock that went back: one step of the period
+  EXPECT_DOUBLE_EQ(real_clock_span(-1, 0.002).dt, 0.002);
 }

@@ -1,5 +1,6 @@
 // sim.vehicle: the race car. Integrates the dynamic single-track model at rate_hz on the road of
-// the world it is given and publishes the ground truth every step.
+// the world it is given and publishes the ground truth every step; on the real clock each step
+// integrates the time since the last (common/step_span.hpp), so the car keeps the wall's time.
 #include <brickyard/msgs/ControlCommand.h>
 #include <brickyard/plugin.hpp>
 
@@ -8,6 +9,7 @@
 #include "vehicle_param.hpp"
 
 #include "sim/common/car_on_track.hpp"
+#include "sim/common/step_span.hpp"
 #include "sim/world_msg.hpp"
 
 namespace {
@@ -84,6 +86,7 @@ class Vehicle : public Plugin {
       if (!w) return;  // no world yet: the car does not exist
       track_ = std::make_unique<Track>(from_message(*w));
       car_->place(*track_, start_s_, start_d_, start_speed_);
+      last_step_s_ = ctx.now_s();
       publish(ctx);
       return;
     }
@@ -100,7 +103,9 @@ class Vehicle : public Plugin {
       c = w.command;
       if (!w.warning.empty()) ctx.log(LogLevel::warn, w.warning);
     }
-    car_->step(dt_, c);
+    const StepSpan span = ctx.sim_clock() ? StepSpan{1, dt_} : real_clock_span(ctx.now_s() - last_step_s_, dt_);
+    for (int i = 0; i < span.steps; ++i) car_->step(span.dt, c);
+    last_step_s_ = ctx.now_s();
     publish(ctx);
   }
 
@@ -130,6 +135,7 @@ class Vehicle : public Plugin {
   std::unique_ptr<Track> track_;
   CommandWatchdog watchdog_;
   double dt_ = 0.002, start_s_ = 0, start_d_ = 0, start_speed_ = 0;
+  double last_step_s_ = 0;  // real clock: the physics is stepped up to here
   std::uint32_t seq_ = 0;
   Ports io_;
 };
