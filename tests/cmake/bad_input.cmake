@@ -165,6 +165,9 @@ bad_config(map_bad_row "node 'map' \\(map.track_file\\): track file .*bad_track.
 # The bank column (a mapped track's, docs/mapping.md): asked for of a file without it; dropped by one row.
 bad_config(map_bank_file_no_column "node 'map' \\(map.track_file\\): parameter 'bank_mode': .*IMS.csv: bank_mode 'file', but the track file has no bank_deg column" run ${BAD}/bank_file_no_column.json)
 bad_config(map_bank_column_dropped "node 'map' \\(map.track_file\\): track file .*bank_column_dropped.csv:5: 4 fields, expected 5" run ${BAD}/bank_column_dropped.json)
+# A thousand bad wires (two problems each): the first 50 problems said, the rest counted (a million printed 123 MB).
+add_test(NAME bad_input.many_problems_summarized COMMAND sh -c "mkdir -p ${RUNS} && python3 -c 'import json; print(json.dumps({\"nodes\": {\"src\": {\"plugin\": \"testing.scripted_source\"}}, \"wires\": [{\"from\": \"ghost%d.out\" % i, \"to\": \"src.in\"} for i in range(1000)]}))' > ${RUNS}/many_problems.json && exec \"$0\" \"$@\""
+  ${EXPECT} 2 "no node named .ghost24.*error: and 1950 more problems \\(2000 in all; the first 50 above\\)" "ghost25" -- ${BY} validate ${RUNS}/many_problems.json)
 # A value nested 60,000 deep (120 kB, under one argument's 128 KiB): refused before the JSON
 # parser's recursion meets it (it crashed validate and run).
 string(REPEAT "[" 60000 DEEP_OPEN)

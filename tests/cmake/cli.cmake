@@ -42,7 +42,7 @@ cli_test(plugins_unknown 2 "plugins testing.nope: no plugin of that name \\(know
 cli_test(plugins_json_params 0 "\"name\": \"rate_hz\",|\"unit\": \"Hz\"" plugins --json)
 cli_test(plugins_broken_library 2 "libnot_elf.so: not a shared object" plugins --plugin-path ${FIXTURES}/not_elf)
 cli_test(graph_dot 0 "digraph \"chain\".*\"src\" -> \"double\" \\[label=\"out → in.nScalar\"\\]" graph ${GOOD} --dot)
-cli_test(version 0 "brickyard 0\\.3\\.0 \\(plugin ABI 3\\.0\\)" --version)
+cli_test(version 0 "brickyard 0\\.3\\.0 \\(plugin ABI 3\\.1\\)" --version)
 cli_test(unknown_command 2 "frobnicate: unknown command" frobnicate)
 cli_test(bag_needs_a_command 2 "bag: needs a command \\(brickyard bag info \\| play RECORDING\\)" bag)
 cli_test(map_unknown_command 2 "map frob: unknown map command" map frob)

@@ -41,6 +41,20 @@ std::string refusal(std::string_view text) {
   return parsed.error;
 }
 
+// A UDP source and a sink sending to it, on a free loopback port (`query`: the spec's "?..." part).
+struct UdpPair {
+  std::unique_ptr<ByteSource> source;
+  std::unique_ptr<ByteSink> sink;
+  std::string error;
+};
+UdpPair udp_pair(const std::string& query = "") {
+  UdpPair p;
+  const std::string name = "udp://127.0.0.1:" + std::to_string(free_port(SOCK_DGRAM)) + query;
+  p.source = open_source(spec_of(name), p.error);
+  if (p.source) p.sink = open_sink(spec_of(name), p.error);
+  return p;
+}
+
 // Polls (short sleeps, two seconds at most) until `want` bytes have come; the entries read.
 Entries poll_for(ByteSource& source, size_t want, size_t max_bytes = 1 << 20) {
   Entries entries;
@@ -306,14 +320,9 @@ TEST(Serial, AFullLineDropsInsteadOfBlocking) {
 }
 
 TEST(Udp, DatagramsArriveWhole) {
-  uint16_t port = free_port(SOCK_DGRAM);
-  std::string name = "udp://127.0.0.1:" + std::to_string(port);
-  std::string error;
-  auto source = open_source(spec_of(name), error);
-  ASSERT_TRUE(source) << error;
+  auto [source, sink, error] = udp_pair();
+  ASSERT_TRUE(source && sink) << error;
   EXPECT_TRUE(source->datagrams());
-  auto sink = open_sink(spec_of(name), error);
-  ASSERT_TRUE(sink) << error;
   Entries sent = {bytes_of("first"), std::vector<uint8_t>(1500, 0xAB), bytes_of("x"), std::vector<uint8_t>(60000, 7)};
   for (const auto& d : sent) ASSERT_TRUE(sink->send(d.data(), d.size())) << sink->error();
   Entries got = poll_for(*source, 5 + 1500 + 1 + 60000);
@@ -322,11 +331,7 @@ TEST(Udp, DatagramsArriveWhole) {
 }
 
 TEST(Udp, OnePollReadsAtMostMaxBytes) {
-  uint16_t port = free_port(SOCK_DGRAM);
-  std::string name = "udp://127.0.0.1:" + std::to_string(port);
-  std::string error;
-  auto source = open_source(spec_of(name), error);
-  auto sink = open_sink(spec_of(name), error);
+  auto [source, sink, error] = udp_pair();
   ASSERT_TRUE(source && sink) << error;
   Entries sent;
   for (int i = 0; i < 10; ++i) sent.push_back(std::vector<uint8_t>(100, static_cast<uint8_t>(i)));
@@ -350,11 +355,7 @@ TEST(Udp, OnePollReadsAtMostMaxBytes) {
 // Each datagram carries the kernel's receive time, on the real clock's scale (the epoch's), the
 // held one too; the descriptor is one poll() on it wakes for.
 TEST(Udp, EachDatagramHasItsArrivalAndTheDescriptorWakes) {
-  uint16_t port = free_port(SOCK_DGRAM);
-  std::string name = "udp://127.0.0.1:" + std::to_string(port);
-  std::string error;
-  auto source = open_source(spec_of(name), error);
-  auto sink = open_sink(spec_of(name), error);
+  auto [source, sink, error] = udp_pair();
   ASSERT_TRUE(source && sink) << error;
   ASSERT_GE(source->fd(), 0);
   pollfd idle{source->fd(), POLLIN, 0};
@@ -365,9 +366,11 @@ TEST(Udp, EachDatagramHasItsArrivalAndTheDescriptorWakes) {
   pollfd ready{source->fd(), POLLIN, 0};
   ASSERT_EQ(::poll(&ready, 1, 2000), 1);
   std::this_thread::sleep_for(20ms);
-  const int64_t after = epoch_ns();
   Entries first, second;
-  ASSERT_TRUE(source->poll(first, 250));  // two fit: the third is held for the next poll
+  ASSERT_TRUE(source->poll(first, 250));  // two fit: the third is read and held for the next poll
+  // Read by now: the kernel stamps a datagram as it arrives, or (its timestamping switched on
+  // lazily, for the first datagrams after the socket asks) as it is read.
+  const int64_t after = epoch_ns();
   ASSERT_EQ(first.size(), 2u);
   std::vector<int64_t> arrivals = source->arrivals_ns();
   ASSERT_TRUE(source->poll(second, 250));
@@ -379,8 +382,6 @@ TEST(Udp, EachDatagramHasItsArrivalAndTheDescriptorWakes) {
     EXPECT_GE(a, before);
     EXPECT_LE(a, after);
   }
-  EXPECT_LE(arrivals[0], arrivals[1]);
-  EXPECT_LE(arrivals[1], arrivals[2]);
   Entries none;
   ASSERT_TRUE(source->poll(none));
   EXPECT_TRUE(none.empty());
@@ -389,13 +390,8 @@ TEST(Udp, EachDatagramHasItsArrivalAndTheDescriptorWakes) {
 
 // The group joined, and sent to, on loopback's interface (127.0.0.1) with a TTL of 1: it stays on the machine.
 TEST(Udp, AMulticastGroupIsJoinedWhenAsked) {
-  uint16_t port = free_port(SOCK_DGRAM);
-  std::string name = "udp://127.0.0.1:" + std::to_string(port) + "?group=239.255.42.7";
-  std::string error;
-  auto source = open_source(spec_of(name), error);
-  ASSERT_TRUE(source) << error;
-  auto sink = open_sink(spec_of(name), error);
-  ASSERT_TRUE(sink) << error;
+  auto [source, sink, error] = udp_pair("?group=239.255.42.7");
+  ASSERT_TRUE(source && sink) << error;
   Entries sent = {bytes_of("lidar packet"), bytes_of("imu packet")};
   for (const auto& d : sent) ASSERT_TRUE(sink->send(d.data(), d.size())) << sink->error();
   EXPECT_EQ(poll_for(*source, 22), sent);
