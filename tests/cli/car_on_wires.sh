@@ -29,6 +29,11 @@ rm -rf "$out"; mkdir -p "$out"
 pid_car=$!
 for _ in $(seq 100); do grep -q "^\[brickyard\] running" "$out/car.log" && break; sleep 0.1; done
 grep -q "^\[brickyard\] running" "$out/car.log" || { cat "$out/car.log"; echo "FAIL: the car's process did not start"; exit 1; }
+# Ready as a team waits for its car before the green: the planner's road graph built (it takes
+# it the first second or so of its run; on the sim clock the direct graph's time stands still
+# meanwhile, so a simulator started before would cost lap 1 that second, the car held).
+for _ in $(seq 300); do grep -q "info planner: road graph built" "$out/car.log" && break; sleep 0.1; done
+grep -q "info planner: road graph built" "$out/car.log" || { cat "$out/car.log"; echo "FAIL: the car's planner was not ready within 30 s"; exit 1; }
 
 if [ "$mode" = kill ]; then
   # Killed as the car crosses the line after its first lap, at full speed with the straight ahead
