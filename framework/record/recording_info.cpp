@@ -50,6 +50,14 @@ void open_recording(const std::string& path, Db& d) {
   query(d.db, "SELECT name FROM sqlite_master WHERE type = 'table' AND name IN ('metadata', 'topics', 'messages')",
         [&](sqlite3_stmt*) { ++ours; });
   if (ours != 3) throw std::runtime_error("not a recording (no metadata, topics and messages tables: brickyard run --record FILE)");
+  // A stamp is the run's clock at publication, in whole nanoseconds, never before the epoch (a
+  // row stamped INT64_MIN showed a span of -9223372036.855 s).
+  std::int64_t bad = 0, first_id = 0;
+  query(d.db, "SELECT count(*), coalesce(min(id), 0) FROM messages WHERE typeof(timestamp) != 'integer' OR timestamp < 0",
+        [&](sqlite3_stmt* st) { bad = sqlite3_column_int64(st, 0), first_id = sqlite3_column_int64(st, 1); });
+  if (bad > 0)
+    throw std::runtime_error(std::to_string(bad) + " messages stamped with no time (negative, or not whole nanoseconds), the first message " +
+                             std::to_string(first_id));
 }
 
 }  // namespace

@@ -55,6 +55,18 @@ expect2 "cut.db3: sample 0 of 'gnss_left.fix' does not decode as brickyard::msgs
   "$by" run "$replay" --domain "$domain" $sets --set gnss_left.file="$out/cut.db3"
 expect2 "cut.db3: sample 0 of gnss_left.fix does not decode as brickyard::msgs::GnssFix: .* at byte [0-9]* of 30" \
   "$by" bag play "$out/cut.db3" --domain "$domain" --only 'gnss_left.*'
+# Stamps that are no time (one row at INT64_MIN, one a string): bag info refuses the recording,
+# counting them and naming the first (it showed a span of -9223372036.855 s).
+cp "$a" "$out/bad_stamps.db3"
+python3 - "$out/bad_stamps.db3" <<'PY' || exit 1
+import sqlite3, sys
+c = sqlite3.connect(sys.argv[1])
+c.execute("UPDATE messages SET timestamp = -9223372036854775808 WHERE id = 5")
+c.execute("UPDATE messages SET timestamp = 'soon' WHERE id = 9")
+c.commit()
+PY
+expect2 "bad_stamps.db3: 2 messages stamped with no time (negative, or not whole nanoseconds), the first message 5" \
+  "$by" bag info "$out/bad_stamps.db3"
 # brickyard bag info: the recording's topics, types and counts as the file holds them.
 "$by" bag info "$a" --json > "$out/info.json" || { echo "FAIL: bag info"; exit 1; }
 python3 - "$a" "$out/info.json" <<'PY' || exit 1
