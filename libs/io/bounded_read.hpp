@@ -15,6 +15,19 @@
 
 namespace brickyard::io {
 
+// Whether `path` is a regular file that can be opened, checked without blocking (a FIFO's open
+// waits for a writer) before a stream reads it; else false with `error` saying why. For readers
+// that stream a file rather than take it whole.
+inline bool is_regular_readable(const std::string& path, std::string& error) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
+  if (fd < 0) return error = path + ": cannot be opened (" + std::strerror(errno) + ")", false;
+  struct stat st {};
+  const bool regular = ::fstat(fd, &st) == 0 && S_ISREG(st.st_mode);
+  ::close(fd);
+  if (!regular) error = path + ": not a regular file";
+  return regular;
+}
+
 inline bool read_regular_file(const std::string& path, std::size_t max_bytes, std::vector<std::uint8_t>& out, std::string& error) {
   // Opened without blocking (a FIFO's open waits for a writer), then checked on the descriptor.
   const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);

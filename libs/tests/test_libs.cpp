@@ -101,6 +101,13 @@ TEST(Vehicle, BadFilesNameTheFileAndThePointer) {
             "car.json: /limits/a_decel_mps2: 15 m/s^2 is more than the car can brake (tyres 15.70, brakes 9.82 m/s^2)");
   EXPECT_NE(error_of("{", "["), "");  // not an object at all
   EXPECT_THROW(vehicle::load_vehicle("/no/such/car.json"), vehicle::VehicleFileError);
+  // A device where the file should be: refused unread (/dev/zero would grow without end).
+  try {
+    vehicle::load_vehicle("/dev/zero");
+    ADD_FAILURE() << "/dev/zero read as a vehicle";
+  } catch (const vehicle::VehicleFileError& e) {
+    EXPECT_STREQ(e.what(), "/dev/zero: not a regular file");
+  }
 }
 
 // The AV-21's limits as the racing-line comparison and brickyard-plan take them.

@@ -1,5 +1,7 @@
 #include "vehicle.hpp"
 
+#include "io/bounded_read.hpp"
+
 #include <cstdio>
 
 #include <nlohmann/json.hpp>
@@ -217,12 +219,14 @@ Vehicle parse_vehicle(const std::string& text, const std::string& file) {
   return v;
 }
 
+// A vehicle file is a few kB: 16 MiB is far past any, and a FIFO or /dev/zero is refused unread.
+constexpr std::size_t kMaxVehicleBytes = std::size_t{16} << 20;
+
 Vehicle load_vehicle(const std::string& path) {
-  std::ifstream f(path);
-  if (!f) throw VehicleFileError(path + ": cannot open");
-  std::stringstream s;
-  s << f.rdbuf();
-  return parse_vehicle(s.str(), path);
+  std::vector<std::uint8_t> bytes;
+  std::string error;
+  if (!io::read_regular_file(path, kMaxVehicleBytes, bytes, error)) throw VehicleFileError(error);
+  return parse_vehicle(std::string(bytes.begin(), bytes.end()), path);
 }
 
 }  // namespace brickyard::vehicle

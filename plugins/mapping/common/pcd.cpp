@@ -1,5 +1,7 @@
 #include "pcd.hpp"
 
+#include "io/bounded_read.hpp"
+
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -34,6 +36,8 @@ void write_pcd(const std::string& path, const VoxelMap& map) {
 }
 
 Points read_pcd(const std::string& path) {
+  std::string error;
+  if (!io::is_regular_readable(path, error)) throw std::runtime_error(error);  // a FIFO would hang the read
   std::ifstream f(path, std::ios::binary);
   if (!f) throw std::runtime_error(path + ": cannot open");
   std::string line, fields, data;

@@ -17,6 +17,8 @@
 #include <Eigen/LU>
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -457,6 +459,17 @@ TEST(ScanMapper, MapAsPcdRoundTrip) {
   }
   std::ofstream(testing::TempDir() + "bad.pcd") << "VERSION 0.7\nFIELDS x y z\nPOINTS 3\nDATA ascii\n1 2 3\n4 5\n";
   EXPECT_THROW(read_pcd(testing::TempDir() + "bad.pcd"), std::runtime_error);
+  // A FIFO where the map should be: refused unread (its read would wait for a writer for ever).
+  const std::string fifo = testing::TempDir() + "/brickyard_map.fifo";
+  std::remove(fifo.c_str());
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  try {
+    read_pcd(fifo);
+    ADD_FAILURE() << "a FIFO read as a map";
+  } catch (const std::runtime_error& e) {
+    EXPECT_EQ(std::string(e.what()), fifo + ": not a regular file");
+  }
+  std::remove(fifo.c_str());
 }
 
 // ---- the track's lines from a drive (road_surface.hpp, track_extraction.hpp) ----

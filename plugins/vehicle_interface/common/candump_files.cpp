@@ -1,6 +1,8 @@
 // candump log files on disk: the only I/O of the candump reader and writer.
 #include "candump_log.hpp"
 
+#include "io/bounded_read.hpp"
+
 #include <cstdio>
 #include <fstream>
 
@@ -8,9 +10,11 @@ namespace brickyard::vehicle_interface {
 
 CandumpLog load_candump_file(const std::string& path, CandumpLimits limits, size_t max_bytes) {
   CandumpLog log;
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    log.errors.push_back({0, "cannot open " + path});
+  std::string error;
+  std::ifstream in;
+  if (io::is_regular_readable(path, error)) in.open(path, std::ios::binary);
+  if (!in.is_open()) {
+    log.errors.push_back({0, error.empty() ? "cannot open " + path : error});
     return log;
   }
   std::string text;

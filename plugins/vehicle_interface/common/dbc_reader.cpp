@@ -3,6 +3,8 @@
 // format as learned from public descriptions: docs/can-dbc.md.
 #include "dbc_reader.hpp"
 
+#include "io/bounded_read.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cstdio>
@@ -160,10 +162,12 @@ DbcReadResult parse_dbc(std::string_view text, std::string_view file_name, DbcLi
 
 DbcReadResult load_dbc_file(const std::string& path, DbcLimits limits) {
   const std::string name = path.substr(path.find_last_of('/') + 1);
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
+  std::string error;
+  std::ifstream in;
+  if (io::is_regular_readable(path, error)) in.open(path, std::ios::binary);
+  if (!in.is_open()) {
     DbcReadResult result;
-    result.errors.push_back({name, 0, "cannot open " + path});
+    result.errors.push_back({name, 0, error.empty() ? "cannot open " + path : error});
     return result;
   }
   std::string text;

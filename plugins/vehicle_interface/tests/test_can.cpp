@@ -16,6 +16,8 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+
 #include <bit>
 #include <cmath>
 #include <cstring>
@@ -450,7 +452,15 @@ TEST(Dbc, StaysBoundedOnHostileInput) {
   small.max_file_bytes = 100;
   EXPECT_EQ(parse_dbc(std::string(101, ' '), "t.dbc", small).errors.front().text(),
             "t.dbc:0: file of 101 bytes or more, over the limit of 100");
-  EXPECT_EQ(load_dbc_file("/nonexistent/x.dbc").errors.front().text(), "x.dbc:0: cannot open /nonexistent/x.dbc");
+  EXPECT_EQ(load_dbc_file("/nonexistent/x.dbc").errors.front().text(),
+            "x.dbc:0: /nonexistent/x.dbc: cannot be opened (No such file or directory)");
+  // A device or a FIFO where the DBC should be: refused unread (a FIFO's read waits for ever).
+  EXPECT_EQ(load_dbc_file("/dev/null").errors.front().text(), "null:0: /dev/null: not a regular file");
+  const std::string fifo = testing::TempDir() + "/brickyard_dbc.fifo";
+  std::remove(fifo.c_str());
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  EXPECT_EQ(load_dbc_file(fifo).errors.front().text(), "brickyard_dbc.fifo:0: " + fifo + ": not a regular file");
+  std::remove(fifo.c_str());
   // Every prefix of the car's file either reads or fails with errors; none crashes.
   const std::string text = [] {
     std::string all;

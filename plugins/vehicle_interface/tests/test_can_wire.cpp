@@ -152,7 +152,8 @@ TEST(Candump, WritesWhatItReadsAndReadsWhatItWrites) {
   ASSERT_TRUE(save_candump_file(path, records, &error)) << error;
   EXPECT_EQ(load_candump_file(path).records, records);
   std::remove(path.c_str());
-  EXPECT_EQ(load_candump_file(path).errors.front().text(), "line 0: cannot open " + path);
+  EXPECT_EQ(load_candump_file(path).errors.front().text(), "line 0: " + path + ": cannot be opened (No such file or directory)");
+  EXPECT_EQ(load_candump_file("/dev/zero").errors.front().text(), "line 0: /dev/zero: not a regular file");
 }
 
 // Datagrams laid out by hand from cannelloni's doc/udp_format.md: version 2, op code 0 (DATA),
