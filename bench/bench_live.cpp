@@ -8,6 +8,8 @@
 // client (tests/clients/live_sink.cjs, Node) counts what arrives and decodes nothing; it shares
 // these two cores with the run, so its own work is part of the wall-time figure; the run's own CPU
 // time (user + system, of the host process alone) is the server's cost without the client's.
+// Exits 1 when a run fails, or in a run with the server the server sent nothing or the client
+// received nothing (its cost would be that of a server nobody used).
 // usage: bench_live [--quick] [--runs N]
 #include <nlohmann/json.hpp>
 
@@ -108,5 +110,10 @@ int main(int argc, char** argv) {
   row("ours: the same and the 3 LiDAR clouds", 2);
   row("ours: the same, every cloud (--live-cloud-hz 0)", 3);
   std::printf("%-48s %12.1f %14s %10s %10s %8.1f %10s\n", "baseline: no server", none, "-", "-", "-", none_cpu, "-");
+  for (int mode : {1, 2, 3})
+    for (std::size_t i = 0; i < mb[mode].size(); ++i)
+      if (messages[mode][i] <= 0 || mb[mode][i] <= 0)
+        return std::printf("the live view measured nothing: in a run the server sent %.0f frames, the client received %.1f MB\n",
+                           messages[mode][i], mb[mode][i]), 1;
   return 0;
 }

@@ -6,7 +6,9 @@
 // and, on the same input as ours (our non-ground voxels), PCL's clustering alone. Prints the
 // medians over the frames and the speed-ups, each the median of the per-frame ratios
 // (docs/performance.md). One thread.
-// usage: bench_perception [--frames N] [--runs N]
+// Exits 1 when PCL's clustering of our non-ground voxels finds other clusters than ours (the two
+// compare only when they partition the same points alike).
+// usage: bench_perception [--quick] [--frames N] [--runs N]   (--quick: 2 frames, 3 runs)
 #include "perception/common/pipeline.hpp"
 #include "pcl_baseline.hpp"
 #include "perception_scenes.hpp"
@@ -44,7 +46,16 @@ double time_ms(int runs, const std::function<void()>& f) {
 struct Row {
   std::string name;
   std::vector<double> points, ground, cluster, walls, ours, pcl_voxel, pcl_plane, pcl_cluster, pcl, pcl_cluster_same;
+  int frames_clustered_apart = 0;
 };
+
+// The clusters' sizes, largest first: two partitions of the same points alike have the same.
+std::vector<std::size_t> sizes(const std::vector<std::vector<int>>& clusters) {
+  std::vector<std::size_t> n;
+  for (const auto& c : clusters) n.push_back(c.size());
+  std::sort(n.rbegin(), n.rend());
+  return n;
+}
 
 void run_frame(const Points& frame, int runs, Row& row) {
   const PipelineParams pp;
@@ -81,9 +92,14 @@ void run_frame(const Points& frame, int runs, Row& row) {
     cl.push_back(t.cluster_ms);
     all.push_back(t.voxel_ms + t.plane_ms + t.cluster_ms);
   }
+  std::vector<std::vector<int>> theirs;
   const double same = time_ms(std::max(1, runs / 2), [&] {
-    baseline::euclidean_clusters(features, pp.cluster.tolerance, pp.cluster.min_size, pp.cluster.max_size);
+    theirs = baseline::euclidean_clusters(features, pp.cluster.tolerance, pp.cluster.min_size, pp.cluster.max_size);
   });
+  if (sizes(theirs) != sizes(clusters)) {
+    std::fprintf(stderr, "bench_perception: %s: PCL found %zu clusters, ours %zu\n", row.name.c_str(), theirs.size(), clusters.size());
+    ++row.frames_clustered_apart;
+  }
   row.ground.push_back(tg);
   row.cluster.push_back(tc);
   row.walls.push_back(tw);
@@ -108,6 +124,7 @@ void append(Row& all, const Row& r) {
                           {&all.pcl_plane, &r.pcl_plane}, {&all.pcl_cluster, &r.pcl_cluster}, {&all.pcl, &r.pcl},
                           {&all.pcl_cluster_same, &r.pcl_cluster_same}})
     to->insert(to->end(), from->begin(), from->end());
+  all.frames_clustered_apart += r.frames_clustered_apart;
 }
 
 void print(const Row& r) {
@@ -123,10 +140,11 @@ void print(const Row& r) {
 int main(int argc, char** argv) {
   int frames = 10, runs = 7;
   for (int i = 1; i < argc; ++i) {
-    if (!std::strcmp(argv[i], "--frames") && i + 1 < argc) frames = std::atoi(argv[++i]);
+    if (!std::strcmp(argv[i], "--quick")) frames = 2, runs = 3;
+    else if (!std::strcmp(argv[i], "--frames") && i + 1 < argc) frames = std::atoi(argv[++i]);
     else if (!std::strcmp(argv[i], "--runs") && i + 1 < argc) runs = std::atoi(argv[++i]);
     else {
-      std::fprintf(stderr, "usage: bench_perception [--frames N] [--runs N]\n");
+      std::fprintf(stderr, "usage: bench_perception [--quick] [--frames N] [--runs N]\n");
       return 2;
     }
   }
@@ -155,6 +173,7 @@ int main(int argc, char** argv) {
     row.name = std::string("real scan ") + scan;
     run_frame(baseline::load_pcd(data + "/lidar/" + scan), runs, row);
     print(row);
+    all.frames_clustered_apart += row.frames_clustered_apart;
   }
-  return 0;
+  return all.frames_clustered_apart == 0 ? 0 : 1;
 }

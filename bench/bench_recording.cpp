@@ -2,7 +2,8 @@
 // stack on the simulator), every wire but the point clouds, as `--out` records it: ours (MCAP,
 // zstd chunks) beside the baseline in the same run (the SQLite .db3 the recorder wrote before,
 // still written for FILE.db3) and beside the same run without recording. Runs alternate so that
-// all three see the same load; medians.
+// all three see the same load; medians. Exits 1 when a run fails or the two recordings of the
+// last round (the sim clock's runs are the same bit for bit) hold other messages per topic.
 // usage: bench_recording [--quick] [--runs N]
 #include <nlohmann/json.hpp>
 
@@ -12,6 +13,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -21,6 +23,16 @@ namespace {
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   return v.empty() ? 0.0 : v[v.size() / 2];
+}
+// Each topic's message count in a recording, as `brickyard bag info --json` reads it.
+std::map<std::string, std::uint64_t> counts(const std::string& by, const std::string& file) {
+  std::map<std::string, std::uint64_t> c;
+  const std::string info = file + ".info.json";
+  if (std::system((by + " bag info " + file + " --json > " + info).c_str()) != 0) return c;
+  const auto j = nlohmann::json::parse(std::ifstream(info), nullptr, false);
+  if (j.is_object())
+    for (const auto& t : j.value("topics", nlohmann::json::array())) c[t.value("name", "")] = t.value("count", std::uint64_t{0});
+  return c;
 }
 }  // namespace
 
@@ -45,6 +57,7 @@ int main(int argc, char** argv) {
     for (const auto& t : j["topics"]) topics += (topics.empty() ? "" : ",") + t["name"].get<std::string>();
   }
   std::vector<double> factor[3], mb[3];
+  std::map<std::string, std::uint64_t> recorded[3];
   double sim_s = 0;
   for (int i = 0; i < runs; ++i)
     for (int mode : {0, 1, 2}) {  // none, MCAP, SQLite
@@ -58,6 +71,7 @@ int main(int argc, char** argv) {
       sim_s = j["sim_time_s"].get<double>();
       factor[mode].push_back(sim_s / j["wall_time_s"].get<double>());
       if (mode > 0) mb[mode].push_back(static_cast<double>(fs::file_size(file)) / 1e6);
+      if (mode > 0) recorded[mode] = counts(by, file);
     }
   std::printf("recording the main job (configs/ims_race.json, %.1f s of sim time, every wire but the clouds, %d runs each)\n", sim_s, runs);
   std::printf("%-36s %14s %10s %18s\n", "", "x real time", "MB", "cost of recording");
@@ -70,5 +84,8 @@ int main(int argc, char** argv) {
   row("baseline: SQLite (.db3)", 2);
   std::printf("%-36s %14.1f %10s %18s\n", "not recording", none, "-", "-");
   std::printf("ratio of sizes SQLite / MCAP: %.2f\n", median(mb[2]) / median(mb[1]));
+  if (recorded[1].empty() || recorded[1] != recorded[2])
+    return std::printf("the recordings disagree: %zu topics in the MCAP, %zu in the SQLite file, or other counts\n",
+                       recorded[1].size(), recorded[2].size()), 1;
   return 0;
 }

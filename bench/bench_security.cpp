@@ -7,6 +7,7 @@
 // the cost is the processes' CPU time (cpu_s in the supervised run's summary) over it; and the
 // car's longest gap between commands (sim.vehicle's longest_command_gap_s), which security must not
 // stretch.
+// Exits 1 when a run fails or its car went 0.5 s without a command (the wires did not carry).
 // usage: bench_security [--quick]
 #include <nlohmann/json.hpp>
 
@@ -61,6 +62,8 @@ int main(int argc, char** argv) {
       x.wall_s = s["wall_time_s"].get<double>();
       const auto sim = nlohmann::json::parse(std::ifstream(out + "/sim/summary.json"));
       x.gap_s = sim["nodes"]["car"]["metrics"]["longest_command_gap_s"].get<double>();
+      if (!(x.gap_s < 0.5))  // the wires carried nothing (or stalled): a cost of security that did not work
+        return std::printf("the car went %.3f s without a command: %s\n", x.gap_s, cmd.c_str()), 1;
       runs[v].push_back(x);
     }
   auto med = [&](std::size_t v, double Run::*f) {

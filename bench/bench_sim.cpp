@@ -1,4 +1,4 @@
-// Simulator speed. Two parts, each beside its baseline measured in the same run:
+// Simulator speed. Each part beside its baseline measured in the same run:
 //  1. LiDAR ray casting on IMS (three AV-21 Hydras, 32 x 850 rays each, poses all around the
 //     track): ours (slab march with block skipping, rows of a column resuming where the row below
 //     left off) vs the plain slab march (every ray walks every slab from the sensor).
@@ -8,14 +8,17 @@
 //     without recording (the simulator) and recording as a plain --out run does (beside it), and
 //     stepped on one thread (--threads 1: no node stepped side by side).
 //  3. The whole stack, configs/race.json on Spielberg (walls at both edges, no fault): the same
-//     factor, the executive's default threads against --threads 1 and against the simulator alone
+//     factor over the whole run and steady (less the start: planning the line, building the road
+//     graph), the executive's default threads against --threads 1 and against the simulator alone
 //     (target: 15x).
 //  4. With --map FILE (the track's map: scripts/track-map Spielberg both), the stack on its map,
 //     configs/race_on_map.json, beside race.json, runs alternating: each factor once started
 //     (sim seconds over the wall seconds past those of a 0.1 s run of the same graph: the map read
 //     and its voxels built, once a race), and their ratio (issue 41: at least 15x); and the same
 //     locating every frame, as through a GNSS outage (normal_interval_s 0).
-// usage: bench_sim [--quick] [--map FILE]
+// Exits 1 when a run fails (other than a race cut short by --duration) or when the casters'
+// variants return other numbers of points on the same poses (more than 0.1 % apart).
+// usage: bench_sim [--quick] [--map FILE]   (--quick: 40 poses, 3 rounds; 20 s runs, once)
 #include "sim/common/lidar.hpp"
 #include "sim/common/track.hpp"
 
@@ -26,6 +29,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -42,6 +46,10 @@ double median(std::vector<double> v) {
 struct Pose {
   Eigen::Isometry3d T;
   int seg;
+};
+
+struct RunTimes {
+  double sim_s = 0, wall_s = 0;
 };
 
 std::vector<Pose> poses_around(const Track& t, int count, double d) {
@@ -83,6 +91,7 @@ int main(int argc, char** argv) {
   std::printf("LiDAR ray casting, IMS, 3 sensors x 32 x 850 rays, %zu poses around the track\n", poses.size());
   std::printf("%-34s %14s %12s %14s\n", "caster", "Mrays/s", "ms/frame", "LiDAR x RT");
   double ours_rate = 0, base_rate = 0, one_thread_rate = 0;
+  std::size_t hits[3] = {0, 0, 0};  // points returned in the first round, per caster
   // Ours on two threads, ours on one (the plugin's default), the baseline (one thread, no blocks).
   for (int config : {0, 1, 2}) {
     const bool blocks = config < 2;
@@ -108,6 +117,7 @@ int main(int argc, char** argv) {
         for (const auto& c : casters) {
           buf.clear();
           rays += c.scan(p.T, p.seg, rng, 1.0, buf);
+          if (round == 0) hits[config] += buf.x.size();
         }
       double dt = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       rates.push_back(static_cast<double>(rays) / dt);
@@ -121,64 +131,78 @@ int main(int argc, char** argv) {
     (config == 0 ? ours_rate : config == 1 ? one_thread_rate : base_rate) = r;
   }
   std::printf("ratio ours / baseline: %.2f (one thread: %.2f)\n\n", ours_rate / base_rate, one_thread_rate / base_rate);
+  for (int config : {0, 1})
+    if (std::abs(static_cast<double>(hits[config]) - static_cast<double>(hits[2])) > 1e-3 * static_cast<double>(hits[2]))
+      return std::printf("the casters disagree: %zu points against the baseline's %zu on the same poses\n", hits[config], hits[2]), 1;
 
   // The full simulator graph, run by the host: the simulator alone (--no-report), and as a plain
   // `--out` run does, recording every wire but the clouds to SQLite (the recorder's
-  // cost, shown beside). Runs alternate so that both see the same load.
+  // cost, shown beside). Runs alternate so that all see the same load.
   const std::string by = BRICKYARD_HOST;
   const double duration = quick ? 20 : 60;
-  std::vector<double> factors, recorded, one_thread, stack, stack_one;
-  // sim_time_s / wall_time_s of one run; `expect_fail`: a run cut short by --duration (the race
-  // graph's referee fails it: "did not finish") still measures.
-  auto factor = [&](const std::string& graph, const std::string& opts, bool expect_fail, double& out) {
+  std::vector<double> factors, recorded, one_thread, stack, stack_one, stack_steady, stack_one_steady;
+  // One run's sim and wall seconds. `race`: a race cut short by --duration fails as "did not
+  // finish" and still measures; any other failure (a contact, a crash) does not.
+  auto run = [&](const std::string& graph, const std::string& opts, double seconds, bool race, RunTimes& out) {
     const std::string dir = "/tmp/bench_sim_run";
-    const std::string cmd = by + " run " + src + "/configs/" + graph + " --duration " + std::to_string(duration) + " --out " + dir +
+    std::filesystem::remove_all(dir);  // no summary of an earlier run read as this one's
+    const std::string cmd = by + " run " + src + "/configs/" + graph + " --duration " + std::to_string(seconds) + " --out " + dir +
                             " " + opts + " > /dev/null 2>&1";
     const int rc = std::system(cmd.c_str());
     std::ifstream f(dir + "/summary.json");
-    if ((rc != 0 && !expect_fail) || !f) {
-      std::printf("run failed (exit %d): %s\n", rc, cmd.c_str());
+    const auto j = f ? nlohmann::json::parse(f, nullptr, false) : nlohmann::json();
+    const std::string reason = j.is_object() ? j.value("reason", "") : "";
+    const bool cut_short = race && reason.find("did not finish: ") != std::string::npos && reason.find("the run ended at") != std::string::npos;
+    if (!j.is_object() || (rc != 0 && !cut_short)) {
+      std::printf("run failed (exit %d%s%s): %s\n", rc, reason.empty() ? "" : ": ", reason.c_str(), cmd.c_str());
       return false;
     }
-    auto j = nlohmann::json::parse(f);
-    out = j["sim_time_s"].get<double>() / j["wall_time_s"].get<double>();
+    out = {j["sim_time_s"].get<double>(), j["wall_time_s"].get<double>()};
+    return true;
+  };
+  // The stack's factor twice: over the whole run (the start, planning the line and building the
+  // road graph, included) and steady (the wall seconds of a 0.1 s run of the same graph taken off).
+  auto stack_run = [&](const std::string& opts, std::vector<double>& whole, std::vector<double>& steady) {
+    RunTimes full, start;
+    if (!run("race.json", opts, duration, true, full) || !run("race.json", opts, 0.1, true, start)) return false;
+    whole.push_back(full.sim_s / full.wall_s);
+    steady.push_back((full.sim_s - start.sim_s) / (full.wall_s - start.wall_s));
     return true;
   };
   const std::string race = "--arg track=tracks/Spielberg.csv --arg wall_side=left --arg inner_wall=true --no-report";
-  for (int i = 0; i < (quick ? 1 : 3); ++i)
-    for (int mode : {0, 1, 2, 3, 4}) {  // the simulator: as it runs, recording, one thread; the stack: as it runs, one thread
-      double x = 0;
-      const bool ok = mode < 3 ? factor("sim_truth_lap.json", std::string("--set referee.laps=0") + (mode == 1 ? "" : " --no-report") +
-                                                                  (mode == 2 ? " --threads 1" : ""), false, x)
-                               : factor("race.json", race + (mode == 4 ? " --threads 1" : ""), true, x);
-      if (!ok) return 1;
-      (mode == 0 ? factors : mode == 1 ? recorded : mode == 2 ? one_thread : mode == 3 ? stack : stack_one).push_back(x);
+  for (int i = 0; i < (quick ? 1 : 3); ++i) {
+    // The simulator: as it runs, recording, on one thread; then the stack: as it runs, one thread.
+    for (int mode : {0, 1, 2}) {
+      RunTimes t;
+      if (!run("sim_truth_lap.json", std::string("--set referee.laps=0") + (mode == 1 ? "" : " --no-report") + (mode == 2 ? " --threads 1" : ""),
+               duration, false, t))
+        return 1;
+      (mode == 0 ? factors : mode == 1 ? recorded : one_thread).push_back(t.sim_s / t.wall_s);
     }
+    if (!stack_run(race, stack, stack_steady) || !stack_run(race + " --threads 1", stack_one, stack_one_steady)) return 1;
+  }
   std::printf("full simulator (configs/sim_truth_lap.json, %.0f s of sim time, %zu runs each)\n", duration, factors.size());
   std::printf("%-34s %14s\n", "", "x real time");
   std::printf("%-34s %14.1f\n", "ours: sim clock", median(factors));
   std::printf("%-34s %14.1f\n", "  the same, recording (--out)", median(recorded));
   std::printf("%-34s %14.1f\n", "  the same, on one thread", median(one_thread));
   std::printf("%-34s %14.1f\n", "baseline: real time", 1.0);
-  std::printf("\nthe whole stack (configs/race.json, Spielberg, walls at both edges, %.0f s of sim time, %zu runs each)\n",
+  std::printf("\nthe whole stack (configs/race.json, Spielberg, walls at both edges, %.0f s of sim time, %zu runs each);\n"
+              "whole run: sim time over wall time; steady: the same less a 0.1 s run's (the start: line, road graph)\n",
               duration, stack.size());
-  std::printf("%-34s %14s\n", "", "x real time");
-  std::printf("%-34s %14.1f\n", "ours: sim clock", median(stack));
-  std::printf("%-34s %14.1f\n", "baseline: on one thread", median(stack_one));
+  std::printf("%-34s %14s %14s\n", "", "whole run x RT", "steady x RT");
+  std::printf("%-34s %14.1f %14.1f\n", "ours: sim clock", median(stack), median(stack_steady));
+  std::printf("%-34s %14.1f %14.1f\n", "baseline: on one thread", median(stack_one), median(stack_one_steady));
   std::printf("%-34s %14.1f\n", "the simulator alone (above)", median(factors));
-  std::printf("ratio ours / one thread: %.2f; ours / the simulator alone: %.2f\n", median(stack) / median(stack_one),
-              median(stack) / median(factors));
+  std::printf("ratio ours / one thread: %.2f whole run, %.2f steady; ours (steady) / the simulator alone: %.2f\n",
+              median(stack) / median(stack_one), median(stack_steady) / median(stack_one_steady), median(stack_steady) / median(factors));
   if (map.empty()) return 0;
 
-  // The stack on its map: wall seconds of a run of `seconds`, less those of a 0.1 s run.
+  // The stack on its map: wall seconds of a run of `seconds`.
   auto wall_s = [&](const std::string& graph, const std::string& opts, double seconds, double& out) {
-    const std::string dir = "/tmp/bench_sim_run";
-    const std::string cmd = by + " run " + src + "/configs/" + graph + " " + race + opts + " --duration " + std::to_string(seconds) +
-                            " --out " + dir + " > /dev/null 2>&1";
-    std::system(cmd.c_str());
-    std::ifstream f(dir + "/summary.json");
-    if (!f) return std::printf("run failed: %s\n", cmd.c_str()), false;
-    out = nlohmann::json::parse(f)["wall_time_s"].get<double>();
+    RunTimes t;
+    if (!run(graph, race + opts, seconds, true, t)) return false;
+    out = t.wall_s;
     return true;
   };
   // race.json; on the map as it runs (GNSS taken: a frame in normal_interval_s); on the map

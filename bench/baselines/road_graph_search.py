@@ -6,12 +6,24 @@ often is; TUM's graph planner is Python too), on the same graph file and the sam
 usage: road_graph_search.py GRAPH.byrg QUERIES.json  ->  one JSON line per query:
        {"ms": time of the search, "nodes": [the chosen path's nodes]}
 
-The file format is documented in docs/planning.md (little-endian)."""
+The file format is documented in docs/planning.md (little-endian): format version 2, whose last
+eight bytes are an FNV-1a digest of every byte before them, checked here as the C++ loader does."""
 import json
 import math
 import struct
 import sys
 import time
+
+
+FORMAT_VERSION = 2
+
+
+def fnv1a(data):
+    """FNV-1a, 64 bit (libs/math/fnv1a.hpp)."""
+    h = 1469598103934665603
+    for byte in data:
+        h = ((h ^ byte) * 1099511628211) & 0xFFFFFFFFFFFFFFFF
+    return h
 
 
 def load(path):
@@ -20,8 +32,11 @@ def load(path):
     if b[:4] != b"BYRG":
         sys.exit(f"{path}: not a road graph")
     (version,) = struct.unpack_from("<I", b, 4)
-    if version != 1:
-        sys.exit(f"{path}: format version {version}")
+    if version != FORMAT_VERSION:
+        sys.exit(f"{path}: format version {version}, this reference reads {FORMAT_VERSION}")
+    (digest,) = struct.unpack_from("<Q", b, len(b) - 8)
+    if fnv1a(b[:-8]) != digest:
+        sys.exit(f"{path}: its digest does not match its bytes")
     o = 8
     params = struct.unpack_from("<8d", b, o)
     o += 64
@@ -40,6 +55,8 @@ def load(path):
     layers = array("diIII", 24)
     first_edge = [x[0] for x in array("I", 4)]
     edges = array("Iffff", 20)
+    if o != len(b) - 8:
+        sys.exit(f"{path}: {len(b) - 8 - o} bytes between the edges and the digest")
     node_layer = []
     for i, (_, _, count, _, _) in enumerate(layers):
         node_layer += [i] * count
@@ -99,7 +116,11 @@ def search(graph, q):
                 continue
             da = node_d(n)
             for e in range(first_edge[n], first_edge[n + 1]):
-                to, elen, curv, dev, _ = edges[e]
+                to, elen, curv, dev, max_kappa = edges[e]
+                # The half width the car's body sweeps on the edge (graph_search.hpp,
+                # swept_half_width): its nose stands car_front² |κ| / 2 outside the arc.
+                k = abs(max_kappa)
+                swept = hw + 0.5 * p["car_front"] ** 2 * (k if k < 1.0 else 1.0)
                 rb = rel(node_layer[to])
                 if rb <= ra:
                     rb += length
@@ -114,7 +135,7 @@ def search(graph, q):
                     a, b = smooth_d(ra, da, rb, db, w0), smooth_d(ra, da, rb, db, w1)
                     lo, hi = min(a, b), max(a, b)
                     apart = lo - od if od < lo else (od - hi if od > hi else 0.0)
-                    gap = apart - orad - hw
+                    gap = apart - orad - swept
                     if gap < p["clearance"]:
                         blocked = True
                         break

@@ -57,6 +57,8 @@ void prepare_out_folder(const std::string& out) {
   refuse_foreign_files(out);
 }
 
+void refuse_foreign_out_files(const std::string& out) { refuse_foreign_files(out); }
+
 void clear_earlier_run(const std::string& out, const std::string& record) {
   const fs::path dir(out);
   std::error_code ec;

@@ -11,6 +11,9 @@ inline constexpr const char* kOutRecording = "recording.mcap";
 // Makes the folder (if need be); refuses (InvalidInput) a summary.json that is not a run's or a
 // report.html that is not brickyard-report's: those are the user's.
 void prepare_out_folder(const std::string& out);
+// The same refusals, making nothing: before the plugins load, so that a crash while loading may
+// write its summary there (crash_guard::set_summary_path) without replacing one of the user's.
+void refuse_foreign_out_files(const std::string& out);
 
 // Removes what an earlier run left in the folder (its report, summary, and its recording when the
 // folder's own), so that nothing stale is drawn; refuses a recording there that --record made,

@@ -15,6 +15,8 @@
 #include "security/security_files.hpp"
 
 #include <csignal>
+#include <cstdlib>
+#include <unistd.h>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -24,7 +26,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
+pid_t g_supervisor = 0;  // a supervised process's supervisor (its parent when it started), else 0
+
 void on_signal(int) {
+  if (g_supervisor != 0 && getppid() != g_supervisor) g_supervisor_gone = true;  // getppid: async-signal-safe
   g_interrupt = true;
   crash_guard::interrupted();  // the run has 2 s from here; a second signal ends it at once
 }
@@ -149,6 +154,10 @@ int finish_run(const Args& a, RunSummary& s, bool record_out, bool report) {
 }  // namespace
 
 int run_graph(const Args& a, GraphDecl g, bool validate_only) {
+  if (!validate_only && !a.out.empty()) {  // a plugin library that crashes while loading leaves its summary there
+    refuse_foreign_out_files(a.out);
+    crash_guard::set_summary_path((fs::path(a.out) / "summary.json").string());
+  }
   Registry reg = load_registry(a, &g);
   ResolvedGraph rg = resolve_graph(g, reg, a.process, run_node_checks);
   say_notices_and_check(a, rg);
@@ -159,6 +168,7 @@ int run_graph(const Args& a, GraphDecl g, bool validate_only) {
   if (a.record_cloud_precision > 0 && a.record.empty())
     usage_error("--record-cloud-precision", "needs --record FILE (the --out folder's recording leaves the clouds out)");
   if (a.process.empty() && !a.one_process && rg.processes.size() > 1) return supervise_run(a, g);
+  if (std::getenv("BRICKYARD_SHM_LIST")) g_supervisor = getppid();  // set by the supervisor for its children only
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
   RunOptions opt = run_options(a, g, security);

@@ -196,7 +196,10 @@ void Supervisor::spawn(Child& c) {
   if (pid == 0) {
     // The child: its own process group (a Ctrl-C at the terminal reaches the supervisor, which
     // stops the children in order), told to end when the supervisor dies, its output to the pipe.
+    // SIGPIPE ignored (kept across exec): were the supervisor killed, the child's next line to the
+    // pipe would kill it before it wrote its summary; it ends on the parent-death SIGTERM instead.
     setpgid(0, 0);
+    signal(SIGPIPE, SIG_IGN);
     prctl(PR_SET_PDEATHSIG, SIGTERM);
     if (getppid() != parent) _exit(130);
     dup2(fds[1], 1);
@@ -267,7 +270,10 @@ void Supervisor::ended(Child& c, int status) {
   else if (WIFSIGNALED(status)) sig = WTERMSIG(status);
   const nlohmann::json own = own_summary(c);
   const std::string reason = own.is_object() ? own.value("reason", "") : "";
-  const bool clean = code == 0 || (c.stopped && code == 130);
+  // Stopped and ended as interrupted: clean, unless its own watchdog had to force the exit (a node
+  // stuck in its step past the 2 s a stop allows): that is a hang, and fails the run.
+  const bool forced = reason.find("forced exit") != std::string::npos;
+  const bool clean = code == 0 || (c.stopped && code == 130 && !forced);
   collect_shared_memory(c, clean);
   const std::string how = how_it_ended(c, code, sig);
   if (!own.is_object()) write_child_summary(c, how, at);

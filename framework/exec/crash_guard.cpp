@@ -9,10 +9,12 @@
 #include <thread>
 
 #include <cstdio>
+#include <filesystem>
 #include <set>
 #include <string>
 
 #include <dirent.h>
+#include <sys/stat.h>
 #include <fcntl.h>
 #include <sys/mman.h>
 #include <unistd.h>
@@ -44,8 +46,10 @@ std::atomic<int> g_next_slot{0};
 thread_local int t_slot = -1;
 thread_local const char* t_node = nullptr;
 thread_local const char* t_phase = nullptr;
+thread_local char t_library[1024] = {0};  // the plugin library this thread is loading (Loading)
 
 char g_summary[4096] = {0};
+char g_summary_dir[4096] = {0};
 std::set<std::string> g_before;  // /dev/shm before the transport (set and read outside any handler)
 constexpr int kShm = 64;
 char g_shm[kShm][256];
@@ -53,6 +57,7 @@ int g_shm_n = 0;
 std::atomic<bool> g_armed{false};
 std::atomic<int> g_signals{0};
 std::atomic<long long> g_first_signal_ms{0};
+std::atomic<long long> g_ended_ms{0};  // when the run reached its end (duration, or a stop) on its own
 
 long long monotonic_ms() {
   timespec ts{};
@@ -88,6 +93,7 @@ const char* signal_name(int sig) {
   line << "[brickyard] " << (code == 130 ? "interrupted" : "failed") << ": " << reason.b << "\n";
   (void)!write(2, line.b, line.n);
   if (g_summary[0]) {
+    if (g_summary_dir[0]) mkdir(g_summary_dir, 0755);  // a crash before the run made its --out folder
     const int fd = open(g_summary, O_WRONLY | O_CREAT | O_TRUNC, 0644);
     if (fd >= 0) {
       Text j;
@@ -103,13 +109,20 @@ const char* signal_name(int sig) {
 
 void on_fatal(int sig) {
   Text r;
-  if (t_node) r << "node '" << t_node << "' crashed with " << signal_name(sig) << " in its " << (t_phase ? t_phase : "call");
+  if (t_library[0])
+    r << "plugin library " << t_library << " crashed with " << signal_name(sig) << " while it was being loaded (its load-time code)";
+  else if (t_node) r << "node '" << t_node << "' crashed with " << signal_name(sig) << " in its " << (t_phase ? t_phase : "call");
   else r << "the process crashed with " << signal_name(sig) << " outside any node";
   r << "; the process ends here";
   die(r, 1);
 }
 
 void on_exit_called() {
+  if (t_library[0]) {
+    Text r;
+    r << "plugin library " << t_library << " called exit() while it was being loaded (its load-time code); the run did not start";
+    die(r, 1);
+  }
   if (!g_armed.load()) return;
   Text r;
   if (t_node) r << "node '" << t_node << "' called exit() in its " << (t_phase ? t_phase : "call") << "; the run did not finish";
@@ -142,6 +155,14 @@ void watchdog() {
       r << "node '" << node << "' has been in its step for " << secs << " s, far past its step deadline; the process ends here";
       die(r, 1);
     }
+    const long long ended = g_ended_ms.load();
+    if (g_armed.load() && ended != 0 && g_first_signal_ms.load() == 0 && monotonic_ms() - ended >= 2000) {
+      Text r;
+      r << "the run reached its end but did not stop within 2 s: ";
+      name_running(r);
+      r << "; forced exit";
+      die(r, 1);  // a failure, not an interruption: nobody asked it to stop early
+    }
     const long long first = g_first_signal_ms.load();
     if (!g_armed.load() || first == 0 || monotonic_ms() - first < 2000) continue;
     Text r;
@@ -152,12 +173,33 @@ void watchdog() {
   }
 }
 
+void install_handlers();  // the signal handlers, the exit() trap and the watchdog, once a process
+
 }  // namespace
 
-void install(const std::string& summary_path) {
-  static bool once = false;
+void set_summary_path(const std::string& summary_path) {
   std::snprintf(g_summary, sizeof g_summary, "%s", summary_path.c_str());
+  const std::string dir = summary_path.empty() ? std::string() : std::filesystem::path(summary_path).parent_path().string();
+  std::snprintf(g_summary_dir, sizeof g_summary_dir, "%s", dir.c_str());
+}
+
+void install(const std::string& summary_path) {
+  set_summary_path(summary_path);
   g_armed = true;
+  install_handlers();
+}
+
+Loading::Loading(const std::string& library) {
+  install_handlers();
+  std::snprintf(t_library, sizeof t_library, "%s", library.c_str());
+}
+
+Loading::~Loading() { t_library[0] = '\0'; }
+
+namespace {
+
+void install_handlers() {
+  static bool once = false;
   if (once) return;
   once = true;
   struct sigaction sa {};
@@ -176,6 +218,8 @@ void install(const std::string& summary_path) {
     if (fd >= 0) ::close(fd);
   }
 }
+
+}  // namespace
 
 void snapshot_shared_memory() {
   g_before.clear();
@@ -236,6 +280,9 @@ void note_shared_memory() {
 }
 
 void run_ended() { g_armed = false; }
+
+Ending::Ending() { g_ended_ms = monotonic_ms(); }
+Ending::~Ending() { g_ended_ms = 0; }
 
 void interrupted() {
   // Called from the signal handler: atomics and the exit path only.

@@ -19,6 +19,7 @@
 namespace brickyard::fw {
 
 std::atomic<bool> g_interrupt{false};
+std::atomic<bool> g_supervisor_gone{false};
 thread_local Deferred* t_deferred = nullptr;
 thread_local std::int64_t t_step_now_ns = -1;
 thread_local std::vector<std::uint16_t>* t_publog = nullptr;
@@ -284,7 +285,7 @@ RunSummary Executive::run() {
   // every lifecycle call is an event of its process, so every process stops at the same node.
   if (lock_) lockstep_start();
   const std::vector<NodeRuntime*> active = bring_up(built);
-  if (!stop_ && !sim() && !await_peers() && g_interrupt) request_stop(RunResult::interrupted, "interrupted");
+  if (!stop_ && !sim() && !await_peers() && g_interrupt) request_stop(RunResult::interrupted, interrupt_reason());
   if (!stop_) {
     host_log("running");
     if (sim()) run_sim();

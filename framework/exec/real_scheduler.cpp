@@ -3,6 +3,7 @@
 // arrival, and a node waiting on its device (Context::wake_on_readable: a driver) wakes as soon
 // as the device has something to read. The calling thread watches the duration, interrupts and
 // the progress line.
+#include "exec/crash_guard.hpp"
 #include "exec/executive.hpp"
 #include "exec/node_runtime.hpp"
 
@@ -114,13 +115,14 @@ void Executive::run_real() {
   auto deadline = dur ? start + std::chrono::nanoseconds(static_cast<std::int64_t>(*dur * 1e9)) : Clock::time_point::max();
   while (!stop_) {
     if (g_interrupt) {
-      request_stop(RunResult::interrupted, "interrupted");
+      request_stop(RunResult::interrupted, interrupt_reason());
       break;
     }
     if (Clock::now() >= deadline) break;
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
     progress();
   }
+  const crash_guard::Ending ending;  // a node stuck in its step cannot hold the ended run for ever
   stop_ = true;
   for (auto& n : nodes_) {
     {

@@ -48,5 +48,9 @@ struct RunSummary {
 
 // Set from a signal handler: the running executive stops cleanly at the next event.
 extern std::atomic<bool> g_interrupt;
+// Set from the same handler in a supervised process whose supervisor is gone (the kernel's
+// parent-death signal, PR_SET_PDEATHSIG): the run ends as interrupted, and says why.
+extern std::atomic<bool> g_supervisor_gone;
+inline const char* interrupt_reason() { return g_supervisor_gone ? "interrupted: its supervisor died" : "interrupted"; }
 
 }  // namespace brickyard::fw

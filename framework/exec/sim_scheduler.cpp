@@ -275,7 +275,7 @@ void Executive::SimRun::step_instant(std::int64_t t) {
       continue;
     }
     if (g_interrupt) {
-      e_.request_stop(RunResult::interrupted, "interrupted");
+      e_.request_stop(RunResult::interrupted, interrupt_reason());
       break;
     }
     const std::size_t i = due_[next_due_++];

@@ -7,6 +7,8 @@
 
 #include <brickyard/roles.hpp>
 
+#include "io/bounded_read.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -19,6 +21,24 @@ namespace {
 
 using nlohmann::json;
 constexpr int kMaxDepth = 64;
+// A graph file, included or not: a 100,000-node graph is about 11 MB; a file larger than this is
+// no graph a person wrote (and /dev/zero-like sources never end).
+constexpr std::size_t kMaxGraphFileBytes = 64u << 20;
+
+// The text of a graph file, or why it cannot be had: missing, not a regular file (a FIFO would
+// block the open, a device never end), larger than kMaxGraphFileBytes, unreadable.
+bool read_graph_text(const std::filesystem::path& path, std::string& text, std::string& why) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) return why = "does not exist", false;
+  std::vector<std::uint8_t> bytes;
+  std::string error;
+  if (!io::read_regular_file(path.string(), kMaxGraphFileBytes, bytes, error)) {
+    why = error.substr(std::min(error.size(), path.string().size() + 2));  // the reason, without the path
+    return false;
+  }
+  text.assign(bytes.begin(), bytes.end());
+  return true;
+}
 
 const char* type_word(const json& j) {
   switch (j.type()) {
@@ -381,16 +401,14 @@ json compose(const std::string& text, const std::string& file, std::vector<std::
       d.add(where, "includes nest deeper than 16 files");
       d.raise_if_any();
     }
-    std::ifstream in(path, std::ios::binary);
-    if (!std::filesystem::is_regular_file(path, ec) || !in) {
-      d.add(where, "included file " + path.string() + (std::filesystem::exists(path, ec) ? " cannot be read" : " does not exist"));
+    std::string text, why;
+    if (!read_graph_text(path, text, why)) {
+      d.add(where, "included file " + path.string() + ": " + why);
       d.raise_if_any();
     }
-    std::ostringstream ss;
-    ss << in.rdbuf();
     chain.push_back(canon);
     Provenance part_prov;
-    json part = compose(ss.str(), path.string(), chain, part_prov, d);
+    json part = compose(text, path.string(), chain, part_prov, d);
     chain.pop_back();
     if (!part.is_object()) {
       d.add(path.string() + "#", std::string("expected object, found ") + type_word(part));
@@ -509,14 +527,9 @@ const ProcessDecl& process_policy(const GraphDecl& g, const std::string& process
 }
 
 GraphDecl load_graph_file(const std::string& path, const std::vector<std::string>& sets, const std::vector<std::string>& args) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec))
-    throw InvalidInput(path, std::filesystem::exists(path, ec) ? "not a regular file" : "no such file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InvalidInput(path, "cannot be read");
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return parse_graph_text(ss.str(), path, sets, args);
+  std::string text, why;
+  if (!read_graph_text(path, text, why)) throw InvalidInput(path, why == "does not exist" ? "no such file" : why);
+  return parse_graph_text(text, path, sets, args);
 }
 
 }  // namespace brickyard::fw

@@ -1,5 +1,6 @@
 #include "loader/registry.hpp"
 #include "graph/names.hpp"
+#include "exec/crash_guard.hpp"
 
 #include <brickyard/msgs/registry.hpp>
 
@@ -167,6 +168,9 @@ const brickyard_library_info* open_library(const std::string& path, std::vector<
   }
   // RTLD_NOW: an unresolved symbol is an error now, not a crash mid-race. RTLD_LOCAL: plugins'
   // symbols never interpose on each other.
+  // The library's load-time code (static constructors, the entry point) runs here: a crash or an
+  // exit() in it is named by the crash guard, not left a mute exit code.
+  const crash_guard::Loading loading(path);
   void* h = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
   if (!h) {
     const char* e = dlerror();

@@ -5,7 +5,7 @@
 # summary.json is written with the reason, the recording keeps all but the last second before the
 # fault, and no shared memory is left in /dev/shm. A node that
 # hangs in its step: SIGINT ends the run within 2 s naming it (exit 130), and a second signal
-# ends it at once. A node's step deadline (deadline_s): a late step fails the run, a stuck one
+# ends it at once; a real-clock run that reaches its end fails 2 s later naming it (exit 1). A node's step deadline (deadline_s): a late step fails the run, a stuck one
 # ends it.
 set -u
 by=$1; graphs=$2; domain=$3; out=$4
@@ -76,6 +76,16 @@ took=$(( ($(date +%s%N) - start) / 1000000 ))
 echo "hang: two signals, exit $rc after $took ms"
 [ $rc -eq 130 ] && [ $took -lt 1000 ] && grep -qF "a second signal: node 'fault' (in its step); forced exit" "$out/hang2.log" \
   || { cat "$out/hang2.log"; echo "FAIL: a second signal did not force the exit"; exit 1; }
+# A real-clock run of 4 s whose node hangs at step 120 (2.4 s): at its end the run has 2 s to
+# stop, then fails naming the node (it stayed alive for ever, saying nothing).
+start=$(date +%s%N)
+timeout 20 "$by" run "$graphs/fault_real.json" --domain "$domain" --quiet --progress 0 --set fault.mode=hang --duration 4 \
+  --out "$out/hang_at_end" > "$out/hang_at_end.log" 2>&1
+rc=$?
+took=$(( ($(date +%s%N) - start) / 1000000 ))
+echo "hang: a 4 s real-clock run with a hung node ended after $took ms, exit $rc"
+[ $rc -eq 1 ] && [ $took -lt 9000 ] && grep -qF "the run reached its end but did not stop within 2 s: node 'fault' (in its step); forced exit" "$out/hang_at_end.log" \
+  && grep -q '"result": "failed"' "$out/hang_at_end/summary.json" || { cat "$out/hang_at_end.log"; echo "FAIL: a hung node kept an ended run alive"; exit 1; }
 # Step deadlines (deadline_s 0.3 s): a step that takes 0.8 s fails the run when it returns; one
 # that never returns is given up on at 1.3 s (twice the deadline, at least a second past it).
 "$by" run "$graphs/fault_deadline.json" --domain "$domain" --quiet --progress 0 --set fault.mode=slow --out "$out/slow" > "$out/slow.log" 2>&1

@@ -9,9 +9,14 @@
 #  3. a segfaults at every start and may not die: restarted once (max_restarts 1), then no more;
 #     the run fails naming the process, its node and the crash.
 #     throw, abort and exit() likewise (no restart): each named.
+#     A node stuck in its step when its process is stopped: force-exited by its own watchdog, and
+#     the run fails naming it.
 #  4. b alone, a never started: b's start-up waits transport.startup_timeout_s and fails naming
 #     the writer and its process.
 #  5. SIGINT to the supervisor: both processes end cleanly within the 2 s, result interrupted.
+#  6. The supervisor killed with SIGKILL: each process ends within 5 s (the parent-death signal)
+#     and writes its own summary, interrupted because its supervisor died (it died of SIGPIPE,
+#     writing to the dead supervisor's pipe, with no summary).
 set -u
 by=$1; graph=$2; domain=$3; out=$4
 rm -rf "$out"; mkdir -p "$out"
@@ -112,6 +117,21 @@ grep -qF "process 'a' (nodes src) was killed by SIGKILL while node 'src' was in 
 no_shm_left stuck
 echo "3c. a process killed while its node hung in a step: the node named from its black box"
 
+# 3d. A node stuck in its step when the supervisor stops its process (SIGINT to the run): the
+#     process's own watchdog forces its exit 2 s later, and the run fails naming it (it passed,
+#     "interrupted", exit 0).
+"$by" run "$graph" --domain "$domain" --progress 0 --duration 20 --arg may_die=false --arg max_restarts=0 --set src.mode=hang \
+  --set src.at_step=50 --set check.min_count=0 --out "$out/forced" > "$out/forced.log" 2>&1 &
+sup=$!
+sleep 2.5
+kill -INT $sup
+wait $sup; rc=$?
+want="process 'a' (nodes src) exited with code 130: the run did not stop within 2 s of the signal: node 'src' (in its step); forced exit"
+[ $rc -eq 1 ] && grep -qF "$want" "$out/forced.log" && [ "$(summary "$out/forced/summary.json" "s['result']")" = "failed" ] \
+  || { cat "$out/forced.log"; echo "FAIL: forced: a process force-exited at its stop passed (exit $rc)"; exit 1; }
+no_shm_left forced
+echo "3d. a process that had to be force-exited when stopped: the run failed naming it"
+
 # 4. A peer that never comes: b's start-up gives up after 1 s.
 "$by" run "$graph" --process b --domain "$domain" --progress 0 --arg startup_timeout_s=1 --out "$out/alone" > "$out/alone.log" 2>&1
 rc=$?
@@ -132,4 +152,19 @@ took=$(( ($(date +%s%N) - start) / 1000000 ))
   || { cat "$out/int/summary.json"; echo "FAIL: interrupt: summary"; exit 1; }
 no_shm_left interrupt
 echo "5. SIGINT: every process ended in $took ms, exit 0"
+
+# 6. The supervisor killed: its children end and each writes its summary.
+"$by" run "$graph" --domain "$domain" --progress 0 --out "$out/orphans" > "$out/orphans.log" 2>&1 &
+sup=$!
+sleep 3
+kill -9 $sup
+wait $sup 2> /dev/null
+for p in a b; do
+  for i in $(seq 50); do [ -f "$out/orphans/$p/summary.json" ] && break; sleep 0.1; done
+  [ "$(summary "$out/orphans/$p/summary.json" "s['result'], s['reason']" 2> /dev/null)" = "('interrupted', 'interrupted: its supervisor died')" ] \
+    || { cat "$out/orphans.log"; cat "$out/orphans/$p/summary.json"; echo "FAIL: orphans: process $p's summary"; exit 1; }
+done
+for i in $(seq 50); do pgrep -f -- "--domain $domain --out $out/orphans/" > /dev/null || break; sleep 0.1; done
+! pgrep -f -- "--domain $domain --out $out/orphans/" > /dev/null || { echo "FAIL: orphans: a process outlived its supervisor by 5 s"; exit 1; }
+echo "6. the supervisor killed: each process ended and wrote its summary (interrupted: its supervisor died)"
 echo "supervisor: ok"

@@ -19,3 +19,7 @@ add_test(NAME architecture.plugins_declare_each_port_once
   COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/cli/ports_declared_once.sh ${PROJECT_SOURCE_DIR})
 add_test(NAME architecture.port_check_catches_a_violation
   COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/cli/ports_declared_once.sh --self-test ${PROJECT_SOURCE_DIR} ${CMAKE_CURRENT_BINARY_DIR}/port_self_test)
+# scripts/bench-report merges a benchmark's rounds into its block of the document, and refuses
+# what it cannot do (docs/performance.md).
+add_test(NAME architecture.bench_report_merges_rounds
+  COMMAND python3 ${CMAKE_CURRENT_SOURCE_DIR}/cli/bench_report_self_test.py ${PROJECT_SOURCE_DIR} ${CMAKE_CURRENT_BINARY_DIR}/bench_report_self_test)

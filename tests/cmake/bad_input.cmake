@@ -213,3 +213,6 @@ if(BRICKYARD_SIM)
   bad_input(validate_graph_file_missing "node 'planner' \\(planning.road_graph\\): file 'nothing.byrg' not found"
             validate ${PROJECT_SOURCE_DIR}/configs/ims_race.json --set planner.graph_file=nothing.byrg)
 endif()
+# A graph file or an include that is a FIFO, a folder, a device, too large or missing: exit 2
+# within seconds naming it (a FIFO's open waited for a writer for ever).
+add_test(NAME bad_input.graph_file_kinds COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/cli/graph_file_kinds.sh ${BY} ${RUNS}/graph_file_kinds)

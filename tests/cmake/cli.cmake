@@ -52,3 +52,14 @@ cli_test(new_plugin_unknown_role 2 "--role no_such_role: unknown role \\(roles: 
          new-plugin acme.x --role no_such_role --dir ${CMAKE_CURRENT_BINARY_DIR}/scaffold_role)
 cli_test(new_plugin_role_without_template 2 "--role estimator: no template for this role yet \\(roles with one: planner\\)"
          new-plugin acme.x --role estimator --dir ${CMAKE_CURRENT_BINARY_DIR}/scaffold_role)
+# A plugin library whose load-time code aborts or calls exit(): named, the run fails (exit 1) and
+# its summary is written in --out (the folder made by the crash handler); validate names it too.
+foreach(kind abort exit)
+  set(said_abort "crashed with SIGABRT \\(abort\\) while it was being loaded")
+  set(said_exit "called exit\\(\\) while it was being loaded")
+  set(out ${RUNS}/load_${kind})
+  add_test(NAME cli.plugin_load_${kind}_named COMMAND sh -c "mkdir -p ${RUNS} && rm -rf ${out} && \"$0\" \"$@\" && grep -q '\"result\": \"failed\", \"reason\": \"plugin library .*libfixture_load_${kind}.so' ${out}/summary.json"
+    ${EXPECT} 1 "plugin library .*/load_${kind}/libfixture_load_${kind}.so ${said_${kind}}" -- ${BY} run ${GOOD} --plugin-path ${FIXTURES}/load_${kind} --out ${out})
+  add_test(NAME cli.plugin_load_${kind}_named_by_validate
+    COMMAND ${EXPECT} 1 "plugin library .*/load_${kind}/libfixture_load_${kind}.so ${said_${kind}}" -- ${BY} validate ${GOOD} --plugin-path ${FIXTURES}/load_${kind})
+endforeach()

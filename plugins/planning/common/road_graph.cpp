@@ -1,5 +1,6 @@
 #include "road_graph.hpp"
 
+#include "io/bounded_read.hpp"
 #include "io/whole_file.hpp"
 #include "math/fnv1a.hpp"
 
@@ -303,6 +304,8 @@ std::runtime_error unusable(const std::string& path, const std::string& what) {
 }
 
 std::string read_graph_file(const std::string& path) {
+  // A FIFO or a device refused before the stream opens it (a FIFO's open waits for a writer).
+  if (std::string error; !io::is_regular_readable(path, error)) throw std::runtime_error(error);
   std::string bytes;
   std::ifstream in(path, std::ios::binary | std::ios::ate);
   if (!in) throw std::runtime_error(path + ": cannot open");
