@@ -8,9 +8,11 @@
 #include "exec/seeding.hpp"
 #include "record/recorder.hpp"
 #include "record/sample_serializer.hpp"
+#include "transport/shm_reclaim.hpp"
 
 #include <algorithm>
 #include <map>
+#include <cstdio>
 #include <mutex>
 #include <set>
 #include <tuple>
@@ -87,6 +89,12 @@ void Executive::build() {
 
 void Executive::make_transport() {
   DdsSettings ds = dds_settings(graph_, opt_);
+  if (ds.shared_memory) {  // what killed processes left in /dev/shm, before this one adds its own
+    const ReclaimedSegments r = reclaim_dead_segments();
+    if (!r.files.empty() && !opt_.quiet)
+      std::fprintf(stderr, "notice: removed %zu shared-memory segment%s (%.1f MB) that processes which died had left in /dev/shm\n",
+                   r.files.size(), r.files.size() == 1 ? "" : "s", static_cast<double>(r.bytes) / 1e6);
+  }
   crash_guard::snapshot_shared_memory();
   transport_ = std::make_unique<DdsTransport>(ds);
   crash_guard::note_shared_memory();  // the participant's own segment and port files, made just now

@@ -18,6 +18,12 @@ add_test(NAME evidence.two_processes
   COMMAND ${NETNS} ${CMAKE_CURRENT_SOURCE_DIR}/cli/two_process.sh ${BY} ${CMAKE_CURRENT_SOURCE_DIR}/graphs/multiprocess/two_process.json ${d} ${RUNS}/two_process)
 # A process of a split run killed: the other notices within the liveliness lease.
 evidence_script(peer_lost peer_lost.sh ${CMAKE_CURRENT_SOURCE_DIR}/graphs/multiprocess/two_process.json)
+# A process killed outside any supervisor: its shared-memory segment removed by the next run, a
+# live run's kept (two domains: the killed run's, and the live one's beside it).
+by_next_domains(d 2)
+add_test(NAME evidence.shm_reclaimed
+  COMMAND ${NETNS} ${CMAKE_CURRENT_SOURCE_DIR}/cli/shm_reclaimed.sh ${BY} ${CMAKE_CURRENT_SOURCE_DIR}/graphs/fault_real.json ${d} ${RUNS}/shm_reclaimed)
+set_tests_properties(evidence.shm_reclaimed PROPERTIES PROCESSORS 2)
 
 # One sim clock across processes: a split graph on the sim clock, its processes in
 # lockstep, is the run in one process — summaries and recordings — on one thread and on four; a
