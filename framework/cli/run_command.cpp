@@ -29,7 +29,9 @@ namespace fs = std::filesystem;
 pid_t g_supervisor = 0;  // a supervised process's supervisor (its parent when it started), else 0
 
 void on_signal(int) {
-  if (g_supervisor != 0 && getppid() != g_supervisor) g_supervisor_gone = true;  // getppid: async-signal-safe
+  // A supervised process whose supervisor died is told to end by the kernel, and told again each
+  // time it is handed to another parent: only the first counts (a second signal forces the exit).
+  if (g_supervisor != 0 && getppid() != g_supervisor && g_supervisor_gone.exchange(true)) return;  // getppid: async-signal-safe
   g_interrupt = true;
   crash_guard::interrupted();  // the run has 2 s from here; a second signal ends it at once
 }

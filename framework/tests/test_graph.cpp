@@ -250,7 +250,7 @@ TEST(GraphCompose, ErrorsNameTheFileThatDeclaredTheValue) {
   EXPECT_EQ(load_error(t.put("c.json", R"({"include": ["base.json"], "wires": [{"from": "src", "to": "check.in"}]})")),
             (t.dir / "c.json").string() + "#/wires/0/from: expected \"node.port\", found \"src\"");
   EXPECT_EQ(load_error(t.put("d.json", R"({"include": ["nope.json"]})")),
-            (t.dir / "d.json").string() + "#/include/0: included file " + (t.dir / "nope.json").string() + " does not exist");
+            (t.dir / "d.json").string() + "#/include/0: included file " + (t.dir / "nope.json").string() + ": does not exist");
   (void)base;
 }
 
