@@ -16,7 +16,6 @@
 
 #include <csignal>
 #include <cstdlib>
-#include <unistd.h>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -26,14 +25,17 @@ namespace {
 
 namespace fs = std::filesystem;
 
-pid_t g_supervisor = 0;  // a supervised process's supervisor (its parent when it started), else 0
-
 void on_signal(int) {
-  // A supervised process whose supervisor died is told to end by the kernel, and told again each
-  // time it is handed to another parent: only the first counts (a second signal forces the exit).
-  if (g_supervisor != 0 && getppid() != g_supervisor && g_supervisor_gone.exchange(true)) return;  // getppid: async-signal-safe
   g_interrupt = true;
   crash_guard::interrupted();  // the run has 2 s from here; a second signal ends it at once
+}
+
+// A supervised process's supervisor died: the kernel sends SIGHUP (the supervisor's
+// PR_SET_PDEATHSIG), once for each parent the process is handed to on the way (a thread of the
+// dying supervisor, then init). The run ends as interrupted, saying why; never a forced exit.
+void on_supervisor_death(int) {
+  g_supervisor_gone = true;
+  if (!g_interrupt.exchange(true)) crash_guard::interrupted();
 }
 
 // What the plugins' own checks and the host's refuse, every node's together, before anything starts.
@@ -170,7 +172,7 @@ int run_graph(const Args& a, GraphDecl g, bool validate_only) {
   if (a.record_cloud_precision > 0 && a.record.empty())
     usage_error("--record-cloud-precision", "needs --record FILE (the --out folder's recording leaves the clouds out)");
   if (a.process.empty() && !a.one_process && rg.processes.size() > 1) return supervise_run(a, g);
-  if (std::getenv("BRICKYARD_SHM_LIST")) g_supervisor = getppid();  // set by the supervisor for its children only
+  if (std::getenv("BRICKYARD_SHM_LIST")) std::signal(SIGHUP, on_supervisor_death);  // set by the supervisor for its children only
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
   RunOptions opt = run_options(a, g, security);

@@ -197,10 +197,12 @@ void Supervisor::spawn(Child& c) {
     // The child: its own process group (a Ctrl-C at the terminal reaches the supervisor, which
     // stops the children in order), told to end when the supervisor dies, its output to the pipe.
     // SIGPIPE ignored (kept across exec): were the supervisor killed, the child's next line to the
-    // pipe would kill it before it wrote its summary; it ends on the parent-death SIGTERM instead.
+    // pipe would kill it before it wrote its summary; it ends on the parent-death SIGHUP instead
+    // (a signal of its own: the kernel may send it more than once, and it must not count as the
+    // second Ctrl-C that forces an exit).
     setpgid(0, 0);
     signal(SIGPIPE, SIG_IGN);
-    prctl(PR_SET_PDEATHSIG, SIGTERM);
+    prctl(PR_SET_PDEATHSIG, SIGHUP);
     if (getppid() != parent) _exit(130);
     dup2(fds[1], 1);
     dup2(fds[1], 2);

@@ -48,8 +48,8 @@ struct RunSummary {
 
 // Set from a signal handler: the running executive stops cleanly at the next event.
 extern std::atomic<bool> g_interrupt;
-// Set from the same handler in a supervised process whose supervisor is gone (the kernel's
-// parent-death signal, PR_SET_PDEATHSIG): the run ends as interrupted, and says why.
+// Set in a supervised process whose supervisor is gone (the kernel's parent-death signal, SIGHUP:
+// PR_SET_PDEATHSIG): the run ends as interrupted, and says why.
 extern std::atomic<bool> g_supervisor_gone;
 inline const char* interrupt_reason() { return g_supervisor_gone ? "interrupted: its supervisor died" : "interrupted"; }
 
