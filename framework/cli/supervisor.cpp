@@ -272,9 +272,9 @@ void Supervisor::ended(Child& c, int status) {
   else if (WIFSIGNALED(status)) sig = WTERMSIG(status);
   const nlohmann::json own = own_summary(c);
   const std::string reason = own.is_object() ? own.value("reason", "") : "";
-  // Stopped and ended as interrupted: clean, unless its own watchdog had to force the exit (a node
+  // Stopped and ended as interrupted: clean, unless its crash guard had to force the exit (a node
   // stuck in its step past the 2 s a stop allows): that is a hang, and fails the run.
-  const bool forced = reason.find("forced exit") != std::string::npos;
+  const bool forced = own.is_object() && own.value("forced_exit", false);
   const bool clean = code == 0 || (c.stopped && code == 130 && !forced);
   collect_shared_memory(c, clean);
   const std::string how = how_it_ended(c, code, sig);

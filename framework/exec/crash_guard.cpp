@@ -98,7 +98,7 @@ const char* signal_name(int sig) {
     if (fd >= 0) {
       Text j;
       j << "{\"result\": \"" << (code == 130 ? "interrupted" : "failed") << "\", \"reason\": \"" << reason.b
-        << "\", \"summary\": \"written by the crash handler: the run could not finish its own\"}\n";
+        << "\", \"summary\": \"written by the crash handler: the run could not finish its own\", \"forced_exit\": true}\n";
       (void)!write(fd, j.b, j.n);
       close(fd);
     }

@@ -3,7 +3,8 @@
 // a segmentation fault, abort(), a bus or arithmetic fault, or exit() from a step. The process
 // cannot go on, but it does not die mute: a signal handler (async-signal-safe: write(2) and
 // preformatted text only) prints which node was running and in which phase, writes a minimal
-// summary.json when the run has an --out folder, removes the process's Fast DDS shared-memory
+// summary.json when the run has an --out folder (marked "forced_exit": true, which a supervisor
+// reads: such a process did not stop cleanly), removes the process's Fast DDS shared-memory
 // files (a process killed by a signal leaves its segment in /dev/shm), and ends with exit code 1.
 // The recording keeps what it wrote up to the last second (docs/recording.md).
 //

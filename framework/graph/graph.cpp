@@ -12,9 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <set>
-#include <sstream>
 
 namespace brickyard::fw {
 namespace {
@@ -33,7 +31,8 @@ bool read_graph_text(const std::filesystem::path& path, std::string& text, std::
   std::vector<std::uint8_t> bytes;
   std::string error;
   if (!io::read_regular_file(path.string(), kMaxGraphFileBytes, bytes, error)) {
-    why = error.substr(std::min(error.size(), path.string().size() + 2));  // the reason, without the path
+    const std::string named = path.string() + ": ";  // the reason, without the path the caller names itself
+    why = error.rfind(named, 0) == 0 ? error.substr(named.size()) : error;
     return false;
   }
   text.assign(bytes.begin(), bytes.end());
