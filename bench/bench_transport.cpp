@@ -84,7 +84,7 @@ DomainParticipant* raw_participant(int domain) {
 
 // The raw endpoints' QoS is ours (transport/dds.cpp): RELIABLE, KEEP_LAST 8, and DDS liveliness,
 // AUTOMATIC with a 0.5 s lease asserted every 0.1 s (how a process notices a dead peer), unless
-// `liveliness` is false: the row that shows what liveliness itself costs.
+// g_raw_liveliness is false: the last line, what liveliness itself costs.
 bool g_raw_liveliness = true;
 
 DataWriterQos writer_qos() {
@@ -305,7 +305,6 @@ void ours_echo_child(int total) {
   };
   transport.make_reader("brickyard/bench/ping", kBlob, 8, [&](std::shared_ptr<const void> smp) { in.push(std::move(smp)); });
   for (int echoed = 0; echoed < total;) {
-    std::vector<std::shared_ptr<const void>> got;
     {
       std::unique_lock<std::mutex> l(m);
       if (!cv.wait_for(l, std::chrono::seconds(5), [&] { return static_cast<int>(in.received()) > echoed; })) break;
