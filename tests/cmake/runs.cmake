@@ -179,3 +179,12 @@ foreach(at 1400 2213)
 endforeach()
 
 endif()
+
+# Whole races that repeat, under the sanitizers, what shorter runs of the same plugins already
+# cover (each about 200 s there, a third of that stage): scripts/test-sanitizers leaves them out.
+# graph.configs_ims_race, the main job, stays in.
+if(BRICKYARD_SIM)
+  set_property(TEST graph.configs_ims_race_seed3 graph.ims_race_60_localization_comes_back graph.race_spielberg_fault_in_lap_2
+                    graph.race_spielberg_at_the_limit graph.race_spielberg_pylon_at_1400 graph.race_spielberg_pylon_at_2213
+               APPEND PROPERTY LABELS full_race)
+endif()
