@@ -87,6 +87,7 @@ print(f"laps {', '.join(f'{a:.2f}' for a in laps)} s on the wires; {', '.join(f'
       f"interface's watchdog trips {vi['watchdog_trips']:.0f}, frames refused {refused:.0f}; fixes rejected "
       f"{car['estimator']['metrics']['fixes_rejected']:.0f} (direct {direct['estimator']['metrics']['fixes_rejected']:.0f}); "
       f"the receivers' stamp delay p99 {1000 * delay:.2f} ms, their drivers' wire to message p99 {1000 * wire:.2f} ms; "
+      f"estimates carried to their step's time by at most {1000 * car['estimator']['metrics']['estimate_carried_max_s']:.1f} ms; "
       f"the command gap at most {1000 * vi['longest_command_gap_s']:.0f} ms")
 ok = len(laps) == len(ref) and worst <= 0.01 and sim["referee"]["metrics"]["wall_contacts"] == 0
 ok = ok and dbw["timeouts"] == 0 and vi["watchdog_trips"] == 0 and refused == 0

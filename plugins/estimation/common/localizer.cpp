@@ -281,6 +281,17 @@ void Localizer::initialize(double t, const std::vector<Fix>& epoch) {
   if (t < t_) filter_.predict(t_ - t, speed_, yaw_rate_);
 }
 
+Localizer::Pose Localizer::pose_at(double t, double max_s) const {
+  const auto& x = filter_.state();
+  Pose p{x(PoseFilter::X), x(PoseFilter::Y), x(PoseFilter::YAW), 0, 0};
+  const double ahead = t - t_;
+  if (!(ahead > 0)) return p;
+  const double dt = std::min(ahead, max_s);
+  const double v = x(PoseFilter::SPEED), w = x(PoseFilter::YAW_RATE);
+  const double mid = p.yaw + 0.5 * w * dt;
+  return {p.x + v * std::cos(mid) * dt, p.y + v * std::sin(mid) * dt, p.yaw + w * dt, dt, ahead - dt};
+}
+
 Status Localizer::status(double t) { return filter_.initialized() ? manager_.update(t) : Status::warning; }
 
 std::pair<UpdateCase, std::vector<double>> Localizer::take_epoch_summary() {

@@ -66,6 +66,18 @@ class Localizer {
   void scan_unlocated();
   // The manager's status at t (WARNING while the heading is not known yet).
   Status status(double t);
+  // The filter's time: the stamp of the newest sample it has taken, s.
+  double time() const { return t_; }
+  // The pose at t: the filter's, carried from its time by its speed and yaw rate (a constant turn)
+  // for at most max_s. On the real clock an estimator steps when an IMU sample arrives, and one
+  // that arrived late (its sender stalled) leaves the filter behind the step's time: published
+  // as now, its pose was that many metres behind the car (1.4 m at 77 m/s for 18 ms).
+  struct Pose {
+    double x = 0, y = 0, yaw = 0;
+    double carried_s = 0;  // how far it was carried
+    double short_s = 0;    // how far short of t it is (past max_s)
+  };
+  Pose pose_at(double t, double max_s) const;
 
   const PoseFilter& filter() const { return filter_; }
   const LocalizationManager& manager() const { return manager_; }

@@ -18,6 +18,7 @@ struct Settings {
   std::vector<double> antenna0, antenna1;  // empty: the mount's place in the vehicle file
   std::string antenna0_mount = "gnss_left", antenna1_mount = "gnss_right";
   double epoch_pair_s = 0.01, epoch_wait_s = 0.05;
+  double carry_max_s = 0.1;
   LocalizerParams loc;
 };
 
@@ -78,6 +79,9 @@ template <Policy P> ParamBinding<Settings> bindings() {
       .doc("real clock: two receivers' fixes stamped this close are one epoch (each carried from its own stamp)");
   b.bind("epoch_wait_s", &Settings::epoch_wait_s).in_unit("s").range(0, 1)
       .doc("real clock: how long a receiver's fix waits for the other receiver's of its epoch");
+  b.bind("carry_max_s", &Settings::carry_max_s).in_unit("s").range(0, 1)
+      .doc("an estimate is the pose at its step's time, carried there from the newest IMU sample's stamp by the filter's speed "
+           "and yaw rate (a sample that arrived late) for at most this long; stamped where it got to");
   b.bind("init_distance", &Settings::loc, &L::init_distance).in_unit("m").range(0.5, 1000).doc("travel before the heading is taken from the fixes");
   b.bind("emergency_after_s", &Settings::loc, &L::manager, &M::emergency_after_s).in_unit("s").range(0, 3600)
       .doc("every receiver rejected or silent this long: EMERGENCY");

@@ -2,7 +2,8 @@
 // (common/pose_filter) predicted by the IMU's yaw rate and the rear wheel speeds, corrected by two
 // GNSS receivers; the three differ only in how an epoch of fixes is used
 // (common/update_selection) — same ports and params, so a graph swaps them by plugin name.
-// Each publishes a LocalizationEstimate per IMU sample and the localization manager's ModeStatus.
+// Each publishes a LocalizationEstimate per IMU sample (the pose at the step's time) and the
+// localization manager's ModeStatus.
 #include <brickyard/msgs/LocalizationEstimate.h>
 #include <brickyard/msgs/ModeStatus.h>
 #include <brickyard/plugin.hpp>
@@ -12,6 +13,8 @@
 #include "params.hpp"
 #include "ports.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <optional>
 
 namespace {
@@ -39,6 +42,7 @@ template <Policy P> class Estimator : public Plugin {
     LocalizerParams lp = set.loc;
     place_antennas(ctx, set, lp.lever);
     selection_ = lp.selection;
+    carry_max_s_ = set.carry_max_s;
     io_ = ports().connect(ctx);
     lp.manager.receivers = io_.gnss[1].connected() ? 2 : 1;
     receivers_ = {lp.manager.receivers, {lp.lever[0], lp.lever[1]}};
@@ -71,6 +75,8 @@ template <Policy P> class Estimator : public Plugin {
 
   void deactivate(Context& ctx) override {
     for (const auto& [name, value] : summary_metrics(*loc_, modes_, P, io_.scan_pose.connected(), selection_)) ctx.metric(name, value);
+    ctx.metric("estimates_carried", static_cast<double>(carried_));
+    ctx.metric("estimate_carried_max_s", carried_max_s_);
   }
 
  private:
@@ -89,14 +95,17 @@ template <Policy P> class Estimator : public Plugin {
 
   void publish_estimate(Context& ctx, Status s) {
     msgs::LocalizationEstimate e;
-    e.header().stamp_ns(ctx.now_ns());
+    const Localizer::Pose pose = loc_->pose_at(ctx.now_s(), carry_max_s_);
+    carried_max_s_ = std::max(carried_max_s_, pose.carried_s);
+    carried_ += pose.carried_s > 0;
+    e.header().stamp_ns(ctx.now_ns() - std::llround(pose.short_s * 1e9));
     e.header().seq(seq_++);
     e.header().frame_id("map");
     const auto& x = loc_->filter().state();
     const auto& cov = loc_->filter().cov();
-    e.x(x(PoseFilter::X));
-    e.y(x(PoseFilter::Y));
-    e.yaw(x(PoseFilter::YAW));
+    e.x(pose.x);
+    e.y(pose.y);
+    e.yaw(pose.yaw);
     e.speed(x(PoseFilter::SPEED));
     e.yaw_rate(x(PoseFilter::YAW_RATE));
     for (int i = 0; i < 3; ++i)
@@ -114,6 +123,8 @@ template <Policy P> class Estimator : public Plugin {
   PolicyParams selection_;
   ModeCadence modes_;
   std::uint32_t seq_ = 0;
+  double carry_max_s_ = 0.1, carried_max_s_ = 0;
+  std::uint64_t carried_ = 0;
   bool mismatch_said_ = false;
   Ports io_;
 };

@@ -315,6 +315,46 @@ TEST(Localizer, ALateFixIsCarriedToNowByTheMotionSinceItsStamp) {
   EXPECT_EQ(loc.rejected(), rejected);
 }
 
+// On the real clock the estimator steps when an IMU sample arrives; one that arrived 18 ms late
+// (its sender stalled) left the filter at its stamp while the estimate went out as now: 1.4 m
+// behind the car at 77 m/s (evidence.car_on_wires_race). The pose at a later time is the
+// filter's carried by its speed and yaw rate, at most max_s, and says how far short it is.
+TEST(Localizer, ThePoseAtALaterTimeIsCarriedByTheFiltersMotion) {
+  LocalizerParams p;
+  p.manager.receivers = 1;
+  p.roll_filter_s = 0;
+  Localizer loc(p);
+  const double v = 77, w = 0.05;
+  double t = 0;
+  for (int i = 0; i < 400 && (i < 200 || !loc.filter().initialized()); ++i) {
+    t = 0.008 * i;
+    loc.speed(v);
+    loc.imu(t, w, 0.0);
+    const double yaw = w * t, r = v / w;
+    if (i % 6 == 0) loc.fixes(t, {Fix{0, {r * std::sin(yaw), r * (1 - std::cos(yaw))}, p.lever[0], 0.02}});
+  }
+  ASSERT_TRUE(loc.filter().initialized());
+  ASSERT_DOUBLE_EQ(loc.time(), t);
+  const auto& x = loc.filter().state();
+  const Localizer::Pose same = loc.pose_at(t, 0.1);  // the filter's own time: its pose
+  EXPECT_EQ(same.x, x(PoseFilter::X));
+  EXPECT_EQ(same.y, x(PoseFilter::Y));
+  EXPECT_EQ(same.carried_s, 0.0);
+  EXPECT_EQ(loc.pose_at(t - 0.05, 0.1).x, x(PoseFilter::X)) << "never carried back";
+  const Localizer::Pose later = loc.pose_at(t + 0.018, 0.1);
+  const double travelled = std::hypot(later.x - same.x, later.y - same.y);
+  EXPECT_NEAR(travelled, x(PoseFilter::SPEED) * 0.018, 1e-9);
+  EXPECT_NEAR(later.yaw - same.yaw, x(PoseFilter::YAW_RATE) * 0.018, 1e-12);
+  EXPECT_NEAR(later.carried_s, 0.018, 1e-12);
+  EXPECT_EQ(later.short_s, 0.0);
+  // The chord of a constant turn: heading at the middle of the step.
+  EXPECT_NEAR(std::atan2(later.y - same.y, later.x - same.x), same.yaw + 0.5 * x(PoseFilter::YAW_RATE) * 0.018, 1e-9);
+  const Localizer::Pose far = loc.pose_at(t + 0.5, 0.1);  // at most max_s
+  EXPECT_NEAR(far.carried_s, 0.1, 1e-12);
+  EXPECT_NEAR(far.short_s, 0.4, 1e-12);
+  EXPECT_NEAR(std::hypot(far.x - same.x, far.y - same.y), x(PoseFilter::SPEED) * 0.1, 1e-3);
+}
+
 // The real clock's receivers stamp their fixes a few milliseconds apart and the estimator may
 // take one before the other: the gather makes them one epoch again (each fix keeping its stamp),
 // lets a lone fix go once it has waited wait_s, and keeps one receiver's two fixes apart.
