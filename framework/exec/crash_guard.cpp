@@ -298,7 +298,7 @@ void interrupted() {
   die(r, 130);
 }
 
-Running::Running(const char* node, const char* phase, double deadline_s) : node_(t_node), phase_(t_phase) {
+Running::Running(const char* node, const char* phase, double hang_after_s) : node_(t_node), phase_(t_phase) {
   if (t_slot < 0) t_slot = g_next_slot.fetch_add(1) % kSlots;
   slot_ = t_slot;
   t_node = node;
@@ -308,9 +308,9 @@ Running::Running(const char* node, const char* phase, double deadline_s) : node_
   s.phase = phase;
   s.node = node;
   box_write(slot_, node, phase);
-  if (deadline_s > 0) {
+  if (hang_after_s > 0) {
     s.since_ms = monotonic_ms();
-    s.limit_ms = static_cast<long long>(std::max(2 * deadline_s, deadline_s + 1.0) * 1000);
+    s.limit_ms = static_cast<long long>(hang_after_s * 1000);
   }
 }
 

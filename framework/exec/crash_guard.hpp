@@ -63,12 +63,13 @@ class Loading {
 };
 
 // Which node this thread is running, and in which phase (construction, configure, step, ...):
-// set around every call into a plugin. deadline_s > 0: a step still running at twice its
-// deadline (at least 1 s past it) cannot be waited for: the watchdog names it and ends the
-// process (exit 1); one that returns late fails the run the ordinary way (the executive).
+// set around every call into a plugin. hang_after_s > 0: a step still running that long cannot be
+// waited for: the watchdog names it and ends the process (exit 1); one that returns late fails the
+// run the ordinary way (the executive). The executive gives twice the step's deadline, at least a
+// second past it (on the sim clock, for a deadline the graph did not set, kSimHang_s).
 class Running {
  public:
-  Running(const char* node, const char* phase, double deadline_s = 0);
+  Running(const char* node, const char* phase, double hang_after_s = 0);
   ~Running();
   Running(const Running&) = delete;
   Running& operator=(const Running&) = delete;

@@ -228,7 +228,7 @@ bool Executive::call(NodeRuntime& n, const char* phase, const std::function<void
   try {
     // Named if the plugin takes the process down, or its step hangs far past its deadline.
     const bool step = std::string_view(phase) == "step";
-    const crash_guard::Running running(n.name.c_str(), phase, step ? n.rn->deadline_s : 0.0);
+    const crash_guard::Running running(n.name.c_str(), phase, step ? hang_after_s(n) : 0.0);
     f();
     return true;
   } catch (const BadInput& e) {
@@ -252,10 +252,18 @@ void Executive::step(NodeRuntime& n, Trigger t) {
   if (step_body(n, std::move(t))) ++n.steps;
 }
 
+double Executive::hang_after_s(const NodeRuntime& n) const {
+  const double d = n.rn->deadline_s;
+  if (d <= 0) return 0;
+  return sim() && !n.rn->deadline_by_graph ? std::max(kSimHang_s, 2 * d) : std::max(2 * d, d + 1.0);
+}
+
 bool Executive::step_body(NodeRuntime& n, Trigger t) {
   n.trigger = std::move(t);
   // The wall clock only with --profile or a step deadline: the host's own measurement, never seen by a node.
-  const double deadline = n.rn->deadline_s;
+  // On the sim clock only a deadline the graph set fails a run (a run's result must not depend on
+  // the machine); any other only ends a step stuck for kSimHang_s there (hang_after_s).
+  const double deadline = sim() && !n.rn->deadline_by_graph ? 0.0 : n.rn->deadline_s;
   const auto t0 = opt_.profile || deadline > 0 ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point{};
   const bool ok = call(n, "step", [&] { n.instance->step(*n.ctx); });
   if (opt_.profile || deadline > 0) {
@@ -264,7 +272,8 @@ bool Executive::step_body(NodeRuntime& n, Trigger t) {
     // The node's step deadline (wall time; docs/reliability.md): a step that took longer fails the run.
     if (deadline > 0 && took > deadline) {
       char msg[160];
-      std::snprintf(msg, sizeof msg, "'s step took %.3f s, past its deadline of %.3f s", took, deadline);
+      std::snprintf(msg, sizeof msg, "'s step took %.3f s, past its deadline of %.3f s%s", took, deadline,
+                    n.rn->deadline_derived ? " (derived from its trigger: docs/reliability.md)" : "");
       request_stop(RunResult::failed, "node '" + n.name + "' (" + n.plugin_name() + ")" + msg);
     }
   }

@@ -97,6 +97,8 @@ class Executive final : public NodeHost {
   std::optional<Trigger> next_real_trigger(NodeRuntime& n, std::chrono::steady_clock::time_point& next);
   void step(NodeRuntime& n, Trigger t);
   bool step_body(NodeRuntime& n, Trigger t);  // step without counting it: whether it returned
+  // How long a step may stay stuck before the watchdog ends the process (0: never).
+  double hang_after_s(const NodeRuntime& n) const;
   void host_log(const std::string& msg);
   void progress(bool last = false);  // prints the progress line when it is due (or last)
   void pace(std::int64_t sim_ns);    // --pace: waits until the wall clock has caught up with sim_ns / pace

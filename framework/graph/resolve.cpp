@@ -294,14 +294,19 @@ class Resolver {
   void resolve_deadline(const NodeDecl& nd, ResolvedNode& rn, const std::string& ptr) {
     const Manifest& m = rn.plugin->manifest;
     // The step deadline: the plugin's parameter (manifest default, graph params), unless the node's deadline_s says.
+    // Set by the graph (its deadline_s, or the parameter in its params or a --set) it is the
+    // graph's choice, held on the sim clock too; the plugin's own default is a default.
     rn.deadline_s = nd.deadline_s;
+    rn.deadline_by_graph = nd.deadline_s > 0;
     for (const auto& t : m.triggers) {
       if (t.kind != TriggerSpec::Kind::deadline || !rn.params.has(t.ref) || nd.deadline_s > 0) continue;
       const double s = rn.params.number(t.ref);
-      if (!(s >= 0 && s <= 3600))
-        err(ptr + "/params/" + pointer_escape(t.ref), "a step deadline must be 0 (none) to 3600 seconds, found " + fmt_num(s));
-      else
+      if (!(s >= 0 && s <= 3600)) {
+        err(ptr + "/params/" + pointer_escape(t.ref), "a step deadline must be 0 (derived from the trigger) to 3600 seconds, found " + fmt_num(s));
+      } else {
         rn.deadline_s = s;
+        rn.deadline_by_graph = s > 0 && nd.params.contains(t.ref);
+      }
     }
   }
 
@@ -390,6 +395,7 @@ class Resolver {
       err(w.to_ptr(), "input \"" + w.to.text() + "\" already has a writer (" + it->second + "); an input takes one wire");
       return;
     }
+    writer_node_[w.to.text()] = w.from.node;
     rg_.wire_types[w.to.text()] = any_out ? ports[1]->type_name : ports[0]->type_name;
     downstream_[w.from.node].insert(w.to.node);
     if (by_name_.at(w.to.node).trigger_inputs.count(w.to.port)) downstream_zero_delay_[w.from.node].insert(w.to.node);
@@ -495,6 +501,7 @@ class Resolver {
       remaining.erase(pick);
       for (const auto& m : downstream_[pick])
         if (m != pick && --indeg[m] == 0 && remaining.count(m)) ready.insert(m);
+      derive_deadline(pick);
       const bool here = process_.empty() || by_name_.at(pick).decl->process == process_;
       if (here || rg_.lockstep) {
         ResolvedNode rn = by_name_.at(pick);
@@ -503,6 +510,25 @@ class Resolver {
         rg_.nodes.push_back(std::move(rn));
       }
     }
+  }
+
+  // A node that neither its graph node nor its plugin gives a step deadline gets one from its
+  // trigger (docs/reliability.md, "Deadlines by default"): ten of the periods its steps come at,
+  // at least half a second; 2 s when no period is known. Called upstream first (the schedule's
+  // order), so a data-triggered node's writers have their periods already.
+  void derive_deadline(const std::string& name) {
+    ResolvedNode& rn = by_name_.at(name);
+    std::int64_t period = rn.period_ns;
+    for (const auto& in : rn.trigger_inputs) {
+      const auto w = writer_node_.find(name + "." + in);
+      const auto p = w == writer_node_.end() ? trigger_period_.end() : trigger_period_.find(w->second);
+      if (p != trigger_period_.end() && p->second > 0 && (period == 0 || p->second < period)) period = p->second;
+    }
+    trigger_period_[name] = period;
+    if (rn.deadline_s > 0) return;
+    rn.deadline_s = period > 0 ? std::max(kDefaultDeadlinePeriods * static_cast<double>(period) * 1e-9, kDefaultDeadlineFloor_s)
+                               : kDefaultDeadlineUnknown_s;
+    rn.deadline_derived = true;
   }
 
   const GraphDecl& g_;
@@ -515,6 +541,8 @@ class Resolver {
   std::map<std::string, ResolvedNode> by_name_;
   std::map<std::string, PortSpec> named_type_;                          // "node.port" of any type -> the port as the type a parameter names
   std::map<std::string, std::string> writer_of_;                        // "node.port" input -> pointer of its wire
+  std::map<std::string, std::string> writer_node_;                      // "node.port" input -> the node writing it
+  std::map<std::string, std::int64_t> trigger_period_;                  // node -> the period its steps come at (0: unknown)
   std::map<std::string, std::set<std::string>> downstream_zero_delay_;  // node -> data-triggered subscribers
   std::map<std::string, std::set<std::string>> downstream_;
 };

@@ -11,6 +11,13 @@
 
 namespace brickyard::fw {
 
+// The step deadline a node gets when neither its graph node nor its plugin sets one: this many of
+// the periods its steps come at, at least the floor; the last when no period is known.
+inline constexpr double kDefaultDeadlinePeriods = 10, kDefaultDeadlineFloor_s = 0.5, kDefaultDeadlineUnknown_s = 2.0;
+// On the sim clock a deadline the graph did not set only ends a step stuck this long (a slow
+// step must not change a run's result: runs are reproducible bit for bit on any machine).
+inline constexpr double kSimHang_s = 30.0;
+
 struct ResolvedNode {
   const NodeDecl* decl = nullptr;
   const PluginEntry* plugin = nullptr;
@@ -18,7 +25,11 @@ struct ResolvedNode {
   std::int64_t period_ns = 0;             // 0: no periodic trigger
   std::set<std::string> trigger_inputs;   // inputs whose arrival steps the node
   std::int64_t latency_ns = 0;            // sim clock: a step's outputs delivered this long after it
-  double deadline_s = 0;                  // the step deadline: the graph node's deadline_s, else the manifest's parameter (0: none)
+  double deadline_s = 0;                  // the step deadline: the graph node's deadline_s, else the manifest's parameter,
+                                          // else derived from the trigger (deadline_derived)
+  bool deadline_derived = false;          // neither the graph nor the plugin set it
+  bool deadline_by_graph = false;         // the graph set it (deadline_s, or the plugin's parameter): held on the sim
+                                          // clock too; any other only ends a hang there (kSimHang_s)
   std::size_t order = 0;                  // position in the deterministic schedule order
   bool here = true;                       // runs in this process (a split run on the sim clock keeps every node:
                                           // the others' as phantoms, exec/lockstep.hpp)

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
 
 using namespace brickyard::fw;
 
@@ -182,4 +183,39 @@ TEST(Resolve, SimSplitKeepsEveryNodeInOneOrder) {
   EXPECT_TRUE(has(e, "g.json#/processes/b/restart", "needs the real clock"));
   EXPECT_TRUE(has(e, "g.json#/processes/b/may_die", "needs the real clock"));
   EXPECT_TRUE(has(e, "g.json#/transport/foreign_writers", "needs the real clock"));
+}
+
+// A node that neither the graph nor its plugin gives a step deadline gets one from its trigger
+// (issue 44): ten of its periods, at least 0.5 s; a data-triggered node's period is its writer's.
+TEST(Resolve, DeadlinesDerivedFromTheTriggerUnlessSet) {
+  struct D {
+    double s;
+    bool derived, by_graph;
+    bool operator==(const D& o) const { return s == o.s && derived == o.derived && by_graph == o.by_graph; }
+  };
+  auto deadlines = [](const std::string& text) {
+    static std::vector<GraphDecl> keep;
+    keep.push_back(parse_graph_text(text, "g.json"));
+    std::map<std::string, D> out;
+    for (const auto& n : resolve_graph(keep.back(), registry()).nodes) out[n.decl->name] = {n.deadline_s, n.deadline_derived, n.deadline_by_graph};
+    return out;
+  };
+  auto slow = deadlines(R"({"nodes": {"src": {"plugin": "testing.scripted_source", "params": {"rate_hz": 4}},
+                                      "t": {"plugin": "testing.transform"}, "sink": {"plugin": "testing.assert_sink"}},
+                            "wires": [{"from": "src.out", "to": "t.in"}, {"from": "t.out", "to": "sink.in"}]})");
+  EXPECT_TRUE((slow["src"] == D{2.5, true, false}));   // 10 x 0.25 s
+  EXPECT_TRUE((slow["t"] == D{2.5, true, false}));     // stepped by src's samples
+  EXPECT_TRUE((slow["sink"] == D{2.5, true, false}));  // and down the chain
+  auto fast = deadlines(chain());                      // 50 Hz: 0.2 s, below the floor
+  EXPECT_TRUE((fast["src"] == D{0.5, true, false}));
+  EXPECT_TRUE((fast["sink"] == D{0.5, true, false}));
+  // Set by the graph node, or by the plugin's parameter in the graph: the graph's, not derived.
+  auto set = deadlines(R"({"nodes": {"src": {"plugin": "testing.scripted_source", "params": {"rate_hz": 4}, "deadline_s": 0.3},
+                                     "f": {"plugin": "testing.fault", "params": {"step_deadline_s": 0.7}},
+                                     "g": {"plugin": "testing.fault"}, "sink": {"plugin": "testing.assert_sink"}},
+                           "wires": [{"from": "src.out", "to": "sink.in"}]})");
+  EXPECT_TRUE((set["src"] == D{0.3, false, true}));
+  EXPECT_TRUE((set["f"] == D{0.7, false, true}));
+  EXPECT_TRUE((set["g"] == D{0.5, true, false}));  // its parameter's default 0: derived
+  EXPECT_TRUE((set["sink"] == D{2.5, true, false})) << "its writer's period, not the writer's deadline";
 }

@@ -79,8 +79,9 @@ echo "hang: two signals, exit $rc after $took ms"
 # A real-clock run of 4 s whose node hangs at step 120 (2.4 s): at its end the run has 2 s to
 # stop, then fails naming the node (it stayed alive for ever, saying nothing).
 start=$(date +%s%N)
+# (Its deadline set far off: the derived one would end the hang first, as below.)
 timeout 20 "$by" run "$graphs/fault_real.json" --domain "$domain" --quiet --progress 0 --set fault.mode=hang --duration 4 \
-  --out "$out/hang_at_end" > "$out/hang_at_end.log" 2>&1
+  --set fault.step_deadline_s=3600 --out "$out/hang_at_end" > "$out/hang_at_end.log" 2>&1
 rc=$?
 took=$(( ($(date +%s%N) - start) / 1000000 ))
 echo "hang: a 4 s real-clock run with a hung node ended after $took ms, exit $rc"
@@ -105,6 +106,24 @@ rc=$?
 [ $rc -eq 1 ] && grep -q "node 'fault' (testing.fault)'s step took 0.8[0-9]* s, past its deadline of 0.300 s" "$out/param.log" \
   || { cat "$out/param.log"; echo "FAIL: the manifest's step deadline"; exit 1; }
 echo "deadline: the plugin's own step_deadline_s parameter holds too"
+# Deadlines by default (docs/reliability.md): no deadline_s and the plugin's parameter 0, the node
+# gets ten of its periods, at least 0.5 s. On the real clock the 0.8 s step fails the run naming
+# that deadline, and a hung step is ended 1.5 s in; on the sim clock the slow step passes (a slow
+# machine must not change a sim run's result) and only a step stuck for 30 s would be ended.
+"$by" run "$graphs/fault_real.json" --domain "$domain" --quiet --progress 0 --set fault.mode=slow --out "$out/slow_real" > "$out/slow_real.log" 2>&1
+rc=$?
+[ $rc -eq 1 ] && grep -q "node 'fault' (testing.fault)'s step took 0.8[0-9]* s, past its deadline of 0.500 s (derived from its trigger" "$out/slow_real.log" \
+  && grep -q '"result": "failed"' "$out/slow_real/summary.json" || { cat "$out/slow_real.log"; echo "FAIL: the derived deadline on the real clock"; exit 1; }
+start=$(date +%s%N)
+timeout 20 "$by" run "$graphs/fault_real.json" --domain "$domain" --quiet --progress 0 --set fault.mode=hang --duration 600 > "$out/hang_real.log" 2>&1
+rc=$?
+took=$(( ($(date +%s%N) - start) / 1000000 ))
+[ $rc -eq 1 ] && [ $took -lt 6000 ] && grep -q "node 'fault' has been in its step for 1.[0-9] s, far past its step deadline" "$out/hang_real.log" \
+  || { cat "$out/hang_real.log"; echo "FAIL: a hang past the derived deadline (exit $rc after $took ms)"; exit 1; }
+"$by" run "$graphs/fault.json" --domain "$domain" --quiet --progress 0 --set fault.mode=slow > "$out/slow_sim.log" 2>&1
+rc=$?
+[ $rc -eq 0 ] || { cat "$out/slow_sim.log"; echo "FAIL: a slow step failed a sim-clock run by a derived deadline"; exit 1; }
+echo "deadline by default: a slow step failed the real-clock run, a hung one was ended after $took ms; the sim run passed"
 # A writer alive but silent (mode silent at step 120): its reader's input is stale — in the
 # summary on the sim clock (1.62 s without a sample at the end, against its usual 0.02 s), and on
 # the real clock's progress line.

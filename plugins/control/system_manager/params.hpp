@@ -46,7 +46,7 @@ inline ParamBinding<Settings> bindings() {
   // and one stuck at twice it ends the process, for its supervisor to restart (docs/reliability.md).
   // Its steps take microseconds; the car brakes on its own after 0.25 s without a command.
   b.bind("step_deadline_s", &Settings::step_deadline_s).in_unit("s").range(0, 3600)
-      .doc("the node's step deadline, wall time (0: none)");
+      .doc("the node's step deadline, wall time (0: derived from its trigger, docs/reliability.md)");
   b.bind("recover_after_s", &Settings::manager, &M::recover_after_s).in_unit("s").range(0, 3600)
       .doc("NORMAL this long before the path tracker drives again");
   b.bind_choice("resume_at", {{"NORMAL", LocStatus::normal}, {"WARNING", LocStatus::warning}}, &Settings::manager, &M::resume_at)

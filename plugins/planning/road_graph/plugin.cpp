@@ -54,6 +54,7 @@ class RoadGraphNode : public Plugin {
         .plays(roles::planner)
         .parameters(bindings())
         .periodic("rate_hz")
+        .step_deadline("step_deadline_s")
         .check(&check);
   }
 

@@ -37,7 +37,7 @@ ParamBinding<Settings> bindings() {
   b.bind("at_step", &Settings::at_step).range(0, 1e9).doc("the step (from 0) the fault happens in");
   b.bind("slow_s", &Settings::slow_s).in_unit("s").range(0, 60).doc("mode slow: the wall time that step takes");
   b.bind("step_deadline_s", &Settings::step_deadline_s).in_unit("s").range(0, 3600)
-      .doc("the node's step deadline (the manifest's, Manifest::step_deadline; 0: none); a graph node's deadline_s has the last word");
+      .doc("the node's step deadline (the manifest's, Manifest::step_deadline; 0: derived from its trigger); a graph node's deadline_s has the last word");
   return b;
 }
 
