@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <vector>
 
 namespace brickyard::fw::security {
 
@@ -32,6 +33,46 @@ std::string subject_for(const std::string& identity) { return std::string("CN=")
 void write_file(const fs::path& path, const std::string& text, bool secret) {
   io::write_whole_file(path.string(), text, secret ? 0600 : 0644);
 }
+
+// The keys folder's files, written into a staging folder beside it and moved in only once every
+// one is written: a write that fails (a full disk) leaves the folder as it was, not half made.
+// Renames within one file system need no space. The staging folder goes whatever happens.
+class Staging {
+ public:
+  explicit Staging(const fs::path& dir) : dir_(dir), at_(dir.parent_path() / ("." + dir.filename().string() + ".init")) {
+    std::error_code ec;
+    fs::remove_all(at_, ec);
+    fs::create_directories(at_, ec);
+    if (ec) refuse(at_.string(), "cannot create the folder: " + ec.message());
+  }
+  ~Staging() {
+    std::error_code ec;
+    fs::remove_all(at_, ec);
+  }
+  Staging(const Staging&) = delete;
+  Staging& operator=(const Staging&) = delete;
+
+  void put(const fs::path& rel, const std::string& text, bool secret) {
+    std::error_code ec;
+    fs::create_directories((at_ / rel).parent_path(), ec);
+    if (ec) throw io::WriteError((at_ / rel).parent_path().string() + ": cannot be made (" + ec.message() + ")");
+    write_file(at_ / rel, text, secret);
+    files_.push_back(rel);
+  }
+
+  void commit() {
+    for (const auto& rel : files_) {
+      std::error_code ec;
+      fs::create_directories((dir_ / rel).parent_path(), ec);
+      if (!ec) fs::rename(at_ / rel, dir_ / rel, ec);
+      if (ec) throw io::WriteError((dir_ / rel).string() + ": cannot be written (" + ec.message() + ")");
+    }
+  }
+
+ private:
+  fs::path dir_, at_;
+  std::vector<fs::path> files_;
+};
 
 std::string read_text(const fs::path& p) {
   std::ifstream f(p, std::ios::binary);
@@ -127,10 +168,11 @@ InitResult init(const ResolvedGraph& g, const std::string& dir, const InitOption
   for (const auto& n : g.nodes)
     if ((n.decl->process.empty() ? kDefaultProcess : n.decl->process) == kObserver)
       refuse(g.decl->file, "node '" + n.decl->name + "' runs in process 'observer', the name of the identity that reads every topic: rename the process");
-  const fs::path d(dir);
+  fs::path d = fs::path(dir).lexically_normal();
+  if (!d.has_filename()) d = d.parent_path();
   std::error_code ec;
-  fs::create_directories(d, ec);
-  if (ec) refuse(dir, "cannot create the folder: " + ec.message());
+  if (fs::exists(d, ec) && !fs::is_directory(d, ec)) refuse(dir, "cannot create the folder: it exists and is not a folder");
+  Staging staged(d);
   InitResult r;
   pki::Identity ca;
   const fs::path ca_cert = d / "identity_ca.pem", ca_key = d / "ca_key.pem";
@@ -147,26 +189,24 @@ InitResult init(const ResolvedGraph& g, const std::string& dir, const InitOption
     ca = pki::make_ca(std::string("CN=Brickyard graph CA ") + (g.decl->name.empty() ? fs::path(g.decl->file).stem().string() : g.decl->name) +
                           ",O=" + kOrganisation,
                       o.days);
-    write_file(ca_key, ca.key_pem, true);
-    write_file(ca_cert, ca.cert_pem, false);
+    staged.put("ca_key.pem", ca.key_pem, true);
+    staged.put("identity_ca.pem", ca.cert_pem, false);
   }
-  write_file(d / "permissions_ca.pem", ca.cert_pem, false);
+  staged.put("permissions_ca.pem", ca.cert_pem, false);
   const std::string gov = governance_xml(o.protection);
-  write_file(d / "governance.xml", gov, false);
-  write_file(d / "governance.p7s", pki::smime_sign(ca, gov), false);
+  staged.put("governance.xml", gov, false);
+  staged.put("governance.p7s", pki::smime_sign(ca, gov), false);
   const std::string not_before = utc(-3600), not_after = utc(static_cast<std::time_t>(o.days) * 86400);
   for (const auto& [identity, a] : access) {
-    const fs::path id_dir = d / identity;
-    fs::create_directories(id_dir, ec);
-    if (ec) refuse(id_dir.string(), "cannot create the folder: " + ec.message());
     const pki::Identity id = pki::make_identity(ca, subject_for(identity), o.days);
-    write_file(id_dir / "key.pem", id.key_pem, true);
-    write_file(id_dir / "cert.pem", id.cert_pem, false);
+    staged.put(fs::path(identity) / "key.pem", id.key_pem, true);
+    staged.put(fs::path(identity) / "cert.pem", id.cert_pem, false);
     const std::string perm = permissions_xml(identity, pki::subject_of(id.cert_pem), a, not_before, not_after);
-    write_file(id_dir / "permissions.xml", perm, false);
-    write_file(id_dir / "permissions.p7s", pki::smime_sign(ca, perm), false);
+    staged.put(fs::path(identity) / "permissions.xml", perm, false);
+    staged.put(fs::path(identity) / "permissions.p7s", pki::smime_sign(ca, perm), false);
     r.identities.push_back(identity);
   }
+  staged.commit();
   return r;
 }
 

@@ -63,3 +63,8 @@ foreach(kind abort exit)
   add_test(NAME cli.plugin_load_${kind}_named_by_validate
     COMMAND ${EXPECT} 1 "plugin library .*/load_${kind}/libfixture_load_${kind}.so ${said_${kind}}" -- ${BY} validate ${GOOD} --plugin-path ${FIXTURES}/load_${kind})
 endforeach()
+# `security init` that cannot write its files (a full disk: the file-size limit here) leaves no
+# half-made keys folder (issue 44).
+add_test(NAME cli.security_init_full_disk
+  COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/cli/security_init_full_disk.sh ${BY} ${CMAKE_CURRENT_SOURCE_DIR}/graphs/multiprocess/two_process.json
+          ${CMAKE_CURRENT_BINARY_DIR}/runs/security_init_full_disk)
