@@ -43,7 +43,7 @@ class Staging {
     std::error_code ec;
     fs::remove_all(at_, ec);
     fs::create_directories(at_, ec);
-    if (ec) refuse(at_.string(), "cannot create the folder: " + ec.message());
+    if (ec) refuse(dir.string(), "cannot write beside it (" + at_.string() + ": " + ec.message() + ")");
   }
   ~Staging() {
     std::error_code ec;

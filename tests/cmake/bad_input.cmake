@@ -131,6 +131,8 @@ bad_input(security_days         "--days 0: expected a whole number of days from 
 bad_input(security_play_no_identity "--security /tmp/by_no_keys: bag play writes topics: it needs --identity NAME" bag play ${PROJECT_SOURCE_DIR}/fuzz/corpus/fuzz_mcap/chain_zstd.mcap --security /tmp/by_no_keys)
 bad_input(security_topic_no_keys "--security /tmp/by_no_keys: identity 'observer': .*/tmp/by_no_keys/identity_ca.pem: does not exist" topic echo src.out --security /tmp/by_no_keys)
 bad_input(security_protect      "--protect nope: expected sign or encrypt" security init ${GOOD} --out /tmp/x --protect nope)
+bad_input(security_out_unwritable "/proc/brickyard_keys: cannot write beside it \\(/proc/.brickyard_keys.init: " security init ${GOOD} --out /proc/brickyard_keys)
+bad_input(security_out_a_file   "\\.json: cannot create the folder: it exists and is not a folder" security init ${GOOD} --out ${GOOD})
 bad_input(security_observer     "node 'src' runs in process 'observer'" security init ${BAD}/security_observer_process.json --out /tmp/by_security_observer)
 bad_input(security_missing      "security_missing.json#/transport/security: .*no_such_keys is not a folder: make it with .brickyard security init" validate ${BAD}/security_missing.json)
 bad_input(supervised_record   "--record: a supervised run records each process into --out DIR/PROCESS/recording.mcap" run ${CMAKE_CURRENT_SOURCE_DIR}/graphs/multiprocess/two_process.json --record /tmp/x.mcap)

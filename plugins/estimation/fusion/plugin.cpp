@@ -123,7 +123,7 @@ template <Policy P> class Estimator : public Plugin {
   PolicyParams selection_;
   ModeCadence modes_;
   std::uint32_t seq_ = 0;
-  double carry_max_s_ = 0.1, carried_max_s_ = 0;
+  double carry_max_s_ = 0, carried_max_s_ = 0;  // the first set by configure
   std::uint64_t carried_ = 0;
   bool mismatch_said_ = false;
   Ports io_;
