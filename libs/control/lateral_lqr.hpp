@@ -27,7 +27,9 @@ struct LateralLqrParams {
   // Costs: lateral error (1/m^2), its rate, heading error (1/rad^2), its rate; and the steering (1/rad^2).
   double q_lateral = 1.0, q_lateral_rate = 0.0, q_heading = 2.0, q_heading_rate = 0.0;
   double r_steer = 40.0;
+  double r_steer_rate = 0.01;  // (rad/s)^-2: cost of the steering's rate
   double period = 0.01;  // s: the controller's step, the LQR's discretisation
+  double delay = 0.0;    // s: from the command to the road wheels (rounded to periods)
   // The lateral error the feedback sees is clamped to this: a car far off the path (at the start,
   // after an avoidance) closes in at a bounded angle instead of steering at the linear law's full
   // gain into a wall.
@@ -47,18 +49,23 @@ class LateralLqr {
   LateralLqr() = default;
   LateralLqr(LateralModel car, LateralLqrParams p);
   // The steering (road-wheel angle, left positive) for the errors on a path of curvature kappa at
-  // speed v; unclamped.
-  double steer(const PathErrors& e, double kappa, double v) const;
+  // speed v; unclamped. `past`: the feedback's own outputs of the last periods, newest first
+  // (u(t-T), ...; memory() of them; missing ones count 0).
+  double steer(const PathErrors& e, double kappa, double v, const std::vector<double>& past = {}) const;
+  // How many past outputs the law plans with: the delay's periods, at least one (the rate's cost).
+  int memory() const { return memory_; }
   // Feedforward and steady-state heading error alone (for tests and the report).
   double feedforward(double kappa, double v) const;
   double steady_heading_error(double kappa, double v) const;
-  // The feedback gains at speed v (interpolated in the table).
-  std::array<double, 4> gains(double v) const;
+  // The feedback gains at speed v (interpolated in the table): the four errors', then one per
+  // past output.
+  std::vector<double> gains(double v) const;
 
  private:
   LateralModel m_;
   LateralLqrParams p_;
-  std::vector<std::array<double, 4>> table_;
+  int delay_steps_ = 0, memory_ = 1;
+  std::vector<std::vector<double>> table_;
 };
 
 }  // namespace brickyard::control

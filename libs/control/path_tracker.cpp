@@ -39,6 +39,7 @@ PathPoint PathTracker::at(double s) const {
 }
 
 PathTracker::PathTracker(TrackerParams p) : p_(p) {
+  p_.lqr.delay = p_.steer_delay + p_.command_latency;
   if (p_.steer_law == SteerLaw::lqr) lqr_ = LateralLqr(p_.car, p_.lqr);
 }
 
@@ -115,23 +116,39 @@ double PathTracker::steer_pure_pursuit(const CarState& c, double s_car) const {
 }
 
 double PathTracker::steer_lqr(const CarState& c) {
-  // The centre of gravity where the steering will take effect: the pose predicted over the delay.
-  const double t = p_.steer_delay + 0.5 * p_.lqr.period;
-  const double yaw = c.yaw + c.yaw_rate * t;
-  const double mid = c.yaw + 0.5 * c.yaw_rate * t;
-  const double gx = c.x + c.speed * t * std::cos(mid) + p_.car.lr * std::cos(yaw);
-  const double gy = c.y + c.speed * t * std::sin(mid) + p_.car.lr * std::sin(yaw);
+  // The centre of gravity now: the law plans over the delay itself, with its outputs still on
+  // their way to the wheels.
+  const double gx = c.x + p_.car.lr * std::cos(c.yaw), gy = c.y + p_.car.lr * std::sin(c.yaw);
   double s_cog = 0, e_y = 0;
   project(gx, gy, s_cog, e_y);
   const double kappa = curvature(s_cog);
   PathErrors e;
   e.e_y = e_y;
-  e.e_psi = std::remainder(yaw - heading(s_cog), 2 * M_PI);
+  e.e_psi = std::remainder(c.yaw - heading(s_cog), 2 * M_PI);
   e.e_y_rate = c.speed * std::sin(e.e_psi) + c.lateral_speed;
   e.e_psi_rate = c.yaw_rate - c.speed * kappa;
   errors_ = e;
   kappa_ = kappa;
-  return lqr_.steer(e, kappa, std::max(c.speed, 1.0));
+  const double v = std::max(c.speed, 1.0);
+  return lqr_.steer(e, kappa, v, past_outputs(time_, lqr_.feedforward(kappa, v)));
+}
+
+std::vector<double> PathTracker::past_outputs(double t, double ff) const {
+  std::vector<double> past(static_cast<std::size_t>(lqr_.memory()), 0.0);
+  for (std::size_t j = 0; j < past.size(); ++j) {
+    const double at = t - static_cast<double>(j + 1) * p_.lqr.period + 1e-9;
+    // The output in force then: the last one sent at or before it (none yet: the feedforward's).
+    auto it = std::upper_bound(outputs_.begin(), outputs_.end(), at, [](double x, const auto& o) { return x < o.first; });
+    if (it != outputs_.begin()) past[j] = std::prev(it)->second - ff;
+  }
+  return past;
+}
+
+void PathTracker::remember(double t, double steer) {
+  outputs_.emplace_back(t, steer);
+  // Kept while one of them may still be in force within the law's memory.
+  const double horizon = t - static_cast<double>(lqr_.memory() + 1) * p_.lqr.period;
+  while (outputs_.size() > 1 && outputs_[1].first <= horizon) outputs_.pop_front();
 }
 
 void PathTracker::pedals_feedforward(double s_car, double v_target, const CarState& c, Command& out) const {
@@ -170,6 +187,17 @@ void PathTracker::pedals_feedforward(double s_car, double v_target, const CarSta
 }
 
 Command PathTracker::control(const CarState& car) {
+  // The outputs' clock: the estimates' stamps; one that goes back (a replay started over) starts
+  // the record over.
+  const double t = std::isnan(car.time) ? time_ + p_.lqr.period : car.time;
+  if (t < time_) outputs_.clear();
+  time_ = t;
+  Command c = steer_and_pedals(car);
+  if (p_.steer_law == SteerLaw::lqr) remember(time_, c.steer);
+  return c;
+}
+
+Command PathTracker::steer_and_pedals(const CarState& car) {
   Command c;
   if (!has_path()) {
     c.brake = 1;

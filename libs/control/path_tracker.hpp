@@ -8,8 +8,9 @@
 //    further along the path (interpolated), delta = atan(2 wheelbase sin(alpha) / L), alpha its
 //    bearing from the car's heading.
 //  - Steering, `lqr`: the dynamic single-track model's curvature feedforward plus LQR feedback on
-//    the centre of gravity's lateral and heading errors (lateral_lqr.hpp), on the pose predicted
-//    over the steering's delay; the path's curvature taken from its geometry over
+//    the centre of gravity's lateral and heading errors (lateral_lqr.hpp), planned over the
+//    steering's delay and the command's way to the wheels with the tracker's own outputs of that
+//    time (kept by the estimate's stamps); the path's curvature taken from its geometry over
 //    curvature_window metres.
 //  - Speed target: the lowest path speed over the next preview_time * v metres, and the speed from
 //    which the car can still brake (at `decel`) to each slower point further on within that
@@ -22,6 +23,9 @@
 #include "lateral_lqr.hpp"
 #include "motion/command.hpp"
 
+#include <deque>
+#include <limits>
+#include <utility>
 #include <vector>
 
 namespace brickyard::control {
@@ -56,7 +60,8 @@ struct TrackerParams {
   SteerLaw steer_law = SteerLaw::pure_pursuit;
   LateralModel car;         // lqr: the vehicle description's
   LateralLqrParams lqr;
-  double steer_delay = 0;   // s: the actuator's; lqr predicts the pose this far ahead
+  double steer_delay = 0;   // s: the actuator's
+  double command_latency = 0.05;  // s: lqr: a command's way to the actuator (manager, bus) and the estimate's age
   double curvature_window = 10;  // m
   PedalLaw pedal_law = PedalLaw::proportional;
   Powertrain powertrain;    // feedforward: the vehicle description's
@@ -65,9 +70,11 @@ struct TrackerParams {
 };
 
 // What the tracker knows of the car: the base_link (rear axle) pose and its speed; the yaw rate
-// and the lateral speed where known (lqr's error rates; 0 otherwise).
+// and the lateral speed where known (lqr's error rates; 0 otherwise); the estimate's time (lqr's
+// record of its own outputs; NaN: each call one lqr period after the last).
 struct CarState {
   double x = 0, y = 0, yaw = 0, speed = 0, yaw_rate = 0, lateral_speed = 0;
+  double time = std::numeric_limits<double>::quiet_NaN();
 };
 
 class PathTracker {
@@ -103,7 +110,11 @@ class PathTracker {
   // The speed the car should have at s: the path's, and low enough to brake for what follows.
   double speed_target(double s, double speed) const;
   double steer_pure_pursuit(const CarState& c, double s_car) const;
+  Command steer_and_pedals(const CarState& car);
   double steer_lqr(const CarState& c);
+  // lqr: the tracker's outputs in force 1..memory periods before t, about the feedforward ff.
+  std::vector<double> past_outputs(double t, double ff) const;
+  void remember(double t, double steer);
   void pedals_feedforward(double s_car, double v_target, const CarState& c, Command& out) const;
   std::vector<PathPoint> path_;
   std::vector<double> s_;  // arc length at each point
@@ -114,6 +125,8 @@ class PathTracker {
   PathErrors errors_;
   TrackerParams p_;
   LateralLqr lqr_;  // lqr: built once, from p_
+  std::deque<std::pair<double, double>> outputs_;  // lqr: (time, steering) sent, oldest first
+  double time_ = 0;  // lqr: the last call's
 };
 
 }  // namespace brickyard::control

@@ -20,6 +20,10 @@ template <class S, class... M> void bind_tracker(ParamBinding<S>& b, M... path) 
   b.bind("q_lateral", path..., &T::lqr, &Q::q_lateral).in_unit("1/m^2").range(0, 1e6).doc("lqr: cost of the lateral error");
   b.bind("q_heading", path..., &T::lqr, &Q::q_heading).in_unit("1/rad^2").range(0, 1e6).doc("lqr: cost of the heading error");
   b.bind("r_steer", path..., &T::lqr, &Q::r_steer).in_unit("1/rad^2").range(1e-6, 1e6).doc("lqr: cost of the steering");
+  b.bind("r_steer_rate", path..., &T::lqr, &Q::r_steer_rate).in_unit("s^2/rad^2").range(0, 1e6)
+      .doc("lqr: cost of the steering's rate: the law's bandwidth kept below what the delay allows");
+  b.bind("command_latency", path..., &T::command_latency).in_unit("s").range(0, 0.5)
+      .doc("lqr: a command's way to the steering actuator (manager, bus) and the estimate's age; the law plans over it and the vehicle file's steering delay");
   b.bind("max_lateral_error", path..., &T::lqr, &Q::max_lateral_error).in_unit("m").range(0.1, 20)
       .doc("lqr: the lateral error the feedback sees is clamped to this, so a car far off the path closes in at a bounded angle");
   b.bind("curvature_window", path..., &T::curvature_window).in_unit("m").range(2, 200)

@@ -196,7 +196,7 @@ Command WallLineFollower::control(double t, double speed, double yaw_rate) {
     c.brake = 1;
     return c;
   }
-  Command c = tracker_.control(CarState{odo_.x(), odo_.y(), odo_.yaw(), speed, yaw_rate, 0.0});
+  Command c = tracker_.control(CarState{odo_.x(), odo_.y(), odo_.yaw(), speed, yaw_rate, 0.0, t});
   // Never more steering than the tyres can turn into a turn at this speed (with a margin): a jump
   // of the line must not spin the car at 70 m/s, where 0.07 rad asks for five times its grip.
   const TrackerParams& tp = tracker_.params();

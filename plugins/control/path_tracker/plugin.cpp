@@ -6,6 +6,7 @@
 
 #include "control/command_msg.hpp"
 #include "control/path_tracker.hpp"
+#include "control/steering_activity.hpp"
 #include "control/vehicle_tracking.hpp"
 #include "tracker_params.hpp"
 #include "vehicle_param.hpp"
@@ -81,9 +82,10 @@ class PathTrackerNode : public Plugin {
       ++paths_;
     }
     for (auto& e : io_.estimate.take()) {
-      const Command c = tracker_.control(CarState{e->x(), e->y(), e->yaw(), e->speed(), e->yaw_rate(), 0.0});
+      const Command c = tracker_.control(CarState{e->x(), e->y(), e->yaw(), e->speed(), e->yaw_rate(), 0.0, 1e-9 * static_cast<double>(e->header().stamp_ns())});
       io_.command.publish(command_message(c, "path_tracker", e->header().stamp_ns(), seq_++));
       cte_max_ = std::max(cte_max_, std::abs(tracker_.cross_track()));
+      steering_.add(1e-9 * static_cast<double>(e->header().stamp_ns()), c.steer);
     }
   }
 
@@ -91,6 +93,7 @@ class PathTrackerNode : public Plugin {
     ctx.metric("commands", static_cast<double>(seq_));
     ctx.metric("paths", static_cast<double>(paths_));
     ctx.metric("max_cross_track_m", cte_max_);
+    ctx.metric("steer_rate_rms_radps", steering_.rate_rms());
   }
 
  private:
@@ -99,6 +102,7 @@ class PathTrackerNode : public Plugin {
   std::uint32_t seq_ = 0;
   std::uint64_t paths_ = 0;
   double cte_max_ = 0;
+  SteeringActivity steering_;
 };
 
 }  // namespace

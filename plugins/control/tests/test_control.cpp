@@ -114,7 +114,7 @@ TEST(LateralLqr, FeedforwardGainsAndSigns) {
   const double kv = car.mass * (car.lr / car.cornering_front - car.lf / car.cornering_rear) / wheelbase;
   EXPECT_NEAR(l.feedforward(0.01, 40.0), wheelbase * 0.01 + kv * 1600 * 0.01, 1e-12);
   for (double v : {5.0, 20.0, 40.0, 80.0}) {
-    const auto k = l.gains(v);
+    const auto k = l.gains(v);  // the errors' four first
     for (double g : k) EXPECT_TRUE(std::isfinite(g));
     EXPECT_GT(k[0], 0);  // left of the path: steer right
     EXPECT_GT(k[2], 0);  // heading left of the path: steer right

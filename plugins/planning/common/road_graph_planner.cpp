@@ -8,6 +8,14 @@ namespace brickyard::planning {
 
 namespace {
 constexpr std::uint32_t kNoNode = ~std::uint32_t{0};  // a piece that ends off the graph
+
+// The side gap of a car at offset d beside obstacle o (s relative to the car), infinite when the
+// car's body is not beside it.
+double gap_beside(const FrenetObstacle& o, double d, double half_width, const SearchParams& p) {
+  double gap = std::numeric_limits<double>::infinity();
+  edge_blocked(EdgeShape{0, d, 1e-3, d}, o, half_width, p, &gap, 0.0);
+  return gap;
+}
 }  // namespace
 
 RoadGraphPlanner::RoadGraphPlanner(const RoadGraph& graph, const RefLine& line, std::vector<double> ref_speed,
@@ -325,7 +333,11 @@ std::vector<std::pair<std::uint32_t, double>> RoadGraphPlanner::lead_ins(double 
       FrenetObstacle r = o;
       r.s = relative_s(o.s, s_c, L);
       double gap;
-      if (edge_blocked(e, r, hw, sp, &gap, 0.0)) { ok = false; break; }  // from the car on
+      // From the car on; one that stands beside the obstacle nearer than the clearance (it
+      // stopped there) may leave by any lead-in that takes it no nearer than it is.
+      SearchParams near = sp;
+      near.clearance = std::min(sp.clearance, gap_beside(r, d_c, hw, sp) - 0.01);
+      if (edge_blocked(e, r, hw, near, &gap, 0.0)) { ok = false; break; }
       if (gap < sp.soft_clearance) cost += sp.k_proximity * (sp.soft_clearance - gap) * (sp.soft_clearance - gap);
     }
     if (!ok) continue;

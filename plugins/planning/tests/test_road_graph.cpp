@@ -815,6 +815,26 @@ TEST(RoadGraphPlanner, ACarStoppedJustPastAnObstacleDrivesOn) {
   EXPECT_GT(v_max, 5.0) << "it drives on";
 }
 
+// A car that stopped beside an obstacle, nearer than the clearance (its body beside the pylon),
+// drives away from it: a lead-in that takes it no nearer than it is is not blocked by it. (On
+// Spielberg's hairpin a car braked to a stand 0.65 m beside a pylon and stood for ever: every
+// lead-in starts at the car, and there the pylon was under the clearance.)
+TEST(RoadGraphPlanner, ACarStoppedBesideAnObstacleDrivesAwayFromIt) {
+  const RefLine line = stadium();
+  const RoadGraph g = RoadGraph::build(line, kRoom, RoadGraphParams{});
+  RoadGraphPlanner planner(g, line, std::vector<double>(line.size(), 40.0), PlannerParams{});
+  for (int k = 0; k < PlannerParams{}.confirmations; ++k) planner.observe({{300, 1.5, 0.2, 0}}, 0);
+  const PlannedPath p = planner.plan(299, 0, 0);  // its body beside the pylon, 0.33 m off
+  ASSERT_TRUE(p.route_found);
+  double v_max = 0, d_max = -1e9;
+  for (std::size_t i = 0; i < p.points.size(); ++i) {
+    v_max = std::max(v_max, p.speed[i]);
+    if (p.points[i].s < 305) d_max = std::max(d_max, p.points[i].d);
+  }
+  EXPECT_GT(v_max, 5.0) << "it drives on";
+  EXPECT_LE(d_max, 1e-6) << "never nearer the pylon than it stood";
+}
+
 // A car standing beside the band where it narrows (it stopped there) has no lead-in sharp enough
 // to the layer at the commitment distance; one to a layer farther on bends gently back in.
 TEST(RoadGraphPlanner, ACarStoppedBesideTheBandRejoinsItFartherOn) {

@@ -98,7 +98,7 @@ class TruthFollower : public Plugin {
     if (!tracker_ && !start_driving(ctx)) return;
     auto s = newest(io_.truth);
     if (!s) return;
-    const motion::Command c = tracker_->control(control::CarState{s->x(), s->y(), s->yaw(), s->vx(), s->yaw_rate(), s->vy()});
+    const motion::Command c = tracker_->control(control::CarState{s->x(), s->y(), s->yaw(), s->vx(), s->yaw_rate(), s->vy(), 1e-9 * static_cast<double>(s->header().stamp_ns())});
     const double target = c.target_speed;
     msgs::ControlCommand m;
     m.header().stamp_ns(ctx.now_ns());
