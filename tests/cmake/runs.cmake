@@ -177,11 +177,6 @@ foreach(at 1400 2213)
     COMMAND ${NETNS} ${CMAKE_CURRENT_SOURCE_DIR}/cli/race_road_course.sh ${BY} ${PROJECT_SOURCE_DIR}/configs/race.json ${d} ${RUNS}/race_spielberg_pylon_${at}
             pylon --arg track=tracks/Spielberg.csv --arg wall_side=left "--arg" "pylons=[{\"s\":${at},\"d\":0}]")
 endforeach()
-# Known to fail since the tracker plans over the steering's delay (docs/planning.md, "Pylons
-# anywhere": a pylon on Spielberg's hairpin that no route or swerve passes at the clearance; the
-# car passes it at the referee's 0.5 m, 1 mm short). Run by `scripts/test known`; left out of
-# `scripts/test` until mended, which says so.
-set_property(TEST graph.race_spielberg_pylon_at_1400 APPEND PROPERTY LABELS known_failing)
 
 endif()
 

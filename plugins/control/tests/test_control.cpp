@@ -8,6 +8,7 @@
 #include "control/common/wall_follower.hpp"
 
 #include "av21.hpp"
+#include "single_track.hpp"
 
 #include <gtest/gtest.h>
 
@@ -78,31 +79,8 @@ TEST(PathTracker, BrakesAheadOfASlowerStretch) {
   EXPECT_DOUBLE_EQ(stop.steer, 0);
 }
 
-namespace {
-
-// The AV-21's single-track model, from its file.
-LateralModel av21_model() {
-  const auto v = av21_vehicle();
-  return {v.mass, v.yaw_inertia, v.lf, v.lr, v.cornering_front, v.cornering_rear};
-}
-
-// The linear single-track model itself (linear tyres, no actuator), integrated at 1 ms around a
-// circle of radius r at constant speed v: the centre of gravity's pose and body velocities.
-struct Bicycle {
-  LateralModel m;
-  double x = 0, y = 0, yaw = 0, vy = 0, r = 0;
-  void step(double delta, double v, double dt) {
-    const double af = delta - std::atan2(vy + m.lf * r, v), ar = -std::atan2(vy - m.lr * r, v);
-    const double fyf = m.cornering_front * af, fyr = m.cornering_rear * ar;
-    vy += ((fyf + fyr) / m.mass - r * v) * dt;
-    r += (m.lf * fyf - m.lr * fyr) / m.yaw_inertia * dt;
-    yaw += r * dt;
-    x += (v * std::cos(yaw) - vy * std::sin(yaw)) * dt;
-    y += (v * std::sin(yaw) + vy * std::cos(yaw)) * dt;
-  }
-};
-
-}  // namespace
+using test_car::av21_model;
+using test_car::Bicycle;
 
 // The feedforward holds a steady turn: L kappa at low speed, plus the understeer gradient's term
 // (the AV-21 is near neutral: a small negative K_v); the feedback steers toward the path.

@@ -7,6 +7,7 @@
 #include "control/vehicle_tracking.hpp"
 
 #include "av21.hpp"
+#include "single_track.hpp"
 
 #include <gtest/gtest.h>
 
@@ -17,30 +18,22 @@ using namespace brickyard::control;
 
 namespace {
 
-LateralModel av21_model() {
-  const auto v = av21_vehicle();
-  return {v.mass, v.yaw_inertia, v.lf, v.lr, v.cornering_front, v.cornering_rear};
-}
+using test_car::av21_model;
 
-// The linear single-track model (centre of gravity, linear tyres) at constant speed, its steering
-// through a delay line and a rate limit, integrated at 1 ms.
+// The linear single-track model, its steering through a delay line and a rate limit, integrated
+// at 1 ms.
 struct DelayedCar {
-  LateralModel m;
+  test_car::Bicycle body;
   double delay = 0, max_rate = 0.6;
-  double x = 0, y = 0, yaw = 0, vy = 0, r = 0, steer = 0, t = 0;
+  double steer = 0, t = 0;
   double held = 0;  // the last command that reached the actuator
   std::deque<std::pair<double, double>> commands;  // (time it reaches the actuator, steering)
+  DelayedCar(LateralModel m, double d) : body{m}, delay(d) {}
   void command(double delta) { commands.emplace_back(t + delay, delta); }
   void step(double v, double dt) {
     while (!commands.empty() && commands.front().first <= t + 1e-12) held = commands.front().second, commands.pop_front();
     steer += std::clamp(held - steer, -max_rate * dt, max_rate * dt);
-    const double af = steer - std::atan2(vy + m.lf * r, v), ar = -std::atan2(vy - m.lr * r, v);
-    const double fyf = m.cornering_front * af, fyr = m.cornering_rear * ar;
-    vy += ((fyf + fyr) / m.mass - r * v) * dt;
-    r += (m.lf * fyf - m.lr * fyr) / m.yaw_inertia * dt;
-    yaw += r * dt;
-    x += (v * std::cos(yaw) - vy * std::sin(yaw)) * dt;
-    y += (v * std::sin(yaw) + vy * std::cos(yaw)) * dt;
+    body.step(steer, v, dt);
     t += dt;
   }
 };
@@ -54,14 +47,14 @@ struct Outcome {
 // its own past outputs as the tracker keeps them.
 Outcome from_an_offset(const LateralLqr& law, double actual_delay, double v) {
   DelayedCar car{av21_model(), actual_delay};
-  car.y = 0.5;
+  car.body.y = 0.5;
   std::vector<double> sent;  // the law's outputs, newest last
   double sum_sq = 0;
   int late = 0;
   for (int k = 0; k < 8000; ++k) {
     if (k % 10 == 0) {
       PathErrors e;
-      e.e_y = car.y, e.e_psi = car.yaw, e.e_y_rate = v * std::sin(car.yaw) + car.vy, e.e_psi_rate = car.r;
+      e.e_y = car.body.y, e.e_psi = car.body.yaw, e.e_y_rate = v * std::sin(car.body.yaw) + car.body.vy, e.e_psi_rate = car.body.r;
       std::vector<double> past(static_cast<std::size_t>(law.memory()), 0.0);
       for (std::size_t j = 0; j < past.size() && j < sent.size(); ++j) past[j] = sent[sent.size() - 1 - j];
       const double u = std::clamp(law.steer(e, 0, v, past), -0.35, 0.35);
@@ -69,10 +62,10 @@ Outcome from_an_offset(const LateralLqr& law, double actual_delay, double v) {
       car.command(u);
     }
     car.step(v, 1e-3);
-    if (!std::isfinite(car.y) || std::abs(car.y) > 50) return {1e9, 1e9};
-    if (k >= 6000) sum_sq += car.y * car.y, ++late;
+    if (!std::isfinite(car.body.y) || std::abs(car.body.y) > 50) return {1e9, 1e9};
+    if (k >= 6000) sum_sq += car.body.y * car.body.y, ++late;
   }
-  return {std::abs(car.y), std::sqrt(sum_sq / late)};
+  return {std::abs(car.body.y), std::sqrt(sum_sq / late)};
 }
 
 LateralLqrParams race_costs(double planned_delay) {
@@ -132,15 +125,16 @@ TEST(SteeringDelay, TheTrackerPlansWithItsOutputsByTheEstimatesStamps) {
   tracker.set_path(straight);
   const double v = 85, lr = av21_vehicle().lr;
   DelayedCar car{av21_model(), 0.08};
-  car.y = 0.5;
+  car.body.y = 0.5;
   double worst_late = 0;
   for (int k = 0; k < 8000; ++k) {
     if (k % 8 == 0) {
-      const CarState s{car.x - lr * std::cos(car.yaw), car.y - lr * std::sin(car.yaw), car.yaw, v, car.r, car.vy, 100 + car.t};
+      const auto& b = car.body;
+      const CarState s{b.x - lr * std::cos(b.yaw), b.y - lr * std::sin(b.yaw), b.yaw, v, b.r, b.vy, 100 + car.t};
       car.command(tracker.control(s).steer);
     }
     car.step(v, 1e-3);
-    if (k >= 6000) worst_late = std::max(worst_late, std::abs(car.y));
+    if (k >= 6000) worst_late = std::max(worst_late, std::abs(car.body.y));
   }
   EXPECT_LT(worst_late, 0.03);
   // Time going back: the record starts over, and the law steers as on a first call.

@@ -244,9 +244,13 @@ std::vector<RoadGraphPlanner::Piece> RoadGraphPlanner::emergency_swerve(double s
   const double step = g_.params().lateral_step, widen = std::max(0.0, g_.params().edge_margin - p_.swerve_edge_margin);
   const double lo = Ly.k0 * step - widen, hi = (Ly.k0 + static_cast<double>(Ly.count) - 1) * step + widen;
   const double s0 = s_c, s1 = s_c + reach, s2 = first->s + (first->s < s_c ? L : 0.0) + p_.search.car_rear + first->radius + 5;
-  // The sweep of the lane change itself is not known before its shape: take the largest the
-  // graph allows (its curvature limit) and check the shape after.
-  const double need = first->radius + swept_half_width(hw, 0.0, keep) + keep.clearance + 0.05;
+  // The car's sweep beside the obstacle widens it by the bend it takes there: the line's, a
+  // tenth more for the offset (a hairpin's 0.07 1/m sweeps the AV-21's nose 0.5 m wide; taken
+  // straight, every swerve in one came out short of keep_clearance once its shape was checked).
+  // The lane change's own bends are not known before its shape: that is checked after.
+  double bend = 0;
+  for (double s = s1 - 10; s <= s2; s += 1.0) bend = std::max(bend, std::abs(line_.kappa(s)));
+  const double need = first->radius + swept_half_width(hw, 1.1 * bend, keep) + keep.clearance + 0.05;
   const Swerve sw{*this, obs, first, keep, speed, d_c, L, hw, lo, hi, s0, s1, s2, need};
   if (std::vector<Piece> best = sw.at_keep_clearance(past); !best.empty()) return best;
   // None at keep_clearance. A car that can stop before the obstacle does (the caller's stop);

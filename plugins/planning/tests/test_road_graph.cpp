@@ -35,12 +35,13 @@ RefLine circle(double r) {
   return RefLine(x, y, k);
 }
 
-// A stadium: two 600 m straights joined by half circles of 200 m, a point every ~5 m.
-RefLine stadium() {
+// A stadium: two 600 m straights joined by half circles of r (200 m), a point every ~5 m (a
+// fifth of the arc's radius at most: a hairpin's points closer).
+RefLine stadium(double r = 200) {
   std::vector<double> x, y, k;
-  const double L = 600, r = 200;
+  const double L = 600;
   auto arc = [&](double cx, double a0) {
-    const int m = static_cast<int>(M_PI * r / 5);
+    const int m = std::max(static_cast<int>(M_PI * r / 5), static_cast<int>(M_PI * 5));
     for (int i = 0; i < m; ++i) {
       const double a = a0 + M_PI * i / m;
       x.push_back(cx + r * std::cos(a));
@@ -768,6 +769,35 @@ TEST(RoadGraphPlanner, WithNoNodeBesideAnObstacleTheCarSwervesPastIt) {
   for (double d = -4; d <= 4; d += 0.5) wall.push_back({300, d, 0.3, 0});
   for (int k = 0; k < pp.confirmations; ++k) blocked.observe(wall, 0);
   EXPECT_FALSE(blocked.plan(130, 0, 80).swerve);
+}
+
+// A pylon on the line in a hairpin (15 m radius) of a 9.2 m road, no node beside it at any
+// clearance: the emergency swerve past it counts the car's sweep in the bend (its nose
+// swings out 0.5 m there) and passes it at keep_clearance, swept side and all. (Spielberg's
+// hairpin, s = 1400 m: judged as if the car went straight, every swerve came out short of
+// keep_clearance once its shape was checked, and the car, unable to stop in the bend, rolled by
+// 0.499 m off.)
+TEST(RoadGraphPlanner, ASwerveInAHairpinCountsTheSweepOfTheBend) {
+  const double radius = 15;
+  const RefLine line = stadium(radius);
+  const TrackRoom narrow = [](double) { return std::make_pair(-4.6, 4.6); };
+  RoadGraphParams gp;
+  gp.max_curvature = 0.1;  // the AV-21's steering, as curvature_limit car has it
+  const RoadGraph g = RoadGraph::build(line, narrow, gp);
+  PlannerParams pp;
+  RoadGraphPlanner planner(g, line, std::vector<double>(line.size(), 12.0), pp);
+  const double r = 0.15, d_pylon = 0, hw = g.params().half_width;
+  const Eigen::Vector2d at = line.point(600 + 0.5 * M_PI * radius, d_pylon);  // the middle of the hairpin
+  for (int k = 0; k < pp.confirmations; ++k) planner.observe({{at.x(), at.y(), r, 0}}, 0);
+  const PlannedPath& p = planner.plan(560, 0, 12);
+  EXPECT_FALSE(p.route_found);
+  ASSERT_TRUE(p.swerve);
+  EXPECT_FALSE(p.swerve_short);
+  const SearchParams sp;
+  const double s_pylon = 600 + 0.5 * M_PI * radius;
+  for (const auto& q : p.points)
+    if (q.s >= s_pylon - sp.car_front - r && q.s <= s_pylon + sp.car_rear + r)
+      EXPECT_GE(std::abs(q.d - d_pylon) - r - swept_half_width(hw, q.kappa, sp), pp.keep_clearance - 1e-6) << "beside the pylon at s " << q.s;
 }
 
 // A pylon hidden until 95 m ahead in a bend the car takes near its lateral limit (Monza's Lesmo
