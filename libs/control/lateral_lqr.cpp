@@ -105,8 +105,8 @@ LateralLqr::LateralLqr(LateralModel car, LateralLqrParams p) : m_(car), p_(p) {
     throw std::invalid_argument("lateral LQR: the car's mass, inertia, axle distances and cornering stiffnesses must be positive");
   if (!(p.period > 0 && p.v_min > 0 && p.v_max > p.v_min && p.v_step > 0 && p.r_steer > 0))
     throw std::invalid_argument("lateral LQR: period, speeds and the steering cost must be positive");
-  if (!(p.delay >= 0 && p.delay <= 1.0 && p.r_steer_rate >= 0))
-    throw std::invalid_argument("lateral LQR: the delay must lie in [0, 1] s and the rate's cost be 0 or more");
+  if (!(p.delay >= 0 && p.delay <= kMaxPlannedDelay + 1e-9 && p.r_steer_rate >= 0))
+    throw std::invalid_argument("lateral LQR: the delay must lie in [0, 0.3] s and the rate's cost be 0 or more");
   delay_steps_ = static_cast<int>(std::lround(p.delay / p.period));
   memory_ = std::max(delay_steps_, 1);
   for (double v = p.v_min; v <= p.v_max + 1e-9; v += p.v_step) {

@@ -23,13 +23,17 @@ struct LateralModel {
   double cornering_front = 0, cornering_rear = 0;  // N/rad per axle
 };
 
+// The longest delay the law plans over: its state grows by a period of it, and no car races with
+// more.
+inline constexpr double kMaxPlannedDelay = 0.3;  // s
+
 struct LateralLqrParams {
   // Costs: lateral error (1/m^2), its rate, heading error (1/rad^2), its rate; and the steering (1/rad^2).
   double q_lateral = 1.0, q_lateral_rate = 0.0, q_heading = 2.0, q_heading_rate = 0.0;
   double r_steer = 40.0;
   double r_steer_rate = 0.01;  // (rad/s)^-2: cost of the steering's rate
   double period = 0.01;  // s: the controller's step, the LQR's discretisation
-  double delay = 0.0;    // s: from the command to the road wheels (rounded to periods)
+  double delay = 0.0;    // s: from the command to the road wheels (rounded to periods), at most kMaxDelay
   // The lateral error the feedback sees is clamped to this: a car far off the path (at the start,
   // after an avoidance) closes in at a bounded angle instead of steering at the linear law's full
   // gain into a wall.

@@ -95,7 +95,7 @@ void read_steering(Section& top, const std::string& file, Vehicle& v) {
   v.steering_ratio = s.number("ratio", 1, 100);
   v.max_steer = s.number("max_steer_rad", 0.01, 1.5);
   v.max_steer_rate = s.number("max_steer_rate_radps", 0.01, 100);
-  v.steer_delay = s.number("delay_s", 0, 1);
+  v.steer_delay = s.number("delay_s", 0, 0.25);  // the LQR tracker plans over it and more, up to 0.3 s
 }
 
 void read_tyres(Section& top, const std::string& file, Vehicle& v) {

@@ -6,6 +6,10 @@
 #include <brickyard/plugin.hpp>
 
 #include "control/path_tracker.hpp"
+#include "control/vehicle_tracking.hpp"
+
+#include <sstream>
+#include <string>
 
 namespace brickyard::plugins {
 
@@ -36,6 +40,20 @@ template <class S, class... M> void bind_tracker(ParamBinding<S>& b, M... path) 
   b.bind("preview_time", path..., &T::preview_time).in_unit("s").range(0, 60).doc("path ahead the speed looks at");
   b.bind("decel", path..., &T::decel).in_unit("m/s^2").range(0.1, 100).doc("braking the speed plan assumes");
   b.not_above("lookahead_min", "lookahead_max");
+}
+
+// The tracker's parameters with the car's facts from its vehicle file (`file`, for the message):
+// BadInput when the LQR would plan over more delay than it can (the file's steering delay and
+// command_latency together).
+inline control::TrackerParams tracker_for(control::TrackerParams t, const vehicle::Vehicle& car, const std::string& file) {
+  control::apply_vehicle(t, car);
+  if (t.steer_law == control::SteerLaw::lqr && t.steer_delay + t.command_latency > control::kMaxPlannedDelay + 1e-9) {
+    std::ostringstream m;
+    m << "parameter 'command_latency': " << t.command_latency << " s with the steering's " << t.steer_delay << " s delay ("
+      << file << ") is more than the " << control::kMaxPlannedDelay << " s the lqr law plans over";
+    throw BadInput(m.str());
+  }
+  return t;
 }
 
 }  // namespace brickyard::plugins

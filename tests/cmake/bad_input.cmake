@@ -47,6 +47,8 @@ bad_config(json_source_bad_field "node 'path' \\(testing.json_source\\): paramet
 # The same checks at validation (Manifest::check, ABI 2.4): nothing runs, and every node's failure is said.
 bad_config(expect_unknown_field_validate "node 'check' \\(testing.expect\\): parameter 'expect' /1/field: poses\\[\\*\\].q: no member 'q' in Pose2D .*expect_unknown_field.json#/nodes/check/params/expect/1/field" validate ${BAD}/expect_unknown_field.json)
 bad_config(json_source_bad_field_validate "node 'path' \\(testing.json_source\\): parameter 'samples' /0/msg/poses/0/x: expected a number" validate ${BAD}/json_source_bad_field.json)
+# The LQR tracker plans over the vehicle file's steering delay and command_latency, 0.3 s at most.
+bad_config(tracker_latency_too_long "node 'path_tracker' \\(control.path_tracker\\): parameter 'command_latency': 0.3 s with the steering's 0.02 s delay \\(vehicles/av21.json\\) is more than the 0.3 s the lqr law plans over" validate ${PROJECT_SOURCE_DIR}/configs/race.json --set path_tracker.command_latency=0.3)
 # A data file a parameter names is read at validation, not first at the run's start (the
 # track files above are refused there too: "error:", before any run).
 if(BRICKYARD_SIM)

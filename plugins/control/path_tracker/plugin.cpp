@@ -58,13 +58,17 @@ class PathTrackerNode : public Plugin {
         .with_ports(ports())
         .plays(roles::path_tracker)
         .parameters(bindings())
-        .check(&plugins::check_vehicle_file<&bindings, &Settings::vehicle>);
+        .check(&check);
+  }
+
+  static void check(const CheckView& v) {
+    const Settings s = bindings().read(v.params());
+    plugins::tracker_for(s.tracker, plugins::read_vehicle_file(v.find_file(s.vehicle)), s.vehicle);
   }
 
   void configure(Context& ctx) override {
     const Settings s = bindings().read(ctx.params());
-    TrackerParams tp = s.tracker;
-    control::apply_vehicle(tp, plugins::read_vehicle(ctx, s.vehicle));
+    TrackerParams tp = plugins::tracker_for(s.tracker, plugins::read_vehicle(ctx, s.vehicle), s.vehicle);
     if (s.max_steer) tp.max_steer = *s.max_steer;
     tracker_ = PathTracker(tp);
     io_ = ports().connect(ctx);

@@ -81,7 +81,10 @@ class TruthFollower : public Plugin {
         .check(&check);
   }
 
-  static void check(const CheckView& v) { read_files(v, bindings().read(v.params())); }
+  static void check(const CheckView& v) {
+    const Settings s = bindings().read(v.params());
+    plugins::tracker_for(s.tracker, read_files(v, s).second, s.vehicle);
+  }
 
   void configure(Context& ctx) override {
     const Settings s = bindings().read(ctx.params());
@@ -89,8 +92,7 @@ class TruthFollower : public Plugin {
     line_ = std::move(line);
     profile_ = s.profile;
     limits_ = profile_limits(profile_, car);
-    tracker_params_ = s.tracker;
-    control::apply_vehicle(tracker_params_, car);
+    tracker_params_ = plugins::tracker_for(s.tracker, car, s.vehicle);
     io_ = ports().connect(ctx);
   }
 
