@@ -79,59 +79,9 @@ void run_all(std::vector<Job>& jobs, int workers, int domain0, const std::string
 
 bool clean(const RaceRun& r) { return r.ok && num(r.referee, "wall_contacts") == 0 && num(r.referee, "track_violations") == 0; }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  const std::string src = BRICKYARD_SOURCE_DIR, by = BRICKYARD_HOST;
-  std::string tracks = src + "/data/tracks";
-  std::vector<double> delays = {0, 0.02, 0.04, 0.06, 0.08};
-  std::vector<std::string> user_sets;
-  int seeds = 2, workers = 1, domain0 = 150;
-  for (int i = 1; i + 1 < argc; i += 2) {
-    if (!std::strcmp(argv[i], "--tracks")) tracks = argv[i + 1];
-    else if (!std::strcmp(argv[i], "--delays")) delays = parse_list(argv[i + 1]);
-    else if (!std::strcmp(argv[i], "--seeds")) seeds = std::clamp(std::atoi(argv[i + 1]), 1, 100);
-    else if (!std::strcmp(argv[i], "--jobs")) workers = std::clamp(std::atoi(argv[i + 1]), 1, 16);
-    else if (!std::strcmp(argv[i], "--domain")) domain0 = std::clamp(std::atoi(argv[i + 1]), 0, 200);
-    else if (!std::strcmp(argv[i], "--set")) user_sets.push_back(argv[i + 1]);
-    else {
-      std::fprintf(stderr, "eval_steer_delay: %s: unknown option\n", argv[i]);
-      return 2;
-    }
-  }
-  if (delays.empty() || std::any_of(delays.begin(), delays.end(), [](double d) { return !(d >= 0 && d <= 1); })) {
-    std::fprintf(stderr, "eval_steer_delay: --delays: seconds in [0, 1], comma-separated\n");
-    return 2;
-  }
-  const std::string dir = std::getenv("EVAL_STEER_DELAY_DIR") ? std::getenv("EVAL_STEER_DELAY_DIR") : "/tmp/eval_steer_delay";
-  fs::create_directories(dir);
-  const std::string graph = src + "/tests/graphs/car_direct.json", vehicle = src + "/data/vehicles/av21.json";
-  const std::vector<std::pair<std::string, std::vector<std::string>>> laws = {
-      {"defaults", {}}, {"delay alone", {"path_tracker.command_latency=0", "path_tracker.r_steer_rate=0"}}};
-  std::vector<Job> jobs;
-  std::vector<std::string> names;
-  for (const auto& tf : brickyard::bench::track_files(tracks)) {
-    if (!tf.error.empty()) {
-      std::fprintf(stderr, "eval_steer_delay: %s\n", tf.error.c_str());
-      return 2;
-    }
-    names.push_back(tf.name);
-    const auto args = brickyard::bench::track_args(tf.path, tf.name, tf.line, false);
-    for (double d : delays) {
-      const std::string file = vehicle_with_delay(vehicle, d, dir);
-      for (const auto& [law, law_sets] : laws)
-        for (int seed = 0; seed < seeds; ++seed) {
-          Job j{tf.name, law, file, {}, args, law_sets, d, seed, {}};
-          j.sets.insert(j.sets.end(), user_sets.begin(), user_sets.end());
-          char tag[96];
-          std::snprintf(tag, sizeof tag, "/%s_%s_%.3f_s%d", tf.name.c_str(), law == "defaults" ? "defaults" : "alone", d, seed);
-          j.dir = dir + tag;
-          jobs.push_back(std::move(j));
-        }
-    }
-  }
-  run_all(jobs, workers, domain0, by, graph);
-
+// The table, a row per track, delay and law; whether every run of the tracker's defaults was clean.
+bool print_table(const std::vector<Job>& jobs, const std::vector<std::string>& names, const std::vector<double>& delays,
+                 const std::vector<std::pair<std::string, std::vector<std::string>>>& laws) {
   std::printf("| track | steering delay | tracker | clean runs | least clearance | worst lap vs the delay-free run | steering rate RMS |\n");
   std::printf("|---|---|---|---|---|---|---|\n");
   bool defaults_ok = true;
@@ -163,6 +113,67 @@ int main(int argc, char** argv) {
         std::printf("| %s | %.0f ms | %s | %d of %d%s | %.2f m | %+.2f %% | %.3f rad/s |\n", name.c_str(), 1000 * d, law.first.c_str(), ok,
                     n, why.c_str(), least, 100 * worst_lap, rate);
       }
+  return defaults_ok;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const std::string src = BRICKYARD_SOURCE_DIR, by = BRICKYARD_HOST;
+  std::string tracks = src + "/data/tracks";
+  std::vector<double> delays = {0, 0.02, 0.04, 0.06, 0.08};
+  std::vector<std::string> user_sets;
+  int seeds = 2, workers = 1, domain0 = 150;
+  for (int i = 1; i + 1 < argc; i += 2) {
+    if (!std::strcmp(argv[i], "--tracks")) tracks = argv[i + 1];
+    else if (!std::strcmp(argv[i], "--delays")) delays = parse_list(argv[i + 1]);
+    else if (!std::strcmp(argv[i], "--seeds")) seeds = std::clamp(std::atoi(argv[i + 1]), 1, 100);
+    else if (!std::strcmp(argv[i], "--jobs")) workers = std::clamp(std::atoi(argv[i + 1]), 1, 16);
+    else if (!std::strcmp(argv[i], "--domain")) domain0 = std::clamp(std::atoi(argv[i + 1]), 0, 200);
+    else if (!std::strcmp(argv[i], "--set")) user_sets.push_back(argv[i + 1]);
+    else {
+      std::fprintf(stderr, "eval_steer_delay: %s: unknown option\n", argv[i]);
+      return 2;
+    }
+  }
+  if (delays.empty() || std::any_of(delays.begin(), delays.end(), [](double d) { return !(d >= 0 && d <= 0.25); })) {
+    std::fprintf(stderr, "eval_steer_delay: --delays: seconds in [0, 0.25] (a vehicle file's steering delay), comma-separated\n");
+    return 2;
+  }
+  if (!fs::is_directory(tracks)) {
+    std::fprintf(stderr, "eval_steer_delay: --tracks %s: not a folder of track files\n", tracks.c_str());
+    return 2;
+  }
+  const std::string dir = std::getenv("EVAL_STEER_DELAY_DIR") ? std::getenv("EVAL_STEER_DELAY_DIR") : "/tmp/eval_steer_delay";
+  fs::create_directories(dir);
+  const std::string graph = src + "/tests/graphs/car_direct.json", vehicle = src + "/data/vehicles/av21.json";
+  const std::vector<std::pair<std::string, std::vector<std::string>>> laws = {
+      {"defaults", {}}, {"delay alone", {"path_tracker.command_latency=0", "path_tracker.r_steer_rate=0"}}};
+  std::vector<Job> jobs;
+  std::vector<std::string> names;
+  for (const auto& tf : brickyard::bench::track_files(tracks)) {
+    if (!tf.error.empty()) {
+      std::fprintf(stderr, "eval_steer_delay: %s\n", tf.error.c_str());
+      return 2;
+    }
+    names.push_back(tf.name);
+    const auto args = brickyard::bench::track_args(tf.path, tf.name, tf.line, false);
+    for (double d : delays) {
+      const std::string file = vehicle_with_delay(vehicle, d, dir);
+      for (const auto& [law, law_sets] : laws)
+        for (int seed = 0; seed < seeds; ++seed) {
+          Job j{tf.name, law, file, {}, args, law_sets, d, seed, {}};
+          j.sets.insert(j.sets.end(), user_sets.begin(), user_sets.end());
+          char tag[96];
+          std::snprintf(tag, sizeof tag, "/%s_%s_%.3f_s%d", tf.name.c_str(), law == "defaults" ? "defaults" : "alone", d, seed);
+          j.dir = dir + tag;
+          jobs.push_back(std::move(j));
+        }
+    }
+  }
+  run_all(jobs, workers, domain0, by, graph);
+
+  const bool defaults_ok = print_table(jobs, names, delays, laws);
   std::printf("%s\n", defaults_ok ? "every run of the tracker's defaults finished clean"
                                    : "FAIL: a run of the tracker's defaults did not finish clean (the table says which)");
   return defaults_ok ? 0 : 1;
