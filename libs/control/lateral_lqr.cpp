@@ -107,13 +107,13 @@ LateralLqr::LateralLqr(LateralModel car, LateralLqrParams p) : m_(car), p_(p) {
     throw std::invalid_argument("lateral LQR: period, speeds and the steering cost must be positive");
   if (!(p.delay >= 0 && p.delay <= kMaxPlannedDelay + 1e-9 && p.r_steer_rate >= 0))
     throw std::invalid_argument("lateral LQR: the delay must lie in [0, 0.3] s and the rate's cost be 0 or more");
-  delay_steps_ = static_cast<int>(std::lround(p.delay / p.period));
-  memory_ = std::max(delay_steps_, 1);
+  const int delay_steps = static_cast<int>(std::lround(p.delay / p.period));
+  memory_ = std::max(delay_steps, 1);
   for (double v = p.v_min; v <= p.v_max + 1e-9; v += p.v_step) {
     Mat4 ad;
     Vec4 bd;
     discrete_model(m_, v, p.period, ad, bd);
-    const Vec k = lqr_gain(augmented(ad, bd, delay_steps_, memory_, p_));
+    const Vec k = lqr_gain(augmented(ad, bd, delay_steps, memory_, p_));
     table_.emplace_back(k.data(), k.data() + k.size());
   }
 }

@@ -33,7 +33,7 @@ struct LateralLqrParams {
   double r_steer = 40.0;
   double r_steer_rate = 0.01;  // (rad/s)^-2: cost of the steering's rate
   double period = 0.01;  // s: the controller's step, the LQR's discretisation
-  double delay = 0.0;    // s: from the command to the road wheels (rounded to periods), at most kMaxDelay
+  double delay = 0.0;    // s: from the command to the road wheels (rounded to periods), at most kMaxPlannedDelay
   // The lateral error the feedback sees is clamped to this: a car far off the path (at the start,
   // after an avoidance) closes in at a bounded angle instead of steering at the linear law's full
   // gain into a wall.
@@ -68,7 +68,7 @@ class LateralLqr {
  private:
   LateralModel m_;
   LateralLqrParams p_;
-  int delay_steps_ = 0, memory_ = 1;
+  int memory_ = 1;
   std::vector<std::vector<double>> table_;
 };
 

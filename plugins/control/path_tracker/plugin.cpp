@@ -86,10 +86,11 @@ class PathTrackerNode : public Plugin {
       ++paths_;
     }
     for (auto& e : io_.estimate.take()) {
-      const Command c = tracker_.control(CarState{e->x(), e->y(), e->yaw(), e->speed(), e->yaw_rate(), 0.0, 1e-9 * static_cast<double>(e->header().stamp_ns())});
+      const double t = 1e-9 * static_cast<double>(e->header().stamp_ns());
+      const Command c = tracker_.control(CarState{e->x(), e->y(), e->yaw(), e->speed(), e->yaw_rate(), 0.0, t});
       io_.command.publish(command_message(c, "path_tracker", e->header().stamp_ns(), seq_++));
       cte_max_ = std::max(cte_max_, std::abs(tracker_.cross_track()));
-      steering_.add(1e-9 * static_cast<double>(e->header().stamp_ns()), c.steer);
+      steering_.add(t, c.steer);
     }
   }
 
