@@ -6,6 +6,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 #include <thread>
 
@@ -155,6 +156,7 @@ Lockstep::Lockstep(DdsTransport& t, std::string me, std::vector<std::string> own
           }
           std::lock_guard<std::mutex> l(m_);
           Peer& q = peers_.at(p);
+          q.heard = std::chrono::steady_clock::now();
           if (!damage.empty()) {
             LockRecord end;
             end.kind = LockRecord::end;
@@ -174,7 +176,10 @@ Lockstep::Lockstep(DdsTransport& t, std::string me, std::vector<std::string> own
         [this, p](bool alive) {
           if (alive) return;
           std::lock_guard<std::mutex> l(m_);
-          peers_.at(p).lost = true;
+          Peer& q = peers_.at(p);
+          q.lost = true;
+          if (q.heard != std::chrono::steady_clock::time_point{})
+            q.silent_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - q.heard).count();
           cv_.notify_all();
         },
         std::move(check));
@@ -204,8 +209,12 @@ std::string Lockstep::gone(const std::string& process, std::optional<std::pair<R
     if (peer_stop) *peer_stop = {static_cast<RunResult>(p.end->result), p.end->reason};
     return "lockstep: process '" + process + "' ended its run (" + p.end->reason + ") before this one's event " + std::to_string(seq_);
   }
-  if (p.lost)
-    return "lockstep: process '" + process + "' went silent (its clock's liveliness lapsed: did it die?); a run on the sim clock cannot go on without it";
+  if (p.lost) {
+    char heard[64] = "nothing ever heard from it";
+    if (p.heard != std::chrono::steady_clock::time_point{}) std::snprintf(heard, sizeof heard, "nothing from it for %.2f s", p.silent_s);
+    return "lockstep: process '" + process + "' went silent (" + heard +
+           ", its clock's liveliness lapsed: did it die?); a run on the sim clock cannot go on without it";
+  }
   if (p.hello && p.reader->matched() == 0) return "lockstep: process '" + process + "' left the run without ending it";
   return {};
 }

@@ -21,6 +21,7 @@
 #include "graph/resolve.hpp"
 #include "transport/dds.hpp"
 
+#include <chrono>
 #include <condition_variable>
 #include <cstdint>
 #include <deque>
@@ -101,6 +102,10 @@ class Lockstep {
     std::optional<LockRecord> hello, end;
     std::vector<LockRecord> deactivated;
     bool lost = false;
+    // Its last record's arrival, and how long before its liveliness was found lapsed: the
+    // silence this process itself saw, whatever the machine's load did to its log's readers.
+    std::chrono::steady_clock::time_point heard{};
+    double silent_s = 0;
   };
   struct Wire {
     std::string process;

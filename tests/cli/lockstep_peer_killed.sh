@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # A split run on the sim clock whose peer dies (issue 19): process b of a supervised lockstep run
-# is killed with SIGKILL; process a, waiting on b's next event, must say within 1.5 s that b went
-# silent, and the run must fail (exit 1) naming it — never hang, never "success". (1.5 s: the
-# liveliness lease is 0.5 s; the rest is slack for a loaded machine.)
+# is killed with SIGKILL; process a, waiting on b's next event, must say within 1.5 s of the last
+# thing it heard from b that b went silent, and the run must fail (exit 1) naming it — never hang,
+# never "success". (1.5 s: the liveliness lease is 0.5 s; the rest is slack for a loaded machine.)
+# That silence is a's own measure, in its reason; what this script sees of the log is only bounded
+# (15 s: no hang): under a loaded CTest the supervisor's relay and this poll were once 5 s late.
 # usage: lockstep_peer_killed.sh BRICKYARD GRAPH DOMAIN OUT
 set -u
 by=$1; graph=$2; domain=$3; out=$4
@@ -21,7 +23,7 @@ sleep 2
 kill -9 "$pid"
 killed=$(date +%s.%N)
 said=""
-for _ in $(seq 1 300); do
+for _ in $(seq 1 1500); do
   if grep -q "\[a\] .*lockstep: process 'b' went silent" "$out/run.log"; then said=$(date +%s.%N); break; fi
   sleep 0.01
 done
@@ -29,10 +31,12 @@ wait $sup
 rc=$?
 cat "$out/run.log" | tail -n 6
 [ "$rc" = 1 ] || { echo "FAIL: exit $rc, expected 1"; exit 1; }
-[ -n "$said" ] || { echo "FAIL: process a did not say within 3 s that b went silent"; exit 1; }
+[ -n "$said" ] || { echo "FAIL: process a did not say within 15 s that b went silent"; exit 1; }
 delay=$(python3 -c "print(f'{$said - $killed:.2f}')")
-echo "process a said b went silent $delay s after the kill"
-python3 -c "import sys; sys.exit(0 if $said - $killed <= 1.5 else 1)" || { echo "FAIL: more than 1.5 s"; exit 1; }
+silent=$(sed -n "s/.*\[a\] .*process 'b' went silent (nothing from it for \([0-9.]*\) s.*/\1/p" "$out/run.log" | head -n 1)
+[ -n "$silent" ] || { echo "FAIL: a's reason does not say how long b was silent"; exit 1; }
+echo "process a said b went silent $silent s after the last it heard from b (this script read it $delay s after the kill)"
+python3 -c "import sys; sys.exit(0 if $silent <= 1.5 else 1)" || { echo "FAIL: more than 1.5 s"; exit 1; }
 python3 - "$out/run/a/summary.json" <<'PY' || exit 1
 import json, sys
 s = json.load(open(sys.argv[1]))
