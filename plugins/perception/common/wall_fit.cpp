@@ -9,13 +9,18 @@
 
 namespace brickyard::perception {
 
-int longest_cluster_on_side(const Points& points, const std::vector<std::vector<int>>& clusters, int side, float near) {
-  int best = -1;
-  float best_len = -1;
+int longest_cluster_on_side(const Points& points, const std::vector<std::vector<int>>& clusters, int side, float near, float behind) {
+  // Two candidates: the longest with a point where the wall is fitted (x in [-behind, near]), and
+  // the longest of all, taken only when none has (a wall ahead beyond reach, grown back into it).
+  // Why: standing at a chicane's exit, a stretch of wall 75-95 m behind the car outran the wall
+  // beside it, and the fit, which takes no point that far back, found nothing to fit.
+  int best_in = -1, best_any = -1;
+  float len_in = -1, len_any = -1;
   for (std::size_t c = 0; c < clusters.size(); ++c) {
     if (clusters[c].empty()) continue;
     float xmin = std::numeric_limits<float>::max(), xmax = std::numeric_limits<float>::lowest(), ynear = 0;
     int n_near = 0, closest = clusters[c][0];
+    bool in_window = false;
     for (int i : clusters[c]) {
       const Point& q = points[i];
       xmin = std::min(xmin, q.x());
@@ -24,18 +29,18 @@ int longest_cluster_on_side(const Points& points, const std::vector<std::vector<
         ynear += q.y();
         ++n_near;
       }
+      in_window = in_window || (q.x() <= near && q.x() >= -behind);
       if (std::abs(q.x()) < std::abs(points[closest].x())) closest = i;
     }
     // The side where the cluster passes the car: a long wall round a turn may have most of its
     // points across the car's axis further on.
     const float y = n_near ? ynear : points[closest].y();
     if (y * static_cast<float>(side) <= 0) continue;
-    if (xmax - xmin > best_len) {
-      best_len = xmax - xmin;
-      best = static_cast<int>(c);
-    }
+    const float len = xmax - xmin;
+    if (len > len_any) len_any = len, best_any = static_cast<int>(c);
+    if (in_window && len > len_in) len_in = len, best_in = static_cast<int>(c);
   }
-  return best;
+  return best_in >= 0 ? best_in : best_any;
 }
 
 namespace {
@@ -332,7 +337,7 @@ void fit_near_car(const Points& points, const std::vector<std::vector<int>>& clu
 
 WallFit fit_wall(const Points& points, const std::vector<std::vector<int>>& clusters, const WallParams& p) {
   WallFit w;
-  w.cluster = longest_cluster_on_side(points, clusters, p.side, static_cast<float>(p.fit_range));
+  w.cluster = longest_cluster_on_side(points, clusters, p.side, static_cast<float>(p.fit_range), static_cast<float>(p.fit_behind));
   if (w.cluster < 0) return w;
   WallGrower grower(points, clusters, p, w);
   for (int dir : {1, -1}) grower.grow(dir);

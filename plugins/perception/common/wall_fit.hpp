@@ -54,8 +54,9 @@ struct WallFit {
 };
 
 // The index of the longest (x extent) cluster on the side (-1 right, +1 left) where it passes the
-// car: judged by its points within `near` of x = 0, or its point nearest to x = 0; -1 if none.
-int longest_cluster_on_side(const Points& points, const std::vector<std::vector<int>>& clusters, int side, float near);
+// car: judged by its points within `near` of x = 0, or its point nearest to x = 0; of those, one
+// with a point in the fit's window x in [-behind, near] if any has; -1 if none.
+int longest_cluster_on_side(const Points& points, const std::vector<std::vector<int>>& clusters, int side, float near, float behind);
 
 // Fits the wall to the chosen cluster (see WallParams for validity).
 WallFit fit_wall(const Points& points, const std::vector<std::vector<int>>& clusters, const WallParams& p);

@@ -172,6 +172,34 @@ TEST(WallFit, TooFewOrTooShortIsNotValid) {
   EXPECT_EQ(fit_wall(p, {}, wp).cluster, -1);
 }
 
+// The car stands at a chicane's exit (Monza, s = 982 m, as eval_tracks found it): the wall beside
+// it is 10 m long, a straight stretch of the same wall seen 75-95 m behind is 20 m long. The
+// wall is the one beside the car, not the longer one the fit window (fit_behind) leaves out.
+TEST(WallFit, TheWallBesideTheCarNotALongerOneFarBehind) {
+  Points p;
+  std::vector<std::vector<int>> clusters(2);
+  for (double x = -94; x <= -74; x += 0.2) {
+    clusters[0].push_back(static_cast<int>(p.size()));
+    p.emplace_back(x, 22, 0.5f);
+  }
+  for (double x = -4; x <= 6; x += 0.1) {
+    clusters[1].push_back(static_cast<int>(p.size()));
+    p.emplace_back(x, 4.8 + 0.02 * x * x, 0.5f);
+  }
+  WallParams wp;
+  wp.side = 1;
+  wp.fit_behind = 5;
+  const WallFit w = fit_wall(p, clusters, wp);
+  EXPECT_EQ(w.cluster, 1);
+  ASSERT_TRUE(w.valid);
+  EXPECT_NEAR(w.distance, 4.8, 0.05);
+  // Where no cluster reaches the window, the longest is still the one to grow from.
+  wp.fit_behind = 1;
+  wp.fit_range = 2;
+  Points far = {p.begin(), p.begin() + static_cast<long>(clusters[0].size())};
+  EXPECT_EQ(fit_wall(far, {clusters[0]}, wp).cluster, 0);
+}
+
 namespace {
 // One cluster of these points, appended to the cloud.
 void add_cluster(Points& p, std::vector<std::vector<int>>& clusters, std::initializer_list<Point> q) {
