@@ -45,6 +45,7 @@ int main(int argc, char** argv) {
   double offset = 0;
   double bank_deg = 0;
   int seed = 0, jobs = 1;
+  if (const int rc = brickyard::bench::check_option_pairs(argc, argv, "usage: eval_map_track [--tracks DIR] [--only NAME]... [--layout outer|both] [--seed N] [--jobs N] [--fault START] [--out DIR] eval_map_track --mapped FILE --truth FILE [--bank-deg D]   (two files compared, no run; D: the truth banked by curvature, as IMS is) eval_map_track --true-poses IMS [--offset D]   (no stack: the three LiDARs cast from the true poses along a line D m left of the centre line, every 2 m for one lap, the raw returns onto the road surface, the track extracted and compared: what the extraction does with a perfect localization)"); rc >= 0) return rc;
   for (int i = 1; i + 1 < argc; i += 2) {
     if (!std::strcmp(argv[i], "--tracks")) tracks = argv[i + 1];
     else if (!std::strcmp(argv[i], "--only")) only.push_back(argv[i + 1]);

@@ -41,6 +41,7 @@ int main(int argc, char** argv) {
   std::string tracks = src + "/data/tracks", layout = "outer";
   int places = 10, seed = 0, jobs = 1, domain0 = 150;
   std::vector<std::string> sets;
+  if (const int rc = brickyard::bench::check_option_pairs(argc, argv, "usage: eval_pylons [--tracks DIR] [--places N] [--seed N] [--layout outer|both] [--jobs N] [--domain N] [--set NODE.PARAM=V]..."); rc >= 0) return rc;
   for (int i = 1; i + 1 < argc; i += 2) {
     if (!std::strcmp(argv[i], "--tracks")) tracks = argv[i + 1];
     else if (!std::strcmp(argv[i], "--places")) places = std::clamp(std::atoi(argv[i + 1]), 1, 1000);

@@ -124,6 +124,7 @@ int main(int argc, char** argv) {
   std::vector<double> delays = {0, 0.02, 0.04, 0.06, 0.08};
   std::vector<std::string> user_sets;
   int seeds = 2, workers = 1, domain0 = 150;
+  if (const int rc = brickyard::bench::check_option_pairs(argc, argv, "usage: eval_steer_delay [--tracks DIR] [--delays D,D,...] [--seeds N] [--jobs N] [--domain N] [--set NODE.PARAM=V]..."); rc >= 0) return rc;
   for (int i = 1; i + 1 < argc; i += 2) {
     if (!std::strcmp(argv[i], "--tracks")) tracks = argv[i + 1];
     else if (!std::strcmp(argv[i], "--delays")) delays = parse_list(argv[i + 1]);

@@ -52,6 +52,7 @@ int main(int argc, char** argv) {
   const std::string src = BRICKYARD_SOURCE_DIR, by = BRICKYARD_HOST;
   std::string tracks = src + "/data/tracks", only_layout;
   int positions = 10, seed = 0, jobs = 1, domain0 = 180;  // domains domain0 .. domain0 + jobs
+  if (const int rc = brickyard::bench::check_option_pairs(argc, argv, "usage: eval_tracks [--tracks DIR] [--positions N] [--seed N] [--layout outer|both] [--jobs N] [--domain N] [--set NODE.PARAM=V]..."); rc >= 0) return rc;
   for (int i = 1; i + 1 < argc; i += 2) {
     if (!std::strcmp(argv[i], "--tracks")) tracks = argv[i + 1];
     else if (!std::strcmp(argv[i], "--positions")) positions = std::atoi(argv[i + 1]);

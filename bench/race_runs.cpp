@@ -1,5 +1,7 @@
 #include "race_runs.hpp"
 
+#include <cstdio>
+#include <cstring>
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -81,6 +83,13 @@ std::vector<std::string> track_args(const std::string& file, const std::string& 
   if (name == "IMS") a.insert(a.end(), {"bank_mode=curvature", "bank_deg=9.2"});
   else a.insert(a.end(), {"bank_mode=none", "bank_deg=0"});
   return a;
+}
+
+int check_option_pairs(int argc, char** argv, const char* usage) {
+  for (int i = 1; i < argc; ++i)
+    if (!std::strcmp(argv[i], "--help") || !std::strcmp(argv[i], "-h")) return std::printf("%s\n", usage), 0;
+  if (argc % 2 == 0) return std::fprintf(stderr, "%s: needs a value\n%s\n", argv[argc - 1], usage), 2;
+  return -1;
 }
 
 }  // namespace brickyard::bench

@@ -41,4 +41,8 @@ std::vector<TrackFile> track_files(const std::string& dir);
 std::vector<std::string> track_args(const std::string& file, const std::string& name, const track::CenterLine& c,
                                     bool both_walls);
 
+// An eval's options come in pairs (--name value). -1: go on; else the exit code: 0 after --help
+// (the usage printed), 2 for a name left without its value (a lone --help once started a sweep).
+int check_option_pairs(int argc, char** argv, const char* usage);
+
 }  // namespace brickyard::bench

@@ -28,7 +28,7 @@ struct Args {
   std::uint64_t seed = 0;
   bool json = false, dot = false, quiet = false, no_report = false, profile = false, one_process = false;
   std::vector<std::string> child_flags;  // what a supervised run's children are given as they are
-  std::string security, identity, protect = "sign";  // security init; topic and bag play against a secured graph
+  std::string security, identity, protect = "encrypt";  // security init; topic and bag play against a secured graph
   int days = 365;
   std::string to, metadata;         // capture play's sink; capture info's Ouster metadata
   std::optional<int> port;          // capture: a pcap's UDP destination port

@@ -51,8 +51,6 @@ void say_notices_and_check(const Args& a, const ResolvedGraph& rg) {
 DdsSecurity run_security(const Args& a, const GraphDecl& g, const ResolvedGraph& rg, bool validate_only) {
   if (g.transport.security.empty()) return DdsSecurity{};
   const bool many_here = a.process.empty() && rg.processes.size() > 1;
-  if (g.clock.sim && rg.processes.size() > 1 && !a.one_process && !validate_only)
-    usage_error(g.where("/transport/security"), "a split run on the sim clock (its processes in lockstep) does not run secured yet: its clock topics have no permissions; use the real clock");
   if (many_here && !validate_only && a.one_process) {
     std::string names;
     for (const auto& p : rg.processes) names += (names.empty() ? "" : ", ") + p;

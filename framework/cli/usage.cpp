@@ -33,7 +33,7 @@ usage:
   brickyard topic hz NODE.PORT             its rate, a line a second (--count N, --duration S)
   brickyard security init GRAPH --out DIR  DDS security for the graph: a CA, an identity per process
                                            and one to observe, signed governance and permissions from
-                                           its wires (--protect sign|encrypt, --days N; docs/security.md)
+                                           its wires (--protect encrypt|sign, --days N; docs/security.md)
                                            topic and bag play take --security DIR (bag play --identity P)
   brickyard new-plugin NAME --dir DIR [--role ROLE]
                                            scaffold a plugin project from the SDK template (or from

@@ -47,8 +47,6 @@ struct Reader {
 std::uint64_t zigzag(std::int64_t v) { return (static_cast<std::uint64_t>(v) << 1) ^ static_cast<std::uint64_t>(v >> 63); }
 std::int64_t unzigzag(std::uint64_t v) { return static_cast<std::int64_t>(v >> 1) ^ -static_cast<std::int64_t>(v & 1); }
 
-std::string clock_topic(const std::string& process) { return "brickyard_clock/" + process; }
-
 struct Fnv {
   std::uint64_t h = 1469598103934665603ull;
   void add(const void* p, std::size_t n) {

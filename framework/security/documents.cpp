@@ -40,6 +40,14 @@ std::map<std::string, Access> access_of(const ResolvedGraph& g) {
     const std::string& to = node_process[w.to.node];
     if (from != to) out[to].subscribe.insert(topic_name(w.from.node, w.from.port));
   }
+  // A split run on the sim clock keeps its processes in lockstep: each publishes its clock
+  // records and reads every other's.
+  if (g.decl->clock.sim && g.processes.size() > 1)
+    for (const auto& p : g.processes) {
+      out[p].publish.insert(clock_topic(p));
+      for (const auto& q : g.processes)
+        if (q != p) out[p].subscribe.insert(clock_topic(q));
+    }
   return out;
 }
 

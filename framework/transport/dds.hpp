@@ -83,6 +83,9 @@ struct DdsSettings {
 // What a graph's process calls its DDS participant.
 inline std::string participant_name(const std::string& process) { return "brickyard:" + process; }
 
+// The topic a process of a split sim-clock run publishes its clock records on (exec/lockstep.hpp).
+inline std::string clock_topic(const std::string& process) { return "brickyard_clock/" + process; }
+
 // A reader's check of who writes to it: samples from a writer whose participant is not named
 // `expected` are dropped unless `accept_others`, and `other` is told once per such writer
 // (its participant's name, its GUID).

@@ -7,9 +7,10 @@
 # not name (transport.foreign_writers accept), so only security stands between them and its sink:
 # no forged sample may reach it (its largest value stays below 2000, the forger's 1000 doubled), nobody without
 # an identity may read. The observer identity reads. Bad security files: exit 2, named.
-# BY_PROTECT=encrypt: the same with everything encrypted (security init --protect encrypt).
+# Without BY_PROTECT, security init's default, which must encrypt (issue 44: a control value never
+# readable on the wire); BY_PROTECT=sign: the same with every message signed, not encrypted.
 set -u
-protect=${BY_PROTECT:-sign}
+protect=${BY_PROTECT:-}
 by=$(realpath "$1"); graph=$2; domain=$3; out=$4
 rm -rf "$out"; mkdir -p "$out"
 fail() { echo "FAIL: $*"; exit 1; }
@@ -20,8 +21,11 @@ json.dump(g, open(sys.argv[2] + "/plain.json", "w"), indent=1)
 g["transport"] = {"security": "keys", "foreign_writers": "accept"}
 json.dump(g, open(sys.argv[2] + "/secure.json", "w"), indent=1)
 PY
-"$by" security init "$out/secure.json" --out "$out/keys" --protect "$protect" > "$out/init.log" 2>&1 || { cat "$out/init.log"; fail "security init"; }
+"$by" security init "$out/secure.json" --out "$out/keys" ${protect:+--protect "$protect"} > "$out/init.log" 2>&1 || { cat "$out/init.log"; fail "security init"; }
 cat "$out/init.log"
+kind=$( [ "$protect" = sign ] && echo SIGN || echo ENCRYPT )
+grep -q "<rtps_protection_kind>$kind</rtps_protection_kind>" "$out/keys/governance.xml" \
+  || fail "the governance does not protect every message with $kind (--protect ${protect:-not given})"
 for id in a b observer; do
   for f in cert.pem key.pem permissions.p7s permissions.xml; do [ -s "$out/keys/$id/$f" ] || fail "keys/$id/$f missing"; done
   [ "$(stat -c %a "$out/keys/$id/key.pem")" = 600 ] || fail "keys/$id/key.pem is not 0600"

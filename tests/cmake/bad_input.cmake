@@ -124,7 +124,6 @@ bad_input(bad_endpoint          "#/wires/0/from: expected \"node.port\", found \
 bad_input(bad_clock_mode        "#/clock/mode: expected \"sim\" or \"real\"" run ${BAD}/bad_clock_mode.json)
 bad_input(sim_split_restart     "sim_split_restart.json#/processes/a/restart: on-failure needs the real clock" run ${BAD}/sim_split_restart.json --process a)
 bad_input(sim_split_foreign     "sim_split_foreign.json#/transport/foreign_writers: accept needs the real clock" run ${BAD}/sim_split_foreign.json --process a)
-bad_input(sim_split_secured     "sim_split_secured.json#/transport/security: a split run on the sim clock \\(its processes in lockstep\\) does not run secured yet" run ${BAD}/sim_split_secured.json)
 bad_input(bad_domain            "#/transport/domain: expected a DDS domain id"    run ${BAD}/bad_domain.json)
 bad_input(unknown_process_policy "bad_processes.json#/processes/c: no node runs in process \"c\"" run ${BAD}/bad_processes.json)
 bad_input(bad_restart_policy  "bad_processes.json#/processes/a/restart: expected \"never\" or \"on-failure\", found \"always\"" run ${BAD}/bad_processes.json)

@@ -33,6 +33,11 @@ by_next_domain(d)
 add_test(NAME evidence.lockstep_same
   COMMAND ${NETNS} ${CMAKE_CURRENT_SOURCE_DIR}/cli/lockstep_same.sh ${BY} ${CMAKE_CURRENT_SOURCE_DIR}/graphs/multiprocess/sim_lockstep.json ${d} ${RUNS}/lockstep_same --seed 7)
 by_next_domain(d)
+# The same, secured: the processes authenticated, the clock records encrypted with the rest.
+add_test(NAME evidence.lockstep_same_secured
+  COMMAND ${NETNS} ${CMAKE_CURRENT_SOURCE_DIR}/cli/lockstep_same.sh ${BY} ${CMAKE_CURRENT_SOURCE_DIR}/graphs/multiprocess/sim_lockstep.json ${d} ${RUNS}/lockstep_same_secured --seed 7)
+set_tests_properties(evidence.lockstep_same_secured PROPERTIES ENVIRONMENT BY_SECURE=1)
+by_next_domain(d)
 add_test(NAME evidence.lockstep_same_failure
   COMMAND ${NETNS} ${CMAKE_CURRENT_SOURCE_DIR}/cli/lockstep_same.sh ${BY} ${CMAKE_CURRENT_SOURCE_DIR}/graphs/multiprocess/sim_lockstep.json ${d} ${RUNS}/lockstep_same_failure --seed 7 --arg fault=step)
 by_next_domain(d)
@@ -65,8 +70,8 @@ evidence_script(foreign_writer foreign_writer.sh ${CMAKE_CURRENT_SOURCE_DIR}/gra
 # DDS security from the graph: a secured split run, attacked without an identity, with a stolen
 # one, and with permissions signed by another CA; bad security files refused.
 evidence_script(security security.sh ${CMAKE_CURRENT_SOURCE_DIR}/graphs/multiprocess/two_process.json)
-evidence_script(security_encrypted security.sh ${CMAKE_CURRENT_SOURCE_DIR}/graphs/multiprocess/two_process.json)
-set_tests_properties(evidence.security_encrypted PROPERTIES ENVIRONMENT BY_PROTECT=encrypt)
+evidence_script(security_signed security.sh ${CMAKE_CURRENT_SOURCE_DIR}/graphs/multiprocess/two_process.json)
+set_tests_properties(evidence.security_signed PROPERTIES ENVIRONMENT BY_PROTECT=sign)
 
 # Two hosts: the split main job over two network namespaces joined by a veth pair, security on,
 # its traffic on the veth alone. Skipped (77) where no veth can be made.
