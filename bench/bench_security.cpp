@@ -48,7 +48,7 @@ int main(int argc, char** argv) {
   const std::vector<std::pair<std::string, std::string>> variants = {
       {"ours: security on, traffic signed", dir + "/keys_sign"},
       {"ours: security on, traffic encrypted", dir + "/keys_encrypt"},
-      {"baseline: no security", ""}};
+      {"baseline: no security", "off"}};
   std::vector<std::vector<Run>> runs(variants.size());
   for (int r = 0; r < rounds; ++r)
     for (std::size_t v = 0; v < variants.size(); ++v) {

@@ -12,6 +12,7 @@
 #include "graph/diagnostics.hpp"
 #include "graph/resolve.hpp"
 #include "io/whole_file.hpp"
+#include "security/default_keys.hpp"
 #include "security/security_files.hpp"
 
 #include <csignal>
@@ -45,19 +46,48 @@ void say_notices_and_check(const Args& a, const ResolvedGraph& rg) {
   if (auto failed = run_node_checks(rg); !failed.empty()) throw InvalidInput(std::move(failed));
 }
 
-// DDS security: the identity this process runs as, its files checked before anything starts.
-// Several processes in one participant would need one identity that writes for all of them,
-// which would let a stolen key forge any topic: refused.
-DdsSecurity run_security(const Args& a, const GraphDecl& g, const ResolvedGraph& rg, bool validate_only) {
-  if (g.transport.security.empty()) return DdsSecurity{};
+// A split run's keys when its graph names none: made for the graph on its first split run
+// (security/default_keys.hpp), said once by the supervisor or a process started by hand.
+std::string default_keys(const Args& a, const GraphDecl& g, const Registry& reg, bool said_here) {
+  const auto keys = security::ensure_default_keys(resolve_graph(g, reg));
+  if (said_here && !a.quiet)
+    std::fprintf(stderr, "notice: %s#/transport/security names no folder: the run's processes are authenticated and their traffic "
+                         "encrypted with keys %s for the graph in %s (\"off\" turns this off; docs/security.md)\n",
+                 g.file.c_str(), keys.made ? "made now" : "made on its first split run", keys.dir.c_str());
+  return keys.dir;
+}
+
+// DDS security: the identity this process runs as, its files checked before anything starts. A
+// run that crosses processes is secured unless its graph says "off" (warned): with the graph's
+// folder, or keys made for it. Several processes in one participant would need one identity
+// that writes for all of them, which would let a stolen key forge any topic: refused with a
+// folder; by default such a run has nothing crossing processes to secure.
+DdsSecurity run_security(const Args& a, const GraphDecl& g, const ResolvedGraph& rg, const Registry& reg, bool validate_only) {
+  const bool split = rg.processes.size() > 1 && !a.one_process;
+  const bool said_here = !std::getenv("BRICKYARD_SHM_LIST");  // not a supervised child: its supervisor says it
   const bool many_here = a.process.empty() && rg.processes.size() > 1;
-  if (many_here && !validate_only && a.one_process) {
-    std::string names;
-    for (const auto& p : rg.processes) names += (names.empty() ? "" : ", ") + p;
-    usage_error(g.where("/transport/security"), "a run of processes " + names +
-                                                    " in one participant: each identity may write only its own process's topics; run each process (--process NAME, or supervised on the real clock)");
+  GraphDecl secured = g;
+  switch (security::security_choice(g)) {
+    case security::SecurityChoice::off:
+      if (split && !validate_only && said_here)
+        std::fprintf(stderr, "warning: %s#/transport/security is \"off\": this run's processes meet over DDS unauthenticated and "
+                             "unencrypted: any program on this machine on its domain can read every wire and write any input, "
+                             "taking a process's name (docs/security.md)\n", g.file.c_str());
+      return DdsSecurity{};
+    case security::SecurityChoice::by_default:
+      if (!split || validate_only) return DdsSecurity{};
+      secured.transport.security = default_keys(a, g, reg, said_here);
+      break;
+    case security::SecurityChoice::folder:
+      if (many_here && !validate_only && a.one_process) {
+        std::string names;
+        for (const auto& p : rg.processes) names += (names.empty() ? "" : ", ") + p;
+        usage_error(g.where("/transport/security"), "a run of processes " + names +
+                                                        " in one participant: each identity may write only its own process's topics; run each process (--process NAME, or supervised on the real clock)");
+      }
+      break;
   }
-  return security::check_run(g, many_here ? std::string() : a.process.empty() ? *rg.processes.begin() : a.process, rg.processes);
+  return security::check_run(secured, many_here ? std::string() : a.process.empty() ? *rg.processes.begin() : a.process, rg.processes);
 }
 
 int say_valid(const Args& a, const GraphDecl& g, const ResolvedGraph& rg) {
@@ -163,7 +193,7 @@ int run_graph(const Args& a, GraphDecl g, bool validate_only) {
   Registry reg = load_registry(a, &g);
   ResolvedGraph rg = resolve_graph(g, reg, a.process, run_node_checks);
   say_notices_and_check(a, rg);
-  const DdsSecurity security = run_security(a, g, rg, validate_only);
+  const DdsSecurity security = run_security(a, g, rg, reg, validate_only);
   if (validate_only) return say_valid(a, g, rg);
   if (!a.out.empty()) prepare_out_folder(a.out);
   if (a.one_process && !a.process.empty()) usage_error("--one-process", "cannot go with --process");

@@ -120,7 +120,7 @@ void parse_transport(const json& j, GraphDecl& g, Ctx& c) {
   if (!c.expect(j, json::value_t::object, "object", "/transport")) return;
   c.only_keys(j, {"domain", "interfaces", "peers", "startup_timeout_s", "foreign_writers", "shared_memory", "security"}, "/transport");
   if (j.contains("security") && c.expect(j["security"], json::value_t::string, "string", "/transport/security")) {
-    g.transport.security = j["security"];  // "": off (a graph argument's default, say)
+    g.transport.security = j["security"];  // "": by default (a graph argument's default, say)
   }
   if (j.contains("shared_memory") && c.expect(j["shared_memory"], json::value_t::boolean, "boolean", "/transport/shared_memory"))
     g.transport.shared_memory = j["shared_memory"];
@@ -507,7 +507,7 @@ GraphDecl parse_graph_text(const std::string& text, const std::string& file, con
   if (root.contains("transport")) parse_transport(root["transport"], g, c);
   if (root.contains("live")) parse_live(root["live"], g, c);
   if (root.contains("processes")) parse_processes(root["processes"], g, c);
-  if (!g.transport.security.empty() && std::filesystem::path(g.transport.security).is_relative())
+  if (!g.transport.security.empty() && g.transport.security != kSecurityOff && std::filesystem::path(g.transport.security).is_relative())
     g.transport.security = (std::filesystem::path(file).parent_path() / g.transport.security).lexically_normal().string();
   if (root.contains("plugin_path")) {
     parse_string_list(root["plugin_path"], g.plugin_path, "/plugin_path", c);

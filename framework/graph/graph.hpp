@@ -51,9 +51,14 @@ struct TransportDecl {
   bool shared_memory = true;  // "shared_memory": false: UDP only between processes (docs/reliability.md: a killed writer can lock a peer's port)
   bool accept_foreign_writers = false;  // "foreign_writers": "accept": samples from writers the graph does not name are used (warned of either way)
   // "security": the folder `brickyard security init` made (resolved against the graph file's
-  // folder); empty: DDS security off (docs/security.md).
+  // folder); "off": none, warned of on a split run; empty (absent): a split run is secured with
+  // keys made for the graph (security/default_keys.hpp, docs/security.md).
   std::string security;
 };
+
+// `"security": "off"`: a split run without DDS security, the explicit and warned choice (a folder
+// named off is "./off").
+inline const std::string kSecurityOff = "off";
 
 // "processes": what the supervisor does when a process of a split run dies (docs/reliability.md).
 struct ProcessDecl {

@@ -40,7 +40,7 @@ DdsSecurity check_run(const GraphDecl& g, const std::string& process, const std:
 DdsSecurity security_identity(const std::string& dir, const std::string& identity);
 
 struct InitOptions {
-  Protection protection = Protection::sign;
+  Protection protection = Protection::encrypt;
   int days = 365;  // the certificates' and permissions' validity
 };
 
