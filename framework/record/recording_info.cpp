@@ -1,13 +1,16 @@
 #include "record/recording_info.hpp"
 
+#include "io/bounded_read.hpp"
 #include "mcap/mcap_format.hpp"
 #include "mcap/mcap_reader.hpp"
 
 #include <sqlite3.h>
 
+#include <algorithm>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <memory>
 #include <stdexcept>
@@ -63,6 +66,11 @@ void open_recording(const std::string& path, Db& d) {
 }  // namespace
 
 bool is_mcap_file(const std::string& path) {
+  // A FIFO would hold the read below (and SQLite's) until a writer came; a device may never end.
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) throw std::runtime_error("no such file");
+  std::string why;
+  if (!brickyard::io::is_regular_readable(path, why)) throw std::runtime_error(why.substr(std::min(why.size(), path.size() + 2)));
   char head[sizeof mcap::kMagic] = {};
   std::ifstream(path, std::ios::binary).read(head, sizeof head);
   return std::memcmp(head, mcap::kMagic, sizeof head) == 0;
@@ -83,6 +91,10 @@ void read_mcap_recording(const std::string& path, RecordingInfo& info, std::vect
   info.clock = m->second.at("clock");
   topics.clear();
   for (const auto& [id, c] : r->channels()) {
+    // A stamp is the run's clock in nanoseconds, an int64 as SQLite's: one past 2^63 - 1 would
+    // read as a time before the epoch (a span of -9223372036.855 s).
+    if (c.messages && c.last > static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max()))
+      throw std::runtime_error("channel '" + c.topic + "' has a message stamped " + std::to_string(c.last) + " ns: past any run's clock (2^63 ns)");
     const auto sc = r->schemas().find(c.schema);
     const std::string type = sc == r->schemas().end() ? "" : sc->second.name;
     info.topics.emplace_back(c.topic, type);

@@ -38,6 +38,8 @@ void for_each_sample(const std::string& path, const std::function<void(const std
                                                                      const unsigned char* data, std::size_t size)>& f);
 // Both from one reading of an MCAP file (its chunks are decompressed once).
 void read_mcap_recording(const std::string& path, RecordingInfo& info, std::vector<TopicStats>& topics);
+// Whether the file is MCAP (else SQLite is tried); std::runtime_error when it is not a regular
+// file that can be opened (a FIFO, a device, a folder: exit 2 from the commands), before a byte is read.
 bool is_mcap_file(const std::string& path);
 
 }  // namespace brickyard::fw

@@ -4,6 +4,7 @@
 // CDR read back as JSON by its IDL (record/cdr_json.hpp), as `topic echo` prints it.
 #include "mcap/mcap_reader.hpp"
 #include "mcap/mcap_writer.hpp"
+#include "record/recording_info.hpp"
 #include "cdr/cdr_json.hpp"
 #include "record/recorder.hpp"
 #include "record/sample_serializer.hpp"
@@ -107,6 +108,26 @@ TEST(Mcap, AChunkWhoseBytesChangedIsDamage) {
     Reader r(bad);
     ASSERT_NE(r.damage(), nullptr);
     EXPECT_GT(r.damage()->offset, 0u);
+  }
+}
+
+// A recording's stamps are int64 nanoseconds (issue 44: SQLite's were checked, MCAP's not): one
+// past 2^63 - 1 is refused, naming the channel, not shown as a time before the epoch.
+TEST(Mcap, AStampPastAnyRunsClockIsRefused) {
+  const std::string path = temp("stamp.mcap");
+  {
+    Writer w(path);
+    w.add_metadata("brickyard", {{"clock", "sim"}});
+    const auto c = w.add_channel(0, "a.out", "cdr");
+    w.write(c, 1, 1, "abcd", 4);
+    w.write(c, (1ull << 63) + 5, 1, "abcd", 4);
+    w.close();
+  }
+  try {
+    brickyard::fw::read_recording_info(path);
+    FAIL() << "a stamp past 2^63 ns was read";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("channel 'a.out' has a message stamped 9223372036854775813 ns"), std::string::npos) << e.what();
   }
 }
 

@@ -43,4 +43,9 @@ add_test(NAME bad_input.capture_fifo COMMAND sh -c "mkdir -p ${RUNS} && rm -f ${
   ${EXPECT} 2 "error: .*/capture.fifo: not a regular file" -- ${BY} capture play ${RUNS}/capture.fifo --to udp://127.0.0.1:9)
 add_test(NAME bad_input.capture_pcapng COMMAND sh -c "mkdir -p ${RUNS} && printf '\\012\\015\\015\\012\\034\\0\\0\\0\\115\\074\\053\\032\\001\\0\\0\\0\\377\\377\\377\\377\\377\\377\\377\\377\\034\\0\\0\\0' > ${RUNS}/capture.pcapng && exec \"$0\" \"$@\""
   ${EXPECT} 2 "error: .*/capture.pcapng: a pcapng file: only classic pcap is read \\(editcap -F pcap converts\\)" -- ${BY} capture info ${RUNS}/capture.pcapng)
-set_tests_properties(bad_input.capture_fifo bad_input.capture_pcapng PROPERTIES TIMEOUT 30)
+# The same FIFO for a recording (bag info and bag play waited for a writer forever: issue 44).
+add_test(NAME bad_input.bag_info_fifo COMMAND sh -c "mkdir -p ${RUNS} && rm -f ${RUNS}/bag.fifo && mkfifo ${RUNS}/bag.fifo && exec \"$0\" \"$@\""
+  ${EXPECT} 2 "error: .*/bag.fifo: not a regular file" -- ${BY} bag info ${RUNS}/bag.fifo)
+add_test(NAME bad_input.bag_play_fifo COMMAND sh -c "mkdir -p ${RUNS} && rm -f ${RUNS}/bag_play.fifo && mkfifo ${RUNS}/bag_play.fifo && exec \"$0\" \"$@\""
+  ${EXPECT} 2 "error: .*/bag_play.fifo: not a regular file" -- ${BY} bag play ${RUNS}/bag_play.fifo)
+set_tests_properties(bad_input.capture_fifo bad_input.capture_pcapng bad_input.bag_info_fifo bad_input.bag_play_fifo PROPERTIES TIMEOUT 30)
