@@ -1,5 +1,7 @@
 #include "security/default_keys.hpp"
 
+#include "math/fnv1a.hpp"
+
 #include "security/documents.hpp"
 #include "security/security_files.hpp"
 
@@ -8,7 +10,6 @@
 #include <unistd.h>
 
 #include <cctype>
-#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -19,12 +20,6 @@ namespace brickyard::fw::security {
 namespace fs = std::filesystem;
 
 namespace {
-
-std::uint64_t fnv1a(const std::string& s) {
-  std::uint64_t h = 1469598103934665603ull;
-  for (unsigned char c : s) h = (h ^ c) * 1099511628211ull;
-  return h;
-}
 
 // $XDG_STATE_HOME/brickyard/keys, or $HOME/.local/state/brickyard/keys.
 fs::path state_keys_root(const GraphDecl& g) {
@@ -95,7 +90,7 @@ std::string default_keys_dir(const ResolvedGraph& all) {
     for (const auto& t : access.subscribe) what += " " + t;
   }
   char hash[17];
-  std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(fnv1a(what)));
+  std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(math::fnv1a(what)));
   return (state_keys_root(g) / (folder_name(g) + "-" + hash)).string();
 }
 
