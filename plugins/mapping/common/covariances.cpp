@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -177,20 +178,17 @@ Covariances point_covariances(const Points& pts, const CovarianceParams& p) {
   return out;
 }
 
-Surfaces point_surfaces(const Points& pts, const CovarianceParams& p) {
-  const int n = static_cast<int>(pts.size());
-  Surfaces out(pts.size(), Eigen::Vector3f::Zero());
-  if (n == 0) return out;
+// The surfaces of the points of cells [first, last), written into `out` at the points' indices.
+void surfaces_of_cells(const Points& pts, const CellBuckets& b, const CovarianceParams& p, std::size_t first, std::size_t last,
+                       Surfaces& out) {
   const float flat = std::sqrt(std::max(0.0f, 1.0f - p.epsilon));
-  const float inv = 1.0f / p.radius, r2 = p.radius * p.radius;
-  const CellBuckets b = bucket_by_cell(pts, inv);
   // Cell by cell: the points of the 27 cells around it gathered once, contiguous, and for each of
   // the cell's points the k nearest of them within the radius (nothing farther than the cell size
   // is needed), then their covariance, regularized. (Gathered per point, the 27 lookups and the
   // scattered reads cost more than the distances.)
-  NearestSearch search(std::max(3, p.neighbours), r2);
+  NearestSearch search(std::max(3, p.neighbours), p.radius * p.radius);
   Gathered g;
-  for (std::size_t cell_at = 0; cell_at < b.xyz.size(); ++cell_at) {
+  for (std::size_t cell_at = first; cell_at < last; ++cell_at) {
     gather_around(b, pts, cell_at, g);
     search.gd.resize(g.x.size());
     search.cand.resize(g.x.size());
@@ -202,6 +200,26 @@ Surfaces point_surfaces(const Points& pts, const CovarianceParams& p) {
       out[i] = flat * smallest_axis(covariance_of_nearest(g, search.best, m));
     }
   }
+}
+
+Surfaces point_surfaces(const Points& pts, const CovarianceParams& p, int threads) {
+  Surfaces out(pts.size(), Eigen::Vector3f::Zero());
+  if (pts.empty()) return out;
+  const CellBuckets b = bucket_by_cell(pts, 1.0f / p.radius);
+  const std::size_t cells = b.xyz.size();
+  // Two threads take the cells' halves by points, not by cells: a frame's cells near the car hold
+  // many more points than those far away. (A search's last k-th distance, carried from point to
+  // point, only bounds which candidates it sorts, never which it finds: a half starting afresh
+  // finds the same neighbours.)
+  if (threads < 2 || pts.size() < 2048) {
+    surfaces_of_cells(pts, b, p, 0, cells, out);
+    return out;
+  }
+  const std::uint32_t half_points = b.begin[cells] / 2;
+  const std::size_t middle = static_cast<std::size_t>(std::upper_bound(b.begin.begin(), b.begin.end() - 1, half_points) - b.begin.begin());
+  std::thread second([&] { surfaces_of_cells(pts, b, p, middle, cells, out); });
+  surfaces_of_cells(pts, b, p, 0, middle, out);
+  second.join();
   return out;
 }
 

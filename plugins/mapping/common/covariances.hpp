@@ -28,8 +28,10 @@ struct CovarianceParams {
 // of it (three floats, not nine, and the inverse it takes has a closed form, vgicp.cpp). A point
 // with fewer than 3 neighbours within the radius gets s = 0, the identity (a sphere: it pulls
 // toward the neighbour's mean in every direction, weakly).
+// `threads` (1 or 2) share the points' cells: each point's surface is its own, so the result is
+// the same bit for bit on either.
 using Surfaces = std::vector<Eigen::Vector3f>;
-Surfaces point_surfaces(const Points& pts, const CovarianceParams& p = {});
+Surfaces point_surfaces(const Points& pts, const CovarianceParams& p = {}, int threads = 1);
 
 inline Covariance covariance_of(const Eigen::Vector3f& s) { return Covariance::Identity() - s * s.transpose(); }
 

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <thread>
 
 namespace brickyard::mapping {
 
@@ -52,12 +53,19 @@ const char* failure_name(LocateFailure f) {
 MapLocalizer::MapLocalizer(const Points& map, MapLocalizerParams p)
     : p_(p), coarse_(p.coarse_voxel), fine_(p.fine_voxel), points_(map.size()) {
   // Each map point's surface from its neighbours in the map, as the mapper's frames had theirs.
-  Surfaces surfaces = point_surfaces(map, p_.covariances);
+  Surfaces surfaces = point_surfaces(map, p_.covariances, p_.threads);
   level_ground(surfaces, Eigen::Vector3f::UnitZ(), p_.ground_tilt);
   Covariances covs(map.size());
   for (std::size_t i = 0; i < map.size(); ++i) covs[i] = covariance_of(surfaces[i]);
-  coarse_.add(map, covs);
-  fine_.add(map, covs);
+  // The two voxel maps are apart: built side by side, each as it would be alone.
+  if (p_.threads >= 2) {
+    std::thread coarse([&] { coarse_.add(map, covs); });
+    fine_.add(map, covs);
+    coarse.join();
+  } else {
+    coarse_.add(map, covs);
+    fine_.add(map, covs);
+  }
 }
 
 double MapLocalizer::height_on_map(const Points& near, const Eigen::Isometry3d& guess) const {

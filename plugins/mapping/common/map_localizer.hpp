@@ -60,6 +60,11 @@ struct MapLocalizerParams {
   // matched onto it slides the pose metres sideways with a covariance sure to 0.15 m; where the plane position comes from the
   // walls alone, the covariance says what the walls tell. 0: the road kept as it is.
   double ground_tilt = 0.45;  // rad
+  // Threads (1 or 2) that share the map's preparation at the start (its points' surfaces, its
+  // two voxel maps): the same bits on either. A frame's surfaces stay on one: on two, 60 s of
+  // Spielberg located every frame ran no faster (the other core is busy with the frame's other
+  // steps and the next frame's LiDARs; docs/map-localization.md).
+  int threads = 2;
   CovarianceParams covariances;
   RegistrationParams registration{16, 5e-3, 5e-4, false};
 };

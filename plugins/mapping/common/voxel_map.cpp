@@ -12,19 +12,26 @@ std::int32_t cell(double v, float inv) { return static_cast<std::int32_t>(std::f
 }  // namespace
 
 void VoxelMap::add(const Points& pts, const Covariances& covs) {
-  for (std::size_t i = 0; i < pts.size() && i < covs.size(); ++i) {
+  // Two passes: each point's voxel numbered first (new voxels in first-met order), then the voxels
+  // grown once to their new count and summed into. A map's millions of points grew them by
+  // doubling, and each doubling's copy touched fresh pages: most of the start-up of a map.
+  const std::size_t n = std::min(pts.size(), covs.size());
+  std::vector<std::uint32_t> voxel_of(n, kSkipped);
+  for (std::size_t i = 0; i < n; ++i) {
     if (!perception::in_range(pts[i]) || !covs[i].allFinite()) continue;
     const Eigen::Vector3d q = pts[i].cast<double>();
     bool inserted;
-    const std::uint32_t v = index_.find_or_insert(perception::cell_key(cell(q.x(), inv_), cell(q.y(), inv_), cell(q.z(), inv_)),
-                                                  static_cast<std::uint32_t>(voxels_.size()), inserted);
-    if (inserted) {
-      voxels_.emplace_back();
-      targets_.emplace_back();
-      is_touched_.push_back(0);
-    }
+    voxel_of[i] = index_.find_or_insert(perception::cell_key(cell(q.x(), inv_), cell(q.y(), inv_), cell(q.z(), inv_)),
+                                        static_cast<std::uint32_t>(index_.size()), inserted);
+  }
+  voxels_.resize(index_.size());
+  targets_.resize(index_.size());
+  is_touched_.resize(index_.size(), 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::uint32_t v = voxel_of[i];
+    if (v == kSkipped) continue;
     Voxel& x = voxels_[v];
-    x.sum += q;
+    x.sum += pts[i].cast<double>();
     x.cov_sum += covs[i].cast<double>();
     ++x.count;
     if (!is_touched_[v]) is_touched_[v] = 1, touched_.push_back(v);

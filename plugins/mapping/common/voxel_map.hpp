@@ -59,6 +59,7 @@ class VoxelMap {
   const std::vector<Voxel>& voxels() const { return voxels_; }
 
  private:
+  static constexpr std::uint32_t kSkipped = ~std::uint32_t{0};  // a point out of range
   float voxel_, inv_;
   perception::CellMap<std::uint32_t> index_;
   std::vector<Voxel> voxels_;  // first-added order

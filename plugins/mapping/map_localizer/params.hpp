@@ -44,6 +44,8 @@ inline ParamBinding<LocalizerSettings> localizer_bindings() {
       .doc("the least spread reported in any direction of the position: what the map's making adds to the registration's own");
   b.bind("points_worth", &S::localizer, &M::points_worth).range(1, 1e6)
       .doc("how many independent points a frame counts as: the pose's covariance");
+  b.bind("threads", &S::localizer, &M::threads).range(1, 2)
+      .doc("threads that share the map's preparation at the start (its surfaces, its voxels): the same bits on either");
   b.bind("max_estimate_age", &S::max_estimate_age).in_unit("s").range(0, 60)
       .doc("a frame with no estimate within this of its stamp is left out");
   b.bind("min_interval_s", &S::min_interval_s).in_unit("s").range(0, 10)

@@ -68,6 +68,21 @@ TEST(MapLocalizer, LocatesAFrameFromAGuessThatIsOff) {
   EXPECT_GE(Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(c.topLeftCorner<2, 2>()).eigenvalues().minCoeff(), floor * (1 - 1e-9));
 }
 
+// The map prepared on two threads (its surfaces, its two voxel maps side by side) locates a frame
+// exactly as on one.
+TEST(MapLocalizer, AMapPreparedOnTwoThreadsLocatesAsOnOne) {
+  const Points map = map_file_of(yard(0.15, 0.01, 1), "yard_threads");
+  MapLocalizerParams p1 = scene_params(), p2 = scene_params();
+  p1.threads = 1, p2.threads = 2;
+  const MapLocalizer one(map, p1), two(map, p2);
+  const Points frame = moved(yard(0.2, 0.01, 2), planar(2.0, 0.5, 3.0).inverse());
+  const Located a = one.locate(frame, planar(2.6, 0.1, 1.0)), b = two.locate(frame, planar(2.6, 0.1, 1.0));
+  ASSERT_TRUE(a.registered) << failure_name(a.failure);
+  EXPECT_EQ(a.pose.matrix(), b.pose.matrix());
+  EXPECT_EQ(a.covariance, b.covariance);
+  EXPECT_EQ(a.matched, b.matched);
+}
+
 // A guess 3.4 m too high (the height carried from the last frame where the mapping drive closed
 // its loop, its map's height drifted): the height is found on the map first, then the frame is
 // located as from the right height. Without the search it matches nothing.

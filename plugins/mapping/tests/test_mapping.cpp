@@ -104,6 +104,48 @@ TEST(Mapping, SurfacesAreTheNearestNeighboursPlanes) {
   EXPECT_NEAR(n.dot(c * n), p.epsilon, 1e-5);
 }
 
+// On two threads (each half of the cells' points) the surfaces are one thread's, bit for bit: the
+// sparse patch and the lone points fall in either half.
+TEST(Mapping, SurfacesOnTwoThreadsAreOneThreadsBitForBit) {
+  Points pts = yard(0.15, 0.01, 1);
+  for (double x = 30; x <= 36; x += 0.6)
+    for (double y = 0; y <= 6; y += 0.6) pts.emplace_back(x, y, 0.1 * y);
+  pts.emplace_back(60, 60, 60);
+  ASSERT_GT(pts.size(), 4096u);  // past the size below which one thread does it all
+  const Surfaces one = point_surfaces(pts, {}, 1), two = point_surfaces(pts, {}, 2);
+  ASSERT_EQ(one.size(), two.size());
+  std::size_t differ = 0, zero = 0;
+  for (std::size_t i = 0; i < one.size(); ++i) {
+    differ += one[i] != two[i];
+    zero += one[i] == Eigen::Vector3f::Zero();
+  }
+  EXPECT_EQ(differ, 0u);
+  EXPECT_LT(zero, one.size() / 10);  // surfaces were found, not left zero on both
+}
+
+// A voxel map grown in pieces (frame by frame, as the scan mapper grows one) holds what the same
+// points added at once give, voxel for voxel.
+TEST(Mapping, AVoxelMapGrownInPiecesIsTheSameAsAtOnce) {
+  const Points pts = yard(0.15, 0.01, 1);
+  const Covariances covs = point_covariances(pts);
+  VoxelMap whole(0.5f), pieces(0.5f);
+  whole.add(pts, covs);
+  for (std::size_t first = 0; first < pts.size(); first += 1000) {
+    const std::size_t last = std::min(pts.size(), first + 1000);
+    pieces.add(Points(pts.begin() + first, pts.begin() + last), Covariances(covs.begin() + first, covs.begin() + last));
+  }
+  ASSERT_EQ(whole.size(), pieces.size());
+  ASSERT_GT(whole.size(), 100u);
+  for (std::size_t v = 0; v < whole.size(); ++v) {
+    const Voxel &a = whole.voxels()[v], &b = pieces.voxels()[v];
+    EXPECT_EQ(a.count, b.count) << "voxel " << v;
+    EXPECT_TRUE(a.mean().isApprox(b.mean(), 1e-12)) << "voxel " << v;
+    const VoxelTarget* t = pieces.target(a.mean().cast<float>());
+    ASSERT_NE(t, nullptr);
+    EXPECT_NEAR(t->count, a.count, 0) << "voxel " << v;
+  }
+}
+
 // The registration's system at its result is GICP's, summed here term by term in double with the
 // voxels' own means and covariances and a 3x3 inverse per match: the closed-form weights
 // (Sherman-Morrison on each voxel's stored inverse), the blocks' cross products and the float
