@@ -58,16 +58,23 @@ class InputQueue final : public detail::InputChannel {
   }
   // The sim clock, while a step of the owner runs beside later instants (a modelled latency):
   // samples published meanwhile wait, so the step reads what it would have at its instant, and
-  // arrive in order when it is done. Only for inputs that wake no step (on_arrival unset).
+  // arrive in order when it is done; an input that wakes the node wakes it then, at that instant
+  // (a step is done before the next one begins).
   void hold() {
     std::lock_guard<std::mutex> l(m_);
     held_ = true;
   }
   void release() {
-    std::lock_guard<std::mutex> l(m_);
-    held_ = false;
-    for (auto& s : later_) arrive(std::move(s));
-    later_.clear();
+    bool any;
+    {
+      std::lock_guard<std::mutex> l(m_);
+      held_ = false;
+      any = !later_.empty();
+      for (auto& s : later_) arrive(std::move(s));
+      later_.clear();
+    }
+    // An input that wakes its node: what came while the step was out wakes it now that it is done.
+    if (any && on_arrival) on_arrival(name_);
   }
   std::vector<std::shared_ptr<const void>> take() override {
     std::lock_guard<std::mutex> l(m_);

@@ -17,7 +17,10 @@
 // is done `latency` later, after that instant's own steps. Its step may run on a helper beside
 // everything until then: samples published to it meanwhile wait (InputQueue::hold) until it is
 // done, and it sees the time of its instant. So a LiDAR's next frame is cast while the chain
-// that its last frame feeds runs, and the run is still the same on any number of threads.
+// that its last frame feeds runs, and the run is still the same on any number of threads. A node
+// woken by its inputs may have a latency too (a localizer's computing time): a sample that comes
+// while its step is out waits, and wakes it once the step is done (collected: at its delivery,
+// or at the run's end), at that instant, reading all that waited.
 #include "exec/ahead_pool.hpp"
 #include "exec/executive.hpp"
 #include "exec/lockstep.hpp"
@@ -177,7 +180,7 @@ class Executive::SimRun {
   void consider(std::size_t i, bool timer, bool& head);
   void collect(Delivery& d);
   void collect_node(std::size_t i);
-  void latency_turn(std::size_t i);
+  void latency_turn(std::size_t i, const Trigger& t);
   bool deliver();
   void drop_deliveries();
   void turn(std::size_t i, Trigger t);
@@ -330,7 +333,7 @@ void Executive::SimRun::collect_node(std::size_t i) {
 
 // A latency step's turn: handed out (with no helper, this thread steps it when it is
 // collected: the same step, on the inputs held for it) and its delivery set.
-void Executive::SimRun::latency_turn(std::size_t i) {
+void Executive::SimRun::latency_turn(std::size_t i, const Trigger& t) {
   NodeRuntime& n = *nodes_[i];
   if (n.phantom) {  // its delivery is its owner's event
     deliveries_[{e_.sim_now_ns_ + n.rn->latency_ns, taken_++}].node = i;
@@ -338,7 +341,7 @@ void Executive::SimRun::latency_turn(std::size_t i) {
   }
   if (n.undelivered) collect_node(i);  // a latency of one whole period: the last step first
   if (n.ahead.load() == 0) {
-    n.ahead_trigger = periodic_;
+    n.ahead_trigger = t;
     n.ahead_now_ns = e_.sim_now_ns_;
     pool_->hand_out(n);
   }
@@ -379,7 +382,7 @@ void Executive::SimRun::drop_deliveries() {
 void Executive::SimRun::turn(std::size_t i, Trigger t) {
   NodeRuntime& n = *nodes_[i];
   if (n.rn->latency_ns > 0) {
-    latency_turn(i);
+    latency_turn(i, t);
     return;
   }
   if (n.phantom) {

@@ -268,7 +268,9 @@ class Resolver {
   void resolve_latency(ResolvedNode& rn, const std::string& ptr) {
     const Manifest& m = rn.plugin->manifest;
     // A modelled latency: the sim scheduler runs the step beside what follows it and delivers its
-    // outputs later, which needs inputs that no sample wakes and a step done before the next one.
+    // outputs later, which needs a step done before the next one: a periodic node's latency at
+    // most its period; a node woken by its inputs is woken by what came meanwhile once its step
+    // is done (sim_scheduler.cpp). Not both: a timer due while the step is out would have to wait.
     for (const auto& t : m.triggers) {
       if (t.kind != TriggerSpec::Kind::latency || !rn.params.has(t.ref)) continue;
       const double s = rn.params.number(t.ref);
@@ -280,9 +282,14 @@ class Resolver {
       if (s == 0 || !g_.clock.sim) continue;  // the real clock's latency is the real one
       const double step_ns = g_.clock.step_s * 1e9;
       const std::int64_t ns = static_cast<std::int64_t>(std::llround(std::llround(s * 1e9 / step_ns) * step_ns));
-      if (rn.period_ns <= 0 || !rn.trigger_inputs.empty())
-        err(at, "a latency needs a node that steps on its rate alone (plugin " + m.name +
-                    (rn.period_ns <= 0 ? " has no rate)" : " also steps on input)"));
+      const bool on_input = !rn.trigger_inputs.empty();
+      if ((rn.period_ns > 0) == on_input)
+        err(at, "a latency needs a node that steps on its rate alone or on its inputs alone (plugin " + m.name +
+                    (on_input ? " steps on both)" : " steps on neither)"));
+      else if (on_input) {
+        rn.latency_ns = ns;
+        if (ns > 0) input_latency_at_.push_back(at);
+      }
       else if (ns > rn.period_ns)
         err(at, "latency " + fmt_num(s) + " s is longer than the node's period (" + fmt_num(rn.period_ns * 1e-9) +
                     " s): a step's outputs must be delivered before its next step");
@@ -474,6 +481,11 @@ class Resolver {
           d_.add(g_.where("/processes/" + pointer_escape(name) + "/may_die"),
                  "needs the real clock: on the sim clock every process of a split run steps in lockstep with the others");
       }
+      // A step that waits for its latency holds what comes to it meanwhile: the processes that
+      // replay it would have to hold it too (exec/lockstep.hpp does not yet).
+      for (const std::string& at : input_latency_at_)
+        err(at, "a latency on a node woken by its inputs needs the graph in one process on the sim clock (a split run "
+                "in lockstep does not replay it yet)");
       if (g_.transport.accept_foreign_writers)
         d_.add(g_.where("/transport/foreign_writers"),
                "accept needs the real clock: a split run on the sim clock takes each sample from its graph's writer alone");
@@ -534,6 +546,7 @@ class Resolver {
   const GraphDecl& g_;
   const Registry& reg_;
   const std::string& process_;
+  std::vector<std::string> input_latency_at_;  // the latency parameters of nodes woken by their inputs
   const NodeChecks& checks_;
   Diagnostics d_;
   std::set<std::string> faulty_;  // nodes with an error of their own (unknown plugin, bad parameter)

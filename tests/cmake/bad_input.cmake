@@ -22,6 +22,7 @@ bad_input(unknown_node_key      "#/nodes/src/parameters: unknown key"           
 bad_input(duplicate_node        "duplicate_node.json:3:3: duplicate key \"src\""  run ${BAD}/duplicate_node.json)
 bad_input(unknown_plugin        "#/nodes/src/plugin: unknown plugin \"testing.no_such_plugin\"" run ${BAD}/unknown_plugin.json)
 bad_input(latency_over_period "latency_over_period.json#/nodes/src/params/latency_s: latency 0.2 s is longer than the node's period \\(0.1 s\\)" run ${BAD}/latency_over_period.json)
+bad_input(latency_on_input_split "latency_on_input_split.json#/nodes/double/params/latency_s: a latency on a node woken by its inputs needs the graph in one process on the sim clock" run ${BAD}/latency_on_input_split.json)
 bad_input(not_shared_object     "libnot_elf.so: not a shared object"              run ${GOOD} --plugin-path ${FIXTURES}/not_elf)
 bad_input(missing_entry_point   "libfixture_no_entry.so: missing entry point brickyard_plugin_library" run ${GOOD} --plugin-path ${FIXTURES}/no_entry)
 bad_input(abi_major             "libfixture_abi_mismatch.so: built against plugin ABI 99.0 \\(SDK 99.0.0\\), this host's is 3.1" run ${GOOD} --plugin-path ${FIXTURES}/abi_mismatch)

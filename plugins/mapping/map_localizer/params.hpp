@@ -52,6 +52,10 @@ inline ParamBinding<LocalizerSettings> localizer_bindings() {
       .doc("a frame within this of the last one tried is left out (0: every frame): the localizer's cost is per frame");
   b.bind("normal_interval_s", &S::normal_interval_s).in_unit("s").range(0, 10)
       .doc("the same while the estimate is NORMAL (GNSS taken; the map a witness): at least min_interval_s");
+  // The host's (Manifest::delivered_after): the pose found takes the localizer's computing time.
+  b.declare(ParamSpec::number("latency_s", 0).in_unit("s").range(0, 0.05)
+                .doc("a pose, stamped at its frame, is delivered this long after the frame came (sim clock): the time the "
+                     "localizer takes on the car; its step runs beside what follows meanwhile (0: at once)"));
   b.not_above("fine_voxel", "coarse_voxel");
   return b;
 }

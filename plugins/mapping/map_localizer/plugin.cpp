@@ -64,6 +64,7 @@ class MapLocalizerNode : public Plugin {
                   "published with its covariance, a position independent of GNSS")
         .with_ports(localizer_ports())
         .parameters(localizer_bindings())
+        .delivered_after("latency_s")
         .check(&check);
   }
 

@@ -24,6 +24,9 @@ ParamBinding<Settings> bindings() {
   b.bind_choice("fault", {{"none", Fault::none}, {"configure", Fault::configure}, {"step", Fault::step}}, &Settings::fault)
       .doc("throw in configure, or in the step that handles sample number fault_at");
   b.bind("fault_at", &Settings::fault_at).range(0, 1e9);
+  // The host's (Manifest::delivered_after): a computation that takes time.
+  b.declare(ParamSpec::number("latency_s", 0).in_unit("s").range(0, 10)
+                .doc("what a step publishes is delivered this long after it (sim clock; 0: at once)"));
   return b;
 }
 
@@ -45,7 +48,8 @@ class Transform : public Plugin {
     return Manifest("testing.transform", "1.0.0")
         .describe("Affine transform of Scalar samples: y = gain * x + offset")
         .with_ports(ports())
-        .parameters(bindings());
+        .parameters(bindings())
+        .delivered_after("latency_s");
   }
 
   void configure(Context& ctx) override {

@@ -187,9 +187,10 @@ struct Manifest {
   }
   // On the sim clock, what a step publishes (and logs) is delivered this many seconds (the named
   // number parameter) after the step: a sensor's frame that is ready only once its sweep is
-  // over, a computation that takes time. Its inputs are read at the step's instant. For a
-  // periodic node with no input trigger, at most one period (the host checks). On the real clock
-  // a step's outputs go when it returns: its latency is the real one. (ABI 2.1)
+  // over, a computation that takes time. Its inputs are read at the step's instant. A periodic
+  // node: at most one period, and no input trigger (the host checks). A node woken by its
+  // inputs: what comes while its step is out waits, and wakes it once that step is done. On the
+  // real clock a step's outputs go when it returns: its latency is the real one. (ABI 2.1)
   Manifest& delivered_after(std::string seconds_param) {
     triggers.push_back({TriggerSpec::Kind::latency, std::move(seconds_param)});
     return *this;
