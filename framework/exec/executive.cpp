@@ -45,6 +45,7 @@ Executive::Executive(const ResolvedGraph& g, RunOptions opt) : graph_(g), opt_(s
 Executive::~Executive() {
   // Teardown order matters: deliveries stop, plugin objects go, then DDS entities.
   if (transport_) transport_->close_readers();
+  ends_.reset();
   lock_.reset();  // (after its readers, which feed it)
   for (auto& n : nodes_)
     if (n->instance) n->rn->plugin->descriptor->destroy(n->instance);
@@ -126,6 +127,38 @@ void Executive::peer_liveliness(RemoteInput& in, bool alive) {
     }
   }
   if (!line.empty()) console_.line([&] { std::fprintf(stderr, "[brickyard] %s\n", line.c_str()); });  // even with --quiet
+}
+
+void Executive::peer_ended(const std::string& process, const PeerEnd& end) {
+  const double t = sim() ? sim_now_ns_ * 1e-9 : (wall_ns() - real_start_ns_) * 1e-9;
+  const bool failed = end.result == RunResult::failed || end.result == RunResult::invalid_input;
+  const bool may_die = process_policy(*graph_.decl, process).may_die;
+  const std::string what = "process '" + process + "' " + (failed ? "failed" : "ended") + ": " + end.reason;
+  {
+    std::lock_guard<std::mutex> l(stop_m_);
+    peer_events_.push_back({{"process", process}, {"event", "ended"}, {"result", to_string(end.result)}, {"reason", end.reason}, {"t_s", t}});
+    if (failed && !may_die) failed_peers_.push_back(what);
+  }
+  if (!failed) {
+    host_log(what);
+    return;
+  }
+  char at[48];
+  std::snprintf(at, sizeof at, " (at t = %.2f s)", t);
+  const std::string line = "warning: " + what + at +
+                           (may_die ? "; the graph lets it die: the run goes on" : "; the run goes on, and fails at its end");
+  console_.line([&] { std::fprintf(stderr, "[brickyard] %s\n", line.c_str()); });  // even with --quiet
+}
+
+void Executive::peer_left_unsaid(const std::string& process) {
+  if (process_policy(*graph_.decl, process).may_die) return;
+  const std::string what = "process '" + process + "' left without saying how its run ended (a plugin's exit()? its end record lost?)";
+  {
+    std::lock_guard<std::mutex> l(stop_m_);
+    peer_events_.push_back({{"process", process}, {"event", "left unsaid"}});
+    failed_peers_.push_back(what);
+  }
+  console_.line([&] { std::fprintf(stderr, "[brickyard] warning: %s\n", what.c_str()); });
 }
 
 void Executive::foreign_writer(RemoteInput& in, const std::string& participant, const std::string& writer) {
@@ -301,6 +334,8 @@ RunSummary Executive::run() {
     else run_real();
     progress(true);
   }
+  if (ends_)
+    for (const std::string& p : ends_->left_unsaid(0.5)) peer_left_unsaid(p);
   if (transport_ && !lock_) transport_->close_readers();
   // The run loop's wake-up hooks refer to its own state: samples published from here on (in
   // deactivate) are queued, and step nothing. The other processes' phantoms too: a sample a
@@ -311,7 +346,9 @@ RunSummary Executive::run() {
   deactivate(active);
   const nlohmann::json live = live_summary();
   const nlohmann::json recording = recording_summary();
-  return summarize(wall0, live, recording);
+  RunSummary s = summarize(wall0, live, recording);
+  if (ends_) ends_->say({s.result, s.reason}, 0.5);  // its peers hear how it ended (exec/peer_ends.hpp)
+  return s;
 }
 
 void Executive::open_record_and_live() {
@@ -456,9 +493,11 @@ RunSummary Executive::summarize(std::chrono::steady_clock::time_point wall0, con
   s.reason = stop_result_ ? stop_reason_ : (sim() ? "sim clock reached the end" : "duration reached");
   {
     std::lock_guard<std::mutex> l(stop_m_);
-    if (!lost_peers_.empty() && s.result != RunResult::failed && s.result != RunResult::invalid_input) {
+    std::vector<std::string> peers = lost_peers_;
+    peers.insert(peers.end(), failed_peers_.begin(), failed_peers_.end());
+    if (!peers.empty() && s.result != RunResult::failed && s.result != RunResult::invalid_input) {
       s.result = RunResult::failed;
-      s.reason = lost_peers_.front() + (lost_peers_.size() > 1 ? " (and " + std::to_string(lost_peers_.size() - 1) + " more)" : "");
+      s.reason = peers.front() + (peers.size() > 1 ? " (and " + std::to_string(peers.size() - 1) + " more)" : "");
     }
   }
   s.sim_time_s = sim() ? static_cast<double>(sim_now_ns_) / 1e9 : 0.0;
@@ -469,6 +508,7 @@ RunSummary Executive::summarize(std::chrono::steady_clock::time_point wall0, con
   {
     std::lock_guard<std::mutex> l(stop_m_);
     if (!lost_peers_.empty()) s.json["lost_peers"] = lost_peers_;
+    if (!failed_peers_.empty()) s.json["failed_peers"] = failed_peers_;
     if (!peer_events_.empty()) s.json["peer_events"] = peer_events_;
     if (!foreign_writers_.empty()) s.json["foreign_writers"] = foreign_writers_;
   }

@@ -7,6 +7,7 @@
 #include "exec/channels.hpp"
 #include "exec/console.hpp"
 #include "exec/node_context.hpp"
+#include "exec/peer_ends.hpp"
 #include "exec/run_types.hpp"
 #include "graph/resolve.hpp"
 #include "live/live_server.hpp"
@@ -55,6 +56,9 @@ class Executive final : public NodeHost {
   // the graph lets the writer's process die; it goes on meanwhile (a car interface keeps braking
   // the car). Or its writer is alive: when it had lapsed, how long it was gone is said and kept.
   void peer_liveliness(RemoteInput& in, bool alive);
+  // A peer process said how its run ended, or left without saying it (exec/peer_ends.hpp).
+  void peer_ended(const std::string& process, const PeerEnd& end);
+  void peer_left_unsaid(const std::string& process);
   // A writer the graph does not name sent to the input (a participant not the writer's process).
   void foreign_writer(RemoteInput& in, const std::string& participant, const std::string& writer);
   void set_status(const std::string& node, std::string_view field, std::string_view value) override;
@@ -136,6 +140,8 @@ class Executive final : public NodeHost {
   std::atomic<std::int64_t> live_tap_ns_{0};  // wall time the stepping threads spent on the live view (summary: live.taps_s)
   std::vector<std::unique_ptr<RemoteInput>> remote_inputs_;
   std::vector<std::string> lost_peers_;  // under stop_m_: writers lost that fail the run
+  std::unique_ptr<PeerEnds> ends_;        // a split run on the real clock: how each process ended
+  std::vector<std::string> failed_peers_;  // under stop_m_: processes that failed or left unsaid, failing the run
   nlohmann::json peer_events_ = nlohmann::json::array();  // under stop_m_: every lapse and return
   nlohmann::json foreign_writers_ = nlohmann::json::array();  // under stop_m_
   std::mutex stop_m_;

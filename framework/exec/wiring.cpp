@@ -84,6 +84,19 @@ void Executive::build() {
     by_name.here[n->name] = n;
   }
   if (graph_.lockstep) make_lockstep();
+  // A split run on the real clock: each process says how its run ended (exec/peer_ends.hpp).
+  // Keys made before end records existed do not permit their topics: the run goes on without.
+  if (!sim() && !opt_.process.empty() && graph_.processes.size() > 1) {
+    try {
+      ends_ = std::make_unique<PeerEnds>(*transport_, opt_.process, graph_.processes,
+                                         [this](const std::string& p, const PeerEnd& e) { peer_ended(p, e); });
+    } catch (const std::runtime_error& e) {
+      console_.line([&] {
+        std::fprintf(stderr, "[brickyard] warning: the processes cannot say how their runs ended (%s): `brickyard security init` again permits it\n",
+                     e.what());
+      });
+    }
+  }
   for (const auto& w : graph_.decl->wires) wire(w, by_name);
 }
 

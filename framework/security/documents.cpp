@@ -42,12 +42,15 @@ std::map<std::string, Access> access_of(const ResolvedGraph& g) {
   }
   // A split run on the sim clock keeps its processes in lockstep: each publishes its clock
   // records and reads every other's.
-  if (g.decl->clock.sim && g.processes.size() > 1)
+  // One on the real clock says how its run ended to the others (exec/peer_ends.hpp).
+  if (g.processes.size() > 1) {
+    const auto topic = g.decl->clock.sim ? clock_topic : end_topic;
     for (const auto& p : g.processes) {
-      out[p].publish.insert(clock_topic(p));
+      out[p].publish.insert(topic(p));
       for (const auto& q : g.processes)
-        if (q != p) out[p].subscribe.insert(clock_topic(q));
+        if (q != p) out[p].subscribe.insert(topic(q));
     }
+  }
   return out;
 }
 

@@ -42,10 +42,12 @@ TEST(Security, EachProcessMayWriteItsOutputsAndReadWhatCrossesIntoIt) {
   ASSERT_EQ(access.size(), 3u);  // a, b, observer
   const auto& a = access.at("a");
   const auto& b = access.at("b");
-  EXPECT_EQ(a.publish, (std::set<std::string>{"brickyard/src/out", "brickyard/tap/out"}));
-  EXPECT_TRUE(a.subscribe.empty());  // src feeds tap inside a: no DDS reader
-  EXPECT_EQ(b.publish, (std::set<std::string>{"brickyard/mid/out"}));
-  EXPECT_EQ(b.subscribe, (std::set<std::string>{"brickyard/src/out", "brickyard/tap/out"}));
+  // Each says how its run ended to the other (exec/peer_ends.hpp); src feeds tap inside a: a reads
+  // no wire.
+  EXPECT_EQ(a.publish, (std::set<std::string>{"brickyard/src/out", "brickyard/tap/out", "brickyard_end/a"}));
+  EXPECT_EQ(a.subscribe, (std::set<std::string>{"brickyard_end/b"}));
+  EXPECT_EQ(b.publish, (std::set<std::string>{"brickyard/mid/out", "brickyard_end/b"}));
+  EXPECT_EQ(b.subscribe, (std::set<std::string>{"brickyard/src/out", "brickyard/tap/out", "brickyard_end/a"}));
   const auto& o = access.at(security::kObserver);
   EXPECT_TRUE(o.publish.empty());
   EXPECT_EQ(o.subscribe, (std::set<std::string>{"brickyard/src/out", "brickyard/tap/out", "brickyard/mid/out"}));

@@ -86,6 +86,9 @@ inline std::string participant_name(const std::string& process) { return "bricky
 // The topic a process of a split sim-clock run publishes its clock records on (exec/lockstep.hpp).
 inline std::string clock_topic(const std::string& process) { return "brickyard_clock/" + process; }
 
+// The topic a process of a split run on the real clock says how its run ended on (exec/peer_ends.hpp).
+inline std::string end_topic(const std::string& process) { return "brickyard_end/" + process; }
+
 // A reader's check of who writes to it: samples from a writer whose participant is not named
 // `expected` are dropped unless `accept_others`, and `other` is told once per such writer
 // (its participant's name, its GUID).

@@ -33,8 +33,10 @@ for id in a b observer; do
     || fail "openssl does not verify keys/$id/permissions.p7s"
 done
 [ "$(stat -c %a "$out/keys/ca_key.pem")" = 600 ] || fail "ca_key.pem is not 0600"
-grep -q "<topic>brickyard/src/out</topic>" "$out/keys/a/permissions.xml" && ! grep -q "<subscribe>" "$out/keys/a/permissions.xml" \
-  || fail "a's permissions: publish src.out and subscribe nothing"
+# a reads no wire: only b's end record (how b's run ended, exec/peer_ends.hpp).
+grep -q "<topic>brickyard/src/out</topic>" "$out/keys/a/permissions.xml" \
+  && [ "$(grep -A3 "<subscribe>" "$out/keys/a/permissions.xml" | grep -o "<topic>[^<]*</topic>" | tr '\n' ' ')" = "<topic>brickyard_end/b</topic> " ] \
+  || fail "a's permissions: publish src.out, subscribe to b's end record alone"
 grep -A3 "<subscribe>" "$out/keys/b/permissions.xml" | grep -q "brickyard/src/out" || fail "b's permissions lack subscribing src.out"
 
 # The forger's samples: src.out ramping from 1000, recorded from the graph run without security.

@@ -18,6 +18,8 @@ add_test(NAME evidence.two_processes
   COMMAND ${NETNS} ${CMAKE_CURRENT_SOURCE_DIR}/cli/two_process.sh ${BY} ${CMAKE_CURRENT_SOURCE_DIR}/graphs/multiprocess/two_process.json ${d} ${RUNS}/two_process)
 # A process of a split run killed: the other notices within the liveliness lease.
 evidence_script(peer_lost peer_lost.sh ${CMAKE_CURRENT_SOURCE_DIR}/graphs/multiprocess/two_process.json)
+# A peer started by hand that fails by a throw or exit(): the healthy process fails naming it.
+evidence_script(peer_failed peer_failed.sh ${CMAKE_CURRENT_SOURCE_DIR}/graphs/multiprocess/two_process_fault.json)
 # A process killed outside any supervisor: its shared-memory segment removed by the next run, a
 # live run's kept (two domains: the killed run's, and the live one's beside it).
 by_next_domains(d 2)
