@@ -4,6 +4,7 @@
 #include "drivers/common/novatel_oem7.hpp"
 
 #include <cmath>
+#include <iterator>
 #include <variant>
 
 namespace brickyard::fw::cli {
@@ -46,11 +47,13 @@ Described describe(const dr::Oem7Message& m, DayCount&) {
 }
 
 Described describe(const dr::NmeaMessage& m, DayCount& days) {
-  static const char* const kTypes[] = {"GGA", "RMC", "VTG"};  // NmeaMessage's order
+  static const char* const kTypes[] = {"GGA", "RMC", "VTG", "GST"};  // NmeaMessage's order
+  static_assert(std::size(kTypes) == std::variant_size_v<dr::NmeaMessage>);
   Described d{std::visit([](const auto& s) { return s.talker; }, m) + kTypes[m.index()], std::nullopt};
   std::optional<dr::NmeaTime> utc;
   if (const auto* gga = std::get_if<dr::NmeaGga>(&m)) utc = gga->utc;
   if (const auto* rmc = std::get_if<dr::NmeaRmc>(&m)) utc = rmc->utc;
+  if (const auto* gst = std::get_if<dr::NmeaGst>(&m)) utc = gst->utc;
   if (utc) d.time_ns = days((utc->hours * 3600LL + utc->minutes * 60LL) * 1000000000 + std::llround(utc->seconds * 1e9));
   return d;
 }

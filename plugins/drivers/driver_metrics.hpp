@@ -51,6 +51,7 @@ inline void report_gnss(Context& ctx, const GnssSource& source, uint64_t fixes, 
   ctx.metric("other_reports", static_cast<double>(c.other_reports));
   ctx.metric("imu_samples", static_cast<double>(c.imu_samples));
   ctx.metric("imu_unscaled", static_cast<double>(c.imu_unscaled));
+  ctx.metric("gst_sigmas", static_cast<double>(c.gst_sigmas));
   ctx.metric("bytes", static_cast<double>(source.bytes()));
   ctx.metric("silences", static_cast<double>(silences));
   report_spread(ctx, "stamp_delay_s", source.delays_s());

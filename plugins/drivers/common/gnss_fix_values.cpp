@@ -86,4 +86,34 @@ std::optional<GnssFixValues> fix_from(const NmeaGga& m, const LocalDatum& datum,
   return f;
 }
 
+namespace {
+double day_seconds(const NmeaTime& t) { return t.hours * 3600.0 + t.minutes * 60.0 + t.seconds; }
+// b - a, across midnight: within half a day.
+double day_difference(double a, double b) { return std::remainder(b - a, 86400.0); }
+constexpr double kSameTime_s = 1e-3;
+}  // namespace
+
+void GstSigmas::gst(const NmeaGst& m) {
+  if (!m.utc || !m.latitude_sigma_m || !m.longitude_sigma_m || !m.height_sigma_m) return;
+  gst_ = m;
+  gst_s_ = day_seconds(*m.utc);
+}
+
+bool GstSigmas::apply(const NmeaGga& gga, GnssFixValues& f) {
+  if (!gga.utc) return false;
+  const double t = day_seconds(*gga.utc);
+  bool serves = false;
+  if (gst_) {
+    const double age = day_difference(*gst_s_, t);
+    const bool same_epoch = std::abs(age) < kSameTime_s;
+    const bool epoch_before = last_gga_s_ && std::abs(day_difference(*last_gga_s_, *gst_s_)) < kSameTime_s &&
+                              last_gga_fix_type_ == f.fix_type && age > 0 && age <= max_age_s_;
+    serves = same_epoch || epoch_before;
+  }
+  if (serves) f.sigma_x = *gst_->longitude_sigma_m, f.sigma_y = *gst_->latitude_sigma_m, f.sigma_z = *gst_->height_sigma_m;
+  last_gga_s_ = t;
+  last_gga_fix_type_ = f.fix_type;
+  return serves;
+}
+
 }  // namespace brickyard::drivers

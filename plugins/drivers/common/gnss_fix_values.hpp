@@ -43,4 +43,24 @@ struct GgaSigmas {
 };
 std::optional<GnssFixValues> fix_from(const NmeaGga& m, const LocalDatum& datum, const GgaSigmas& sigmas = {});
 
+// A receiver's own sigmas for its GGA fixes, from its GST sentences (east the longitude's, north
+// the latitude's, up the height's). An epoch's GST comes beside its GGA, before it or (most
+// receivers) after it: a GST of the GGA's own time serves it; one of the epoch before serves it
+// when that epoch's GGA had the same fix type and is at most max_age_s older: the sigmas then
+// one epoch late, never across a change of solution (an RTK fix lost takes the HDOP rule at once).
+class GstSigmas {
+ public:
+  explicit GstSigmas(double max_age_s = 1.5) : max_age_s_(max_age_s) {}
+  // Kept when it has a time and the three sigmas.
+  void gst(const NmeaGst& m);
+  // A GGA's fix (from fix_from): its sigmas set from a GST that serves it; whether one did.
+  bool apply(const NmeaGga& gga, GnssFixValues& f);
+
+ private:
+  double max_age_s_;
+  std::optional<NmeaGst> gst_;
+  std::optional<double> gst_s_, last_gga_s_;  // seconds of the UTC day
+  uint8_t last_gga_fix_type_ = 0;
+};
+
 }  // namespace brickyard::drivers

@@ -70,8 +70,15 @@ void GnssStream::take(const Oem7Message& m) {
 }
 
 void GnssStream::take(const NmeaMessage& m) {
-  if (const auto* gga = std::get_if<NmeaGga>(&m)) keep(fix_from(*gga, datum_, p_.gga));
-  else ++counters_.other_reports;
+  if (const auto* gga = std::get_if<NmeaGga>(&m)) {
+    std::optional<GnssFixValues> f = fix_from(*gga, datum_, p_.gga);
+    if (f && gst_.apply(*gga, *f)) ++counters_.gst_sigmas;
+    keep(f);
+  } else if (const auto* gst = std::get_if<NmeaGst>(&m)) {
+    gst_.gst(*gst);
+  } else {
+    ++counters_.other_reports;
+  }
 }
 
 }  // namespace brickyard::drivers

@@ -36,6 +36,7 @@ struct GnssStreamCounters {
   uint64_t other_reports = 0; // decoded reports that are not the position (BESTVEL, RMC, VTG, ...)
   uint64_t imu_samples = 0;   // RAWIMUSX samples handed out
   uint64_t imu_unscaled = 0;  // RAWIMUSX samples dropped: no scale given
+  uint64_t gst_sigmas = 0;    // GGA fixes whose sigmas came from the receiver's GST (else HDOP's rule)
 };
 
 class GnssStream {
@@ -61,6 +62,7 @@ class GnssStream {
   LocalDatum datum_;
   NovatelOem7Decoder oem7_;
   Nmea0183Decoder nmea_;
+  GstSigmas gst_;
   std::deque<GnssFixValues> ready_;
   std::deque<ImuValues> imu_ready_;
   GnssStreamCounters counters_;

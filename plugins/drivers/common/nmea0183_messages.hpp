@@ -1,5 +1,5 @@
 #pragma once
-// NMEA 0183 GGA, RMC and VTG sentences as plain structs, framework-free. A field the receiver left
+// NMEA 0183 GGA, RMC, VTG and GST sentences as plain structs, framework-free. A field the receiver left
 // empty (no fix yet, no differential data) is an empty optional, never a made-up zero. Angles in
 // degrees (north and east positive), speeds as sent (knots, km/h), times in UTC.
 #include <optional>
@@ -57,6 +57,17 @@ struct NmeaVtg {
   char mode = 0;  // as RMC's; 0 before NMEA 2.3
 };
 
-using NmeaMessage = std::variant<NmeaGga, NmeaRmc, NmeaVtg>;
+// GST: the position's error statistics, 1 sigma, metres (the receiver's own estimate of its
+// solution's error; its error ellipse's axes and orientation, and each coordinate's sigma). A
+// receiver may leave any field empty (u-blox sends no ellipse).
+struct NmeaGst {
+  std::string talker = "GP";
+  std::optional<NmeaTime> utc;
+  std::optional<double> range_rms_m;
+  std::optional<double> semi_major_m, semi_minor_m, orientation_deg;  // the ellipse, degrees from true north
+  std::optional<double> latitude_sigma_m, longitude_sigma_m, height_sigma_m;
+};
+
+using NmeaMessage = std::variant<NmeaGga, NmeaRmc, NmeaVtg, NmeaGst>;
 
 }  // namespace brickyard::drivers

@@ -168,6 +168,23 @@ bool read_fields(SentenceCursor& f, NmeaVtg& m) {
   return f.ok();
 }
 
+// "GST,time,rms,semi-major,semi-minor,orientation,lat sigma,lon sigma,height sigma". A sigma is
+// never negative; an orientation is within a turn.
+bool read_fields(SentenceCursor& f, NmeaGst& m) {
+  m.utc = f.time();
+  m.range_rms_m = f.number();
+  m.semi_major_m = f.number();
+  m.semi_minor_m = f.number();
+  m.orientation_deg = f.number();
+  m.latitude_sigma_m = f.number();
+  m.longitude_sigma_m = f.number();
+  m.height_sigma_m = f.number();
+  for (const auto& v : {m.range_rms_m, m.semi_major_m, m.semi_minor_m, m.latitude_sigma_m, m.longitude_sigma_m, m.height_sigma_m})
+    if (v && !(*v >= 0)) return false;
+  if (m.orientation_deg && !(*m.orientation_deg >= 0 && *m.orientation_deg <= 360)) return false;
+  return f.ok() && f.remaining() == 0;
+}
+
 template <typename Message>
 SentenceReadResult read_message(std::string_view talker, SentenceCursor& f, NmeaMessage& out) {
   Message m;
@@ -190,6 +207,7 @@ SentenceReadResult read_sentence(std::string_view text, NmeaMessage& out) {
   if (type == "GGA") return read_message<NmeaGga>(talker, cursor, out);
   if (type == "RMC") return read_message<NmeaRmc>(talker, cursor, out);
   if (type == "VTG") return read_message<NmeaVtg>(talker, cursor, out);
+  if (type == "GST") return read_message<NmeaGst>(talker, cursor, out);
   return SentenceReadResult::unknown_sentence;
 }
 

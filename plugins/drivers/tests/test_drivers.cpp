@@ -660,6 +660,52 @@ TEST(Nmea, GarbageBetweenSentencesIsSkipped) {
   EXPECT_GT(d.counters().skipped_bytes, 0u);
 }
 
+// GST as receivers' manuals print it: Trimble's (an RTK fix: centimetres), NovAtel MiLLennium's
+// (metres), u-blox's with the ellipse left empty (ArduSimple's page). Fixposition's printed
+// example fails its checksum: its bytes XOR to 0x76, not the 0x68 printed.
+TEST(Nmea, GstSentencesFromReceiversManualsDecode) {
+  Nmea0183Decoder d;
+  d.feed("$GPGST,172814.0,0.006,0.023,0.020,273.6,0.023,0.020,0.031*6A\r\n"
+         "$GPGST,192911.0,28.7,21.6,12.0,20.4,20.7,13.6,11.9*51\r\n"
+         "$GPGST,082356.00,1.8,,,,1.7,1.3,2.2*7E\r\n"
+         "$GNGST,114319.60,5.2,0.4,0.3,62.5,0.3,0.4,1.1*68\r\n");
+  std::vector<NmeaMessage> out = drain(d);
+  ASSERT_EQ(out.size(), 3u);
+  EXPECT_EQ(d.counters().bad_checksum, 1u);
+  const NmeaGst& rtk = std::get<NmeaGst>(out[0]);
+  EXPECT_EQ(rtk.talker, "GP");
+  EXPECT_EQ(rtk.utc->hours, 17);
+  EXPECT_DOUBLE_EQ(rtk.utc->seconds, 14.0);
+  EXPECT_DOUBLE_EQ(*rtk.range_rms_m, 0.006);
+  EXPECT_DOUBLE_EQ(*rtk.semi_major_m, 0.023);
+  EXPECT_DOUBLE_EQ(*rtk.semi_minor_m, 0.020);
+  EXPECT_DOUBLE_EQ(*rtk.orientation_deg, 273.6);
+  EXPECT_DOUBLE_EQ(*rtk.latitude_sigma_m, 0.023);
+  EXPECT_DOUBLE_EQ(*rtk.longitude_sigma_m, 0.020);
+  EXPECT_DOUBLE_EQ(*rtk.height_sigma_m, 0.031);
+  EXPECT_DOUBLE_EQ(*std::get<NmeaGst>(out[1]).height_sigma_m, 11.9);
+  const NmeaGst& ublox = std::get<NmeaGst>(out[2]);
+  EXPECT_FALSE(ublox.semi_major_m);
+  EXPECT_FALSE(ublox.orientation_deg);
+  EXPECT_DOUBLE_EQ(*ublox.longitude_sigma_m, 1.3);
+}
+
+// A sigma below zero, an orientation past a turn, a field too many or too few: malformed.
+TEST(Nmea, AGstThatCannotBeASigmaIsMalformed) {
+  auto sealed_nmea = [](const std::string& text) {
+    char sum[8];
+    std::snprintf(sum, sizeof sum, "*%02X\r\n", nmea_checksum(text));
+    return "$" + text + sum;
+  };
+  Nmea0183Decoder d;
+  for (const char* text : {"GPGST,172814.0,0.006,0.023,0.020,273.6,-0.023,0.020,0.031", "GPGST,172814.0,0.006,0.023,0.020,361,0.023,0.020,0.031",
+                           "GPGST,172814.0,0.006,0.023,0.020,273.6,0.023,0.020,0.031,9", "GPGST,172814.0,0.006,0.023,0.020,273.6,0.023,0.020",
+                           "GPGST,172814.0,0.006,0.023,0.020,273.6,0.023,nan,0.031"})
+    d.feed(sealed_nmea(text));
+  EXPECT_EQ(drain(d).size(), 0u);
+  EXPECT_EQ(d.counters().malformed, 5u);
+}
+
 TEST(Nmea, GgaAndRmcRoundTripThroughTheEncoder) {
   NmeaGga gga;
   gga.talker = "GN";

@@ -129,6 +129,96 @@ TEST(GnssFix, GgaSigmaIsHdopTimesTheQualitysErrorAndItsTimeTheTimeOfDay) {
   EXPECT_FALSE(fix_from(g, d));
 }
 
+namespace {
+NmeaTime utc_of(double day_s) {
+  const int h = static_cast<int>(day_s / 3600), m = static_cast<int>((day_s - h * 3600) / 60);
+  return NmeaTime{h, m, day_s - h * 3600 - m * 60};
+}
+NmeaGga gga_at(double day_s, int quality) {
+  NmeaGga g;
+  g.latitude_deg = 44.068843333, g.longitude_deg = -121.314191667;
+  g.altitude_msl_m = 1127.7, g.undulation_m = -19.6, g.hdop = 0.98, g.quality = quality;
+  g.utc = utc_of(day_s);
+  return g;
+}
+NmeaGst gst_at(double day_s) {
+  NmeaGst g;
+  g.utc = utc_of(day_s);
+  g.latitude_sigma_m = 0.023, g.longitude_sigma_m = 0.020, g.height_sigma_m = 0.031;
+  return g;
+}
+std::string sealed_nmea(const std::string& text) {
+  char sum[8];
+  std::snprintf(sum, sizeof sum, "*%02X\r\n", nmea_checksum(text));
+  return "$" + text + sum;
+}
+}  // namespace
+
+// A receiver's GST gives its GGA fixes their sigmas: one of the GGA's own time (sent before it),
+// or of the epoch before (sent after that epoch's GGA, as most receivers do) while the fix type
+// holds; not across a change of solution, nor from two epochs back, nor past max_age_s.
+TEST(GnssFix, GgaSigmasFromTheReceiversGstOfItsEpochOrTheOneBefore) {
+  const LocalDatum d({44.068843333, -121.314191667, 1127.7 - 19.6});
+  GstSigmas gst;
+  bool from_gst = false;
+  auto fix = [&](const NmeaGga& g) {
+    GnssFixValues f = *fix_from(g, d);
+    from_gst = gst.apply(g, f);
+    return f;
+  };
+  GnssFixValues f = fix(gga_at(1000.0, 4));
+  EXPECT_FALSE(from_gst);  // no GST yet: HDOP's rule
+  EXPECT_DOUBLE_EQ(f.sigma_x, 0.98 * 0.02);
+  gst.gst(gst_at(1000.0));  // after its GGA
+  f = fix(gga_at(1000.1, 4));
+  EXPECT_TRUE(from_gst);  // the epoch before's, the same fix type
+  EXPECT_DOUBLE_EQ(f.sigma_x, 0.020);  // east: the longitude's
+  EXPECT_DOUBLE_EQ(f.sigma_y, 0.023);  // north: the latitude's
+  EXPECT_DOUBLE_EQ(f.sigma_z, 0.031);
+  fix(gga_at(1000.2, 4));
+  EXPECT_FALSE(from_gst);  // two epochs back
+  gst.gst(gst_at(1000.2));
+  f = fix(gga_at(1000.3, 5));
+  EXPECT_FALSE(from_gst);  // RTK fixed -> float: the GST was the fixed solution's
+  EXPECT_DOUBLE_EQ(f.sigma_x, 0.98 * 0.2);
+  gst.gst(gst_at(1000.4));  // before its GGA
+  fix(gga_at(1000.4, 5));
+  EXPECT_TRUE(from_gst);  // its own epoch's
+  gst.gst(gst_at(86399.9));
+  fix(gga_at(86399.9, 5));
+  fix(gga_at(0.0, 5));
+  EXPECT_TRUE(from_gst);  // across midnight: the epoch before, 0.1 s earlier
+  gst.gst(gst_at(0.0));
+  fix(gga_at(2.0, 5));
+  EXPECT_FALSE(from_gst);  // 2 s old, past max_age_s
+  NmeaGst no_height = gst_at(2.0);
+  no_height.height_sigma_m.reset();
+  gst.gst(no_height);  // not kept: a sigma missing
+  fix(gga_at(2.0, 5));
+  EXPECT_FALSE(from_gst);
+}
+
+// Through the stream, as a receiver sends them (GGA, then the epoch's GST): the first GGA takes
+// HDOP's rule, the next its epoch-before's GST, counted.
+TEST(GnssStream, NmeaFixesTakeTheirSigmasFromTheReceiversGst) {
+  GnssStreamParams p;
+  p.protocol = GnssProtocol::nmea0183;
+  p.datum = {44.068843333, -121.314191667, 1127.7 - 19.6};
+  GnssStream s(p);
+  const std::string bytes = sealed_nmea("GPGGA,202640.000,4404.1306,N,12118.8515,W,2,10,0.98,1127.7,M,-19.6,M,0000,0000") +
+                            sealed_nmea("GPGST,202640.000,1.8,,,,1.7,1.3,2.2") +
+                            sealed_nmea("GPGGA,202641.000,4404.1306,N,12118.8515,W,2,10,0.98,1127.7,M,-19.6,M,0000,0000");
+  s.feed(reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size());
+  const std::optional<GnssFixValues> first = s.next(), second = s.next();
+  ASSERT_TRUE(first && second);
+  EXPECT_DOUBLE_EQ(first->sigma_x, 0.98 * 0.7);  // differential, no GST yet
+  EXPECT_DOUBLE_EQ(second->sigma_x, 1.3);
+  EXPECT_DOUBLE_EQ(second->sigma_y, 1.7);
+  EXPECT_DOUBLE_EQ(second->sigma_z, 2.2);
+  EXPECT_EQ(s.counters().gst_sigmas, 1u);
+  EXPECT_EQ(s.counters().other_reports, 0u);
+}
+
 TEST(DeviceClock, StampsCarryTheLeastDelaySeenNeverMoreThanTheReceiveTime) {
   // A receiver at 20 Hz whose clock is 1.4e9 s ahead of the run's; each log delayed 2 to 30 ms
   // on the wire (whole microseconds), one in ten by exactly 2 ms: every stamp but the first lands
