@@ -152,7 +152,10 @@ void watchdog() {
       char secs[32];
       std::snprintf(secs, sizeof secs, "%.1f", static_cast<double>(monotonic_ms() - since) / 1000.0);
       Text r;
-      r << "node '" << node << "' has been in its step for " << secs << " s, far past its step deadline; the process ends here";
+      const char* phase = slot.phase.load();
+      const bool step = phase && std::strcmp(phase, "step") == 0;
+      r << "node '" << node << "' has been in its " << (phase ? phase : "call") << " for " << secs << " s, far past "
+        << (step ? "its step deadline" : "what a lifecycle call may take") << "; the process ends here";
       die(r, 1);
     }
     const long long ended = g_ended_ms.load();

@@ -259,9 +259,10 @@ void Executive::request_stop(RunResult r, std::string reason) {
 
 bool Executive::call(NodeRuntime& n, const char* phase, const std::function<void()>& f) {
   try {
-    // Named if the plugin takes the process down, or its step hangs far past its deadline.
+    // Named if the plugin takes the process down, or its step hangs far past its deadline, or a
+    // lifecycle call past kLifecycleHang_s.
     const bool step = std::string_view(phase) == "step";
-    const crash_guard::Running running(n.name.c_str(), phase, step ? hang_after_s(n) : 0.0);
+    const crash_guard::Running running(n.name.c_str(), phase, step ? hang_after_s(n) : kLifecycleHang_s);
     f();
     return true;
   } catch (const BadInput& e) {

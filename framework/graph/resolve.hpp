@@ -17,6 +17,10 @@ inline constexpr double kDefaultDeadlinePeriods = 10, kDefaultDeadlineFloor_s = 
 // On the sim clock a deadline the graph did not set only ends a step stuck this long (a slow
 // step must not change a run's result: runs are reproducible bit for bit on any machine).
 inline constexpr double kSimHang_s = 30.0;
+// A lifecycle call (construction, configure, activate, deactivate) stuck this long ends the
+// process naming the node: a map read and prepared, a road graph built, a file written take
+// seconds (tens under the sanitizers), never a minute.
+inline constexpr double kLifecycleHang_s = 60.0;
 
 struct ResolvedNode {
   const NodeDecl* decl = nullptr;

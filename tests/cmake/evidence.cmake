@@ -20,6 +20,13 @@ add_test(NAME evidence.two_processes
 evidence_script(peer_lost peer_lost.sh ${CMAKE_CURRENT_SOURCE_DIR}/graphs/multiprocess/two_process.json)
 # A peer started by hand that fails by a throw or exit(): the healthy process fails naming it.
 evidence_script(peer_failed peer_failed.sh ${CMAKE_CURRENT_SOURCE_DIR}/graphs/multiprocess/two_process_fault.json)
+# A node stuck in a lifecycle call (here its deactivate) ends the process after kLifecycleHang_s
+# (60 s), naming it, its summary written: before, the process never ended.
+by_next_domain(d)
+add_test(NAME evidence.hang_in_deactivate
+  COMMAND ${NETNS} ${EXPECT} 1 "node 'fault' has been in its deactivate for 6[0-9.]+ s, far past what a lifecycle call may take; the process ends here"
+          -- ${BY} run ${CMAKE_CURRENT_SOURCE_DIR}/graphs/fault.json --domain ${d} --quiet --progress 0 --set fault.mode=hang_deactivate
+          --duration 1 --out ${RUNS}/hang_in_deactivate)
 # A process killed outside any supervisor: its shared-memory segment removed by the next run, a
 # live run's kept (two domains: the killed run's, and the live one's beside it).
 by_next_domains(d 2)
