@@ -14,13 +14,14 @@ pid_a=$!
 sleep 3  # the two have met and samples flow
 kill -9 $pid_a
 killed=$(date +%s%N)
-# The warning, within a second of the kill.
-for i in $(seq 30); do grep -q "warning: input double.in" "$out/b.log" && break; sleep 0.05; done
+# The warning: the lease is 0.5 s; measured from outside (a shell polling a log under a loaded
+# CTest), within 3 s.
+for i in $(seq 60); do grep -q "warning: input double.in" "$out/b.log" && break; sleep 0.05; done
 noticed=$(( ($(date +%s%N) - killed) / 1000000 ))
 wait $pid_b; rc_b=$?
 grep "warning\|failed" "$out/b.log" | head -3
 echo "b said so $noticed ms after a was killed, ran on to its end, exit $rc_b"
-[ $noticed -lt 1500 ] || { echo "FAIL: b took $noticed ms to notice"; exit 1; }
+[ $noticed -lt 3000 ] || { echo "FAIL: b took $noticed ms to notice"; exit 1; }
 grep -q "warning: input double.in: its writer src.out (process 'a') went silent: no liveliness for 0.5 s (did the process die?) at t = [0-9.]* s; the run goes on" "$out/b.log" \
   || { echo "FAIL: the warning does not name the input and its writer"; exit 1; }
 [ $rc_b -eq 1 ] || { echo "FAIL: b did not fail when its peer died"; exit 1; }
