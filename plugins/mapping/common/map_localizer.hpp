@@ -62,8 +62,8 @@ struct MapLocalizerParams {
   double ground_tilt = 0.45;  // rad
   // Threads (1 or 2) that share the map's preparation at the start (its points' surfaces, its
   // two voxel maps): the same bits on either. A frame's surfaces stay on one: on two, 60 s of
-  // Spielberg located every frame ran no faster (the other core is busy with the frame's other
-  // steps and the next frame's LiDARs; docs/map-localization.md).
+  // Spielberg located every frame ran within the noise of one (the other core is busy with the
+  // frame's other steps and the next frame's LiDARs; docs/map-localization.md).
   int threads = 2;
   CovarianceParams covariances;
   RegistrationParams registration{16, 5e-3, 5e-4, false};
