@@ -38,6 +38,9 @@ namespace {
 std::int64_t wall_ns() {
   return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::system_clock::now().time_since_epoch()).count();
 }
+std::int64_t steady_ns() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
 }  // namespace
 
 Executive::Executive(const ResolvedGraph& g, RunOptions opt) : graph_(g), opt_(std::move(opt)) {}
@@ -109,9 +112,17 @@ void Executive::peer_liveliness(RemoteInput& in, bool alive) {
     if (!alive && !in.lost) {
       in.lost = true;
       in.lost_at_ns = now;
-      const std::string what = who + " went silent: no liveliness for 0.5 s (did the process die?)";
+      std::string what = who + " went silent: no liveliness for 0.5 s";
+      if (const std::int64_t last = in.last_sample_ns.load(); last > 0) {
+        char since[64];
+        std::snprintf(since, sizeof since, ", nothing from it for %.2f s", static_cast<double>(steady_ns() - last) * 1e-9);
+        what += since;
+      }
+      what += " (did the process die?)";
       peer_events_.push_back({{"input", in.input}, {"writer", in.writer}, {"process", in.process}, {"event", "lost"}, {"t_s", t}});
-      if (!may_die && std::find(lost_peers_.begin(), lost_peers_.end(), what) == lost_peers_.end()) lost_peers_.push_back(what);
+      // Once per writer, however often it lapses.
+      const bool known = std::any_of(lost_peers_.begin(), lost_peers_.end(), [&](const std::string& l) { return l.rfind(who + " went silent", 0) == 0; });
+      if (!may_die && !known) lost_peers_.push_back(what);
       char at[48];
       std::snprintf(at, sizeof at, " at t = %.2f s", t);
       line = "warning: " + what + at + (may_die ? "; the graph lets process '" + in.process + "' die: the run goes on"

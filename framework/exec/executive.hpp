@@ -51,6 +51,9 @@ class Executive final : public NodeHost {
     DdsReader* reader = nullptr;
     bool lost = false;                   // under stop_m_
     std::int64_t lost_at_ns = 0;         // wall time of the lapse
+    // Steady time of the last sample (0: none yet): how long the writer had been silent when its
+    // lapse was noticed, measured here rather than guessed from outside (docs/reliability.md).
+    std::atomic<std::int64_t> last_sample_ns{0};
   };
   // Its writer went silent (its liveliness lapsed): said now, and the run fails at its end unless
   // the graph lets the writer's process die; it goes on meanwhile (a car interface keeps braking

@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <map>
+#include <chrono>
 #include <cstdio>
 #include <mutex>
 #include <set>
@@ -216,7 +217,11 @@ void Executive::connect_remote_input(const WireDecl& w, const NodeRuntime& to, I
   r->reader = transport_->make_reader(
       topic_name(w.from.node, w.from.port), wire_type, ps->depth,
       by_phantom ? lock_->feed(&lock_wires_[{by_phantom, in}], r->process)
-                 : std::function<void(std::shared_ptr<const void>)>([in](std::shared_ptr<const void> s) { in->push(std::move(s)); }),
+                 : std::function<void(std::shared_ptr<const void>)>([in, r](std::shared_ptr<const void> s) {
+                     r->last_sample_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(
+                                             std::chrono::steady_clock::now().time_since_epoch()).count();
+                     in->push(std::move(s));
+                   }),
       [this, r](bool alive) { peer_liveliness(*r, alive); }, std::move(check));
 }
 
