@@ -54,6 +54,8 @@ class Nmea0183Decoder {
 
 // The XOR of every byte of `text` (a sentence between '$' and '*').
 uint8_t nmea_checksum(std::string_view text);
+// "$" + text + "*HH\r\n": the sentence whole, its checksum computed.
+std::string seal_nmea(const std::string& text);
 
 // Whole sentences, "$" to "\r\n", with their checksum. Latitude and longitude are written with
 // 7 decimals of minutes (about 0.2 mm), as NovAtel's receivers do.

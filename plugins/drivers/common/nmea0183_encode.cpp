@@ -57,8 +57,9 @@ void append_angle(std::string& out, const std::optional<double>& degrees, int de
   out += *degrees < 0 ? negative : positive;
 }
 
-// "$" + text + "*HH\r\n".
-std::string seal(const std::string& text) {
+}  // namespace
+
+std::string seal_nmea(const std::string& text) {
   static constexpr char kHex[] = "0123456789ABCDEF";
   uint8_t sum = nmea_checksum(text);
   std::string sentence = "$" + text + "*";
@@ -67,8 +68,6 @@ std::string seal(const std::string& text) {
   sentence += "\r\n";
   return sentence;
 }
-
-}  // namespace
 
 std::string encode_gga(const NmeaGga& m) {
   std::string s = m.talker + "GGA,";
@@ -88,7 +87,7 @@ std::string encode_gga(const NmeaGga& m) {
   s += m.undulation_m ? ",M," : ",,";
   append_optional(s, m.differential_age_s, 1);
   s += ',' + m.station_id;
-  return seal(s);
+  return seal_nmea(s);
 }
 
 std::string encode_rmc(const NmeaRmc& m) {
@@ -117,7 +116,7 @@ std::string encode_rmc(const NmeaRmc& m) {
   }
   if (m.mode) s += std::string(",") + m.mode;
   if (m.mode && m.nav_status) s += std::string(",") + m.nav_status;
-  return seal(s);
+  return seal_nmea(s);
 }
 
 }  // namespace brickyard::drivers

@@ -8,6 +8,7 @@
 #include "drivers/common/gnss_stream.hpp"
 #include "drivers/common/gnss_time.hpp"
 #include "drivers/common/latency_spread.hpp"
+#include "drivers/common/nmea0183.hpp"
 #include "drivers/common/raw_imu.hpp"
 #include "drivers/common/replay_pacer.hpp"
 
@@ -147,11 +148,6 @@ NmeaGst gst_at(double day_s) {
   g.latitude_sigma_m = 0.023, g.longitude_sigma_m = 0.020, g.height_sigma_m = 0.031;
   return g;
 }
-std::string sealed_nmea(const std::string& text) {
-  char sum[8];
-  std::snprintf(sum, sizeof sum, "*%02X\r\n", nmea_checksum(text));
-  return "$" + text + sum;
-}
 }  // namespace
 
 // A receiver's GST gives its GGA fixes their sigmas: one of the GGA's own time (sent before it),
@@ -205,9 +201,9 @@ TEST(GnssStream, NmeaFixesTakeTheirSigmasFromTheReceiversGst) {
   p.protocol = GnssProtocol::nmea0183;
   p.datum = {44.068843333, -121.314191667, 1127.7 - 19.6};
   GnssStream s(p);
-  const std::string bytes = sealed_nmea("GPGGA,202640.000,4404.1306,N,12118.8515,W,2,10,0.98,1127.7,M,-19.6,M,0000,0000") +
-                            sealed_nmea("GPGST,202640.000,1.8,,,,1.7,1.3,2.2") +
-                            sealed_nmea("GPGGA,202641.000,4404.1306,N,12118.8515,W,2,10,0.98,1127.7,M,-19.6,M,0000,0000");
+  const std::string bytes = seal_nmea("GPGGA,202640.000,4404.1306,N,12118.8515,W,2,10,0.98,1127.7,M,-19.6,M,0000,0000") +
+                            seal_nmea("GPGST,202640.000,1.8,,,,1.7,1.3,2.2") +
+                            seal_nmea("GPGGA,202641.000,4404.1306,N,12118.8515,W,2,10,0.98,1127.7,M,-19.6,M,0000,0000");
   s.feed(reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size());
   const std::optional<GnssFixValues> first = s.next(), second = s.next();
   ASSERT_TRUE(first && second);
