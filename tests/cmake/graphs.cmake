@@ -40,7 +40,12 @@ set(race_control_red_want "manager: race control: RACING -> STOPPING at t = 8\\.
 set(race_control_checkered_want "manager: race control: RACING -> FINISHING at t = 3\\.0[0-9]+ s: CHECKERED at lap count 0.*race_control: checkered at 3\\.000 s: the lap finished at [0-9.]+ s \\(lap count 1\\).*manager: race control: FINISHING -> FINISHED.*race_control: checkered at 3\\.000 s: after the line: stopped after [0-9.]+ m, within the [0-9.]+ m allowed.*dbw +sim\\.drive_by_wire .* track_cond_ack 4 · veh_sig_ack 4.*\\[brickyard\\] success")
 set(race_control_silent_want "vehicle: race control lost: its heartbeat unchanged for 1 s.*manager: race control: RACING -> STOPPING at t = [0-9.]+ s: race control lost \\(its heartbeat stopped\\).*race_control: silence at 8\\.000 s from [0-9.]+ m/s: stopped after [0-9.]+ m, within the [0-9.]+ m allowed.*\\[brickyard\\] success")
 set(fail_race_control_red_soft_brake_why "node 'race_control' \\(sim\\.race_control\\): RED \\(1\\), NONE \\(1\\), 0 mph at 8\\.000 s from [0-9.]+ m/s: still [0-9.]+ m/s after the [0-9.]+ m allowed \\(the car needs [0-9.]+ m at 6 m/s\\^2\\)")
-foreach(g race_can_ims race_can_ims_lossy can_stack_silent_stops sim_gnss_wire race_control_yellow race_control_red race_control_checkered
+# The bus cut both ways for 0.5 s: the manager, watching the vehicle's status, stops the car along
+# the path and hands it back 2 s after the reports come again (docs/vehicle-interface.md).
+set(can_bus_cut_want "vehicle: steering_report silent: nothing for 0\\.1 s.*manager: PATH -> SAFE_STOP at t = 8\\.1[0-9]+ s: the drive-by-wire's steering report silent.*dbw: drive-by-wire: commands or heartbeat lost: braking.*manager: SAFE_STOP -> PATH at t = 10\\.5[0-9]+ s: the car's side well again.*\\[brickyard\\] success")
+# The stack killed at 34 s, at 84 m/s on IMS's straight: the interface stops the car along the path.
+set(stack_killed_can_want "vehicle: commands: ACTIVE -> STOPPING: none fresh.*vehicle: commands: STOPPING -> HANDED_OVER: stopped in [0-9.]+ m.*dbw: drive-by-wire: commands or heartbeat lost: braking.*vehicle +vehicle_interface\\.raptor_dbw .* held_stops 0 .* path_stops 1 .*\\[brickyard\\] success")
+foreach(g race_can_ims race_can_ims_lossy can_stack_silent_stops can_bus_cut stack_killed_can sim_gnss_wire race_control_yellow race_control_red race_control_checkered
         race_control_silent fail_race_control_red_soft_brake)
   set(${g}_args --threads 1)
 endforeach()

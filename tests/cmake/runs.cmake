@@ -87,6 +87,22 @@ foreach(mode race)
 endforeach()
 # Real-clock processes: nothing else running beside them (a loaded host is a slower car).
 set_tests_properties(evidence.car_on_wires_race PROPERTIES TIMEOUT 400 PROCESSORS 2)
+# The bus recorded (raw and decoded), written as a candump log and played back as cannelloni (issue 43).
+by_next_domain(d)
+add_test(NAME evidence.can_recording
+  COMMAND ${NETNS} ${CMAKE_CURRENT_SOURCE_DIR}/cli/can_recording.sh ${BY} $<TARGET_FILE:brickyard-can> ${CMAKE_CURRENT_SOURCE_DIR}/graphs ${d}
+          ${RUNS}/can_recording)
+add_test(NAME cli.can_no_frames COMMAND ${EXPECT} 2 "brickyard-can: .*bad_mcap_no_frames.mcap: no CanFrames topic"
+  -- $<TARGET_FILE:brickyard-can> candump ${BAD}/bad_mcap_no_frames.mcap --out ${RUNS}/x.log)
+add_test(NAME cli.can_play_bad_log COMMAND ${EXPECT} 2 "brickyard-can: .*bad_candump.log: line 2: "
+  -- $<TARGET_FILE:brickyard-can> play ${BAD}/bad_candump.log --to udp://127.0.0.1:9)
+add_test(NAME cli.can_play_bad_rate COMMAND ${EXPECT} 2 "brickyard-can: --rate -1: 0 \\(at once\\) or 0.001 to 1e6"
+  -- $<TARGET_FILE:brickyard-can> play ${BAD}/bad_candump.log --to udp://127.0.0.1:9 --rate -1)
+# The stack killed at every placement (a few per track here; docs/vehicle-interface.md has every 4 s
+# of a lap): the interface stops the car along the path, no contact (scripts/sweep-stack-kill).
+add_test(NAME evidence.stack_killed_sweep
+  COMMAND ${PROJECT_SOURCE_DIR}/scripts/sweep-stack-kill --by ${BY} --cuts 9:89:40 --jobs 1 --out ${RUNS}/stack_killed_sweep)
+set_tests_properties(evidence.stack_killed_sweep PROPERTIES TIMEOUT 600)
 # MCAP, read by Foxglove's libraries (tests/clients, installed by scripts/setup from npm).
 by_next_domain(d)
 add_test(NAME evidence.mcap_recording

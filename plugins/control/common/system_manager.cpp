@@ -1,6 +1,7 @@
 #include "system_manager.hpp"
 
 #include <algorithm>
+#include <cstdio>
 
 namespace brickyard::control {
 
@@ -40,9 +41,36 @@ void SystemManager::wall(double t, bool valid) {
 void SystemManager::path_command(double t) { path_cmd_t_ = std::max(path_cmd_t_, t); }
 void SystemManager::wall_command(double t) { wall_cmd_t_ = std::max(wall_cmd_t_, t); }
 
+void SystemManager::vehicle(double t, const VehicleHealth& h) {
+  const bool well = !h.stopping && !h.handed_over && !h.steering_silent && !h.brake_silent;
+  const bool was_well = vehicle_t_ > -1e299 && t - vehicle_t_ <= p_.vehicle_timeout_s && vehicle_fault(t).empty();
+  // The run's first good status hands the car over at once, as the first NORMAL does.
+  if (well && !was_well) vehicle_well_since_ = vehicle_t_ > -1e299 ? t : t - p_.recover_after_s;
+  if (!well) vehicle_well_since_ = 1e300;
+  handed_over_ = handed_over_ || h.handed_over;
+  vehicle_ = h;
+  vehicle_t_ = t;
+}
+
+std::string SystemManager::vehicle_fault(double t) const {
+  if (!watch_vehicle_) return "";
+  if (handed_over_) return "the vehicle interface handed the car to the drive-by-wire";
+  const double last = vehicle_t_ > -1e299 ? vehicle_t_ : start_t_;
+  if (t - last > p_.vehicle_timeout_s) {
+    char b[96];
+    std::snprintf(b, sizeof b, "the vehicle interface silent: no status for %.2f s", t - last);
+    return b;
+  }
+  if (vehicle_.stopping) return "the vehicle interface is stopping the car: the commands do not reach it";
+  if (vehicle_.steering_silent) return "the drive-by-wire's steering report silent: whether the car steers is not known";
+  if (vehicle_.brake_silent) return "the drive-by-wire's brake report silent: whether the car brakes is not known";
+  return "";
+}
+
 Transition SystemManager::go(Mode to, std::string reason) {
   Transition tr{true, mode_, to, std::move(reason)};
   mode_ = to;
+  stopped_for_car_ = false;
   return tr;
 }
 
@@ -53,7 +81,14 @@ Transition SystemManager::update(double t) {
   // A controller is silent once its commands have come and then stopped for controller_timeout_s.
   auto silent = [&](double last) { return last > -1e299 && t - last > p_.controller_timeout_s; };
   const bool path_silent = silent(path_cmd_t_), wall_silent = silent(wall_cmd_t_);
-  const bool recovered = !stale && status_ <= p_.resume_at && t - normal_since_ >= p_.recover_after_s && !path_silent;
+  const std::string car_fault = vehicle_fault(t);
+  const bool car_well = !watch_vehicle_ || (car_fault.empty() && t - vehicle_well_since_ >= p_.recover_after_s);
+  const bool recovered = !stale && status_ <= p_.resume_at && t - normal_since_ >= p_.recover_after_s && !path_silent && car_well;
+  if (!car_fault.empty() && mode_ != Mode::safe_stop) {
+    Transition tr = go(Mode::safe_stop, car_fault);
+    stopped_for_car_ = true;
+    return tr;
+  }
   const char* back = status_ == LocStatus::normal ? "localization NORMAL again: back to the path"
                                                   : "localization corrected again (WARNING): back to the path";
   switch (mode_) {
@@ -71,8 +106,8 @@ Transition SystemManager::update(double t) {
       if (wall_silent) return go(Mode::safe_stop, "the wall follower's commands stopped");
       break;
     case Mode::safe_stop:
-      if (recovered) return go(Mode::path, back);
-      if (p_.resume_on_wall && wall_ok && t - wall_valid_since_ >= p_.wall_resume_s && !wall_silent && wall_cmd_t_ > -1e299)
+      if (recovered) return go(Mode::path, stopped_for_car_ ? "the car's side well again: back to the path" : back);
+      if (p_.resume_on_wall && car_well && wall_ok && t - wall_valid_since_ >= p_.wall_resume_s && !wall_silent && wall_cmd_t_ > -1e299)
         return go(Mode::wall, "a valid wall again while localization is not back: following it");
       break;
   }

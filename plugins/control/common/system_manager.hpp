@@ -9,10 +9,17 @@
 //   SAFE_STOP ── a valid wall held for wall_resume_s, the wall follower alive ──► WALL
 //   PATH ── the path tracker's commands stale (controller_timeout_s) ──► WALL, or SAFE_STOP with no valid wall
 //   WALL ── the wall follower's commands stale ──► SAFE_STOP
+//   PATH, WALL ── the car's side says it is stopping the car, or is silent ──► SAFE_STOP (below)
 // A localization status older than status_timeout_s counts as EMERGENCY (a silent estimator is
 // not a healthy one); WARNING keeps the path tracker. A controller whose commands have come and
 // then stopped (it died or hangs) is not forwarded: its last command would hold the car's last
-// throttle; nor is it handed the car back until its commands come again. Every transition is returned with its
+// throttle; nor is it handed the car back until its commands come again. With the vehicle
+// interface watched (watch_vehicle), the car's side counts too: its watchdog stopping the car (the
+// commands do not reach it) or having handed it to the drive-by-wire, its steering or brake report
+// silent (whether the car steers or brakes is not known), or its status silent for
+// vehicle_timeout_s: SAFE_STOP (its wheel the path tracker's while fresh: localization is well),
+// held while that lasts and resumed from only once the car's side has been well for
+// recover_after_s (a handover never ends). Every transition is returned with its
 // reason so the plugin can log and count it. Race control's flags act on the mode's command after
 // (flag_gate.hpp: a yellow's cap, a controlled stop).
 #include <string>
@@ -50,6 +57,14 @@ struct ManagerParams {
   double wall_resume_s = 1.0;
   double status_timeout_s = 0.5;  // no localization status this long: EMERGENCY
   double controller_timeout_s = 0.25;  // a controller whose commands have come and then not for this long: silent
+  double vehicle_timeout_s = 0.5;  // watched: no vehicle status this long (from the start, too): the car's side silent
+};
+
+// What the manager reads of the vehicle interface's status.
+struct VehicleHealth {
+  bool stopping = false;      // its watchdog brakes the car: the stack's commands do not reach it
+  bool handed_over = false;   // the drive-by-wire's own safety has the car
+  bool steering_silent = false, brake_silent = false;  // their reports
 };
 
 struct Transition {
@@ -79,12 +94,19 @@ class SystemManager {
   void wall(double t, bool valid);
   void path_command(double t);  // the path tracker sent a command (its stamp)
   void wall_command(double t);  // the wall follower did
+  // The vehicle interface's status is watched (a graph that wires it), and a status of it.
+  void watch_vehicle() { watch_vehicle_ = true; }
+  void vehicle(double t, const VehicleHealth& h);
   // The mode at time t, after whatever the inputs so far imply.
   Transition update(double t);
   Mode mode() const { return mode_; }
+  // SAFE_STOP for the car's side alone: localization is well, so the stop may steer along the path.
+  bool stopped_for_car() const { return stopped_for_car_; }
 
  private:
   Transition go(Mode to, std::string reason);
+  // What is wrong on the car's side at t ("" when nothing, or when it is not watched).
+  std::string vehicle_fault(double t) const;
   ManagerParams p_;
   Mode mode_ = Mode::path;
   LocStatus status_ = LocStatus::normal;
@@ -94,6 +116,11 @@ class SystemManager {
   double path_cmd_t_ = -1e300, wall_cmd_t_ = -1e300;  // -1e300: none yet (not silent: not started)
   bool have_status_ = false;
   bool was_resumable_ = false;  // a status good enough to resume at has come this run
+  bool watch_vehicle_ = false;
+  VehicleHealth vehicle_;
+  double vehicle_t_ = -1e300, vehicle_well_since_ = -1e300;  // its last status; the start of its run of good ones
+  bool handed_over_ = false;  // latched
+  bool stopped_for_car_ = false;
 };
 
 }  // namespace brickyard::control

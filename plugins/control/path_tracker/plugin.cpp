@@ -8,6 +8,7 @@
 #include "control/path_tracker.hpp"
 #include "control/steering_activity.hpp"
 #include "control/vehicle_tracking.hpp"
+#include "tracker_messages.hpp"
 #include "tracker_params.hpp"
 #include "vehicle_param.hpp"
 
@@ -77,17 +78,13 @@ class PathTrackerNode : public Plugin {
   void step(Context& ctx) override {
     auto paths = io_.path.take();
     if (!paths.empty()) {
-      const msgs::Path& m = *paths.back();
-      std::vector<PathPoint> pts;
-      const std::size_t n = m.poses().size();
-      for (std::size_t i = 0; i < n; ++i)
-        pts.push_back({m.poses()[i].x(), m.poses()[i].y(), i < m.speed().size() ? m.speed()[i] : 0.0});
-      tracker_.set_path(std::move(pts));
+      tracker_.set_path(plugins::path_points(*paths.back()));
       ++paths_;
     }
     for (auto& e : io_.estimate.take()) {
-      const double t = 1e-9 * static_cast<double>(e->header().stamp_ns());
-      const Command c = tracker_.control(CarState{e->x(), e->y(), e->yaw(), e->speed(), e->yaw_rate(), 0.0, t});
+      const CarState car = plugins::car_state(*e);
+      const double t = car.time;
+      const Command c = tracker_.control(car);
       io_.command.publish(command_message(c, "path_tracker", e->header().stamp_ns(), seq_++));
       cte_max_ = std::max(cte_max_, std::abs(tracker_.cross_track()));
       steering_.add(t, c.steer);

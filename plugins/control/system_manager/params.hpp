@@ -68,6 +68,8 @@ inline ParamBinding<Settings> bindings() {
       .doc("wall_pedals cautious, stop_steering wall_or_path: a path command older than this is not used");
   b.bind("controller_timeout_s", &Settings::manager, &M::controller_timeout_s).in_unit("s").range(0.01, 3600)
       .doc("a controller whose commands have come and then not for this long is silent: not forwarded (to the wall follower, or SAFE_STOP)");
+  b.bind("vehicle_timeout_s", &Settings::manager, &M::vehicle_timeout_s).in_unit("s").range(0.01, 3600)
+      .doc("input vehicle wired: no vehicle status this long (from the start too) is a silent car side: SAFE_STOP");
   bind_flags(b);
   return b;
 }

@@ -4,7 +4,6 @@
 // controlled stop). Publishes ModeStatus; logs and counts every transition.
 #include <brickyard/msgs/ControlCommand.h>
 #include <brickyard/msgs/LocalizationEstimate.h>
-#include <brickyard/msgs/ModeStatus.h>
 #include <brickyard/msgs/RaceControl.h>
 #include <brickyard/msgs/WallEstimate.h>
 #include <brickyard/plugin.hpp>
@@ -13,6 +12,7 @@
 #include "control/common/mode_command.hpp"
 #include "control/common/mode_stats.hpp"
 #include "control/common/system_manager.hpp"
+#include "messages.hpp"
 #include "params.hpp"
 
 #include <optional>
@@ -28,6 +28,7 @@ struct Ports {
   Input<msgs::ControlCommand> path_command, wall_command;
   Input<msgs::RaceControl> race_control;
   Input<msgs::LocalizationEstimate> estimate;
+  Input<msgs::VehicleStatus> vehicle;
   Output<msgs::ControlCommand> command;
   Output<msgs::ModeStatus> mode;
 };
@@ -40,6 +41,7 @@ PortBinding<Ports> ports() {
   b.input("wall_command", &Ports::wall_command).doc("the wall follower's command (unwired: no fallback controller)").optional().depth(8);
   b.input("race_control", &Ports::race_control).doc("race control's flags (the vehicle interface's; unwired: none obeyed)").optional().depth(16);
   b.input("estimate", &Ports::estimate).doc("the car's speed, for a yellow flag's cap").optional().depth(8);
+  b.input("vehicle", &Ports::vehicle).doc("the vehicle interface's status: a car side that stops the car or falls silent stops it (unwired: not watched)").optional().depth(8);
   b.output("command", &Ports::command).doc("to the car");
   b.output("mode", &Ports::mode).doc("PATH / WALL_FOLLOW / SAFE_STOP, on change and every step");
   return b;
@@ -61,6 +63,7 @@ class SystemManagerNode : public Plugin {
     manager_ = SystemManager(s.manager);
     gate_.emplace(s.flags, stop_brake(plugins::read_vehicle(ctx, s.vehicle), s.flags.stop_decel_mps2));
     io_ = ports().connect(ctx);
+    if (io_.vehicle.connected()) manager_.watch_vehicle();
   }
 
   void step(Context& ctx) override {
@@ -98,6 +101,7 @@ class SystemManagerNode : public Plugin {
       last_path_ = c;
       manager_.path_command(stamp(c->header().stamp_ns()));
     }
+    for (auto& v : io_.vehicle.take()) manager_.vehicle(stamp(v->header().stamp_ns()), vehicle_health(*v));
     for (auto& c : io_.wall_command.take()) {
       last_wall_ = c;
       manager_.wall_command(stamp(c->header().stamp_ns()));
@@ -118,20 +122,15 @@ class SystemManagerNode : public Plugin {
 
   void publish(Context& ctx, double t) {
     const Mode mode = manager_.mode();
-    ModeCommand out = command_for(mode, t, plain(last_path_), plain(last_wall_), manager_.params());
+    ManagerParams p = manager_.params();
+    p.stop_on_path = p.stop_on_path || manager_.stopped_for_car();
+    ModeCommand out = command_for(mode, t, plain(last_path_), plain(last_wall_), p);
     if (io_.race_control.connected()) out.command = gate_->apply(out.command, t);
     const CommandPtr from = out.forward == Forwarded::path ? last_path_ : out.forward == Forwarded::wall ? last_wall_ : nullptr;
     msgs::ControlCommand c = command_message(out.command, controller_name(mode), ctx.now_ns(), seq_);
     c.header().frame_id(from ? from->header().frame_id() : "");  // a forwarded command keeps its frame
     io_.command.publish(std::move(c));
-    msgs::ModeStatus m;
-    m.header().stamp_ns(ctx.now_ns());
-    m.header().seq(seq_++);
-    m.mode(mode_number(mode));
-    m.mode_name(mode_name(mode));
-    m.reason(stats_.reason());
-    m.active_controller(controller_name(mode));
-    io_.mode.publish(std::move(m));
+    io_.mode.publish(mode_message(mode, stats_.reason(), controller_name(mode), ctx.now_ns(), seq_++));
   }
 
   SystemManager manager_;

@@ -624,3 +624,89 @@ TEST(ModeStats, TransitionsEntriesAndTimeInEachMode) {
                                              "entered_SAFE_STOP", "time_s_SAFE_STOP"}));
   EXPECT_EQ(transition_line(to_wall, 1.5), "PATH -> WALL_FOLLOW at t = 1.500000 s: localization EMERGENCY");
 }
+
+// The car's side watched (the vehicle interface's status wired): its watchdog stopping the car,
+// a silent steering or brake report, or its status silent stop the car, from PATH or from the
+// wall; the car drives again once the car's side has been well for recover_after_s; a handover
+// to the drive-by-wire never ends. Unwatched, none of it counts.
+TEST(SystemManager, TheCarsSideStopsTheCarWhenItIsNotWell) {
+  auto healthy = [](SystemManager& m, double t) {
+    m.status(t, LocStatus::normal);
+    m.path_command(t);
+  };
+  SystemManager m;  // recover 2 s, vehicle timeout 0.5 s
+  m.watch_vehicle();
+  double t = 0;
+  for (; t < 1.0; t += 0.02) {
+    healthy(m, t), m.vehicle(t, {});
+    EXPECT_FALSE(m.update(t).happened) << t;
+  }
+  m.vehicle(t, {.stopping = true});
+  healthy(m, t);
+  Transition tr = m.update(t);
+  EXPECT_EQ(tr.to, Mode::safe_stop);
+  EXPECT_EQ(tr.reason, "the vehicle interface is stopping the car: the commands do not reach it");
+  t += 0.02;
+  double back = -1;
+  std::string why;
+  for (; t < 5.0; t += 0.02) {
+    healthy(m, t), m.vehicle(t, {});  // well again from 1.02 s
+    if (const Transition b = m.update(t); b.happened) back = t, why = b.reason;
+  }
+  EXPECT_NEAR(back, 3.02, 0.021);  // 2 s after
+  EXPECT_EQ(why, "the car's side well again: back to the path");
+  EXPECT_EQ(m.mode(), Mode::path);
+  m.vehicle(t, {.steering_silent = true});
+  healthy(m, t);
+  EXPECT_NE(m.update(t).reason.find("steering report silent"), std::string::npos);
+  for (t += 0.02; t < 8.0; t += 0.02) healthy(m, t), m.vehicle(t, {}), m.update(t);
+  EXPECT_EQ(m.mode(), Mode::path);
+  m.vehicle(t, {.brake_silent = true});
+  healthy(m, t);
+  EXPECT_NE(m.update(t).reason.find("brake report silent"), std::string::npos);
+  for (t += 0.02; t < 11.0; t += 0.02) healthy(m, t), m.vehicle(t, {}), m.update(t);
+  EXPECT_EQ(m.mode(), Mode::path);
+  const double last = t - 0.02;  // its last status: the interface falls silent
+  for (; t < last + 0.49; t += 0.02) {
+    healthy(m, t);
+    EXPECT_FALSE(m.update(t).happened) << t;
+  }
+  t = last + 0.52;
+  healthy(m, t);
+  tr = m.update(t);
+  EXPECT_EQ(tr.to, Mode::safe_stop);
+  EXPECT_EQ(tr.reason, "the vehicle interface silent: no status for 0.52 s");
+  t += 0.02;
+  m.vehicle(t, {.handed_over = true});
+  for (; t < 20.0; t += 0.02) {
+    healthy(m, t), m.vehicle(t, {});
+    EXPECT_FALSE(m.update(t).happened) << t;
+  }
+  EXPECT_EQ(m.mode(), Mode::safe_stop);  // handed over: for good
+
+  SystemManager unwatched;
+  for (t = 0; t < 2.0; t += 0.02) {
+    healthy(unwatched, t), unwatched.vehicle(t, {.stopping = true});
+    EXPECT_FALSE(unwatched.update(t).happened);
+  }
+}
+
+// From the wall follower too, and not back to the wall while the car's side is not well.
+TEST(SystemManager, TheCarsSideStopsTheWallFollowerToo) {
+  SystemManager m;
+  m.watch_vehicle();
+  double t = 0;
+  m.status(t, LocStatus::emergency), m.wall(t, true), m.wall_command(t), m.vehicle(t, {});
+  EXPECT_EQ(m.update(t).to, Mode::wall);
+  for (t = 0.02; t < 3.0; t += 0.02) {
+    m.status(t, LocStatus::emergency), m.wall(t, true), m.wall_command(t);
+    m.vehicle(t, {.stopping = t >= 1.0 && t < 1.5});
+    const Transition tr = m.update(t);
+    if (t < 1.0 || t >= 1.52) continue;
+    if (t < 1.01) EXPECT_EQ(tr.to, Mode::safe_stop);
+    else EXPECT_FALSE(tr.happened) << t;  // held while stopping
+  }
+  EXPECT_EQ(m.mode(), Mode::safe_stop);  // well since 1.5 s: 2 s to go
+  for (; t < 4.0; t += 0.02) m.status(t, LocStatus::emergency), m.wall(t, true), m.wall_command(t), m.vehicle(t, {}), m.update(t);
+  EXPECT_EQ(m.mode(), Mode::wall);
+}

@@ -5,6 +5,7 @@
 #include <brickyard/plugin.hpp>
 
 #include "sim/common/drive_by_wire.hpp"
+#include "sim/sensor_faults.hpp"
 #include "vehicle_interface/bus/can_bus.hpp"
 #include "vehicle_interface/mapping_param.hpp"
 
@@ -15,12 +16,17 @@ namespace brickyard::sim {
 
 namespace vi = brickyard::vehicle_interface;
 
+// Its bus's faults: "deaf", nothing the vehicle interface sends is heard (the car's computer dead,
+// or its cable cut, as a killed stack's process is: no goodbye); "mute", no report is sent.
+inline const std::vector<std::string> kBusFaultTypes = {"deaf", "mute"};
+
 struct Settings {
   std::string dbc = vi::default_dbc_file;
   std::string vehicle = plugins::default_vehicle_file;
   std::string bus, send_to;
   double report_hz = 100;
   SimDbwParams dbw;
+  FaultSchedule faults{"[]", 1, kBusFaultTypes};  // as declared: no window
 };
 
 inline ParamBinding<Settings> bindings() {
@@ -40,7 +46,17 @@ inline ParamBinding<Settings> bindings() {
   b.bind_choice("stop_steering", {{"hold", false}, {"centre", true}}, &Settings::dbw, &SimDbwParams::centre_steering)
       .doc("its own stop's wheel: the last angle held, or centred");
   b.bind("loss", &Settings::dbw, &SimDbwParams::loss).range(0, 1).doc("share of the frames lost each way, at random (seeded)");
+  b.bind_with(ParamSpec::json("faults", "[]")
+                  .doc("windows of the run's time: deaf (nothing from the vehicle interface heard), mute (no report sent)"),
+              [](const Params& p, Settings& s) { s.faults = read_faults(p, 1, kBusFaultTypes); });
   return b;
+}
+
+// Whether a window of that type is open at t (the run's time).
+inline bool bus_fault(const FaultSchedule& faults, const char* type, double t) {
+  for (const FaultWindow& w : faults.windows())
+    if (w.type == type && w.active(t)) return true;
+  return false;
 }
 
 inline vi::BusSpec bus_of(const Settings& s) {

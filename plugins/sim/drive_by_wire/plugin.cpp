@@ -10,7 +10,9 @@
 #include <brickyard/plugin.hpp>
 
 #include "sim/common/stop_meter.hpp"
+#include "sim/drive_by_wire/metrics.hpp"
 #include "sim/drive_by_wire/params.hpp"
+#include "sim/run_time.hpp"
 #include "sim/world_msg.hpp"
 
 #include <cstdio>
@@ -54,6 +56,7 @@ class DriveByWire : public Plugin {
     bus_ = vi::open_bus(bus_of(s), error);
     if (!bus_) throw BadInput("parameter 'bus': " + error);
     report_period_ns_ = static_cast<std::int64_t>(1e9 / s.report_hz);
+    faults_ = s.faults;
     io_ = ports().connect(ctx);
   }
 
@@ -61,6 +64,9 @@ class DriveByWire : public Plugin {
     const std::int64_t now = ctx.now_ns();
     frames_.clear();
     if (!bus_->poll(frames_)) failed(ctx);
+    const double t = faults_.empty() ? 0 : run_.now_s(ctx);
+    const bool deaf = bus_fault(faults_, "deaf", t), mute = bus_fault(faults_, "mute", t);
+    if (deaf) frames_unheard_ += frames_.size(), frames_.clear();
     dbw_->receive(frames_, now);
     const bool was_stopping = dbw_->stopping();
     const motion::Command c = dbw_->command(now);
@@ -70,23 +76,15 @@ class DriveByWire : public Plugin {
     publish(c, now);
     if (now < next_report_ns_) return;
     next_report_ns_ = now + report_period_ns_;
-    if (!bus_->send(dbw_->reports(reading()))) failed(ctx);
+    std::vector<vi::CanFrame> reports = dbw_->reports(reading());
+    if (mute) reports_unsent_ += reports.size(), reports.clear();
+    if (!bus_->send(reports)) failed(ctx);
   }
 
   void deactivate(Context& ctx) override {
     if (!dbw_) return;
-    const SimDbwCounts& c = dbw_->counts();
-    ctx.metric("frames_in", c.frames_in), ctx.metric("lost_in", c.lost_in), ctx.metric("lost_out", c.lost_out);
-    ctx.metric("other_frames", c.other_frames), ctx.metric("bad_frames", c.bad_frames);
-    for (std::size_t i = 0; i < vi::kRaptorCommands.size(); ++i) {
-      const std::string n = vi::raptor_name(vi::kRaptorCommands[i]);
-      ctx.metric(n + "_received", c.received[i]), ctx.metric(n + "_counter_skips", c.skips[i]), ctx.metric(n + "_counter_repeats", c.repeats[i]);
-    }
-    ctx.metric("timeouts", c.timeouts), ctx.metric("heartbeat_losses", c.heartbeat_losses);
-    if (stop_.stood() || stop_.measuring())
-      ctx.metric("stop_from_speed_mps", stop_.from_speed_mps()), ctx.metric("stop_distance_m", stop_.distance_m());
-    ctx.metric("stop_stood", stop_.stood() ? 1.0 : 0.0);
-    ctx.metric("track_cond_ack", dbw_->setpoint().track_ack), ctx.metric("veh_sig_ack", dbw_->setpoint().vehicle_ack);  // the last ct_report's
+    report_metrics(ctx, *dbw_, stop_);
+    if (!faults_.empty()) ctx.metric("frames_unheard", frames_unheard_), ctx.metric("reports_unsent", reports_unsent_);
   }
 
  private:
@@ -131,6 +129,9 @@ class DriveByWire : public Plugin {
   }
 
   std::optional<SimDriveByWire> dbw_;
+  FaultSchedule faults_;
+  RunTime run_;
+  std::uint64_t frames_unheard_ = 0, reports_unsent_ = 0;
   StopMeter stop_;
   bool stood_said_ = false;
   std::unique_ptr<vi::CanBus> bus_;

@@ -1,5 +1,6 @@
 #include "raptor_interface.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <utility>
@@ -123,6 +124,26 @@ void RaptorInterface::send_due(int64_t now_ns, bool heartbeat, InterfaceStep& ou
   counts_.frames_sent += out.frames.size();
 }
 
+void RaptorInterface::steer_stop(double now_s, int64_t now_ns, WatchdogOutput& w, std::optional<double> v) {
+  if (w.state != DbwState::stopping) {
+    if (path_stop_) path_stop_->end();
+    return;
+  }
+  if (last_state_ != DbwState::stopping) {  // the trip
+    const bool on_path = path_stop_ && path_stop_->begin(now_s);
+    ++(on_path ? counts_.path_stops : counts_.held_stops);
+  }
+  if (!path_stop_ || !path_stop_->active() || !v) return;
+  // The wheel's angle as reported, else the one commanded last.
+  const bool heard = fresh_report(RaptorMessage::steering_report, now_ns);
+  const double motor_deg = heard ? reports_.steer_motor_deg : setpoint_.actuation.steer_motor_deg;
+  const double delta = motor_deg / mapping_.maps().steering_ratio * M_PI / 180;
+  const double limit = mapping_.maps().max_steer_rad;
+  const StopCommand stop = path_stop_->step(now_s, *v, delta, p_.watchdog.stop_decel_mps2);
+  w.command.steer = std::clamp(stop.steer, -limit, limit);
+  w.command.brake = brake_for_deceleration(mapping_.maps(), stop.decel);
+}
+
 InterfaceStep RaptorInterface::step(int64_t now_ns) {
   InterfaceStep out;
   const double now_s = static_cast<double>(now_ns) * 1e-9;
@@ -132,8 +153,9 @@ InterfaceStep RaptorInterface::step(int64_t now_ns) {
     out.warnings.push_back(why);
   }
   const std::optional<double> v = speed(now_ns);
-  const WatchdogOutput w = watchdog_.update(now_s, fresh_, newest_, v);
+  WatchdogOutput w = watchdog_.update(now_s, fresh_, newest_, v);
   fresh_ = false;
+  steer_stop(now_s, now_ns, w, v);
   if (w.state != last_state_) {
     out.state_change = state_change(last_state_, watchdog_);
     last_state_ = w.state;

@@ -8,6 +8,7 @@
 // and from messages. docs/vehicle-interface.md. Framework-free; times in ns of the run's clock.
 #include "dbw_watchdog.hpp"
 #include "gear_shifter.hpp"
+#include "path_stop.hpp"
 #include "race_control.hpp"
 #include "report_monitor.hpp"
 #include "rolling_counter.hpp"
@@ -49,6 +50,8 @@ struct InterfaceCounts {
   uint64_t other_frames = 0;    // frames on the bus that are no report of ours
   uint64_t bad_reports = 0;     // reports too short, or with values out of their range
   uint64_t heartbeats = 0;      // ct_reports sent
+  uint64_t path_stops = 0;      // stops steered along the last path
+  uint64_t held_stops = 0;      // stops on the held wheel (no stop along a path, or no fresh path or estimate)
 };
 
 class RaptorInterface {
@@ -63,6 +66,10 @@ class RaptorInterface {
   std::vector<std::string> receive(const std::vector<CanFrame>& frames, int64_t now_ns);
   // One step: the watchdog, the gear and the frames due at `now_ns`.
   InterfaceStep step(int64_t now_ns);
+  // A stop steered along the stack's last path (path_stop.hpp) instead of on the held wheel; fed
+  // through path_stop().
+  void stop_on_path(PathStop stop) { path_stop_.emplace(std::move(stop)); }
+  PathStop* path_stop() { return path_stop_ ? &*path_stop_ : nullptr; }
 
   const VehicleCanMapping& mapping() const { return mapping_; }
   const DbwReports& reports() const { return reports_; }
@@ -81,6 +88,8 @@ class RaptorInterface {
   // A race control frame: true when `f` was one (read into race_, its problem said).
   bool race_frame(const CanFrame& f, int64_t now_ns, const std::function<void(std::string)>& say);
   void send_due(int64_t now_ns, bool heartbeat, InterfaceStep& out);
+  // While the watchdog stops the car: the path stop's wheel in place of the held one.
+  void steer_stop(double now_s, int64_t now_ns, WatchdogOutput& w, std::optional<double> v);
 
   VehicleCanMapping mapping_;
   RaptorInterfaceParams p_;
@@ -101,6 +110,7 @@ class RaptorInterface {
   RaceControlMonitor race_;
   std::vector<std::string> race_notes_;  // since the last step
   bool race_read_ = false;
+  std::optional<PathStop> path_stop_;
 };
 
 }  // namespace brickyard::vehicle_interface

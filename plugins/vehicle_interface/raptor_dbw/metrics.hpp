@@ -75,6 +75,7 @@ inline void report_interface(Context& ctx, const RaptorInterface& iface, const B
   const InterfaceCounts& c = iface.counts();
   metric("commands", c.commands), metric("bad_commands", c.bad_commands), metric("frames_sent", c.frames_sent);
   metric("heartbeats", c.heartbeats), metric("clamped", c.clamped), metric("other_frames", c.other_frames);
+  metric("path_stops", c.path_stops), metric("held_stops", c.held_stops);
   metric("bad_reports", c.bad_reports);
   for (RaptorMessage m : kRaptorReports) {
     const ReportCounts& r = iface.monitor().counts(m);

@@ -9,10 +9,15 @@
 #include "vehicle_interface/mapping_param.hpp"
 #include "vehicle_interface/race_control_param.hpp"
 
+#include "control/vehicle_tracking.hpp"
+
 #include <optional>
 #include <string>
 
 namespace brickyard::vehicle_interface {
+
+// The frames output: raw and decoded by the DBC, raw alone, or nothing.
+enum class FramesOut { none, raw, decoded };
 
 struct Settings {
   std::string dbc = default_dbc_file;
@@ -20,6 +25,9 @@ struct Settings {
   std::string bus, send_to, race_control_bus;
   double brake_hz = 100, accelerator_hz = 100, steering_hz = 100, gear_hz = 100, ct_report_hz = 100;
   double status_hz = 50;
+  FramesOut frames = FramesOut::decoded;
+  bool stop_on_path = true;
+  PathStopParams path_stop;
   RaptorInterfaceParams iface;
 };
 
@@ -36,6 +44,8 @@ inline ParamBinding<Settings> bindings() {
   for (auto [name, member] : {std::pair{"brake_hz", &Settings::brake_hz}, {"accelerator_hz", &Settings::accelerator_hz},
                               {"steering_hz", &Settings::steering_hz}, {"gear_hz", &Settings::gear_hz}, {"ct_report_hz", &Settings::ct_report_hz}})
     b.bind(name, member).in_unit("Hz").range(1, 1000).doc("the rate of this command on the bus");
+  b.bind_choice("frames", {{"decoded", FramesOut::decoded}, {"raw", FramesOut::raw}, {"none", FramesOut::none}}, &Settings::frames)
+      .doc("output frames: every frame written and read, with its signals decoded by the DBC (decoded), without them (raw), or none");
   b.bind("status_hz", &Settings::status_hz).in_unit("Hz").range(1, 1000).doc("how often VehicleStatus is published");
   b.bind("command_timeout_s", &Settings::iface, &I::watchdog, &W::timeout_s).in_unit("s").range(0.005, 10)
       .doc("commands older than this: throttle off, brake to a stop");
@@ -43,6 +53,10 @@ inline ParamBinding<Settings> bindings() {
       .doc("no command this long after the start: the same");
   b.bind("stop_decel_mps2", &Settings::iface, &I::watchdog, &W::stop_decel_mps2).in_unit("m/s^2").range(0.5, 20)
       .doc("the stop's deceleration by the brakes alone");
+  b.bind_choice("stop_steering", {{"path", true}, {"hold", false}}, &Settings::stop_on_path)
+      .doc("the stop's wheel: along the last path (its inputs path and estimate wired), else held at the last command");
+  b.bind("path_stop_decel_mps2", &Settings::path_stop, &PathStopParams::decel_mps2).in_unit("m/s^2").range(0.5, 20)
+      .doc("a stop along the path brakes at least this hard where the grip allows (short: the estimate's heading error grows with its length)");
   b.bind("stopped_speed_mps", &Settings::iface, &I::watchdog, &W::stopped_speed_mps).in_unit("m/s").range(0, 5);
   b.bind("hold_stopped_s", &Settings::iface, &I::watchdog, &W::hold_s).in_unit("s").range(0, 60)
       .doc("standing this long after a stop: the heartbeat stops (the drive-by-wire's safety takes over)");
@@ -64,8 +78,10 @@ inline ParamBinding<Settings> bindings() {
 
 struct Setup {
   std::optional<VehicleCanMapping> mapping;
+  DbcDatabase database;  // the whole DBC: the frames output decodes by it
   std::optional<RaceControlDbc> race_control;
   RaptorInterfaceParams params;
+  control::TrackerParams stop_tracker;  // the stop along the last path's: the lqr law with the car's facts
   BusSpec bus;
   std::optional<drivers::SourceSpec> race_control_bus;  // none: race control's frames come on `bus`
 };
@@ -75,9 +91,14 @@ template <class Files> Setup read_setup(const Files& files, const Settings& s) {
   Setup out;
   vehicle::Vehicle car;
   out.mapping.emplace(read_mapping(files, s.dbc, s.vehicle, car));
+  out.database = load_car_dbc(files, s.dbc);
   out.params = s.iface;
   out.params.rates_hz = {s.brake_hz, s.accelerator_hz, s.steering_hz, s.gear_hz, s.ct_report_hz};
   out.params.watchdog.v_max_mps = car.v_max;
+  out.stop_tracker.steer_law = control::SteerLaw::lqr;
+  out.stop_tracker.lqr.r_steer = 200;       // the race graphs' path tracker's: a smooth wheel
+  out.stop_tracker.command_latency = 0.01;  // the interface is at the bus: its own step and the frame's way
+  control::apply_vehicle(out.stop_tracker, car);
   if (const ShiftProblem p = shift_problem(s.iface.shift, out.mapping->maps()); !p.what.empty())
     throw BadInput("parameter '" + p.param + "': " + p.what + " (" + s.vehicle + ")");
   std::string error, param;

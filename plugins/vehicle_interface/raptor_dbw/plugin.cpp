@@ -5,10 +5,14 @@
 // rates, rolling counters, the gear, the team's heartbeat, the command watchdog, race control).
 // docs/vehicle-interface.md, docs/race-control.md.
 #include <brickyard/msgs/ControlCommand.h>
+#include <brickyard/msgs/Imu.h>
+#include <brickyard/msgs/LocalizationEstimate.h>
+#include <brickyard/msgs/Path.h>
 #include <brickyard/msgs/VehicleStatus.h>
-#include <brickyard/msgs/WheelSpeeds.h>
 #include <brickyard/plugin.hpp>
 
+#include "tracker_messages.hpp"
+#include "vehicle_interface/raptor_dbw/bus_messages.hpp"
 #include "vehicle_interface/raptor_dbw/metrics.hpp"
 #include "vehicle_interface/raptor_dbw/params.hpp"
 
@@ -23,16 +27,24 @@ void check(const CheckView& v) { read_setup(v, bindings().read(v.params())); }
 
 struct Ports {
   Input<msgs::ControlCommand> command;
+  Input<msgs::Path> path;
+  Input<msgs::LocalizationEstimate> estimate;
+  Input<msgs::Imu> imu;
   Output<msgs::WheelSpeeds> speeds;
   Output<msgs::VehicleStatus> status;
   Output<msgs::RaceControl> race_control;
+  Output<msgs::CanFrames> frames;
 };
 
 PortBinding<Ports> ports() {
   PortBinding<Ports> b;
   b.input("command", &Ports::command).doc("steer, throttle, brake: driven until command_timeout_s old, then a stop").depth(16);
+  b.input("path", &Ports::path).doc("the planner's path: the stop steers along the last one (unwired: the wheel held)").optional().depth(2);
+  b.input("estimate", &Ports::estimate).doc("the car's pose: where the stop along the path starts from").optional().depth(8);
+  b.input("imu", &Ports::imu).doc("the IMU (its own process's, to outlive the stack): the stop's yaw rate (unwired: the car's model)").optional().depth(16);
   b.output("speeds", &Ports::speeds).doc("the four wheel speeds of wheel_speed_report, m/s, stamped at receipt");
   b.output("status", &Ports::status).doc("the reports (steering, brakes, gear, rpm, diagnostics) and the interface's state, at status_hz");
+  b.output("frames", &Ports::frames).doc("the frames written and read in each step, raw and decoded by the DBC (parameter frames): the bus in a recording");
   b.output("race_control", &Ports::race_control).doc("race control's flags, target speed, lap and heartbeat: on each frame, at status_hz");
   return b;
 }
@@ -59,8 +71,11 @@ class RaptorDbw : public Plugin {
     if (setup.race_control_bus && !(race_bus_ = open_udp_receiver(*setup.race_control_bus, error)))
       throw BadInput("parameter 'race_control_bus': " + error);
     iface_.emplace(std::move(*setup.mapping), setup.params, std::move(setup.race_control));
-    status_period_ns_ = static_cast<std::int64_t>(1e9 / s.status_hz);
     io_ = ports().connect(ctx);
+    if (s.stop_on_path && io_.path.connected() && io_.estimate.connected()) iface_->stop_on_path(PathStop(setup.stop_tracker, s.path_stop));
+    status_period_ns_ = static_cast<std::int64_t>(1e9 / s.status_hz);
+    if (s.frames != FramesOut::none) bus_log_.emplace(std::move(setup.database), s.frames == FramesOut::decoded);
+    bus_name_ = s.bus;
   }
 
   void step(Context& ctx) override {
@@ -68,11 +83,17 @@ class RaptorDbw : public Plugin {
     for (const auto& c : io_.command.take())
       if (std::string why = iface_->command({c->steer(), c->throttle(), c->brake(), c->target_speed()}); !why.empty())
         if (iface_->counts().bad_commands <= 20) warn(ctx, "command refused: " + why);  // then only counted
+    if (PathStop* stop = iface_->path_stop()) {
+      for (const auto& p : io_.path.take()) stop->path(1e-9 * static_cast<double>(p->header().stamp_ns()), plugins::path_points(*p));
+      for (const auto& e : io_.estimate.take()) stop->estimate(plugins::car_state(*e).time, plugins::car_state(*e));
+      for (const auto& m : io_.imu.take()) stop->gyro(1e-9 * static_cast<double>(m->header().stamp_ns()), m->gyro_z());
+    }
     frames_.clear();
     if (!bus_->poll(frames_) || (race_bus_ && !race_bus_->poll(frames_))) device_failed(ctx);
+    if (bus_log_) bus_log_->add(frames_, now, false);
     for (const std::string& w : iface_->receive(frames_, now)) warn(ctx, w);
     const std::uint64_t wheel_reports = iface_->monitor().counts(RaptorMessage::wheel_speed_report).received;
-    if (wheel_reports != wheel_reports_) publish_speeds(now), wheel_reports_ = wheel_reports;
+    if (wheel_reports != wheel_reports_) io_.speeds.publish(speeds_message(iface_->reports(), now, speeds_seq_++)), wheel_reports_ = wheel_reports;
     const InterfaceStep out = iface_->step(now);
     for (const std::string& w : out.warnings) warn(ctx, w);
     for (const std::string& n : out.notes) ctx.log(LogLevel::info, n);
@@ -82,6 +103,7 @@ class RaptorDbw : public Plugin {
       ctx.status("dbw", dbw_state_name(iface_->watchdog().state()));
     }
     if (!bus_->send(out.frames)) device_failed(ctx);
+    publish_frames(out.frames, now);
     if (out.race_control_changed || now >= next_status_ns_)
       io_.race_control.publish(race_control_message(iface_->race_control(), now, race_seq_++));
     if (changed || now >= next_status_ns_) publish_status(now), next_status_ns_ = now + status_period_ns_;
@@ -102,14 +124,11 @@ class RaptorDbw : public Plugin {
     bus_error_logged_ = true;
   }
 
-  void publish_speeds(std::int64_t now) {
-    const DbwReports& r = iface_->reports();
-    msgs::WheelSpeeds m;
-    m.header().stamp_ns(now);
-    m.header().seq(speeds_seq_++);
-    m.header().frame_id("vehicle");
-    m.front_left(r.wheel_fl), m.front_right(r.wheel_fr), m.rear_left(r.wheel_rl), m.rear_right(r.wheel_rr);
-    io_.speeds.publish(std::move(m));
+  void publish_frames(const std::vector<CanFrame>& sent, std::int64_t now) {
+    if (!bus_log_) return;
+    bus_log_->add(sent, now, true);
+    if (!bus_log_->frames().empty()) io_.frames.publish(can_frames_message(*bus_log_, bus_name_, now, frames_seq_++));
+    bus_log_->clear();
   }
 
   void publish_status(std::int64_t now) { io_.status.publish(status_message(*iface_, now, status_seq_++)); }
@@ -119,7 +138,9 @@ class RaptorDbw : public Plugin {
   std::vector<CanFrame> frames_;
   Ports io_;
   std::uint64_t wheel_reports_ = 0;
-  std::uint32_t speeds_seq_ = 0, status_seq_ = 0, race_seq_ = 0;
+  std::optional<BusLog> bus_log_;
+  std::string bus_name_;
+  std::uint32_t speeds_seq_ = 0, status_seq_ = 0, race_seq_ = 0, frames_seq_ = 0;
   std::int64_t status_period_ns_ = 0, next_status_ns_ = 0;
   bool bus_error_logged_ = false;
 };
