@@ -31,8 +31,9 @@ car_graph=$configs/car.json
 "$by" run "$car_graph" "${car_args[@]}" --domain "$domain" --out "$out/car" --no-report --progress 0 \
   > "$out/car.log" 2>&1 &
 pid_car=$!
-for _ in $(seq 100); do grep -q "^\[brickyard\] running" "$out/car.log" && break; sleep 0.1; done
-grep -q "^\[brickyard\] running" "$out/car.log" || { cat "$out/car.log"; echo "FAIL: the car's process did not start"; exit 1; }
+# (a split car's processes say it prefixed by their names: "[stack] [brickyard] running")
+for _ in $(seq 100); do grep -q "^\(\[[a-z]*\] \)\?\[brickyard\] running" "$out/car.log" && break; sleep 0.1; done
+grep -q "^\(\[[a-z]*\] \)\?\[brickyard\] running" "$out/car.log" || { cat "$out/car.log"; echo "FAIL: the car's process did not start"; exit 1; }
 # Ready as a team waits for its car before the green: the planner's road graph built (it takes
 # it the first second or so of its run; on the sim clock the direct graph's time stands still
 # meanwhile, so a simulator started before would cost lap 1 that second, the car held).

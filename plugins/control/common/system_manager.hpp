@@ -120,6 +120,7 @@ class SystemManager {
   VehicleHealth vehicle_;
   double vehicle_t_ = -1e300, vehicle_well_since_ = -1e300;  // its last status; the start of its run of good ones
   bool handed_over_ = false;  // latched
+  bool vehicle_ever_well_ = false;
   bool stopped_for_car_ = false;
 };
 

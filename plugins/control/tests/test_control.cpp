@@ -691,6 +691,22 @@ TEST(SystemManager, TheCarsSideStopsTheCarWhenItIsNotWell) {
   }
 }
 
+// A car side not well at the start (the drive-by-wire's reports not heard yet: it starts after the
+// stack) holds the car, and its first good status hands it over at once, as the first NORMAL does.
+TEST(SystemManager, TheCarsSideFirstWellAtTheStartDrivesAtOnce) {
+  SystemManager m;
+  m.watch_vehicle();
+  double t = 0;
+  m.status(t, LocStatus::normal), m.path_command(t), m.vehicle(t, {.steering_silent = true});
+  EXPECT_EQ(m.update(t).to, Mode::safe_stop);
+  for (t = 0.02; t < 3.0; t += 0.02) {
+    m.status(t, LocStatus::normal), m.path_command(t), m.vehicle(t, {.steering_silent = true, .brake_silent = true});
+    EXPECT_FALSE(m.update(t).happened) << t;
+  }
+  m.status(t, LocStatus::normal), m.path_command(t), m.vehicle(t, {});
+  EXPECT_EQ(m.update(t).to, Mode::path);
+}
+
 // From the wall follower too, and not back to the wall while the car's side is not well.
 TEST(SystemManager, TheCarsSideStopsTheWallFollowerToo) {
   SystemManager m;

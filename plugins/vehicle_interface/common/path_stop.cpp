@@ -2,8 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <utility>
 
 namespace brickyard::vehicle_interface {
@@ -126,7 +124,6 @@ StopCommand PathStop::step(double now, double v, double delta, double least) {
   StopCommand out;
   out.steer = tracker_.control(pose_).steer;
   out.decel = deceleration(v, std::max(least, p_.decel_mps2));
-  if (getenv("DBG_PS")) fprintf(stderr, "PS t=%.3f x=%.2f y=%.2f yaw=%.4f v=%.2f d=%.4f cte=%.2f out=%.4f dec=%.2f k=%.4f ahead=%.1f\n", now, pose_.x, pose_.y, pose_.yaw, v, delta, tracker_.cross_track(), out.steer, out.decel, tracker_.path_curvature(), 0.0);
   return out;
 }
 

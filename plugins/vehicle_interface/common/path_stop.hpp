@@ -2,12 +2,13 @@
 // The stop along the last path: when the stack's commands stop (its process died, or it hangs),
 // the interface brakes (dbw_watchdog.hpp) and, instead of holding the wheel at its last angle,
 // steers along the last path the stack planned. Where the car is comes from the last estimate the
-// stack sent, carried on by dead reckoning with what the drive-by-wire reports: the wheels' speed,
-// and the steering's angle turned into a yaw rate by the single-track model's steady turn (the
-// inverse of the path tracker's feedforward), the rear axle's slide in it included. The tracker (libs/control) then steers as the
-// stack's would. Why: a held wheel keeps the car on the curvature it had; the racing line's does
-// not stay the same for the 100 to 200 m a stop from racing speed takes, and at 80 m/s a fraction
-// of a degree meets the wall (docs/vehicle-interface.md, "The stop along the last path").
+// stack sent, carried on by dead reckoning: the wheels' speed the drive-by-wire reports, and the
+// yaw rate of the IMU where one is fed, else of the single-track model for the reported steering
+// angle; the rear axle's slide in a turn included. The path tracker's law (libs/control) then
+// steers as the stack's would, and the brake meets the path's own speeds within the grip. Why: a
+// held wheel keeps the car on the curvature it had; the racing line's does not stay the same for
+// the 100 to 300 m a stop from racing speed takes, and at 80 m/s a fraction of a degree meets the
+// wall (docs/vehicle-interface.md, "The stop along the last path").
 // Framework-free; times in seconds of the run's clock.
 #include "control/path_tracker.hpp"
 
