@@ -44,11 +44,12 @@ void SystemManager::wall_command(double t) { wall_cmd_t_ = std::max(wall_cmd_t_,
 void SystemManager::vehicle(double t, const VehicleHealth& h) {
   const bool well = !h.stopping && !h.handed_over && !h.steering_silent && !h.brake_silent;
   const bool was_well = vehicle_t_ > -1e299 && t - vehicle_t_ <= p_.vehicle_timeout_s && vehicle_fault(t).empty();
-  // The run's first good status hands the car over at once, as the first NORMAL does: a car side
-  // not well yet at the start (the drive-by-wire's reports not heard yet) has lost nothing.
-  if (well && !was_well) vehicle_well_since_ = vehicle_ever_well_ ? t : t - p_.recover_after_s;
-  vehicle_ever_well_ = vehicle_ever_well_ || well;
-  if (!well) vehicle_well_since_ = 1e300;
+  // Until the car's side has once been well for recover_after_s it is still starting (the
+  // drive-by-wire's reports not all heard yet): its first good status then hands the car over at
+  // once, as the first NORMAL does; a car side that falls ill after that holds the full time.
+  if (well && !was_well) well_run_since_ = t, vehicle_well_since_ = vehicle_started_ ? t : t - p_.recover_after_s;
+  if (!well) well_run_since_ = vehicle_well_since_ = 1e300;
+  vehicle_started_ = vehicle_started_ || (well && t - well_run_since_ >= p_.recover_after_s);
   handed_over_ = handed_over_ || h.handed_over;
   vehicle_ = h;
   vehicle_t_ = t;

@@ -118,9 +118,10 @@ class SystemManager {
   bool was_resumable_ = false;  // a status good enough to resume at has come this run
   bool watch_vehicle_ = false;
   VehicleHealth vehicle_;
-  double vehicle_t_ = -1e300, vehicle_well_since_ = -1e300;  // its last status; the start of its run of good ones
+  double vehicle_t_ = -1e300, vehicle_well_since_ = -1e300;  // its last status; since when it counts as well
+  double well_run_since_ = 1e300;  // the start of its run of good statuses
   bool handed_over_ = false;  // latched
-  bool vehicle_ever_well_ = false;
+  bool vehicle_started_ = false;  // well for recover_after_s once
   bool stopped_for_car_ = false;
 };
 

@@ -637,7 +637,7 @@ TEST(SystemManager, TheCarsSideStopsTheCarWhenItIsNotWell) {
   SystemManager m;  // recover 2 s, vehicle timeout 0.5 s
   m.watch_vehicle();
   double t = 0;
-  for (; t < 1.0; t += 0.02) {
+  for (; t < 3.0; t += 0.02) {  // well for 2 s and more: started
     healthy(m, t), m.vehicle(t, {});
     EXPECT_FALSE(m.update(t).happened) << t;
   }
@@ -649,22 +649,22 @@ TEST(SystemManager, TheCarsSideStopsTheCarWhenItIsNotWell) {
   t += 0.02;
   double back = -1;
   std::string why;
-  for (; t < 5.0; t += 0.02) {
-    healthy(m, t), m.vehicle(t, {});  // well again from 1.02 s
+  for (; t < 7.0; t += 0.02) {
+    healthy(m, t), m.vehicle(t, {});  // well again from 3.02 s
     if (const Transition b = m.update(t); b.happened) back = t, why = b.reason;
   }
-  EXPECT_NEAR(back, 3.02, 0.021);  // 2 s after
+  EXPECT_NEAR(back, 5.02, 0.021);  // 2 s after
   EXPECT_EQ(why, "the car's side well again: back to the path");
   EXPECT_EQ(m.mode(), Mode::path);
   m.vehicle(t, {.steering_silent = true});
   healthy(m, t);
   EXPECT_NE(m.update(t).reason.find("steering report silent"), std::string::npos);
-  for (t += 0.02; t < 8.0; t += 0.02) healthy(m, t), m.vehicle(t, {}), m.update(t);
+  for (t += 0.02; t < 10.0; t += 0.02) healthy(m, t), m.vehicle(t, {}), m.update(t);
   EXPECT_EQ(m.mode(), Mode::path);
   m.vehicle(t, {.brake_silent = true});
   healthy(m, t);
   EXPECT_NE(m.update(t).reason.find("brake report silent"), std::string::npos);
-  for (t += 0.02; t < 11.0; t += 0.02) healthy(m, t), m.vehicle(t, {}), m.update(t);
+  for (t += 0.02; t < 13.0; t += 0.02) healthy(m, t), m.vehicle(t, {}), m.update(t);
   EXPECT_EQ(m.mode(), Mode::path);
   const double last = t - 0.02;  // its last status: the interface falls silent
   for (; t < last + 0.49; t += 0.02) {
@@ -678,7 +678,7 @@ TEST(SystemManager, TheCarsSideStopsTheCarWhenItIsNotWell) {
   EXPECT_EQ(tr.reason, "the vehicle interface silent: no status for 0.52 s");
   t += 0.02;
   m.vehicle(t, {.handed_over = true});
-  for (; t < 20.0; t += 0.02) {
+  for (; t < 22.0; t += 0.02) {
     healthy(m, t), m.vehicle(t, {});
     EXPECT_FALSE(m.update(t).happened) << t;
   }
@@ -692,14 +692,18 @@ TEST(SystemManager, TheCarsSideStopsTheCarWhenItIsNotWell) {
 }
 
 // A car side not well at the start (the drive-by-wire's reports not heard yet: it starts after the
-// stack) holds the car, and its first good status hands it over at once, as the first NORMAL does.
+// stack; the interface says so once their first timeout has passed) holds the car, and its first
+// good status hands it over at once, as the first NORMAL does.
 TEST(SystemManager, TheCarsSideFirstWellAtTheStartDrivesAtOnce) {
   SystemManager m;
   m.watch_vehicle();
   double t = 0;
+  m.status(t, LocStatus::normal), m.path_command(t), m.vehicle(t, {});  // (before the reports' timeout)
+  EXPECT_FALSE(m.update(t).happened);
+  t = 0.12;
   m.status(t, LocStatus::normal), m.path_command(t), m.vehicle(t, {.steering_silent = true});
   EXPECT_EQ(m.update(t).to, Mode::safe_stop);
-  for (t = 0.02; t < 3.0; t += 0.02) {
+  for (t = 0.14; t < 3.0; t += 0.02) {
     m.status(t, LocStatus::normal), m.path_command(t), m.vehicle(t, {.steering_silent = true, .brake_silent = true});
     EXPECT_FALSE(m.update(t).happened) << t;
   }
@@ -714,15 +718,15 @@ TEST(SystemManager, TheCarsSideStopsTheWallFollowerToo) {
   double t = 0;
   m.status(t, LocStatus::emergency), m.wall(t, true), m.wall_command(t), m.vehicle(t, {});
   EXPECT_EQ(m.update(t).to, Mode::wall);
-  for (t = 0.02; t < 3.0; t += 0.02) {
+  for (t = 0.02; t < 5.0; t += 0.02) {  // well until 3 s: started
     m.status(t, LocStatus::emergency), m.wall(t, true), m.wall_command(t);
-    m.vehicle(t, {.stopping = t >= 1.0 && t < 1.5});
+    m.vehicle(t, {.stopping = t >= 3.0 && t < 3.5});
     const Transition tr = m.update(t);
-    if (t < 1.0 || t >= 1.52) continue;
-    if (t < 1.01) EXPECT_EQ(tr.to, Mode::safe_stop);
+    if (t < 3.0 || t >= 3.52) continue;
+    if (t < 3.01) EXPECT_EQ(tr.to, Mode::safe_stop);
     else EXPECT_FALSE(tr.happened) << t;  // held while stopping
   }
-  EXPECT_EQ(m.mode(), Mode::safe_stop);  // well since 1.5 s: 2 s to go
-  for (; t < 4.0; t += 0.02) m.status(t, LocStatus::emergency), m.wall(t, true), m.wall_command(t), m.vehicle(t, {}), m.update(t);
+  EXPECT_EQ(m.mode(), Mode::safe_stop);  // well since 3.5 s: 2 s to go
+  for (; t < 6.0; t += 0.02) m.status(t, LocStatus::emergency), m.wall(t, true), m.wall_command(t), m.vehicle(t, {}), m.update(t);
   EXPECT_EQ(m.mode(), Mode::wall);
 }
