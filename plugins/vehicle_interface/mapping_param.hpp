@@ -22,10 +22,10 @@ template <class Files> DbcDatabase load_car_dbc(const Files& files, const std::s
   return std::move(*read.database);
 }
 
-// `car` gets the vehicle file's car.
+// The mapping from the DBC `db` (read from `dbc_file`) and the vehicle file; `car` gets its car.
 template <class Files>
-VehicleCanMapping read_mapping(const Files& files, const std::string& dbc_file, const std::string& vehicle_file, vehicle::Vehicle& car) {
-  const DbcDatabase db = load_car_dbc(files, dbc_file);
+VehicleCanMapping read_mapping(const Files& files, const DbcDatabase& db, const std::string& dbc_file, const std::string& vehicle_file,
+                               vehicle::Vehicle& car) {
   std::string error;
   std::optional<RaptorDbc> dbc = RaptorDbc::make(db, dbc_file, error);
   if (!dbc) throw BadInput("parameter 'dbc': " + error);
@@ -35,6 +35,12 @@ VehicleCanMapping read_mapping(const Files& files, const std::string& dbc_file, 
   VehicleCanMapping mapping(std::move(*dbc), std::move(*maps));
   if (std::string why = mapping.capacity_problem(dbc_file); !why.empty()) throw BadInput("parameter 'dbc': " + why);
   return mapping;
+}
+
+// The same, the DBC read from the `dbc` parameter's file.
+template <class Files>
+VehicleCanMapping read_mapping(const Files& files, const std::string& dbc_file, const std::string& vehicle_file, vehicle::Vehicle& car) {
+  return read_mapping(files, load_car_dbc(files, dbc_file), dbc_file, vehicle_file, car);
 }
 
 }  // namespace brickyard::vehicle_interface

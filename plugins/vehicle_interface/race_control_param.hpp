@@ -33,11 +33,15 @@ inline void check_flag_codes(const FlagCodes& c) {
 }
 
 // base_to_car_summary of the DBC a `dbc` parameter names.
-template <class Files> RaceControlDbc read_race_control_dbc(const Files& files, const std::string& dbc_file) {
+inline RaceControlDbc read_race_control_dbc(const DbcDatabase& db, const std::string& dbc_file) {
   std::string error;
-  std::optional<RaceControlDbc> rc = RaceControlDbc::make(load_car_dbc(files, dbc_file), dbc_file, error);
+  std::optional<RaceControlDbc> rc = RaceControlDbc::make(db, dbc_file, error);
   if (!rc) throw BadInput("parameter 'dbc': " + error);
   return std::move(*rc);
+}
+
+template <class Files> RaceControlDbc read_race_control_dbc(const Files& files, const std::string& dbc_file) {
+  return read_race_control_dbc(load_car_dbc(files, dbc_file), dbc_file);
 }
 
 }  // namespace brickyard::vehicle_interface

@@ -94,6 +94,8 @@ add_test(NAME evidence.can_recording
           ${RUNS}/can_recording)
 add_test(NAME cli.can_no_frames COMMAND ${EXPECT} 2 "brickyard-can: .*bad_mcap_no_frames.mcap: no CanFrames topic"
   -- $<TARGET_FILE:brickyard-can> candump ${BAD}/bad_mcap_no_frames.mcap --out ${RUNS}/x.log)
+add_test(NAME cli.can_topic_of_another_type COMMAND ${EXPECT} 2 "brickyard-can: .*bad_mcap_no_frames.mcap: topic src.out holds brickyard::msgs::Scalar, not CanFrames"
+  -- $<TARGET_FILE:brickyard-can> candump ${BAD}/bad_mcap_no_frames.mcap --out ${RUNS}/x.log --topic src.out)
 add_test(NAME cli.can_play_bad_log COMMAND ${EXPECT} 2 "brickyard-can: .*bad_candump.log: line 2: "
   -- $<TARGET_FILE:brickyard-can> play ${BAD}/bad_candump.log --to udp://127.0.0.1:9)
 add_test(NAME cli.can_play_bad_rate COMMAND ${EXPECT} 2 "brickyard-can: --rate -1: 0 \\(at once\\) or 0.001 to 1e6"

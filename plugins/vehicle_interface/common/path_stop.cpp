@@ -22,21 +22,17 @@ void PathStop::path(double stamp, std::vector<control::PathPoint> points) {
   path_stamp_ = stamp;
 }
 
-void PathStop::estimate(double stamp, const control::CarState& car) {
-  estimate_ = car;
-  estimate_stamp_ = stamp;
-}
-
 bool PathStop::begin(double now) {
   active_ = false;
-  if (path_.size() < 2 || now - estimate_stamp_ > p_.max_estimate_age_s || now - path_stamp_ > p_.max_path_age_s) return false;
+  // (written so that a time that is no number fails too)
+  if (path_.size() < 2 || !(now - estimate_.time <= p_.max_estimate_age_s) || !(now - path_stamp_ <= p_.max_path_age_s)) return false;
   tracker_.set_path(path_);
   // From the estimate's time to the trip on its own speed and yaw rate (a few hundredths of a second).
   pose_ = estimate_;
-  pose_t_ = estimate_stamp_;
+  pose_t_ = estimate_.time;
   yaw_rate_ = estimate_.yaw_rate;
   lateral_ = 0;
-  move(now - estimate_stamp_, estimate_.speed, estimate_.yaw_rate, 0);
+  move(now - estimate_.time, estimate_.speed, estimate_.yaw_rate, 0);
   pose_t_ = now;
   active_ = true;
   return true;

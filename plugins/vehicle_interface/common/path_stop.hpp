@@ -45,9 +45,10 @@ class PathStop {
  public:
   PathStop(control::TrackerParams tracker, PathStopParams p) : tracker_(tracker), p_(p) {}
 
-  // The stack's newest path and estimate (stamps: seconds of the run's clock).
+  // The stack's newest path (its stamp: seconds of the run's clock) and estimate (stamped by its
+  // `time`).
   void path(double stamp, std::vector<control::PathPoint> points);
-  void estimate(double stamp, const control::CarState& car);
+  void estimate(const control::CarState& car) { estimate_ = car; }
   // The IMU's yaw rate (rad/s, about the car's up axis): while fresh, the dead reckoning turns
   // by it rather than by the model (a banked turn, tyres the model does not know).
   void gyro(double stamp, double yaw_rate) { gyro_stamp_ = stamp, gyro_ = yaw_rate; }
@@ -82,8 +83,8 @@ class PathStop {
   control::PathTracker tracker_;
   PathStopParams p_;
   std::vector<control::PathPoint> path_;
-  double path_stamp_ = -1e300, estimate_stamp_ = -1e300;
-  control::CarState estimate_, pose_;
+  double path_stamp_ = -1e300;
+  control::CarState estimate_{.time = -1e300}, pose_;
   double pose_t_ = 0;
   double lateral_ = 0, yaw_rate_ = 0;  // the centre of gravity's sideways speed, the yaw rate
   double gyro_stamp_ = -1e300, gyro_ = 0;

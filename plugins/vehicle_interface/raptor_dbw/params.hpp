@@ -90,8 +90,8 @@ struct Setup {
 template <class Files> Setup read_setup(const Files& files, const Settings& s) {
   Setup out;
   vehicle::Vehicle car;
-  out.mapping.emplace(read_mapping(files, s.dbc, s.vehicle, car));
-  out.database = load_car_dbc(files, s.dbc);
+  out.database = load_car_dbc(files, s.dbc);  // read once: the mapping, race control and the frames output
+  out.mapping.emplace(read_mapping(files, out.database, s.dbc, s.vehicle, car));
   out.params = s.iface;
   out.params.rates_hz = {s.brake_hz, s.accelerator_hz, s.steering_hz, s.gear_hz, s.ct_report_hz};
   out.params.watchdog.v_max_mps = car.v_max;
@@ -105,7 +105,7 @@ template <class Files> Setup read_setup(const Files& files, const Settings& s) {
   std::optional<BusSpec> bus = parse_bus(s.bus, s.send_to, error, param);
   if (!bus) throw BadInput("parameter '" + param + "': " + error);
   out.bus = *bus;
-  out.race_control.emplace(read_race_control_dbc(files, s.dbc));
+  out.race_control.emplace(read_race_control_dbc(out.database, s.dbc));
   check_flag_codes(s.iface.race_control.codes);
   if (!s.race_control_bus.empty()) {
     if (!s.race_control_bus.starts_with("udp://"))

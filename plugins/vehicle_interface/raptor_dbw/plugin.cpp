@@ -85,7 +85,7 @@ class RaptorDbw : public Plugin {
         if (iface_->counts().bad_commands <= 20) warn(ctx, "command refused: " + why);  // then only counted
     if (PathStop* stop = iface_->path_stop()) {
       for (const auto& p : io_.path.take()) stop->path(1e-9 * static_cast<double>(p->header().stamp_ns()), plugins::path_points(*p));
-      for (const auto& e : io_.estimate.take()) stop->estimate(plugins::car_state(*e).time, plugins::car_state(*e));
+      for (const auto& e : io_.estimate.take()) stop->estimate(plugins::car_state(*e));
       for (const auto& m : io_.imu.take()) stop->gyro(1e-9 * static_cast<double>(m->header().stamp_ns()), m->gyro_z());
     }
     frames_.clear();

@@ -75,13 +75,13 @@ double off_path(const std::vector<control::PathPoint>& p, double x, double y) {
 TEST(PathStop, BeginsOnlyFromAFreshPathAndEstimate) {
   PathStop stop(stop_tracker(), {});
   EXPECT_FALSE(stop.begin(1.0));  // nothing yet
-  stop.estimate(0.95, {0, 0, 0, 30, 0, 0, 0.95});
+  stop.estimate({0, 0, 0, 30, 0, 0, 0.95});
   EXPECT_FALSE(stop.begin(1.0));  // no path
   stop.path(0.9, turn(200, 100, 300, 30));
   EXPECT_TRUE(stop.begin(1.0));
   EXPECT_NEAR(stop.pose().x, 1.5, 1e-9);  // carried on from 0.95 s at 30 m/s
   EXPECT_FALSE(stop.begin(1.6));          // the estimate 0.65 s old: more than 0.5 s
-  stop.estimate(1.55, {0, 0, 0, 30, 0, 0, 1.55});
+  stop.estimate({0, 0, 0, 30, 0, 0, 1.55});
   EXPECT_TRUE(stop.begin(1.6));
   EXPECT_FALSE(stop.begin(3.0));  // the path 2.1 s old
 }
@@ -94,14 +94,14 @@ TEST(PathStop, BrakesForTheSpeedsAheadAndStandsBeforeTheEnd) {
   for (std::size_t i = 0; i < straight.size(); ++i)
     if (straight[i].x >= 100) straight[i].speed = 40;  // a turn's speed 100 m on
   stop.path(0, straight);
-  stop.estimate(0, {0, 0, 0, 60, 0, 0, 0});
+  stop.estimate({0, 0, 0, 60, 0, 0, 0});
   ASSERT_TRUE(stop.begin(0));
   // (60^2 - 40^2) / (2 x 100) = 10 m/s^2 for the turn; v^2 / (2 (400 - 40)) = 5 for the end.
   EXPECT_NEAR(stop.step(0, 60, 0, 6).decel, 10, 0.15);
   EXPECT_NEAR(stop.step(0, 30, 0, 6).decel, 6, 1e-9);  // slow enough for both: the watchdog's
   PathStop short_path(stop_tracker(), p);
   short_path.path(0, turn(1e9, 0, 140, 40));
-  short_path.estimate(0, {0, 0, 0, 40, 0, 0, 0});
+  short_path.estimate({0, 0, 0, 40, 0, 0, 0});
   ASSERT_TRUE(short_path.begin(0));
   EXPECT_NEAR(short_path.step(0, 40, 0, 6).decel, 40.0 * 40 / (2 * (140 - p.end_margin_m)), 0.1);
   EXPECT_NEAR(short_path.step(0, 80, 0, 6).decel, p.max_decel_mps2, 1e-9);
@@ -113,7 +113,7 @@ TEST(PathStop, BrakesNoHarderThanTheTurnLeaves) {
   std::vector<control::PathPoint> bend = turn(100, 300, 320, 0);  // speeds 0: stand at once, were there grip
   stop.path(0, bend);
   const double a = 0.5;  // 50 m into the turn
-  stop.estimate(0, {100 * std::sin(a), 100 * (1 - std::cos(a)), a, 35, 35.0 / 100, 0, 0});
+  stop.estimate({100 * std::sin(a), 100 * (1 - std::cos(a)), a, 35, 35.0 / 100, 0, 0});
   ASSERT_TRUE(stop.begin(0));
   const StopCommand c = stop.step(0.01, 35, 0.05, 6);
   const double lateral = 35.0 * 35 / 100;  // 12.25 m/s^2 of the AV-21's 15
@@ -131,7 +131,7 @@ TEST(PathStop, KeepsTheCarOnATurnTheHeldWheelLeaves) {
     car.v = 50;
     car.delta = control::steady_steer(t.car, 0, 50);  // straight at the start: the turn starts here
     stop.path(0, path);
-    stop.estimate(0, {0, 0, 0, 50, 0, 0, 0});
+    stop.estimate({0, 0, 0, 50, 0, 0, 0});
     ASSERT_TRUE(stop.begin(0));
     double worst = 0;
     for (int k = 1; k <= 3000; ++k) {  // 3 s, some 120 m
@@ -166,7 +166,7 @@ TEST(PathStop, TheInterfaceSteersItsStopAlongThePath) {
     for (int64_t t = 0; t < 2000 * 1'000'000LL; t += 2'000'000) {
       const double now = static_cast<double>(t) * 1e-9;
       if (t < 1000 * 1'000'000LL && t % 10'000'000 == 0) iface.command({0.0, 0.3, 0, 30});
-      if (PathStop* s = iface.path_stop(); s && t % 10'000'000 == 0) s->path(now, path), s->estimate(now, {0, 0, 0, 30, 0, 0, now});
+      if (PathStop* s = iface.path_stop(); s && t % 10'000'000 == 0) s->path(now, path), s->estimate({0, 0, 0, 30, 0, 0, now});
       if (t % 10'000'000 == 0) {
         DbwReports r;
         r.wheel_fl = r.wheel_fr = r.wheel_rl = r.wheel_rr = r.speed = 30;
@@ -198,7 +198,7 @@ TEST(PathStop, TurnsByTheGyroWhereTheModelIsWrong) {
     car.v = 50;
     car.r = 50.0 / 300;
     stop.path(0, path);
-    stop.estimate(0, {0, 0, 0, 50, car.r, 0, 0});
+    stop.estimate({0, 0, 0, 50, car.r, 0, 0});
     ASSERT_TRUE(stop.begin(0));
     for (int k = 1; k <= 4000; ++k) {
       const double now = k * 1e-3;

@@ -16,7 +16,6 @@
 
 #include <fastcdr/Cdr.h>
 #include <fastcdr/FastBuffer.h>
-#include <fastcdr/exceptions/Exception.h>
 
 #include <algorithm>
 #include <chrono>
@@ -72,7 +71,7 @@ msgs::CanFrames decode(const mcap::MessageView& m, const std::string& topic) {
   try {
     cdr.read_encapsulation();
     out.deserialize(cdr);
-  } catch (const eprosima::fastcdr::exception::Exception& e) {
+  } catch (const std::exception& e) {  // fastcdr's errors, and a length in the bytes too large to allocate
     throw BadInput(topic + ": message " + std::to_string(m.sequence) + " does not decode as CanFrames (" + e.what() + ")");
   }
   return out;
