@@ -24,9 +24,9 @@ void PathStop::path(double stamp, std::vector<control::PathPoint> points) {
 
 bool PathStop::begin(double now) {
   active_ = false;
+  line_.clear();
   // (written so that a time that is no number fails too)
   if (path_.size() < 2 || !(now - estimate_.time <= p_.max_estimate_age_s) || !(now - path_stamp_ <= p_.max_path_age_s)) return false;
-  tracker_.set_path(path_);
   // From the estimate's time to the trip on its own speed and yaw rate (a few hundredths of a second).
   pose_ = estimate_;
   pose_t_ = estimate_.time;
@@ -34,6 +34,9 @@ bool PathStop::begin(double now) {
   lateral_ = 0;
   move(now - estimate_.time, estimate_.speed, estimate_.yaw_rate, 0);
   pose_t_ = now;
+  line_ = path_;
+  if (track_) line_ = stop_line(path_, nearest_point(), *track_, p_.line, {pose_.speed, p_.decel_mps2, tracker_.params().grip});
+  tracker_.set_path(line_);
   active_ = true;
   return true;
 }
@@ -41,8 +44,8 @@ bool PathStop::begin(double now) {
 std::size_t PathStop::nearest_point() const {
   std::size_t nearest = 0;
   double best = 1e300;
-  for (std::size_t i = 0; i < path_.size(); ++i) {
-    const double d = std::hypot(path_[i].x - pose_.x, path_[i].y - pose_.y);
+  for (std::size_t i = 0; i < line_.size(); ++i) {
+    const double d = std::hypot(line_[i].x - pose_.x, line_[i].y - pose_.y);
     if (d < best) best = d, nearest = i;
   }
   return nearest;
@@ -53,9 +56,9 @@ double PathStop::deceleration(double v, double least) const {
   // and standing end_margin_m before its end.
   double wanted = least, along = 0;
   const std::size_t from = nearest_point();
-  for (std::size_t i = from + 1; i < path_.size(); ++i) {
-    along += std::hypot(path_[i].x - path_[i - 1].x, path_[i].y - path_[i - 1].y);
-    const double target = path_[i].speed;
+  for (std::size_t i = from + 1; i < line_.size(); ++i) {
+    along += std::hypot(line_[i].x - line_[i - 1].x, line_[i].y - line_[i - 1].y);
+    const double target = line_[i].speed;
     if (v > target && along > 1) wanted = std::max(wanted, (v * v - target * target) / (2 * along));
   }
   const double room = along - p_.end_margin_m;

@@ -11,6 +11,8 @@
 // wall (docs/vehicle-interface.md, "The stop along the last path").
 // Framework-free; times in seconds of the run's clock.
 #include "control/path_tracker.hpp"
+#include "stop_line.hpp"
+#include "track/track.hpp"
 
 #include <optional>
 #include <vector>
@@ -33,6 +35,7 @@ struct PathStopParams {
   // a turn at the limit, and braking there spins the car.
   double end_margin_m = 40;
   double max_decel_mps2 = 12;
+  StopLineParams line;  // with the track's map: the room kept to its edges (stop_line.hpp)
 };
 
 // What the stop asks of the car now.
@@ -52,6 +55,10 @@ class PathStop {
   // The IMU's yaw rate (rad/s, about the car's up axis): while fresh, the dead reckoning turns
   // by it rather than by the model (a banked turn, tyres the model does not know).
   void gyro(double stamp, double yaw_rate) { gyro_stamp_ = stamp, gyro_ = yaw_rate; }
+  // The track's map: the stop's line keeps room to its edges (stop_line.hpp). Without one the
+  // stop follows the path as it is.
+  void map(track::Track track) { track_.emplace(std::move(track)); }
+  bool has_map() const { return track_.has_value(); }
 
   // The commands went stale at `now`: the dead reckoning starts from the last estimate. False (and
   // no steering given) when there is none, or the estimate or the path is too old.
@@ -64,8 +71,9 @@ class PathStop {
   // (the watchdog's) where the grip allows.
   StopCommand step(double now, double v, double delta, double least);
 
-  // Where the dead reckoning has the car (for tests and the log).
+  // Where the dead reckoning has the car, and the line it steers along (for tests and the log).
   const control::CarState& pose() const { return pose_; }
+  const std::vector<control::PathPoint>& line() const { return line_; }
 
  private:
   // The pose carried on by dt at speed v with the wheel at delta: the single-track model's lateral
@@ -77,12 +85,13 @@ class PathStop {
   void move(double dt, double v, double yaw_rate, double sideways);
   static constexpr double kDynamicFrom = 5;  // m/s
   static constexpr double kPiece_s = 0.002;
-  std::size_t nearest_point() const;  // the path's point nearest the car
+  std::size_t nearest_point() const;  // the line's point nearest the car
   double deceleration(double v, double least) const;
 
   control::PathTracker tracker_;
   PathStopParams p_;
-  std::vector<control::PathPoint> path_;
+  std::vector<control::PathPoint> path_, line_;  // the stack's newest; the one this stop follows
+  std::optional<track::Track> track_;
   double path_stamp_ = -1e300;
   control::CarState estimate_{.time = -1e300}, pose_;
   double pose_t_ = 0;

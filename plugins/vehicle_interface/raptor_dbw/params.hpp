@@ -57,6 +57,10 @@ inline ParamBinding<Settings> bindings() {
       .doc("the stop's wheel: along the last path (its inputs path and estimate wired), else held at the last command");
   b.bind("path_stop_decel_mps2", &Settings::path_stop, &PathStopParams::decel_mps2).in_unit("m/s^2").range(0.5, 20)
       .doc("a stop along the path brakes at least this hard where the grip allows (short: the estimate's heading error grows with its length)");
+  b.bind("stop_edge_room_m", &Settings::path_stop, &PathStopParams::line, &StopLineParams::edge_room_m).in_unit("m").range(0, 20)
+      .doc("with the map wired: the stop's line keeps the car's centre this far from the edges at the trip (less where the path has less)");
+  b.bind("stop_heading_doubt_deg", &Settings::path_stop, &PathStopParams::line, &StopLineParams::heading_doubt_deg).in_unit("deg").range(0, 10)
+      .doc("with the map wired: the heading error the dead reckoning cannot see; the room to the edges grows by its tangent per metre stopped");
   b.bind("stopped_speed_mps", &Settings::iface, &I::watchdog, &W::stopped_speed_mps).in_unit("m/s").range(0, 5);
   b.bind("hold_stopped_s", &Settings::iface, &I::watchdog, &W::hold_s).in_unit("s").range(0, 60)
       .doc("standing this long after a stop: the heartbeat stops (the drive-by-wire's safety takes over)");

@@ -4,17 +4,15 @@
 // the bus is read without blocking and the commands due are sent (common/raptor_interface.hpp:
 // rates, rolling counters, the gear, the team's heartbeat, the command watchdog, race control).
 // docs/vehicle-interface.md, docs/race-control.md.
-#include <brickyard/msgs/ControlCommand.h>
-#include <brickyard/msgs/Imu.h>
-#include <brickyard/msgs/LocalizationEstimate.h>
-#include <brickyard/msgs/Path.h>
-#include <brickyard/msgs/VehicleStatus.h>
 #include <brickyard/plugin.hpp>
 
+#include "map_msg.hpp"
+#include "newest.hpp"
 #include "tracker_messages.hpp"
 #include "vehicle_interface/raptor_dbw/bus_messages.hpp"
 #include "vehicle_interface/raptor_dbw/metrics.hpp"
 #include "vehicle_interface/raptor_dbw/params.hpp"
+#include "vehicle_interface/raptor_dbw/ports.hpp"
 
 #include <optional>
 
@@ -24,30 +22,6 @@ using namespace brickyard;
 using namespace brickyard::vehicle_interface;
 
 void check(const CheckView& v) { read_setup(v, bindings().read(v.params())); }
-
-struct Ports {
-  Input<msgs::ControlCommand> command;
-  Input<msgs::Path> path;
-  Input<msgs::LocalizationEstimate> estimate;
-  Input<msgs::Imu> imu;
-  Output<msgs::WheelSpeeds> speeds;
-  Output<msgs::VehicleStatus> status;
-  Output<msgs::RaceControl> race_control;
-  Output<msgs::CanFrames> frames;
-};
-
-PortBinding<Ports> ports() {
-  PortBinding<Ports> b;
-  b.input("command", &Ports::command).doc("steer, throttle, brake: driven until command_timeout_s old, then a stop").depth(16);
-  b.input("path", &Ports::path).doc("the planner's path: the stop steers along the last one (unwired: the wheel held)").optional().depth(2);
-  b.input("estimate", &Ports::estimate).doc("the car's pose: where the stop along the path starts from").optional().depth(8);
-  b.input("imu", &Ports::imu).doc("the IMU (its own process's, to outlive the stack): the stop's yaw rate (unwired: the car's model)").optional().depth(16);
-  b.output("speeds", &Ports::speeds).doc("the four wheel speeds of wheel_speed_report, m/s, stamped at receipt");
-  b.output("status", &Ports::status).doc("the reports (steering, brakes, gear, rpm, diagnostics) and the interface's state, at status_hz");
-  b.output("frames", &Ports::frames).doc("the frames written and read in each step, raw and decoded by the DBC (parameter frames): the bus in a recording");
-  b.output("race_control", &Ports::race_control).doc("race control's flags, target speed, lap and heartbeat: on each frame, at status_hz");
-  return b;
-}
 
 class RaptorDbw : public Plugin {
  public:
@@ -87,6 +61,7 @@ class RaptorDbw : public Plugin {
       for (const auto& p : io_.path.take()) stop->path(1e-9 * static_cast<double>(p->header().stamp_ns()), plugins::path_points(*p));
       for (const auto& e : io_.estimate.take()) stop->estimate(plugins::car_state(*e));
       for (const auto& m : io_.imu.take()) stop->gyro(1e-9 * static_cast<double>(m->header().stamp_ns()), m->gyro_z());
+      if (const auto m = plugins::newest(io_.map); m && m != refused_map_ && !stop->has_map()) take_map(ctx, *stop, m);
     }
     frames_.clear();
     if (!bus_->poll(frames_) || (race_bus_ && !race_bus_->poll(frames_))) device_failed(ctx);
@@ -131,6 +106,18 @@ class RaptorDbw : public Plugin {
     bus_log_->clear();
   }
 
+  // The track's first map (a map source republishes it); one that is no track is named once and
+  // not tried again until another comes.
+  void take_map(Context& ctx, PathStop& stop, const std::shared_ptr<const msgs::TrackMap>& m) {
+    try {
+      stop.map(track::Track(plugins::from_message(*m)));
+      ctx.log(LogLevel::info, "the stop along the path keeps room to the edges of '" + m->name() + "'");
+    } catch (const std::invalid_argument& e) {
+      if (!refused_map_) warn(ctx, "map '" + m->name() + "' refused: " + e.what() + "; the stop follows the path as it is");
+      refused_map_ = m;
+    }
+  }
+
   void publish_status(std::int64_t now) { io_.status.publish(status_message(*iface_, now, status_seq_++)); }
 
   std::optional<RaptorInterface> iface_;
@@ -143,6 +130,7 @@ class RaptorDbw : public Plugin {
   std::uint32_t speeds_seq_ = 0, status_seq_ = 0, race_seq_ = 0, frames_seq_ = 0;
   std::int64_t status_period_ns_ = 0, next_status_ns_ = 0;
   bool bus_error_logged_ = false;
+  std::shared_ptr<const msgs::TrackMap> refused_map_;
 };
 
 }  // namespace
