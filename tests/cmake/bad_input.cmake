@@ -86,6 +86,10 @@ bad_config(raptor_dbw_flag_codes_twice "node 'vehicle' \\(vehicle_interface.rapt
 bad_config(raptor_dbw_race_control_bus_not_udp "node 'vehicle' \\(vehicle_interface.raptor_dbw\\): parameter 'race_control_bus': 'can://can0': udp://HOST:PORT" validate ${RAPTOR} --set vehicle.race_control_bus=can://can0)
 bad_config(raptor_dbw_shift_hunts "node 'vehicle' \\(vehicle_interface.raptor_dbw\\): parameter 'shift_down_rpm': 4600 rpm must be below 4500 rpm, where an upshift at 7000 rpm lands" validate ${RAPTOR} --set vehicle.shift_down_rpm=4600)
 if(BRICKYARD_SIM)  # the nodes that find these live in simulator graphs
+  # The simulated Ouster: its packets go to a UDP port only; its metadata read as the driver reads it.
+  set(SIM_OUSTER ${CMAKE_CURRENT_SOURCE_DIR}/graphs/ouster_on_wire.json)
+  bad_config(sim_ouster_sink_not_udp "node 'lidar_wire' \\(sim.ouster\\): parameter 'sink': tcp://127.0.0.1:39640: an Ouster sends to udp://HOST:PORT" validate ${SIM_OUSTER} --set lidar_wire.sink=tcp://127.0.0.1:39640)
+  bad_config(sim_ouster_metadata_malformed "node 'lidar_wire' \\(sim.ouster\\): parameter 'metadata': .*malformed.json: metadata: not a JSON object" validate ${SIM_OUSTER} --set lidar_wire.metadata=${BAD}/malformed.json)
   bad_config(race_control_bad_script "node 'race_control' \\(sim.race_control\\): parameter 'script' /1/track_flag: 'blue' is no flag of this field \\(.*race_control_bad_script.json#/nodes/race_control/params/script/1/track_flag\\)" validate ${BAD}/race_control_bad_script.json)
   # The world's track file and pylons: read at validation, so nothing starts.
   bad_input(track_bad_row   "error: node 'world' \\(sim.world\\): track file .*bad_track.csv:4: field 3 is not a number: 'abc'" run ${BAD}/bad_track.json)

@@ -8,10 +8,10 @@
 
 #include "drivers/device_failure.hpp"
 #include "drivers/driver_metrics.hpp"
+#include "drivers/ouster_metadata_param.hpp"
 #include "drivers/ouster_source.hpp"
 #include "drivers/silence_watch.hpp"
 #include "drivers/source_param.hpp"
-#include "io/bounded_read.hpp"
 #include "vehicle_param.hpp"
 
 #include <cmath>
@@ -55,15 +55,10 @@ template <class Files> OusterSourceSettings source_settings(const Files& files, 
   if (o.source.kind != SourceSpec::Kind::udp && o.source.kind != SourceSpec::Kind::pcap)
     throw BadInput("parameter 'source': " + s.source + ": an Ouster sensor is read from udp:// or pcap://");
   if (o.source.kind == SourceSpec::Kind::pcap) o.capture_path = files.find_file(o.source.path);
-  const std::string path = files.find_file(s.metadata);
-  std::vector<std::uint8_t> bytes;
-  std::string error;
-  if (!io::read_regular_file(path, 16 << 20, bytes, error)) throw BadInput("parameter 'metadata': " + error);
-  if (!parse_ouster_metadata(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), o.metadata, error))
-    throw BadInput("parameter 'metadata': " + path + ": " + error);
+  o.metadata = read_ouster_metadata_param(files, s.metadata, "metadata");
   o.second_return = s.second_return;
   if (s.second_return && o.metadata.profile != OusterProfile::dual_return)
-    throw BadInput("parameter 'second_return': " + path + ": the profile " + to_string(o.metadata.profile) + " has one return");
+    throw BadInput("parameter 'second_return': " + files.find_file(s.metadata) + ": the profile " + to_string(o.metadata.profile) + " has one return");
   o.device_time = s.device_time;
   return o;
 }
