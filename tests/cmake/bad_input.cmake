@@ -90,6 +90,7 @@ if(BRICKYARD_SIM)  # the nodes that find these live in simulator graphs
   set(SIM_OUSTER ${CMAKE_CURRENT_SOURCE_DIR}/graphs/ouster_on_wire.json)
   bad_config(sim_ouster_sink_not_udp "node 'lidar_wire' \\(sim.ouster\\): parameter 'sink': tcp://127.0.0.1:39640: an Ouster sends to udp://HOST:PORT" validate ${SIM_OUSTER} --set lidar_wire.sink=tcp://127.0.0.1:39640)
   bad_config(sim_ouster_metadata_malformed "node 'lidar_wire' \\(sim.ouster\\): parameter 'metadata': .*malformed.json: metadata: not a JSON object" validate ${SIM_OUSTER} --set lidar_wire.metadata=${BAD}/malformed.json)
+  bad_config(sim_gnss_wire_bestvel_no_truth "node 'wire' \\(sim.gnss_wire\\): parameter 'bestvel': needs the car's motion: wire its input 'truth'" run ${CMAKE_CURRENT_SOURCE_DIR}/graphs/sim_gnss_wire.json --set wire.bestvel=true)
   bad_config(race_control_bad_script "node 'race_control' \\(sim.race_control\\): parameter 'script' /1/track_flag: 'blue' is no flag of this field \\(.*race_control_bad_script.json#/nodes/race_control/params/script/1/track_flag\\)" validate ${BAD}/race_control_bad_script.json)
   # The world's track file and pylons: read at validation, so nothing starts.
   bad_input(track_bad_row   "error: node 'world' \\(sim.world\\): track file .*bad_track.csv:4: field 3 is not a number: 'abc'" run ${BAD}/bad_track.json)

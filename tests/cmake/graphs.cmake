@@ -45,10 +45,12 @@ set(fail_race_control_red_soft_brake_why "node 'race_control' \\(sim\\.race_cont
 set(can_bus_cut_want "vehicle: steering_report silent: nothing for 0\\.1 s.*manager: PATH -> SAFE_STOP at t = 8\\.1[0-9]+ s: the drive-by-wire's steering report silent.*dbw: drive-by-wire: commands or heartbeat lost: braking.*manager: SAFE_STOP -> PATH at t = 10\\.5[0-9]+ s: the car's side well again.*\\[brickyard\\] success")
 # The stack killed at 34 s, at 84 m/s on IMS's straight: the interface stops the car along the path.
 set(stack_killed_can_want "vehicle: commands: ACTIVE -> STOPPING: none fresh.*vehicle: commands: STOPPING -> HANDED_OVER: stopped in [0-9.]+ m.*dbw: drive-by-wire: commands or heartbeat lost: braking.*vehicle +vehicle_interface\\.raptor_dbw .* held_stops 0 .* path_stops 1 .*\\[brickyard\\] success")
+# The receiver as a SPAN INS: every fix from INSPVAX; BESTPOS and BESTVEL, one each a fix, the driver's other reports.
+set(sim_gnss_wire_inspvax_want "rx +drivers\\.gnss .* fixes (9[5-9]|10[0-1]) .* other_reports (19[0-9]|20[0-2]) .*wire +sim\\.gnss_wire .*\\[brickyard\\] success")
 # An Ouster on its wire: every packet of the rotations read (the last one sent as the run ends), every frame whole.
 set(ouster_on_wire_want "lidar +drivers\\.ouster_lidar .* bad_column 0 · bad_crc 0 · bad_packet_type 0 · bad_size 0 · decoded_packets 3199 .* frames 49 · frames_complete 49 · frames_incomplete 0 · late 0 · missing_columns 0 .*lidar_wire +sim\\.ouster +[0-9]+ +bytes_dropped 0 · frames 51 · packets_sent 3200 .*\\[brickyard\\] success")
 foreach(g race_can_ims race_can_ims_lossy can_stack_silent_stops can_bus_cut stack_killed_can sim_gnss_wire race_control_yellow race_control_red race_control_checkered
-        race_control_silent fail_race_control_red_soft_brake ouster_on_wire)
+        race_control_silent fail_race_control_red_soft_brake ouster_on_wire sim_gnss_wire_inspvax)
   set(${g}_args --threads 1)
 endforeach()
 file(GLOB graph_files CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/graphs/*.json)

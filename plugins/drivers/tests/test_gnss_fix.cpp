@@ -279,6 +279,52 @@ TEST(GnssReport, AFixSentAsBestposbIsReadBackAsTheSameFix) {
   EXPECT_EQ(stream.decoder().refused(), 0u);
 }
 
+// BESTVEL and INSPVAX as the simulator sends them beside BESTPOS: decoded field for field, the
+// INSPVAX read back as the same fix by a driver reading INSPVAX, the BESTVEL's direction
+// clockwise from north.
+TEST(GnssReport, BestvelAndInspvaxSentAreReadBack) {
+  const Datum datum{39.7930, -86.2389, 220.0};
+  const LocalDatum d(datum);
+  GnssFixValues f;
+  f.x = 812.5, f.y = -340.25, f.z = 1.5;
+  f.sigma_x = 0.02, f.sigma_y = 0.03, f.sigma_z = 0.05;
+  f.fix_type = 3, f.valid = true;
+  MotionValues m;
+  m.east_mps = -30, m.north_mps = 40, m.up_mps = 0.5;  // 50 m/s toward north-west
+  m.roll = 0.02, m.pitch = -0.01, m.yaw = std::atan2(40.0, -30.0);
+  const GpsTime t{2400, 1234.05};
+  NovatelOem7Decoder decoder;
+  const std::vector<uint8_t> vel = encode_oem7_binary(bestvel_of(f, m, t));
+  decoder.feed(vel.data(), vel.size());
+  const auto v = decoder.next();
+  ASSERT_TRUE(v && std::holds_alternative<BestVel>(*v));
+  const BestVel& bv = std::get<BestVel>(*v);
+  EXPECT_DOUBLE_EQ(bv.horizontal_speed_mps, 50);
+  EXPECT_NEAR(bv.track_over_ground_deg, 360 - std::atan2(30.0, 40.0) * 180 / M_PI, 1e-9);  // 323.13 deg: north-west
+  EXPECT_DOUBLE_EQ(bv.vertical_speed_mps, 0.5);
+  EXPECT_EQ(bv.velocity_type, PositionType::narrow_int);
+  const InsPvaX sent = inspvax_of(f, m, d, t);
+  EXPECT_NEAR(sent.azimuth_deg, bv.track_over_ground_deg, 1e-9);  // heading along the motion here
+  EXPECT_EQ(sent.position_type, PositionType::ins_rtkfixed);
+  GnssStream stream({GnssProtocol::novatel_oem7, Oem7PositionLog::inspvax, datum, {}, {}});
+  const std::vector<uint8_t> ins = encode_oem7_binary(sent);
+  stream.feed(ins.data(), ins.size());
+  const auto back = stream.next();
+  ASSERT_TRUE(back);
+  EXPECT_NEAR(back->x, f.x, 1e-6);
+  EXPECT_NEAR(back->y, f.y, 1e-6);
+  EXPECT_NEAR(back->z, f.z, 1e-6);
+  EXPECT_EQ(back->fix_type, 3);
+  EXPECT_TRUE(back->valid);
+  EXPECT_FLOAT_EQ(back->sigma_x, 0.02f);
+  f.valid = false;  // no solution: INS inactive, read back invalid
+  const std::vector<uint8_t> none = encode_oem7_binary(inspvax_of(f, m, d, t));
+  stream.feed(none.data(), none.size());
+  const auto invalid = stream.next();
+  ASSERT_TRUE(invalid);
+  EXPECT_FALSE(invalid->valid);
+}
+
 TEST(RawImu, ASampleSentAsRawimusxIsReadBackInTheVehicleFrameToItsQuantum) {
   // An IMU mounted turned 90 deg (its x along the car's y), its Y axis sent negated on the wire.
   RawImuScale scale{1e-7, 1e-9, 125, imu_mount(0, 0, 90)};

@@ -1,19 +1,20 @@
 // sim.gnss_wire: the simulator's receiver speaking its real wire. Each fix of a simulated
 // receiver (sim.gnss, map frame) goes out as the NovAtel OEM7 BESTPOS binary log a receiver would
 // send (latitude and longitude by the datum, its sigmas, its fix type; the header's GPS time the
-// fix's measurement time plus `gps_start_s`), and each sample of a simulated IMU (sim.imu, when
+// fix's measurement time plus `gps_start_s`; with `bestvel` and `inspvax` its BESTVEL and the SPAN
+// INS's INSPVAX beside it, the car's motion from `truth`), and each sample of a simulated IMU (sim.imu, when
 // wired) as the RAWIMUSX log a SPAN receiver sends (its counts by the `imu_*` scale), down the
 // `sink`: a UDP port or a TCP listener. drivers.gnss on the other end reads them as it reads a
 // car's receiver (docs/drivers.md).
 #include <brickyard/msgs/GnssFix.h>
 #include <brickyard/msgs/Imu.h>
+#include <brickyard/msgs/VehicleState.h>
 #include <brickyard/plugin.hpp>
 
 #include "drivers/common/gnss_report.hpp"
 #include "drivers/common/novatel_oem7.hpp"
-#include "drivers/common/raw_imu.hpp"
-#include "drivers/datum_param.hpp"
-#include "drivers/io/byte_source.hpp"
+#include "newest.hpp"
+#include "sim/gnss_wire/params.hpp"
 
 #include <memory>
 #include <optional>
@@ -23,43 +24,17 @@ namespace {
 using namespace brickyard;
 using namespace brickyard::drivers;
 
-struct Settings {
-  std::string sink;
-  std::vector<double> datum;
-  // GPS time at the run's zero, s since 1980-01-06: week 2400 (2026-01-04). A whole number of
-  // milliseconds, so the log's millisecond field carries the fix's time exactly.
-  double gps_start_s = 2400 * 604800.0;
-  RawImuScale imu;
-  int imu_type = 0;
-};
-
-ParamBinding<Settings> bindings() {
-  ParamBinding<Settings> b;
-  b.bind_required("sink", &Settings::sink).doc("where the logs go: udp://HOST:PORT, or tcp://HOST:PORT to listen on (docs/drivers-transports.md)");
-  b.bind_required("datum", &Settings::datum).range(-1000, 10000).doc("the map frame's origin: latitude, longitude (deg, WGS84), height above the ellipsoid (m)");
-  b.bind("gps_start_s", &Settings::gps_start_s).in_unit("s").range(0, 1e10).doc("GPS time at the run's zero");
-  b.bind("imu_accel_per_count", &Settings::imu, &RawImuScale::accel_per_count).in_unit("m/s").range(0, 1).doc("RAWIMUSX's velocity scale factor");
-  b.bind("imu_gyro_per_count", &Settings::imu, &RawImuScale::gyro_per_count).in_unit("rad").range(0, 1).doc("RAWIMUSX's angle scale factor");
-  b.bind("imu_rate_hz", &Settings::imu, &RawImuScale::rate_hz).in_unit("Hz").range(0, 10000).doc("the IMU's output rate");
-  b.bind("imu_type", &Settings::imu_type).range(0, 255).doc("RAWIMUSX's IMU type field");
-  return b;
-}
-
-void check(const CheckView& v) {
-  const Settings s = bindings().read(v.params());
-  read_datum_param(s.datum);
-  if (const ParsedSource p = parse_source(s.sink); !p.spec) throw BadInput("parameter 'sink': " + p.error);
-}
-
 struct Ports {
   Input<msgs::GnssFix> fix;
   Input<msgs::Imu> imu;
+  Input<msgs::VehicleState> truth;
 };
 
 PortBinding<Ports> ports() {
   PortBinding<Ports> b;
   b.input("fix", &Ports::fix).doc("the simulated receiver's fixes, map frame").depth(64).steps();
   b.input("imu", &Ports::imu).doc("the simulated IMU's samples, vehicle frame (needs the imu_* scale)").optional().depth(64).steps();
+  b.input("truth", &Ports::truth).doc("the car's motion, for BESTVEL and INSPVAX (their parameters)").optional().depth(1);
   return b;
 }
 
@@ -67,7 +42,7 @@ class GnssWire : public Plugin {
  public:
   static Manifest manifest() {
     return Manifest("sim.gnss_wire", "1.0.0")
-        .describe("a simulated receiver's fixes sent as NovAtel OEM7 BESTPOSB logs down a UDP port or a TCP listener, as a car's receiver sends them")
+        .describe("a simulated receiver's fixes sent as NovAtel OEM7 BESTPOSB logs (and BESTVELB, INSPVAXB) down a UDP port or a TCP listener, as a car's receiver sends them")
         .with_ports(ports())
         .parameters(bindings())
         .check(&check);
@@ -83,6 +58,9 @@ class GnssWire : public Plugin {
     if (!sink_) throw BadInput("parameter 'sink': " + error);
     io_ = ports().connect(ctx);
     if (io_.imu.connected() && !imu_.set()) throw BadInput("parameter 'imu_accel_per_count': the imu input is wired: imu_accel_per_count, imu_gyro_per_count and imu_rate_hz are needed");
+    bestvel_ = s.bestvel, inspvax_ = s.inspvax;
+    if ((bestvel_ || inspvax_) && !io_.truth.connected())
+      throw BadInput(std::string("parameter '") + (bestvel_ ? "bestvel" : "inspvax") + "': needs the car's motion: wire its input 'truth'");
   }
 
   void step(Context& ctx) override {
@@ -104,7 +82,26 @@ class GnssWire : public Plugin {
     v.x = f.x(), v.y = f.y(), v.z = f.z();
     v.sigma_x = f.sigma_x(), v.sigma_y = f.sigma_y(), v.sigma_z = f.sigma_z();
     v.fix_type = f.fix_type(), v.valid = f.valid();
-    const std::vector<std::uint8_t> log = encode_oem7_binary(bestpos_of(v, *datum_, t));
+    send_log(encode_oem7_binary(bestpos_of(v, *datum_, t)));
+    if (!bestvel_ && !inspvax_) return;
+    const auto car = plugins::newest(io_.truth);
+    if (!car) return;  // (no motion known yet: the fix alone)
+    const MotionValues m = motion_of(*car);
+    if (bestvel_) send_log(encode_oem7_binary(bestvel_of(v, m, t)));
+    if (inspvax_) send_log(encode_oem7_binary(inspvax_of(v, m, *datum_, t)));
+  }
+
+  // The car's base_link velocity in the map frame and its attitude (an antenna's velocity differs
+  // by the yaw rate times its lever arm: up to 0.5 m/s in a turn, left out).
+  static MotionValues motion_of(const msgs::VehicleState& s) {
+    MotionValues m;
+    const double c = std::cos(s.yaw()), n = std::sin(s.yaw());
+    m.east_mps = c * s.vx() - n * s.vy(), m.north_mps = n * s.vx() + c * s.vy();
+    m.roll = s.roll(), m.pitch = s.pitch(), m.yaw = s.yaw();
+    return m;
+  }
+
+  void send_log(const std::vector<std::uint8_t>& log) {
     if (sink_->send(log.data(), log.size())) ++sent_;
   }
 
@@ -113,8 +110,7 @@ class GnssWire : public Plugin {
     v.accel = {m.accel_x(), m.accel_y(), m.accel_z()};
     v.gyro = {m.gyro_x(), m.gyro_y(), m.gyro_z()};
     v.device_time_ns = gps_start_ms_ * 1000000 + m.header().stamp_ns();
-    const std::vector<std::uint8_t> log = encode_oem7_binary(raw_imu_of(v, imu_, imu_type_));
-    if (sink_->send(log.data(), log.size())) ++sent_;
+    send_log(encode_oem7_binary(raw_imu_of(v, imu_, imu_type_)));
   }
 
   std::optional<LocalDatum> datum_;
@@ -124,7 +120,7 @@ class GnssWire : public Plugin {
   std::unique_ptr<ByteSink> sink_;
   Ports io_;
   std::uint64_t sent_ = 0;
-  bool error_logged_ = false;
+  bool error_logged_ = false, bestvel_ = false, inspvax_ = false;
 };
 
 }  // namespace
