@@ -46,6 +46,7 @@ template <class Cloud, class Packed> Packed pack(const Cloud& c, double precisio
   p.not_finite(std::move(q.not_finite));
   p.intensity_max(q.intensity_max);
   p.intensity(std::move(q.intensity));
+  p.time_offset(c.time_offset());
   return p;
 }
 
@@ -62,6 +63,9 @@ template <class Cloud, class Packed> Cloud unpack(const Packed& p) {
   c.sensor_x(p.sensor_x()), c.sensor_y(p.sensor_y()), c.sensor_z(p.sensor_z());
   c.sensor_roll(p.sensor_roll()), c.sensor_pitch(p.sensor_pitch()), c.sensor_yaw(p.sensor_yaw());
   restore(q, c.x(), c.y(), c.z(), c.intensity());
+  if (!p.time_offset().empty() && p.time_offset().size() != c.x().size())
+    throw std::invalid_argument("time_offset: " + std::to_string(p.time_offset().size()) + " times for " + std::to_string(c.x().size()) + " points");
+  c.time_offset(p.time_offset());
   return c;
 }
 

@@ -255,8 +255,10 @@ TEST(QuantizedCloud, ThePointCloudMessageComesBackWithItsHeaderAndMount) {
   c.sensor_id(2);
   c.sensor_x(1.5), c.sensor_yaw(0.25);
   c.x({1.234f, 5.678f}), c.y({-1.0f, 2.0f}), c.z({0.5f, 0.25f}), c.intensity({0.1f, 0.4f});
-  const auto q = brickyard::cloud::pack<brickyard::msgs::PointCloud, brickyard::msgs::QuantizedPointCloud>(c, 0.001);
+  c.time_offset({-0.0499f, 0.0312f});
+  auto q = brickyard::cloud::pack<brickyard::msgs::PointCloud, brickyard::msgs::QuantizedPointCloud>(c, 0.001);
   const auto r = brickyard::cloud::unpack<brickyard::msgs::PointCloud>(q);
+  EXPECT_EQ(r.time_offset(), c.time_offset());  // the points' times as they were
   EXPECT_EQ(r.header().stamp_ns(), 123456789);
   EXPECT_EQ(r.header().frame_id(), "lidar_front");
   EXPECT_EQ(r.sensor_id(), 2);
@@ -265,6 +267,8 @@ TEST(QuantizedCloud, ThePointCloudMessageComesBackWithItsHeaderAndMount) {
   ASSERT_EQ(r.x().size(), 2u);
   EXPECT_NEAR(r.x()[1], 5.678f, 0.0005 + 1e-6);
   EXPECT_NEAR(r.intensity()[0], 0.1f, 0.4 / 510 + 1e-6);
+  q.time_offset({0.0f});  // a time for one point of two: named, not restored
+  EXPECT_THROW(brickyard::cloud::unpack<brickyard::msgs::PointCloud>(q), std::invalid_argument);
 }
 
 // The estimate history: bounded, the nearest by stamp (the newest at a tie), the pose at a stamp

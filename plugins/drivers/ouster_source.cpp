@@ -25,6 +25,13 @@ std::optional<int64_t> mid_time_ns(const OusterFrame& f) {
   if (!any) return std::nullopt;
   return static_cast<int64_t>(first + (last - first) / 2);
 }
+// The last arrived column's time in the sensor's clock, ns; nothing when none arrived.
+std::optional<int64_t> last_time_ns(const OusterFrame& f) {
+  std::optional<int64_t> last;
+  for (size_t c = 0; c < f.received.size(); ++c)
+    if (f.received[c]) last = std::max(last.value_or(0), static_cast<int64_t>(f.timestamp_ns[c]));
+  return last;
+}
 }  // namespace
 
 OusterSource::OusterSource(const OusterSourceSettings& s)
@@ -74,6 +81,13 @@ StampedCloud OusterSource::cloud_of(const OusterFrame& frame, int64_t receive_ns
   if (s_.device_time && measured) {
     out.stamp_ns = clock_.stamp_ns(*measured, receive_ns);
     delays_s_.push_back(clock_.last_delay_s());
+  }
+  // Each point's time from the stamp: its column's, less the frame's middle (device time) or
+  // last column (received: the frame is handed out as its last packet comes).
+  if (const std::optional<int64_t> last = last_time_ns(frame); measured && last) {
+    const int64_t zero = s_.device_time ? *measured : *last;
+    out.time_offset_s.reserve(out.cloud.time_ns.size());
+    for (uint64_t t : out.cloud.time_ns) out.time_offset_s.push_back(static_cast<float>(1e-9 * static_cast<double>(static_cast<int64_t>(t) - zero)));
   }
   return out;
 }

@@ -32,6 +32,7 @@ struct StampedCloud {
   int64_t stamp_ns = 0;
   bool complete = false;
   int64_t arrival_ns = -1;  // the kernel's receive time of the newest packet the poll fed (udp), else -1
+  std::vector<float> time_offset_s;  // each point's time from stamp_ns (PointCloud.time_offset)
 };
 
 class OusterSource {

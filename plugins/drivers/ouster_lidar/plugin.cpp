@@ -123,6 +123,7 @@ class OusterLidar : public Plugin {
     m->sensor_x(xyz_[0]), m->sensor_y(xyz_[1]), m->sensor_z(xyz_[2]);
     m->sensor_roll(rpy_[0] * kDeg), m->sensor_pitch(rpy_[1] * kDeg), m->sensor_yaw(rpy_[2] * kDeg);
     m->x(std::move(c.cloud.x)), m->y(std::move(c.cloud.y)), m->z(std::move(c.cloud.z)), m->intensity(std::move(c.cloud.intensity));
+    m->time_offset(std::move(c.time_offset_s));
     io_.cloud.publish(std::shared_ptr<const msgs::PointCloud>(std::move(m)));
     wire_.add(ctx.now_ns(), c.arrival_ns);
   }
