@@ -32,6 +32,16 @@ template <class Log> void stamp(Log& m, GpsTime t) {
 
 bool has_solution(const GnssFixValues& fix) { return fix.valid && fix.fix_type > 0; }
 
+// The fix's position by the datum and its sigmas, in the fields BESTPOS and INSPVAX share.
+template <class Log> void place(Log& m, const GnssFixValues& fix, const LocalDatum& datum) {
+  const Geodetic g = datum.to_geodetic(Eigen::Vector3d(fix.x, fix.y, fix.z));
+  m.latitude_deg = g.latitude_deg, m.longitude_deg = g.longitude_deg;
+  m.height_msl_m = g.height_m, m.undulation_m = 0;
+  m.latitude_sigma_m = static_cast<float>(fix.sigma_y);
+  m.longitude_sigma_m = static_cast<float>(fix.sigma_x);
+  m.height_sigma_m = static_cast<float>(fix.sigma_z);
+}
+
 // Degrees clockwise from north in [0, 360) of a direction counter-clockwise from east (rad).
 double azimuth_deg(double east_ccw_rad) {
   const double a = std::fmod(90.0 - east_ccw_rad * 180.0 / M_PI, 360.0);
@@ -45,12 +55,7 @@ BestPos bestpos_of(const GnssFixValues& fix, const LocalDatum& datum, GpsTime t)
   const bool solution = has_solution(fix);
   m.solution_status = solution ? SolutionStatus::computed : SolutionStatus::insufficient_obs;
   m.position_type = solution ? position_type_of(fix.fix_type) : PositionType::none;
-  const Geodetic g = datum.to_geodetic(Eigen::Vector3d(fix.x, fix.y, fix.z));
-  m.latitude_deg = g.latitude_deg, m.longitude_deg = g.longitude_deg;
-  m.height_msl_m = g.height_m, m.undulation_m = 0;
-  m.latitude_sigma_m = static_cast<float>(fix.sigma_y);
-  m.longitude_sigma_m = static_cast<float>(fix.sigma_x);
-  m.height_sigma_m = static_cast<float>(fix.sigma_z);
+  place(m, fix, datum);
   return m;
 }
 
@@ -72,15 +77,10 @@ InsPvaX inspvax_of(const GnssFixValues& fix, const MotionValues& motion, const L
   const bool solution = has_solution(fix);
   m.ins_status = solution ? InsStatus::solution_good : InsStatus::inactive;
   m.position_type = solution ? ins_position_type_of(fix.fix_type) : PositionType::none;
-  const Geodetic g = datum.to_geodetic(Eigen::Vector3d(fix.x, fix.y, fix.z));
-  m.latitude_deg = g.latitude_deg, m.longitude_deg = g.longitude_deg;
-  m.height_msl_m = g.height_m, m.undulation_m = 0;
+  place(m, fix, datum);
   m.north_velocity_mps = motion.north_mps, m.east_velocity_mps = motion.east_mps, m.up_velocity_mps = motion.up_mps;
   m.roll_deg = motion.roll * 180.0 / M_PI, m.pitch_deg = motion.pitch * 180.0 / M_PI;
   m.azimuth_deg = azimuth_deg(motion.yaw);
-  m.latitude_sigma_m = static_cast<float>(fix.sigma_y);
-  m.longitude_sigma_m = static_cast<float>(fix.sigma_x);
-  m.height_sigma_m = static_cast<float>(fix.sigma_z);
   return m;
 }
 

@@ -31,7 +31,7 @@ void write_pixel(OusterProfile profile, const OusterFrame& f, size_t i, uint8_t*
       p[4] = at_or_zero(f.reflectivity, i), put16(p + 6, at_or_zero(f.signal, i)), put16(p + 8, at_or_zero(f.near_ir, i));
       break;
     case OusterProfile::low_data_rate:
-      put16(p, field_range(f.range_mm[i] / 8, (1u << 15) - 1) | uint32_t{at_or_zero(f.flags, i) & 1u} << 15);
+      put16(p, field_range((f.range_mm[i] + 4) / 8, (1u << 15) - 1) | uint32_t{at_or_zero(f.flags, i) & 1u} << 15);  // to the nearest 8 mm
       p[2] = at_or_zero(f.reflectivity, i), p[3] = static_cast<uint8_t>(at_or_zero(f.near_ir, i));
       break;
     case OusterProfile::dual_return:
@@ -70,21 +70,28 @@ void write_packet_header(const OusterFrame& f, const OusterMetadata& m, uint8_t*
 
 }  // namespace
 
-void encode_ouster_packets(const OusterFrame& frame, const OusterMetadata& m, std::vector<std::vector<uint8_t>>& packets) {
+int ouster_packets_per_frame(const OusterMetadata& m) {
+  const int per_packet = ouster_packet_layout(m).columns_per_packet;
+  return per_packet > 0 ? (m.columns_in_window() + per_packet - 1) / per_packet : 0;
+}
+
+std::vector<uint8_t> encode_ouster_packet(const OusterFrame& frame, const OusterMetadata& m, int index) {
   const OusterPacketLayout l = ouster_packet_layout(m);
-  const int window = m.columns_in_window();
-  for (int first = 0; first < window; first += l.columns_per_packet) {
-    std::vector<uint8_t> packet(l.packet_bytes(), 0);
-    if (l.header_bytes) write_packet_header(frame, m, packet.data());
-    for (int k = 0; k < l.columns_per_packet; ++k) {
-      // Past the window's end a packet is filled with the columns after it, marked not valid.
-      const int c = (m.column_window_first + first + k) % m.columns_per_frame;
-      uint8_t* column = packet.data() + l.header_bytes + static_cast<size_t>(k) * l.column_bytes();
-      write_column(l, frame, c, first + k < window && at_or_zero(frame.received, static_cast<size_t>(c)) != 0, column);
-    }
-    if (m.packet_crc) put64(packet.data() + packet.size() - 8, crc64_xz(packet.data(), packet.size() - 8));
-    packets.push_back(std::move(packet));
+  const int window = m.columns_in_window(), first = index * l.columns_per_packet;
+  std::vector<uint8_t> packet(l.packet_bytes(), 0);
+  if (l.header_bytes) write_packet_header(frame, m, packet.data());
+  for (int k = 0; k < l.columns_per_packet; ++k) {
+    // Past the window's end a packet is filled with the columns after it, marked not valid.
+    const int c = (m.column_window_first + first + k) % m.columns_per_frame;
+    uint8_t* column = packet.data() + l.header_bytes + static_cast<size_t>(k) * l.column_bytes();
+    write_column(l, frame, c, first + k < window && at_or_zero(frame.received, static_cast<size_t>(c)) != 0, column);
   }
+  if (m.packet_crc) put64(packet.data() + packet.size() - 8, crc64_xz(packet.data(), packet.size() - 8));
+  return packet;
+}
+
+void encode_ouster_packets(const OusterFrame& frame, const OusterMetadata& m, std::vector<std::vector<uint8_t>>& packets) {
+  for (int i = 0, n = ouster_packets_per_frame(m); i < n; ++i) packets.push_back(encode_ouster_packet(frame, m, i));
 }
 
 }  // namespace brickyard::drivers

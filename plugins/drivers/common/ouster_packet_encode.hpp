@@ -20,4 +20,9 @@ namespace brickyard::drivers {
 // (no return), as a sensor sends a return beyond its reach.
 void encode_ouster_packets(const OusterFrame& frame, const OusterMetadata& metadata, std::vector<std::vector<uint8_t>>& packets);
 
+// The number of packets a frame goes out in, and packet `index` of them alone (its columns the
+// window's index * columns_per_packet on): a sensor sends each as soon as its columns are measured.
+int ouster_packets_per_frame(const OusterMetadata& metadata);
+std::vector<uint8_t> encode_ouster_packet(const OusterFrame& frame, const OusterMetadata& metadata, int index);
+
 }  // namespace brickyard::drivers

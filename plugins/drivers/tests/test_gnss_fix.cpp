@@ -304,7 +304,18 @@ TEST(GnssReport, BestvelAndInspvaxSentAreReadBack) {
   EXPECT_DOUBLE_EQ(bv.vertical_speed_mps, 0.5);
   EXPECT_EQ(bv.velocity_type, PositionType::narrow_int);
   const InsPvaX sent = inspvax_of(f, m, d, t);
-  EXPECT_NEAR(sent.azimuth_deg, bv.track_over_ground_deg, 1e-9);  // heading along the motion here
+  const std::vector<uint8_t> sent_bytes = encode_oem7_binary(sent);
+  decoder.feed(sent_bytes.data(), sent_bytes.size());
+  const auto decoded = decoder.next();
+  ASSERT_TRUE(decoded && std::holds_alternative<InsPvaX>(*decoded));
+  const InsPvaX& iv = std::get<InsPvaX>(*decoded);
+  EXPECT_NEAR(iv.azimuth_deg, bv.track_over_ground_deg, 1e-9);  // heading along the motion here
+  EXPECT_NEAR(iv.roll_deg, 0.02 * 180 / M_PI, 1e-9);
+  EXPECT_NEAR(iv.pitch_deg, -0.01 * 180 / M_PI, 1e-9);
+  EXPECT_DOUBLE_EQ(iv.north_velocity_mps, 40);
+  EXPECT_DOUBLE_EQ(iv.east_velocity_mps, -30);
+  EXPECT_DOUBLE_EQ(iv.up_velocity_mps, 0.5);
+  EXPECT_EQ(iv.ins_status, InsStatus::solution_good);
   EXPECT_EQ(sent.position_type, PositionType::ins_rtkfixed);
   GnssStream stream({GnssProtocol::novatel_oem7, Oem7PositionLog::inspvax, datum, {}, {}});
   const std::vector<uint8_t> ins = encode_oem7_binary(sent);

@@ -72,28 +72,41 @@ void OusterEmulator::cast_pixel(const Eigen::Isometry3d& world_from_sensor, int 
   out.signal[i] = signal_of(lambertian, range);
 }
 
-std::size_t OusterEmulator::scan(const Eigen::Isometry3d& world_from_body, double x, double y, std::uint64_t t0_ns,
-                                 std::uint16_t frame_id, Rng& rng, drivers::OusterFrame& out) {
+void OusterEmulator::begin(std::uint64_t t0_ns, std::uint16_t frame_id, drivers::OusterFrame& out) const {
   size_frame(out);
   out.frame_id = frame_id;
   const int w = metadata_.columns_per_frame;
   const double column_ns = 1e9 / (metadata_.frames_per_second * static_cast<double>(w));
+  out.columns_expected = metadata_.columns_in_window();
+  out.columns_received = 0;
+  for (int k = 0; k < out.columns_expected; ++k) {
+    const int c = (metadata_.column_window_first + k) % w;
+    out.timestamp_ns[c] = t0_ns + static_cast<std::uint64_t>(std::llround(k * column_ns));
+    out.encoder_count[c] = static_cast<std::uint32_t>(static_cast<std::int64_t>(c) * 90112 / w);
+  }
+}
+
+std::size_t OusterEmulator::cast_columns(const Eigen::Isometry3d& world_from_body, double x, double y, int first, int last,
+                                         Rng& rng, drivers::OusterFrame& out) {
   const Eigen::Isometry3d world_from_sensor = world_from_body * p_.body_from_sensor;
   hint_ = track_.project(x, y, hint_).seg;
   const Eigen::Vector3d sensor = world_from_sensor.translation();
   const int seg = track_.project(sensor.x(), sensor.y(), hint_).seg;
   std::size_t rays = 0;
-  out.columns_expected = metadata_.columns_in_window();
-  for (int k = 0; k < out.columns_expected; ++k) {
-    const int c = (metadata_.column_window_first + k) % w;
-    out.timestamp_ns[c] = t0_ns + static_cast<std::uint64_t>(std::llround(k * column_ns));
-    out.encoder_count[c] = static_cast<std::uint32_t>(static_cast<std::int64_t>(c) * 90112 / w);
+  for (int k = std::max(first, 0); k < std::min(last, out.columns_expected); ++k) {
+    const int c = (metadata_.column_window_first + k) % out.width;
     out.status[c] = metadata_.profile == drivers::OusterProfile::legacy ? 0xFFFFFFFFu : 1u;
+    if (!out.received[c]) ++out.columns_received;
     out.received[c] = 1;
     for (int r = 0; r < out.height; ++r, ++rays) cast_pixel(world_from_sensor, seg, r, c, rng, out);
   }
-  out.columns_received = out.columns_expected;
   return rays;
+}
+
+std::size_t OusterEmulator::scan(const Eigen::Isometry3d& world_from_body, double x, double y, std::uint64_t t0_ns,
+                                 std::uint16_t frame_id, Rng& rng, drivers::OusterFrame& out) {
+  begin(t0_ns, frame_id, out);
+  return cast_columns(world_from_body, x, y, 0, out.columns_expected, rng, out);
 }
 
 }  // namespace brickyard::sim

@@ -8,8 +8,9 @@
 // its rows share a column's azimuth, an Ouster's beams do not (an OS-1-32's are 4.2 degrees apart
 // either way, staggered by pixel_shift_by_row), and a decoder applying the metadata's angles to a
 // grid's ranges would misplace them by metres at a hundred.
-// The rotation is cast from one pose (the car does not move while it turns, as in sim.lidar); its
-// columns are stamped across the rotation as the sensor stamps them. docs/simulator.md, "An
+// Columns are cast as the sensor measures them, across the rotation, each from the car's pose then
+// (cast_columns): the frame carries the motion of the car while it turns, as a real one does, and
+// its columns' stamps say when. docs/simulator.md, "An
 // Ouster on its wire".
 #include "drivers/common/ouster_frame.hpp"
 #include "drivers/common/ouster_metadata.hpp"
@@ -39,11 +40,20 @@ class OusterEmulator {
   // The metadata must have parsed (parse_ouster_metadata); the track outlives the emulator.
   OusterEmulator(const Track& track, drivers::OusterMetadata metadata, OusterEmulatorParams params);
 
-  // One rotation from the car at world_from_body (its base_link at x, y), the first column at
-  // t0_ns of the sensor's clock: ranges, reflectivity, signal and near-infrared per pixel, the
-  // columns of the metadata's window received. Returns the rays cast.
+  // A rotation begun: `out` sized, cleared, its window's columns stamped across the rotation from
+  // t0_ns (the sensor's clock), none cast yet.
+  void begin(std::uint64_t t0_ns, std::uint16_t frame_id, drivers::OusterFrame& out) const;
+  // The window's columns [first, last) (0: the window's first) cast from the car at
+  // world_from_body (its base_link at x, y) and marked received: ranges, reflectivity, signal and
+  // near-infrared per pixel. A sensor measures each column where the car is then: the plugin casts
+  // a packet's columns as it sends it. Returns the rays cast.
+  std::size_t cast_columns(const Eigen::Isometry3d& world_from_body, double x, double y, int first, int last, Rng& rng,
+                           drivers::OusterFrame& out);
+  // A whole rotation from one pose: begin, then every column.
   std::size_t scan(const Eigen::Isometry3d& world_from_body, double x, double y, std::uint64_t t0_ns, std::uint16_t frame_id,
                    Rng& rng, drivers::OusterFrame& out);
+  // When column k of the window (0: its first) has been measured, ns after the rotation's start.
+  double column_end_ns(int k) const { return (k + 1) * 1e9 / (metadata_.frames_per_second * static_cast<double>(metadata_.columns_per_frame)); }
 
   const drivers::OusterMetadata& metadata() const { return metadata_; }
   double rotation_s() const { return 1.0 / metadata_.frames_per_second; }

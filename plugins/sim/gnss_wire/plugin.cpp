@@ -91,13 +91,15 @@ class GnssWire : public Plugin {
     if (inspvax_) send_log(encode_oem7_binary(inspvax_of(v, m, *datum_, t)));
   }
 
-  // The car's base_link velocity in the map frame and its attitude (an antenna's velocity differs
-  // by the yaw rate times its lever arm: up to 0.5 m/s in a turn, left out).
+  // The car's base_link velocity in the map frame and its attitude, from the newest truth at the
+  // fix's step (an antenna's velocity differs by the yaw rate times its lever arm: up to 0.5 m/s in
+  // a turn, left out; the up speed 0: the car's state has none). The state's pitch is positive nose
+  // down (a rotation about its y, left); a receiver's, nose up.
   static MotionValues motion_of(const msgs::VehicleState& s) {
     MotionValues m;
     const double c = std::cos(s.yaw()), n = std::sin(s.yaw());
     m.east_mps = c * s.vx() - n * s.vy(), m.north_mps = n * s.vx() + c * s.vy();
-    m.roll = s.roll(), m.pitch = s.pitch(), m.yaw = s.yaw();
+    m.roll = s.roll(), m.pitch = -s.pitch(), m.yaw = s.yaw();
     return m;
   }
 

@@ -1,9 +1,9 @@
-// sim.ouster: an Ouster LiDAR on its wire. Each rotation is cast against the world from the car's
-// true pose, pixel by pixel in the directions the sensor's metadata JSON gives
-// (common/ouster_emulator.hpp), written as the lidar packets of the metadata's profile, and sent
-// down a UDP port across the rotation, a packet when its columns are measured, as the sensor sends
-// them: drivers.ouster_lidar on the other end reads them as it reads the sensor. The sensor's
-// clock is the run's. docs/simulator.md, "An Ouster on its wire".
+// sim.ouster: an Ouster LiDAR on its wire. Across each rotation, a packet's columns are cast
+// against the world from the car's true pose when they are measured, pixel by pixel in the
+// directions the sensor's metadata JSON gives (common/ouster_emulator.hpp), written as a lidar
+// packet of the metadata's profile and sent down a UDP port, as the sensor sends them:
+// drivers.ouster_lidar on the other end reads them as it reads the sensor. The sensor's clock is
+// the run's. docs/simulator.md, "An Ouster on its wire".
 #include <brickyard/plugin.hpp>
 
 #include "drivers/common/ouster_packet_encode.hpp"
@@ -11,7 +11,6 @@
 #include "sim/ouster/params.hpp"
 #include "sim/world_msg.hpp"
 
-#include <deque>
 #include <memory>
 #include <optional>
 
@@ -67,12 +66,17 @@ class Ouster : public Plugin {
       track_ = std::make_unique<Track>(from_message(*w));
       sensor_.emplace(*track_, metadata_, params_);
     }
+    const auto car = newest(io_.truth);
+    if (!car) return;
     const std::int64_t now = ctx.now_ns();
-    if (now >= next_rotation_ns_) cast_rotation(now);
-    while (!due_.empty() && due_.front().first <= now) {
-      const std::vector<std::uint8_t>& packet = due_.front().second;
-      if (sink_->send(packet.data(), packet.size())) ++sent_;
-      due_.pop_front();
+    // Every packet due is measured and sent (a slow step: several, of rotations back to back).
+    for (;;) {
+      if (packet_ == packets_) {
+        if (now < next_rotation_ns_) break;
+        begin_rotation(now);
+      }
+      if (due_ns(packet_) > now) break;
+      send_packet(*car);
     }
     if (!sink_->error().empty() && !error_logged_) ctx.log(LogLevel::error, "sink " + sink_->error()), error_logged_ = true;
   }
@@ -85,21 +89,26 @@ class Ouster : public Plugin {
   }
 
  private:
-  // A rotation from the newest pose, at the sensor's own pace (the first when a pose is known), its
-  // packets due as their last column is measured.
-  void cast_rotation(std::int64_t now) {
-    const auto s = newest(io_.truth);
-    if (!s) return;
-    const std::int64_t t0 = next_rotation_ns_ < 0 ? now : next_rotation_ns_;
-    const double rotation_ns = 1e9 / metadata_.frames_per_second;
-    next_rotation_ns_ = t0 + std::llround(rotation_ns);
-    rays_ += sensor_->scan(body_pose(*s), s->x(), s->y(), static_cast<std::uint64_t>(t0), frame_id_++, rng_, frame_);
-    std::vector<std::vector<std::uint8_t>> packets;
-    drivers::encode_ouster_packets(frame_, metadata_, packets);
-    const double packet_ns = rotation_ns / static_cast<double>(packets.size());
-    for (std::size_t k = 0; k < packets.size(); ++k)
-      due_.emplace_back(t0 + std::llround((k + 1) * packet_ns), std::move(packets[k]));
+  // A rotation at the sensor's own pace (the first when a pose is known).
+  void begin_rotation(std::int64_t now) {
+    rotation_start_ns_ = next_rotation_ns_ < 0 ? now : next_rotation_ns_;
+    next_rotation_ns_ = rotation_start_ns_ + std::llround(1e9 / metadata_.frames_per_second);
+    sensor_->begin(static_cast<std::uint64_t>(rotation_start_ns_), frame_id_++, frame_);
+    packets_ = drivers::ouster_packets_per_frame(metadata_), packet_ = 0;
     ++frames_;
+  }
+
+  // The window's columns of packet k.
+  int first_column(int k) const { return k * metadata_.columns_per_packet; }
+  int end_column(int k) const { return std::min(first_column(k + 1), metadata_.columns_in_window()); }
+  // Packet k goes when its last column has been measured.
+  std::int64_t due_ns(int k) const { return rotation_start_ns_ + std::llround(sensor_->column_end_ns(end_column(k) - 1)); }
+
+  // The next packet's columns cast from where the car is now, and the packet sent.
+  void send_packet(const msgs::VehicleState& car) {
+    rays_ += sensor_->cast_columns(body_pose(car), car.x(), car.y(), first_column(packet_), end_column(packet_), rng_, frame_);
+    const std::vector<std::uint8_t> packet = drivers::encode_ouster_packet(frame_, metadata_, packet_++);
+    if (sink_->send(packet.data(), packet.size())) ++sent_;
   }
 
   drivers::OusterMetadata metadata_;
@@ -107,7 +116,8 @@ class Ouster : public Plugin {
   std::unique_ptr<Track> track_;
   std::optional<OusterEmulator> sensor_;
   drivers::OusterFrame frame_;
-  std::deque<std::pair<std::int64_t, std::vector<std::uint8_t>>> due_;
+  int packets_ = 0, packet_ = 0;  // of the rotation in progress: all sent when equal
+  std::int64_t rotation_start_ns_ = 0;
   std::unique_ptr<drivers::ByteSink> sink_;
   Rng rng_;
   std::int64_t next_rotation_ns_ = -1;
