@@ -10,6 +10,11 @@
 set -u
 by=$1; graphs=$2; domain=$3; out=$4
 rm -rf "$out"; mkdir -p "$out"
+# This domain's port files (7400 + 250 x domain + 10 and 11), their lock files and semaphores:
+# what a run leaves is what was not there before it (a process killed outside this test, on the
+# same domain, leaves its own behind: /dev/shm is the machine's, not the test's).
+ports() { ls /dev/shm | grep -E "fastrtps_port($((7400 + 250 * domain + 10))|$((7400 + 250 * domain + 11)))" || true; }
+before=$(ports)
 for clock in sim real; do
   for mode in throw segfault abort exit; do
     dir="$out/$clock-$mode"
@@ -46,8 +51,8 @@ print(f"{sys.argv[2]}/{sys.argv[3]}: exit 1, named; the recording kept {n} of th
 sys.exit(0 if n >= 70 else 1)  # all but the last second's 50, at most
 PY
     # Its Fast DDS shared memory is gone: the participant's port files, named by this test's own
-    # domain (7400 + 250 x domain + 10 and 11), their lock files and semaphores.
-    left=$(ls /dev/shm | grep -E "fastrtps_port($((7400 + 250 * domain + 10))|$((7400 + 250 * domain + 11)))" || true)
+    # domain, their lock files and semaphores.
+    left=$(comm -13 <(echo "$before") <(ports))
     [ -z "$left" ] || { echo "$left"; echo "FAIL: $clock/$mode: the process left its shared memory in /dev/shm"; exit 1; }
   done
 done
