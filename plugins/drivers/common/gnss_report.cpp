@@ -59,6 +59,14 @@ BestPos bestpos_of(const GnssFixValues& fix, const LocalDatum& datum, GpsTime t)
   return m;
 }
 
+MotionValues motion_of_car(double vx, double vy, double yaw, double roll, double pitch_about_y) {
+  MotionValues m;
+  const double c = std::cos(yaw), s = std::sin(yaw);
+  m.east_mps = c * vx - s * vy, m.north_mps = s * vx + c * vy;
+  m.roll = roll, m.pitch = -pitch_about_y, m.yaw = yaw;
+  return m;
+}
+
 BestVel bestvel_of(const GnssFixValues& fix, const MotionValues& motion, GpsTime t) {
   BestVel m;
   stamp(m, t);

@@ -21,6 +21,12 @@ struct MotionValues {
   double roll = 0, pitch = 0, yaw = 0;
 };
 
+// The motion of a car whose state gives its body-frame velocity (vx forward, vy left, m/s), its
+// heading (counter-clockwise from east) and its roll and pitch as rotations about its own x and y
+// axes (so pitch positive nose down): its velocity in the map's axes, the up speed 0 (the state has
+// none), pitch turned nose up.
+MotionValues motion_of_car(double vx, double vy, double yaw, double roll, double pitch_about_y);
+
 // BESTVEL: the speed over ground, its direction from true north (degrees clockwise) and the up
 // speed; solution and velocity type as bestpos_of's for the fix.
 BestVel bestvel_of(const GnssFixValues& fix, const MotionValues& motion, GpsTime t);

@@ -279,6 +279,20 @@ TEST(GnssReport, AFixSentAsBestposbIsReadBackAsTheSameFix) {
   EXPECT_EQ(stream.decoder().refused(), 0u);
 }
 
+// The simulated car's state to a receiver's motion: 50 m/s heading north-west with 10 m/s
+// sideways (left), pitched nose down by its state's convention, nose up by the receiver's.
+TEST(GnssReport, ACarsStateIsTheReceiversMotion) {
+  const double yaw = 0.75 * M_PI;  // north-west
+  const MotionValues m = motion_of_car(50, 10, yaw, 0.02, 0.03);
+  EXPECT_NEAR(m.east_mps, 50 * std::cos(yaw) - 10 * std::sin(yaw), 1e-12);  // left of north-west is south-west
+  EXPECT_NEAR(m.north_mps, 50 * std::sin(yaw) + 10 * std::cos(yaw), 1e-12);
+  EXPECT_LT(m.east_mps, -40);
+  EXPECT_EQ(m.up_mps, 0);
+  EXPECT_EQ(m.roll, 0.02);
+  EXPECT_EQ(m.pitch, -0.03);
+  EXPECT_EQ(m.yaw, yaw);
+}
+
 // BESTVEL and INSPVAX as the simulator sends them beside BESTPOS: decoded field for field, the
 // INSPVAX read back as the same fix by a driver reading INSPVAX, the BESTVEL's direction
 // clockwise from north.

@@ -86,21 +86,11 @@ class GnssWire : public Plugin {
     if (!bestvel_ && !inspvax_) return;
     const auto car = plugins::newest(io_.truth);
     if (!car) return;  // (no motion known yet: the fix alone)
-    const MotionValues m = motion_of(*car);
+    // (from the newest truth at the fix's step; an antenna's velocity differs by the yaw rate times
+    // its lever arm, up to 0.5 m/s in a turn: left out)
+    const MotionValues m = motion_of_car(car->vx(), car->vy(), car->yaw(), car->roll(), car->pitch());
     if (bestvel_) send_log(encode_oem7_binary(bestvel_of(v, m, t)));
     if (inspvax_) send_log(encode_oem7_binary(inspvax_of(v, m, *datum_, t)));
-  }
-
-  // The car's base_link velocity in the map frame and its attitude, from the newest truth at the
-  // fix's step (an antenna's velocity differs by the yaw rate times its lever arm: up to 0.5 m/s in
-  // a turn, left out; the up speed 0: the car's state has none). The state's pitch is positive nose
-  // down (a rotation about its y, left); a receiver's, nose up.
-  static MotionValues motion_of(const msgs::VehicleState& s) {
-    MotionValues m;
-    const double c = std::cos(s.yaw()), n = std::sin(s.yaw());
-    m.east_mps = c * s.vx() - n * s.vy(), m.north_mps = n * s.vx() + c * s.vy();
-    m.roll = s.roll(), m.pitch = -s.pitch(), m.yaw = s.yaw();
-    return m;
   }
 
   void send_log(const std::vector<std::uint8_t>& log) {
