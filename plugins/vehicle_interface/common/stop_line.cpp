@@ -1,5 +1,7 @@
 #include "stop_line.hpp"
 
+#include "track/curvature.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -124,9 +126,7 @@ double curvature_at(const std::vector<control::PathPoint>& line, std::size_t i, 
   while (lo > 0 && back < half) back += step_length(line, lo), --lo;
   while (hi + 1 < line.size() && ahead < half) ahead += step_length(line, hi + 1), ++hi;
   if (!(back >= 0.5 * half && ahead >= 0.5 * half)) return 0;  // near an end, or points on one spot: none to speak of
-  const double before = std::atan2(line[i].y - line[lo].y, line[i].x - line[lo].x);
-  const double after = std::atan2(line[hi].y - line[i].y, line[hi].x - line[i].x);
-  return std::remainder(after - before, 2 * M_PI) / (0.5 * (back + ahead));
+  return track::menger_curvature(line[lo].x, line[lo].y, line[i].x, line[i].y, line[hi].x, line[hi].y);
 }
 
 std::vector<control::PathPoint> stop_line(const std::vector<control::PathPoint>& path, std::size_t from,

@@ -45,7 +45,8 @@ struct StopPace {
 std::vector<control::PathPoint> stop_line(const std::vector<control::PathPoint>& path, std::size_t from,
                                           const track::Track& track, const StopLineParams& p, const StopPace& pace);
 
-// The curvature (1/m, left positive) at point i: the turn of the chords `half` m either side of it.
+// The curvature (1/m, left positive) at point i: the project's (track::menger_curvature) of the
+// points `half` m either side of it; 0 near an end.
 double curvature_at(const std::vector<control::PathPoint>& line, std::size_t i, double half);
 
 }  // namespace brickyard::vehicle_interface
