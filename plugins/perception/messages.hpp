@@ -4,6 +4,7 @@
 #include <brickyard/msgs/ClusterList.h>
 #include <brickyard/msgs/PointCloud.h>
 
+#include "perception/common/deskew.hpp"
 #include "perception/common/frame_set.hpp"
 
 #include <cmath>
@@ -21,15 +22,24 @@ inline SensorPose sensor_pose(const msgs::PointCloud& c) {
 // beyond kMaxCoordinate once moved are dropped. Throws std::runtime_error when its coordinate
 // sequences differ in length or its sensor pose is not finite (a malformed message names itself,
 // it does not crash us).
-inline void append_vehicle_points(const msgs::PointCloud& c, Points& out) {
+// With `motion`, each point is also moved to the vehicle frame at frame_stamp_ns by the car's
+// motion since (deskew.hpp): the cloud's stamp and each point's time_offset say when it was measured.
+inline void append_vehicle_points(const msgs::PointCloud& c, Points& out, const PlanarMotion* motion = nullptr,
+                                  std::int64_t frame_stamp_ns = 0) {
   const std::size_t n = c.x().size();
   if (c.y().size() != n || c.z().size() != n)
     throw std::runtime_error("PointCloud from '" + c.header().frame_id() + "': x, y, z have " + std::to_string(n) + ", " +
                              std::to_string(c.y().size()) + ", " + std::to_string(c.z().size()) + " values");
+  if (!c.time_offset().empty() && c.time_offset().size() != n)
+    throw std::runtime_error("PointCloud from '" + c.header().frame_id() + "': " + std::to_string(c.time_offset().size()) +
+                             " time offsets for " + std::to_string(n) + " points");
   const SensorPose pose = sensor_pose(c);
   for (double v : {pose.x, pose.y, pose.z, pose.roll, pose.pitch, pose.yaw})
     if (!std::isfinite(v)) throw std::runtime_error("PointCloud from '" + c.header().frame_id() + "': sensor pose is not finite");
-  append_in_vehicle_frame(pose, c.x().data(), c.y().data(), c.z().data(), n, out);
+  if (!motion) return append_in_vehicle_frame(pose, c.x().data(), c.y().data(), c.z().data(), n, out);
+  const double cloud_dt = 1e-9 * static_cast<double>(c.header().stamp_ns() - frame_stamp_ns);
+  append_moved_to_stamp(pose, c.x().data(), c.y().data(), c.z().data(), c.time_offset().empty() ? nullptr : c.time_offset().data(),
+                        cloud_dt, n, *motion, out);
 }
 
 // A vehicle-frame cloud of the chosen points (all when `keep` is null).

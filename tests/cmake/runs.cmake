@@ -7,6 +7,9 @@ add_test(NAME cli.plan_line COMMAND ${EXPECT} 0 "ims_line.csv: 805 points, sum k
      --out ${RUNS}/ims_line.csv --profile ${RUNS}/ims_profile.csv)
 add_test(NAME cli.planned_lines_current
   COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/cli/planned_lines_current.sh $<TARGET_FILE:brickyard-plan> ${PROJECT_SOURCE_DIR} ${RUNS}/planned_lines)
+# The car's LiDAR metadata is the vendor's with the window scripts/ouster-window gives it (data/README.md).
+add_test(NAME cli.av21_ouster_current
+  COMMAND sh -c "${PROJECT_SOURCE_DIR}/scripts/ouster-window ${PROJECT_SOURCE_DIR}/data/lidar_packets/OS-2-128-U1_v2.3.0_1024x10.json 127 | cmp - ${PROJECT_SOURCE_DIR}/data/vehicles/av21_ouster.json")
 add_test(NAME cli.plan_bad_option COMMAND ${EXPECT} 2 "brickyard-plan: --margin abc: not a number"
   -- $<TARGET_FILE:brickyard-plan> line --track ${PROJECT_SOURCE_DIR}/data/tracks/IMS.csv --out ${RUNS}/x.csv --margin abc)
 add_test(NAME cli.plan_bad_min_time COMMAND ${EXPECT} 2 "brickyard-plan: --min-time maybe: expected on or off"

@@ -1,5 +1,6 @@
 // perception.ground_filter: merges the car's LiDARs into the vehicle frame and splits the voxels
 // into ground and vertical features (the paper's hashed z-vote, common/ground_filter.hpp).
+#include <brickyard/msgs/LocalizationEstimate.h>
 #include <brickyard/msgs/PointCloud.h>
 #include <brickyard/plugin.hpp>
 
@@ -38,6 +39,7 @@ ParamBinding<Settings> bindings() {
 
 struct Ports {
   std::array<Input<msgs::PointCloud>, 3> lidar;
+  Input<msgs::LocalizationEstimate> estimate;
   Output<msgs::PointCloud> points, ground;
 };
 
@@ -48,6 +50,11 @@ PortBinding<Ports> ports() {
       .required_first(1)
       .depth(4)
       .steps();
+  b.input("estimate", &Ports::estimate)
+      .doc("the car's speed and yaw rate: each point moved to the frame's stamp by the motion since it was measured "
+           "(its cloud's stamp and time_offset; unwired: points taken as measured at the frame's stamp)")
+      .optional()
+      .depth(8);
   b.output("points", &Ports::points).doc("vertical features: the non-ground voxel centroids, vehicle frame");
   b.output("ground", &Ports::ground).doc("the ground voxel centroids, vehicle frame");
   return b;
@@ -100,15 +107,17 @@ class GroundFilterNode : public Plugin {
  private:
   void process(Context& ctx, const std::vector<CloudPtr>& set) {
     merged_.clear();
+    const std::int64_t stamp = set.front()->header().stamp_ns();
+    const auto estimate = io_.estimate.latest();
+    const PlanarMotion motion = estimate ? PlanarMotion{estimate->speed(), estimate->yaw_rate()} : PlanarMotion{};
     for (const auto& c : set) {
       try {
-        append_vehicle_points(*c, merged_);
+        append_vehicle_points(*c, merged_, estimate ? &motion : nullptr, stamp);
       } catch (const std::runtime_error& e) {
         if (malformed_++ == 0) ctx.log(LogLevel::warn, std::string(e.what()) + ": cloud skipped");
       }
     }
     filter_.run(merged_, result_);
-    const std::int64_t stamp = set.front()->header().stamp_ns();
     io_.points.publish(vehicle_cloud(result_.voxels, &result_.ground, 0, stamp, seq_));
     io_.ground.publish(vehicle_cloud(result_.voxels, &result_.ground, 1, stamp, seq_));
     ++seq_;
