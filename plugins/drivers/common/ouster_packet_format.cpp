@@ -2,6 +2,9 @@
 
 #include "ouster_crc64.hpp"
 
+#include <algorithm>
+#include <utility>
+
 namespace brickyard::drivers {
 
 namespace {
@@ -78,9 +81,13 @@ void sized(std::vector<T>& v, size_t n, bool present) {
   v.resize(present ? n : 0);
 }
 
+// Zeroes the columns [first, last) of each run in every row: the image is row by row, so a run
+// of columns is contiguous in each row (column by column, every pixel written is another cache line:
+// a 127-degree window's frame left 663 of 1024 columns to zero, 2 ms a frame).
 template <typename T>
-void zero_column(std::vector<T>& v, size_t column, size_t width) {
-  for (size_t at = column; at < v.size(); at += width) v[at] = T{};
+void zero_columns(std::vector<T>& v, const std::vector<std::pair<size_t, size_t>>& runs, size_t width) {
+  for (size_t row = 0; row + width <= v.size(); row += width)
+    for (const auto& [first, last] : runs) std::fill(v.begin() + static_cast<std::ptrdiff_t>(row + first), v.begin() + static_cast<std::ptrdiff_t>(row + last), T{});
 }
 
 }  // namespace
@@ -165,18 +172,23 @@ void reset_ouster_frame(OusterFrame& f, const OusterMetadata& m, uint16_t frame_
 
 void finish_ouster_frame(OusterFrame& f) {
   const size_t w = static_cast<size_t>(f.width);
-  for (size_t c = 0; c < w; ++c) {
-    if (f.received[c]) continue;
-    zero_column(f.range_mm, c, w);
-    zero_column(f.reflectivity, c, w);
-    zero_column(f.flags, c, w);
-    zero_column(f.near_ir, c, w);
-    zero_column(f.signal, c, w);
-    zero_column(f.range2_mm, c, w);
-    zero_column(f.reflectivity2, c, w);
-    zero_column(f.flags2, c, w);
-    zero_column(f.signal2, c, w);
+  std::vector<std::pair<size_t, size_t>> runs;  // the columns not received, as runs [first, last)
+  for (size_t c = 0; c < w;) {
+    if (f.received[c]) { ++c; continue; }
+    const size_t first = c;
+    while (c < w && !f.received[c]) ++c;
+    runs.emplace_back(first, c);
   }
+  if (runs.empty()) return;
+  zero_columns(f.range_mm, runs, w);
+  zero_columns(f.reflectivity, runs, w);
+  zero_columns(f.flags, runs, w);
+  zero_columns(f.near_ir, runs, w);
+  zero_columns(f.signal, runs, w);
+  zero_columns(f.range2_mm, runs, w);
+  zero_columns(f.reflectivity2, runs, w);
+  zero_columns(f.flags2, runs, w);
+  zero_columns(f.signal2, runs, w);
 }
 
 void read_ouster_pixels(const OusterPacketLayout& layout, const uint8_t* pixels, int column, OusterFrame& f) {

@@ -1,5 +1,6 @@
 #include "ouster_xyz.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <numbers>
@@ -75,20 +76,29 @@ void ouster_frame_to_cloud(const OusterFrame& frame, const OusterXyzTable& table
   if (frame.width != table.width() || frame.height != table.height() || range.size() != table.direction().size() / 3) {
     return;  // a frame of another sensor or mode: no points rather than wrong ones
   }
-  for (auto* v : {&cloud.x, &cloud.y, &cloud.z, &cloud.intensity}) v->reserve(range.size());
-  cloud.time_ns.reserve(range.size());
-  cloud.pixel.reserve(range.size());
+  // Sized to the returns (a windowed sensor's frame is mostly columns it does not fire: fresh
+  // memory for every pixel was page faults for nothing), written in place row by row (a division
+  // a point for its column cost as much as the rest).
+  const size_t returns = range.size() - static_cast<size_t>(std::count(range.begin(), range.end(), 0u));
+  for (auto* v : {&cloud.x, &cloud.y, &cloud.z, &cloud.intensity}) v->resize(returns);
+  cloud.time_ns.resize(returns);
+  cloud.pixel.resize(returns);
   const float* dir = table.direction().data();
   const float* off = table.offset_mm().data();
-  for (size_t i = 0; i < range.size(); ++i) {
-    if (range[i] == 0) continue;
-    const float r = static_cast<float>(range[i]);
-    cloud.x.push_back((r * dir[3 * i] + off[3 * i]) * 1e-3f);
-    cloud.y.push_back((r * dir[3 * i + 1] + off[3 * i + 1]) * 1e-3f);
-    cloud.z.push_back((r * dir[3 * i + 2] + off[3 * i + 2]) * 1e-3f);
-    cloud.intensity.push_back(static_cast<float>(reflectivity[i]));
-    cloud.time_ns.push_back(frame.timestamp_ns[i % static_cast<size_t>(frame.width)]);
-    cloud.pixel.push_back(static_cast<uint32_t>(i));
+  const size_t width = static_cast<size_t>(frame.width);
+  size_t k = 0;
+  for (size_t row = 0, i = 0; row < static_cast<size_t>(frame.height); ++row) {
+    for (size_t column = 0; column < width; ++column, ++i) {
+      if (range[i] == 0) continue;
+      const float r = static_cast<float>(range[i]);
+      cloud.x[k] = (r * dir[3 * i] + off[3 * i]) * 1e-3f;
+      cloud.y[k] = (r * dir[3 * i + 1] + off[3 * i + 1]) * 1e-3f;
+      cloud.z[k] = (r * dir[3 * i + 2] + off[3 * i + 2]) * 1e-3f;
+      cloud.intensity[k] = static_cast<float>(reflectivity[i]);
+      cloud.time_ns[k] = frame.timestamp_ns[column];
+      cloud.pixel[k] = static_cast<uint32_t>(i);
+      ++k;
+    }
   }
 }
 
