@@ -107,12 +107,12 @@ class FieldReader {
 
 // Where each field lives: the nested layout of later SDKs, or the flat one of firmware 2.x.
 struct Paths {
-  std::string format, beams, lidar_intrinsics, sensor, config;
+  std::string format, beams, lidar_intrinsics, sensor, config, imu_intrinsics;
   static Paths for_root(const json& root) {
     if (root.contains("beam_intrinsics")) {
-      return {"lidar_data_format.", "beam_intrinsics.", "lidar_intrinsics.", "sensor_info.", "config_params."};
+      return {"lidar_data_format.", "beam_intrinsics.", "lidar_intrinsics.", "sensor_info.", "config_params.", "imu_intrinsics."};
     }
-    return {"data_format.", "", "", "", ""};
+    return {"data_format.", "", "", "", "", ""};
   }
 };
 
@@ -205,6 +205,9 @@ void read_beams(FieldReader& r, const Paths& p, OusterMetadata& m) {
     m.beam_to_lidar = {1, 0, 0, m.lidar_origin_to_beam_origin_mm, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
   }
   m.lidar_to_sensor = transform(r, p.lidar_intrinsics + "lidar_to_sensor_transform");
+  // The IMU's: the identity when the file has none (a capture's IMU packets then read in its own axes).
+  if (r.find(p.imu_intrinsics + "imu_to_sensor_transform") != nullptr)
+    m.imu_to_sensor = transform(r, p.imu_intrinsics + "imu_to_sensor_transform");
 }
 
 // "ousteros-image-prod-aries-v2.3.0+2022..." or "v2.1.1": the first "v<major>.<minor>".
@@ -245,6 +248,7 @@ void read_identity(FieldReader& r, const Paths& p, OusterMetadata& m) {
   }
   m.packet_crc = m.firmware_major > 3 || (m.firmware_major == 3 && m.firmware_minor >= 1);
   m.udp_port_lidar = static_cast<int>(r.integer(p.config + "udp_port_lidar", 0, 65535, false, 7502));
+  m.udp_port_imu = static_cast<int>(r.integer(p.config + "udp_port_imu", 0, 65535, false, 7503));
 }
 
 }  // namespace

@@ -44,6 +44,7 @@ struct OusterMetadata {
   // [1 0 0 n; 0 1 0 0; 0 0 1 0; 0 0 0 1] when the file has none (n: the origin offset above).
   std::array<double, 16> beam_to_lidar{};
   std::array<double, 16> lidar_to_sensor{};
+  std::array<double, 16> imu_to_sensor{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
 
   uint64_t serial_number = 0;       // prod_sn; 0 when the file has none
   uint32_t initialization_id = 0;   // changes at every sensor start; 0 when the file has none
@@ -51,6 +52,7 @@ struct OusterMetadata {
   int firmware_minor = 0;
   std::string product_line;         // "OS-2-128"
   int udp_port_lidar = 7502;
+  int udp_port_imu = 7503;
   // Whether lidar packets end with a CRC-64: firmware 3.1 and later (a caller may override).
   bool packet_crc = false;
 
