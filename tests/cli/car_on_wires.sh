@@ -1,11 +1,12 @@
 #!/usr/bin/env bash
 # Issues 42 and 43: the car stack on its own wires (configs/car.json, no simulator plugin) against
 # the car's hardware simulated in another process (configs/sim_hardware.json), both on the real
-# clock, sharing nothing but UDP datagrams on loopback: NovAtel OEM7 logs, and CAN frames in
+# clock, sharing nothing but UDP datagrams on loopback: NovAtel OEM7 logs, Ouster lidar packets, and CAN frames in
 # cannelloni datagrams (docs/car-on-wires.md).
 #   race: the laps within 1 % of tests/graphs/car_direct.json's (the same stack wired straight to
 #         the simulator in one process, sim clock, the same arguments), no contact, no command
-#         timeout on either side of the bus, no frame refused.
+#         timeout on either side of the bus, no frame refused, the three LiDARs' frames whole at
+#         their 10 Hz.
 #   kill: configs/car_split.json (the car's hardware, its drivers and vehicle interface, in a process
 #         of its own) and its stack's process killed (SIGKILL) at full speed on the straight (as the
 #         car crosses the line after lap 1): the vehicle interface stops the car along the last
@@ -90,6 +91,9 @@ worst = max(abs(a / b - 1) for a, b in zip(laps, ref))
 dbw, vi = sim["dbw"]["metrics"], car["vehicle"]["metrics"]
 delay = max(car[g]["metrics"]["stamp_delay_s_p99"] for g in ("gnss_left", "gnss_right"))
 wire = max(car[g]["metrics"]["wire_to_message_s_p99"] for g in ("gnss_left", "gnss_right"))
+lidar = max(car[g]["metrics"].get("wire_to_message_s_p99", float("nan")) for g in ("lidar_front", "lidar_left", "lidar_right"))
+frames = min(car[g]["metrics"]["frames_complete"] for g in ("lidar_front", "lidar_left", "lidar_right"))
+broken = sum(car[g]["metrics"]["frames_incomplete"] for g in ("lidar_front", "lidar_left", "lidar_right"))
 refused = sum(v for k, v in vi.items() if k.endswith("_bad")) + vi["bus_datagrams_refused"] + dbw["bad_frames"]
 print(f"laps {', '.join(f'{a:.2f}' for a in laps)} s on the wires; {', '.join(f'{b:.2f}' for b in ref)} s direct "
       f"(worst {100 * worst:.2f} %); wall contacts {sim['referee']['metrics']['wall_contacts']:.0f}, least clearance "
@@ -97,10 +101,14 @@ print(f"laps {', '.join(f'{a:.2f}' for a in laps)} s on the wires; {', '.join(f'
       f"interface's watchdog trips {vi['watchdog_trips']:.0f}, frames refused {refused:.0f}; fixes rejected "
       f"{car['estimator']['metrics']['fixes_rejected']:.0f} (direct {direct['estimator']['metrics']['fixes_rejected']:.0f}); "
       f"the receivers' stamp delay p99 {1000 * delay:.2f} ms, their drivers' wire to message p99 {1000 * wire:.2f} ms; "
+      f"LiDAR frames whole {frames:.0f} a sensor at least, broken {broken:.0f}, their drivers' wire to message p99 {1000 * lidar:.2f} ms; "
       f"estimates carried to their step's time by at most {1000 * car['estimator']['metrics']['estimate_carried_max_s']:.1f} ms; "
       f"the command gap at most {1000 * vi['longest_command_gap_s']:.0f} ms")
 ok = len(laps) == len(ref) and worst <= 0.01 and sim["referee"]["metrics"]["wall_contacts"] == 0
 ok = ok and dbw["timeouts"] == 0 and vi["watchdog_trips"] == 0 and refused == 0
+# The LiDARs heard: ten whole frames a second from each for the race (a few lost at its ends).
+race_s = json.load(open(f"{d}/sim/summary.json"))["sim_time_s"]
+ok = ok and frames >= 9.5 * race_s
 sys.exit(0 if ok else 1)
 PY
 echo "car_on_wires race: ok"
