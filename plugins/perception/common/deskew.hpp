@@ -31,20 +31,9 @@ inline Point moved_to_stamp(const Point& p, float dt, const PlanarMotion& m) {
 inline void append_moved_to_stamp(const SensorPose& pose, const float* x, const float* y, const float* z,
                                   const float* time_offset, double cloud_dt, std::size_t n, const PlanarMotion& motion,
                                   Points& out) {
-  const Eigen::Isometry3f t = pose.vehicle_from_sensor();
-  const Eigen::Matrix3f r = t.linear();
-  const Eigen::Vector3f o = t.translation();
-  const std::size_t at = out.size();
-  out.resize(at + n);
-  Point* dst = out.data() + at;
-  std::size_t m = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    const float dt = static_cast<float>(cloud_dt) + (time_offset ? time_offset[i] : 0.0f);
-    const Point p = moved_to_stamp(r * Eigen::Vector3f(x[i], y[i], z[i]) + o, dt, motion);
-    dst[m] = p;
-    m += in_range(p);
-  }
-  out.resize(at + m);
+  append_in_vehicle_frame(pose, x, y, z, n, out, [&](std::size_t i, const Point& p) {
+    return moved_to_stamp(p, static_cast<float>(cloud_dt) + (time_offset ? time_offset[i] : 0.0f), motion);
+  });
 }
 
 }  // namespace brickyard::perception

@@ -31,10 +31,17 @@ struct SensorPose {
   }
 };
 
-// Appends n sensor-frame points to `out` in the vehicle frame; points not finite or beyond
-// kMaxCoordinate once moved are skipped.
+// Leaves a point where it is (append_in_vehicle_frame's default).
+struct KeepPoint {
+  Point operator()(std::size_t, const Point& p) const { return p; }
+};
+
+// Appends n sensor-frame points to `out` in the vehicle frame, each then through move(i, p)
+// (deskew.hpp moves them to the frame's stamp); points not finite or beyond kMaxCoordinate once
+// moved are skipped.
+template <class Move = KeepPoint>
 inline void append_in_vehicle_frame(const SensorPose& pose, const float* x, const float* y, const float* z, std::size_t n,
-                                    Points& out) {
+                                    Points& out, Move move = {}) {
   const Eigen::Isometry3f t = pose.vehicle_from_sensor();
   const Eigen::Matrix3f r = t.linear();
   const Eigen::Vector3f o = t.translation();
@@ -45,7 +52,7 @@ inline void append_in_vehicle_frame(const SensorPose& pose, const float* x, cons
   Point* dst = out.data() + at;
   std::size_t m = 0;
   for (std::size_t i = 0; i < n; ++i) {
-    const Eigen::Vector3f p = r * Eigen::Vector3f(x[i], y[i], z[i]) + o;
+    const Point p = move(i, r * Eigen::Vector3f(x[i], y[i], z[i]) + o);
     dst[m] = p;
     m += in_range(p);
   }

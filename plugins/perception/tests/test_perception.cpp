@@ -604,7 +604,9 @@ TEST(Deskew, APointMeasuredLaterIsWhereTheFrameOfTheStampSeesIt) {
       EXPECT_NEAR(moved.x(), ground.x(), 1e-3) << m.speed << " " << m.yaw_rate << " dt " << dt;
       EXPECT_NEAR(moved.y(), ground.y(), 1e-3) << m.speed << " " << m.yaw_rate << " dt " << dt;
       EXPECT_EQ(moved.z(), 1.5f);
-      if (dt != 0 && m.speed > 0) EXPECT_GT((seen - ground).norm(), 0.3) << "the case tests nothing";
+      if (dt != 0 && m.speed > 0) {
+        EXPECT_GT((seen - ground).norm(), 0.3) << "the case tests nothing";
+      }
     }
   }
 }
