@@ -9,6 +9,8 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
+#include <optional>
 #include <tuple>
 
 namespace {
@@ -108,11 +110,10 @@ class GroundFilterNode : public Plugin {
   void process(Context& ctx, const std::vector<CloudPtr>& set) {
     merged_.clear();
     const std::int64_t stamp = set.front()->header().stamp_ns();
-    const auto estimate = io_.estimate.latest();
-    const PlanarMotion motion = estimate ? PlanarMotion{estimate->speed(), estimate->yaw_rate()} : PlanarMotion{};
+    const std::optional<PlanarMotion> motion = motion_of(io_.estimate.latest());
     for (const auto& c : set) {
       try {
-        append_vehicle_points(*c, merged_, estimate ? &motion : nullptr, stamp);
+        append_vehicle_points(*c, merged_, motion ? &*motion : nullptr, stamp);
       } catch (const std::runtime_error& e) {
         if (malformed_++ == 0) ctx.log(LogLevel::warn, std::string(e.what()) + ": cloud skipped");
       }
@@ -125,6 +126,13 @@ class GroundFilterNode : public Plugin {
     points_in_ += merged_.size();
     voxels_ += result_.voxels.size();
     for (auto g : result_.ground) features_ += g == 0;
+  }
+
+  // The estimate's speed and yaw rate; none unwired, before the first, or not finite (a broken
+  // estimate must not move every point off the map).
+  static std::optional<PlanarMotion> motion_of(const std::shared_ptr<const msgs::LocalizationEstimate>& e) {
+    if (!e || !std::isfinite(e->speed()) || !std::isfinite(e->yaw_rate())) return std::nullopt;
+    return PlanarMotion{e->speed(), e->yaw_rate()};
   }
 
   GroundFilter filter_;
