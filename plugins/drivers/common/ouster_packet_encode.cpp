@@ -1,5 +1,6 @@
 #include "ouster_packet_encode.hpp"
 
+#include "little_endian.hpp"
 #include "ouster_crc64.hpp"
 #include "ouster_packet_format.hpp"
 
@@ -7,12 +8,10 @@ namespace brickyard::drivers {
 
 namespace {
 
-void put16(uint8_t* p, uint32_t v) { p[0] = static_cast<uint8_t>(v), p[1] = static_cast<uint8_t>(v >> 8); }
-void put32(uint8_t* p, uint32_t v) { put16(p, v), put16(p + 2, v >> 16); }
-void put64(uint8_t* p, uint64_t v) { put32(p, static_cast<uint32_t>(v)), put32(p + 4, static_cast<uint32_t>(v >> 32)); }
-void put_bytes(uint8_t* p, uint64_t v, int n) {
-  for (int i = 0; i < n; ++i) p[i] = static_cast<uint8_t>(v >> (8 * i));
-}
+using le::put16;
+using le::put32;
+using le::put64;
+using le::put_bytes;
 
 template <typename T> T at_or_zero(const std::vector<T>& v, size_t i) { return i < v.size() ? v[i] : T{}; }
 

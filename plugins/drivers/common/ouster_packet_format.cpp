@@ -1,5 +1,6 @@
 #include "ouster_packet_format.hpp"
 
+#include "little_endian.hpp"
 #include "ouster_crc64.hpp"
 
 #include <algorithm>
@@ -8,16 +9,6 @@
 namespace brickyard::drivers {
 
 namespace {
-
-// Little-endian fields, whatever the host's byte order.
-uint16_t le16(const uint8_t* p) { return static_cast<uint16_t>(p[0] | p[1] << 8); }
-uint32_t le32(const uint8_t* p) { return le16(p) | static_cast<uint32_t>(le16(p + 2)) << 16; }
-uint64_t le64(const uint8_t* p) { return le32(p) | static_cast<uint64_t>(le32(p + 4)) << 32; }
-uint64_t le_bytes(const uint8_t* p, int n) {
-  uint64_t v = 0;
-  for (int i = 0; i < n; ++i) v |= static_cast<uint64_t>(p[i]) << (8 * i);
-  return v;
-}
 
 constexpr uint32_t kRange19 = (1u << 19) - 1;
 constexpr uint32_t kRange20 = (1u << 20) - 1;
@@ -28,29 +19,29 @@ constexpr uint32_t kLowDataRateRangeUnitMm = 8;
 // arrays at row * width + column. Bit positions: docs/drivers-formats.md.
 void read_legacy(const uint8_t* p, int rows, size_t at, size_t stride, OusterFrame& f) {
   for (int r = 0; r < rows; ++r, p += 12, at += stride) {
-    uint32_t word = le32(p);
+    uint32_t word = le::u32(p);
     f.range_mm[at] = word & kRange20;
     f.flags[at] = static_cast<uint8_t>(word >> 28);
     f.reflectivity[at] = p[4];  // a 16-bit field of which firmware 2.1+ fills the low 8 bits
-    f.signal[at] = le16(p + 6);
-    f.near_ir[at] = le16(p + 8);
+    f.signal[at] = le::u16(p + 6);
+    f.near_ir[at] = le::u16(p + 8);
   }
 }
 
 void read_single_return(const uint8_t* p, int rows, size_t at, size_t stride, OusterFrame& f) {
   for (int r = 0; r < rows; ++r, p += 12, at += stride) {
-    uint32_t word = le32(p);
+    uint32_t word = le::u32(p);
     f.range_mm[at] = word & kRange19;
     f.flags[at] = static_cast<uint8_t>((word >> 19) & 0x1Fu);
     f.reflectivity[at] = p[4];
-    f.signal[at] = le16(p + 6);
-    f.near_ir[at] = le16(p + 8);
+    f.signal[at] = le::u16(p + 6);
+    f.near_ir[at] = le::u16(p + 8);
   }
 }
 
 void read_low_data_rate(const uint8_t* p, int rows, size_t at, size_t stride, OusterFrame& f) {
   for (int r = 0; r < rows; ++r, p += 4, at += stride) {
-    uint16_t word = le16(p);
+    uint16_t word = le::u16(p);
     f.range_mm[at] = (word & kRange15) * kLowDataRateRangeUnitMm;
     f.flags[at] = static_cast<uint8_t>(word >> 15);
     f.reflectivity[at] = p[2];
@@ -60,17 +51,17 @@ void read_low_data_rate(const uint8_t* p, int rows, size_t at, size_t stride, Ou
 
 void read_dual_return(const uint8_t* p, int rows, size_t at, size_t stride, OusterFrame& f) {
   for (int r = 0; r < rows; ++r, p += 16, at += stride) {
-    uint32_t first = le32(p);
-    uint32_t second = le32(p + 4);
+    uint32_t first = le::u32(p);
+    uint32_t second = le::u32(p + 4);
     f.range_mm[at] = first & kRange19;
     f.flags[at] = static_cast<uint8_t>((first >> 19) & 0x1Fu);
     f.reflectivity[at] = static_cast<uint8_t>(first >> 24);
     f.range2_mm[at] = second & kRange19;
     f.flags2[at] = static_cast<uint8_t>((second >> 19) & 0x1Fu);
     f.reflectivity2[at] = static_cast<uint8_t>(second >> 24);
-    f.signal[at] = le16(p + 8);
-    f.signal2[at] = le16(p + 10);
-    f.near_ir[at] = le16(p + 12);
+    f.signal[at] = le::u16(p + 8);
+    f.signal2[at] = le::u16(p + 10);
+    f.near_ir[at] = le::u16(p + 12);
   }
 }
 
@@ -113,10 +104,10 @@ OusterPacketLayout ouster_packet_layout(const OusterMetadata& m) {
 
 OusterPacketHeader read_ouster_packet_header(const uint8_t* p) {
   OusterPacketHeader h;
-  h.packet_type = le16(p);
-  h.frame_id = le16(p + 2);
-  h.initialization_id = static_cast<uint32_t>(le_bytes(p + 4, 3));
-  h.serial_number = le_bytes(p + 7, 5);
+  h.packet_type = le::u16(p);
+  h.frame_id = le::u16(p + 2);
+  h.initialization_id = static_cast<uint32_t>(le::bytes(p + 4, 3));
+  h.serial_number = le::bytes(p + 7, 5);
   h.alert_flags = p[12];
   h.countdown_thermal_shutdown = p[16];
   h.countdown_shot_limiting = p[17];
@@ -127,22 +118,22 @@ OusterPacketHeader read_ouster_packet_header(const uint8_t* p) {
 
 OusterColumnHeader read_ouster_column_header(const OusterPacketLayout& layout, const uint8_t* c) {
   OusterColumnHeader h;
-  h.timestamp_ns = le64(c);
-  h.measurement_id = le16(c + 8);
+  h.timestamp_ns = le::u64(c);
+  h.measurement_id = le::u16(c + 8);
   if (layout.profile == OusterProfile::legacy) {
-    h.frame_id = le16(c + 10);
-    h.encoder_count = le32(c + 12);
-    h.status = le32(c + layout.column_bytes() - 4);
+    h.frame_id = le::u16(c + 10);
+    h.encoder_count = le::u32(c + 12);
+    h.status = le::u32(c + layout.column_bytes() - 4);
     h.valid = h.status == 0xFFFFFFFFu;
   } else {
-    h.status = le16(c + 10);
+    h.status = le::u16(c + 10);
     h.valid = (h.status & 1u) != 0;
   }
   return h;
 }
 
 bool ouster_packet_crc_ok(const uint8_t* packet, size_t size) {
-  return size >= 8 && crc64_xz(packet, size - 8) == le64(packet + size - 8);
+  return size >= 8 && crc64_xz(packet, size - 8) == le::u64(packet + size - 8);
 }
 
 void reset_ouster_frame(OusterFrame& f, const OusterMetadata& m, uint16_t frame_id) {
