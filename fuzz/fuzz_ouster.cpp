@@ -1,7 +1,9 @@
 // libFuzzer harness: UDP payloads from an Ouster LiDAR's port through the packet decoder, the
 // frame assembly and the points, for each shipped sensor's metadata (data/lidar_packets; the
 // input's first byte picks one). The rest of the input is packets, each a 2-byte little-endian
-// length and its bytes: any of them must end as frames or counted refusals, never a crash.
+// length and its bytes: any of them must end as frames or counted refusals, never a crash. Each
+// packet is also read as an IMU packet (port 7503's): read or refused, never a crash.
+#include "drivers/common/ouster_imu.hpp"
 #include "drivers/common/ouster_metadata.hpp"
 #include "drivers/common/ouster_packets.hpp"
 #include "drivers/common/ouster_xyz.hpp"
@@ -53,6 +55,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   while (at + 2 <= size) {
     const std::size_t n = std::min<std::size_t>(data[at] | data[at + 1] << 8, size - at - 2);
     decoder.feed(data + at + 2, n);
+    if (const auto imu = read_ouster_imu_packet(data + at + 2, n)) ouster_imu_in_sensor_frame(*imu, metadata.imu_to_sensor);
     drain();
     at += 2 + n;
   }

@@ -163,6 +163,9 @@ TEST(OusterMetadata, MalformedFileNamesTheField) {
             std::string::npos);
   EXPECT_NE(error_of([](json& j) { j["lidar_to_sensor_transform"].erase(0); }).find("lidar_to_sensor_transform"),
             std::string::npos);
+  EXPECT_NE(error_of([](json& j) { j["imu_to_sensor_transform"] = {1, 0, 0}; }).find("imu_to_sensor_transform"),
+            std::string::npos);
+  EXPECT_NE(error_of([](json& j) { j["udp_port_imu"] = 70000; }).find("udp_port_imu"), std::string::npos);
   OusterMetadata m;
   std::string error;
   EXPECT_FALSE(parse_ouster_metadata("{\"beam_altitude", m, error));
@@ -704,6 +707,9 @@ TEST(OusterImu, TheCapturesImuPacketsReadAsAnImuStandingStill) {
                        Case{"crc_test.pcap", "crc_test.json", 10}}) {
     const OusterMetadata m = load_metadata(c.json);
     EXPECT_EQ(m.udp_port_imu, 7503) << c.json;
+    if (std::string(c.json) == "OS-2-128-U1_v2.3.0_1024x10.json") {
+      EXPECT_DOUBLE_EQ(m.imu_to_sensor[3], 6.253);  // read, not the identity
+    }
     std::vector<uint8_t> file = read_bytes(c.pcap);
     PcapReader reader(file);
     std::vector<OusterImuPacket> packets;
