@@ -10,6 +10,10 @@ add_test(NAME cli.planned_lines_current
 # The car's LiDAR metadata is the vendor's with the window scripts/ouster-window gives it (data/README.md).
 add_test(NAME cli.av21_ouster_current
   COMMAND sh -c "${PROJECT_SOURCE_DIR}/scripts/ouster-window ${PROJECT_SOURCE_DIR}/data/lidar_packets/OS-2-128-U1_v2.3.0_1024x10.json 127 | cmp - ${PROJECT_SOURCE_DIR}/data/vehicles/av21_ouster.json")
+add_test(NAME cli.ouster_window_bad_width COMMAND ${EXPECT} 2 "OS-2-128-U1_v2.3.0_1024x10.json: window width 'wide' deg: expected a number within \\(0, 360\\)"
+  -- ${PROJECT_SOURCE_DIR}/scripts/ouster-window ${PROJECT_SOURCE_DIR}/data/lidar_packets/OS-2-128-U1_v2.3.0_1024x10.json wide)
+add_test(NAME cli.ouster_window_not_metadata COMMAND ${EXPECT} 2 "av21.json: no data_format.columns_per_frame"
+  -- ${PROJECT_SOURCE_DIR}/scripts/ouster-window ${PROJECT_SOURCE_DIR}/data/vehicles/av21.json 127)
 add_test(NAME cli.plan_bad_option COMMAND ${EXPECT} 2 "brickyard-plan: --margin abc: not a number"
   -- $<TARGET_FILE:brickyard-plan> line --track ${PROJECT_SOURCE_DIR}/data/tracks/IMS.csv --out ${RUNS}/x.csv --margin abc)
 add_test(NAME cli.plan_bad_min_time COMMAND ${EXPECT} 2 "brickyard-plan: --min-time maybe: expected on or off"
