@@ -44,7 +44,7 @@ class VoxelMap {
   // it (the lookups of a scan's points are scattered over the map: each a cache miss).
   static constexpr std::uint64_t kNoKey = ~std::uint64_t{0};
   std::uint64_t key(const Eigen::Vector3f& q) const {
-    if (!q.allFinite() || q.cwiseAbs().maxCoeff() > perception::kMaxCoordinate) return kNoKey;
+    if (!perception::in_range(q)) return kNoKey;
     return perception::cell_key(perception::cell_of(q.x(), inv_), perception::cell_of(q.y(), inv_), perception::cell_of(q.z(), inv_));
   }
   void prefetch(std::uint64_t key) const {

@@ -2,6 +2,7 @@
 // Points for the perception algorithms, framework-free: plain float triples in the vehicle frame.
 #include <Eigen/Core>
 
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -13,7 +14,11 @@ using Points = std::vector<Point, Eigen::aligned_allocator<Point>>;
 // Coordinates the algorithms take, m: a LiDAR sees a few hundred metres; beyond 10 km a cell's
 // integer index could overflow. Points outside are dropped where clouds come in.
 constexpr float kMaxCoordinate = 10000.0f;
-inline bool in_range(const Point& p) { return p.allFinite() && p.cwiseAbs().maxCoeff() <= kMaxCoordinate; }
+// Not finite fails every comparison. Branch-free and small enough to inline in every loop over a
+// cloud's points (as allFinite() and maxCoeff() it was a call per point: 4 % of a race's CPU).
+inline bool in_range(const Point& p) {
+  return (std::abs(p.x()) <= kMaxCoordinate) & (std::abs(p.y()) <= kMaxCoordinate) & (std::abs(p.z()) <= kMaxCoordinate);
+}
 
 // Integer cell of a point on a grid of the given size (floor division; truncation corrected for
 // negatives, as std::floor is a library call without SSE4.1 and this runs for every point).
