@@ -63,7 +63,7 @@ class VoxelMap {
   float voxel_, inv_;
   perception::CellMap<std::uint32_t> index_;
   std::vector<Voxel> voxels_;  // first-added order
-  std::vector<VoxelTarget> targets_;  // the same order
+  std::vector<VoxelTarget, perception::HugePageAllocator<VoxelTarget>> targets_;  // the same order
   std::vector<std::uint32_t> touched_;  // by the add() under way, each once
   std::vector<char> is_touched_;        // per voxel
 };

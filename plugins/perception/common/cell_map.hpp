@@ -7,6 +7,8 @@
 // sized for every point of a frame when a fifth of them make voxels would be cleared and missed
 // in cache for nothing. 32-bit keys (a frame whose cells fit 31 bits, see packed_keys.hpp)
 // halve the slots and hash with one multiply.
+#include "huge_pages.hpp"
+
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
@@ -99,7 +101,7 @@ template <class V, class K = std::uint64_t> class CellMap {
     while (cap > 1) cap >>= 1, --shift_;
   }
   void grow() {
-    std::vector<Slot> old(std::max<std::size_t>(32, 2 * slots_.size()), Slot{kEmpty, V{}});
+    std::vector<Slot, HugePageAllocator<Slot>> old(std::max<std::size_t>(32, 2 * slots_.size()), Slot{kEmpty, V{}});
     old.swap(slots_);
     set_capacity(slots_.size());
     for (const Slot& s : old) {
@@ -124,7 +126,7 @@ template <class V, class K = std::uint64_t> class CellMap {
     K key;
     V value;
   };
-  std::vector<Slot> slots_;
+  std::vector<Slot, HugePageAllocator<Slot>> slots_;
   std::size_t mask_ = 0, size_ = 0;
   int shift_ = 32;
 };
