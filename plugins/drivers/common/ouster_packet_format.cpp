@@ -66,10 +66,14 @@ void read_dual_return(const uint8_t* p, int rows, size_t at, size_t stride, Oust
 }
 
 // Sized, not cleared: a recycled frame keeps its old pixels until finish_ouster_frame() zeroes the
-// columns that did not arrive, so a whole frame is written once, not twice.
+// stale columns that did not arrive, so a whole frame is written once, not twice. A buffer of
+// another size is cleared: only its own last frame's columns are known.
 template <typename T>
-void sized(std::vector<T>& v, size_t n, bool present) {
-  v.resize(present ? n : 0);
+bool sized(std::vector<T>& v, size_t n, bool present) {
+  const size_t want = present ? n : 0;
+  if (v.size() == want) return true;
+  v.assign(want, T{});
+  return false;
 }
 
 // Zeroes the columns [first, last) of each run in every row: the image is row by row, so a run
@@ -147,27 +151,31 @@ void reset_ouster_frame(OusterFrame& f, const OusterMetadata& m, uint16_t frame_
   f.timestamp_ns.assign(w, 0);
   f.encoder_count.assign(w, 0);
   f.status.assign(w, 0);
-  f.received.assign(w, 0);
   const size_t n = w * static_cast<size_t>(f.height);
   const bool dual = m.profile == OusterProfile::dual_return;
-  sized(f.range_mm, n, true);
-  sized(f.reflectivity, n, true);
-  sized(f.flags, n, true);
-  sized(f.near_ir, n, true);
-  sized(f.signal, n, m.profile != OusterProfile::low_data_rate);
-  sized(f.range2_mm, n, dual);
-  sized(f.reflectivity2, n, dual);
-  sized(f.flags2, n, dual);
-  sized(f.signal2, n, dual);
+  bool kept = sized(f.range_mm, n, true);
+  kept &= sized(f.reflectivity, n, true);
+  kept &= sized(f.flags, n, true);
+  kept &= sized(f.near_ir, n, true);
+  kept &= sized(f.signal, n, m.profile != OusterProfile::low_data_rate);
+  kept &= sized(f.range2_mm, n, dual);
+  kept &= sized(f.reflectivity2, n, dual);
+  kept &= sized(f.flags2, n, dual);
+  kept &= sized(f.signal2, n, dual);
+  // After finish_ouster_frame only the columns that arrived hold values: those of the last frame.
+  if (kept && f.received.size() == w) f.stale.swap(f.received);
+  else f.stale.assign(w, 0);
+  f.received.assign(w, 0);
 }
 
 void finish_ouster_frame(OusterFrame& f) {
   const size_t w = static_cast<size_t>(f.width);
-  std::vector<std::pair<size_t, size_t>> runs;  // the columns not received, as runs [first, last)
+  auto left_over = [&](size_t c) { return c < f.stale.size() && f.stale[c] && !f.received[c]; };
+  std::vector<std::pair<size_t, size_t>> runs;  // the stale columns not received, as runs [first, last)
   for (size_t c = 0; c < w;) {
-    if (f.received[c]) { ++c; continue; }
+    if (!left_over(c)) { ++c; continue; }
     const size_t first = c;
-    while (c < w && !f.received[c]) ++c;
+    while (c < w && left_over(c)) ++c;
     runs.emplace_back(first, c);
   }
   if (runs.empty()) return;

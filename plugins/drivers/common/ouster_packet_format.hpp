@@ -47,7 +47,7 @@ OusterColumnHeader read_ouster_column_header(const OusterPacketLayout& layout, c
 bool ouster_packet_crc_ok(const uint8_t* packet, size_t size);
 
 // Sizes the frame's arrays for this sensor and profile and clears its per-column fields; pixels
-// keep what a recycled frame held until finish_ouster_frame().
+// keep what a recycled frame held until finish_ouster_frame() (its columns marked stale).
 void reset_ouster_frame(OusterFrame& frame, const OusterMetadata& metadata, uint16_t frame_id);
 // Zeroes the pixels of every column that did not arrive, before the frame is handed out.
 void finish_ouster_frame(OusterFrame& frame);

@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <numbers>
+#include <utility>
 
 namespace brickyard::drivers {
 
@@ -37,6 +38,19 @@ BeamPixel beam_pixel(const OusterMetadata& m, int row, int column) {
   b.offset = {n_x * std::cos(encoder) - n * b.direction[0], n_x * std::sin(encoder) - n * b.direction[1],
               n_z - n * b.direction[2]};
   return b;
+}
+
+// The frame's arrived columns as runs [first, last), in order.
+std::vector<std::pair<size_t, size_t>> received_runs(const OusterFrame& f) {
+  std::vector<std::pair<size_t, size_t>> runs;
+  const size_t w = std::min(static_cast<size_t>(f.width), f.received.size());
+  for (size_t c = 0; c < w;) {
+    if (!f.received[c]) { ++c; continue; }
+    const size_t first = c;
+    while (c < w && f.received[c]) ++c;
+    runs.emplace_back(first, c);
+  }
+  return runs;
 }
 
 }  // namespace
@@ -76,28 +90,35 @@ void ouster_frame_to_cloud(const OusterFrame& frame, const OusterXyzTable& table
   if (frame.width != table.width() || frame.height != table.height() || range.size() != table.direction().size() / 3) {
     return;  // a frame of another sensor or mode: no points rather than wrong ones
   }
-  // Sized to the returns (a windowed sensor's frame is mostly columns it does not fire: fresh
-  // memory for every pixel was page faults for nothing), written in place row by row (a division
-  // a point for its column cost as much as the rest).
-  const size_t returns = range.size() - static_cast<size_t>(std::count(range.begin(), range.end(), 0u));
+  // Only the columns that arrived hold returns (finish_ouster_frame zeroed the rest): a windowed
+  // sensor's frame is mostly columns it does not fire. Sized to the returns (fresh memory for every
+  // pixel was page faults for nothing), written in place row by row (a division a point for its
+  // column cost as much as the rest).
+  const std::vector<std::pair<size_t, size_t>> runs = received_runs(frame);
+  const size_t width = static_cast<size_t>(frame.width), height = static_cast<size_t>(frame.height);
+  size_t returns = 0;
+  for (size_t row = 0; row < height; ++row)
+    for (const auto& [first, last] : runs)
+      for (size_t i = row * width + first; i < row * width + last; ++i) returns += range[i] != 0;
   for (auto* v : {&cloud.x, &cloud.y, &cloud.z, &cloud.intensity}) v->resize(returns);
   cloud.time_ns.resize(returns);
   cloud.pixel.resize(returns);
   const float* dir = table.direction().data();
   const float* off = table.offset_mm().data();
-  const size_t width = static_cast<size_t>(frame.width);
   size_t k = 0;
-  for (size_t row = 0, i = 0; row < static_cast<size_t>(frame.height); ++row) {
-    for (size_t column = 0; column < width; ++column, ++i) {
-      if (range[i] == 0) continue;
-      const float r = static_cast<float>(range[i]);
-      cloud.x[k] = (r * dir[3 * i] + off[3 * i]) * 1e-3f;
-      cloud.y[k] = (r * dir[3 * i + 1] + off[3 * i + 1]) * 1e-3f;
-      cloud.z[k] = (r * dir[3 * i + 2] + off[3 * i + 2]) * 1e-3f;
-      cloud.intensity[k] = static_cast<float>(reflectivity[i]);
-      cloud.time_ns[k] = frame.timestamp_ns[column];
-      cloud.pixel[k] = static_cast<uint32_t>(i);
-      ++k;
+  for (size_t row = 0; row < height; ++row) {
+    for (const auto& [first, last] : runs) {
+      for (size_t column = first, i = row * width + first; column < last; ++column, ++i) {
+        if (range[i] == 0) continue;
+        const float r = static_cast<float>(range[i]);
+        cloud.x[k] = (r * dir[3 * i] + off[3 * i]) * 1e-3f;
+        cloud.y[k] = (r * dir[3 * i + 1] + off[3 * i + 1]) * 1e-3f;
+        cloud.z[k] = (r * dir[3 * i + 2] + off[3 * i + 2]) * 1e-3f;
+        cloud.intensity[k] = static_cast<float>(reflectivity[i]);
+        cloud.time_ns[k] = frame.timestamp_ns[column];
+        cloud.pixel[k] = static_cast<uint32_t>(i);
+        ++k;
+      }
     }
   }
 }

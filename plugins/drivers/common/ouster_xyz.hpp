@@ -37,8 +37,9 @@ class OusterXyzTable {
   std::vector<float> offset_mm_;
 };
 
-// The points of a frame's returns, in metres in the sensor frame, one per pixel with a range
-// (range 0: no return). Time: the column's timestamp; intensity: the reflectivity.
+// The points of a frame's returns, in metres in the sensor frame, one per pixel with a range in
+// a column that arrived (range 0: no return). Time: the column's timestamp; intensity: the
+// reflectivity.
 struct OusterCloud {
   std::vector<float> x, y, z, intensity;
   std::vector<uint64_t> time_ns;

@@ -456,6 +456,31 @@ TEST(OusterDecoder, RecycledFrameHoldsNoStalePixels) {
       ASSERT_EQ(second->signal[second->pixel(row, col)], lost ? 0u : reference.signal[reference.pixel(row, col)]);
     }
   }
+  // A third rotation in the second's buffer, lacking another packet: the columns the second lacked
+  // arrive again, those it held and this one lacks are zero, and the cloud has no point in them.
+  decoder.recycle(std::move(*second));
+  for (size_t i = 0; i < packets.size(); ++i) {
+    auto p = packets[i];
+    p[2] = static_cast<uint8_t>(p[2] + 2);
+    if (i != 7) decoder.feed(p.data(), p.size());
+  }
+  decoder.finish();
+  auto third = decoder.next();
+  ASSERT_TRUE(third.has_value());
+  size_t returns = 0;
+  for (int row = 0; row < third->height; ++row) {
+    for (int col = 0; col < third->width; ++col) {
+      const bool lost = col / 16 == 7;
+      ASSERT_EQ(third->range_mm[third->pixel(row, col)], lost ? 0u : reference.range_mm[reference.pixel(row, col)]);
+      ASSERT_EQ(third->near_ir[third->pixel(row, col)], lost ? 0u : reference.near_ir[reference.pixel(row, col)]);
+      returns += third->range_mm[third->pixel(row, col)] != 0;
+    }
+  }
+  OusterCloud cloud;
+  ouster_frame_to_cloud(*third, OusterXyzTable(os2_metadata()), cloud);
+  ASSERT_EQ(cloud.x.size(), returns);
+  for (uint32_t pixel : cloud.pixel) ASSERT_NE(pixel % 1024 / 16, 7u);
+  EXPECT_TRUE(std::is_sorted(cloud.pixel.begin(), cloud.pixel.end()));  // row by row, as the image
 }
 
 TEST(OusterDecoder, LegacyPacketWithColumnsOfTwoFramesIsRefused) {
