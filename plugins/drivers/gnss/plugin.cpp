@@ -108,8 +108,8 @@ class GnssDriver : public Plugin {
   void step(Context& ctx) override {
     const std::int64_t now = ctx.now_ns();
     const GnssPoll got = source_->poll(now);
-    for (const StampedFix& f : got.fixes) publish(f), silence_.heard(now), wire_.add(ctx.now_ns(), f.arrival_ns);
-    for (const StampedImu& v : got.imu) publish(v), wire_.add(ctx.now_ns(), v.arrival_ns);
+    for (const StampedFix& f : got.fixes) publish(ctx, f), silence_.heard(now);
+    for (const StampedImu& v : got.imu) publish(ctx, v);
     device_failure_.check(ctx, source_->device_error(), "fixes");
     silence_.check(ctx, now, !source_->replay_finished());
   }
@@ -117,21 +117,24 @@ class GnssDriver : public Plugin {
   void deactivate(Context& ctx) override { report_gnss(ctx, *source_, fixes_, silence_.silences(), wire_); }
 
  private:
-  void publish(const StampedFix& f) {
+  // Each message's wire to message taken as it is handed to its port (LatencySpread).
+  void publish(Context& ctx, const StampedFix& f) {
     msgs::GnssFix m;
     m.header().stamp_ns(f.stamp_ns), m.header().seq(fixes_++), m.header().frame_id("map");
     m.receiver_id(id_);
     m.x(f.fix.x), m.y(f.fix.y), m.z(f.fix.z);
     m.sigma_x(f.fix.sigma_x), m.sigma_y(f.fix.sigma_y), m.sigma_z(f.fix.sigma_z);
     m.fix_type(f.fix.fix_type), m.valid(f.fix.valid);
+    wire_.add(ctx.now_ns(), f.arrival_ns);
     io_.fix.publish(std::move(m));
   }
 
-  void publish(const StampedImu& v) {
+  void publish(Context& ctx, const StampedImu& v) {
     msgs::Imu m;
     m.header().stamp_ns(v.stamp_ns), m.header().seq(imu_samples_++), m.header().frame_id("base_link");
     m.accel_x(v.imu.accel.x()), m.accel_y(v.imu.accel.y()), m.accel_z(v.imu.accel.z());
     m.gyro_x(v.imu.gyro.x()), m.gyro_y(v.imu.gyro.y()), m.gyro_z(v.imu.gyro.z());
+    wire_.add(ctx.now_ns(), v.arrival_ns);
     io_.imu.publish(std::move(m));
   }
 

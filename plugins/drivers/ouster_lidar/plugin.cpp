@@ -124,8 +124,8 @@ class OusterLidar : public Plugin {
     m->sensor_roll(rpy_[0] * kDeg), m->sensor_pitch(rpy_[1] * kDeg), m->sensor_yaw(rpy_[2] * kDeg);
     m->x(std::move(c.cloud.x)), m->y(std::move(c.cloud.y)), m->z(std::move(c.cloud.z)), m->intensity(std::move(c.cloud.intensity));
     m->time_offset(std::move(c.time_offset_s));
+    wire_.add(ctx.now_ns(), c.arrival_ns);  // as it is handed to its port (LatencySpread)
     io_.cloud.publish(std::shared_ptr<const msgs::PointCloud>(std::move(m)));
-    wire_.add(ctx.now_ns(), c.arrival_ns);
   }
 
   std::uint8_t id_ = 0;
