@@ -1,15 +1,11 @@
 #include "ouster_source.hpp"
 
-#include "io/bounded_read.hpp"
-
 #include <algorithm>
 #include <stdexcept>
 
 namespace brickyard::drivers {
 
 namespace {
-constexpr size_t kMaxCaptureBytes = size_t{4} << 30;
-constexpr size_t kMaxPollBytes = size_t{16} << 20;  // per step: several frames of the largest sensor
 
 // The middle of the frame's arrived columns in the sensor's clock, ns; nothing when none arrived.
 std::optional<int64_t> mid_time_ns(const OusterFrame& f) {
@@ -35,48 +31,15 @@ std::optional<int64_t> last_time_ns(const OusterFrame& f) {
 }  // namespace
 
 OusterSource::OusterSource(const OusterSourceSettings& s)
-    : s_(s), decoder_(s.metadata), table_(s.metadata), clock_(s.clock), pacer_(s.source.rate) {
-  std::string error;
-  if (s.source.kind == SourceSpec::Kind::pcap) {
-    if (!io::read_regular_file(s.capture_path, kMaxCaptureBytes, capture_bytes_, error)) throw std::runtime_error(error);
-    capture_.emplace(capture_bytes_);
-    if (!capture_->ok()) throw std::runtime_error(s.capture_path + ": " + capture_->error());
-    return;
-  }
-  device_ = open_source(s.source, error);
-  if (!device_) throw std::runtime_error(error);
-}
-
-void OusterSource::feed_due_packets(int64_t now_ns) {
-  const uint16_t port = s_.source.port ? s_.source.port : static_cast<uint16_t>(s_.metadata.udp_port_lidar);
-  for (;;) {
-    if (!pending_) pending_ = capture_->next();
-    if (!pending_) {
-      if (!capture_done_) decoder_.finish();  // the last rotation, complete or not
-      capture_done_ = true;
-      return;
-    }
-    if (!pacer_.due(static_cast<double>(pending_->time_ns) * 1e-9, now_ns)) return;
-    if (pending_->destination_port == port) decoder_.feed(pending_->payload.data(), pending_->payload.size());
-    pending_.reset();
-  }
-}
-
-void OusterSource::feed_live_packets() {
-  if (!device_error_.empty()) return;
-  std::vector<std::vector<uint8_t>> packets;
-  if (!device_->poll(packets, kMaxPollBytes)) device_error_ = device_->error();
-  for (const auto& p : packets) decoder_.feed(p.data(), p.size());
-  last_arrival_ns_ = -1;
-  for (int64_t a : device_->arrivals_ns()) last_arrival_ns_ = std::max(last_arrival_ns_, a);
-}
+    : s_(s), decoder_(s.metadata), table_(s.metadata), clock_(s.clock),
+      feed_(s.source, s.capture_path, s.source.port ? s.source.port : static_cast<uint16_t>(s.metadata.udp_port_lidar)) {}
 
 StampedCloud OusterSource::cloud_of(const OusterFrame& frame, int64_t receive_ns) {
   StampedCloud out;
   ouster_frame_to_cloud(frame, table_, out.cloud, s_.second_return);
   out.complete = frame.complete();
   out.stamp_ns = receive_ns;
-  out.arrival_ns = last_arrival_ns_;
+  out.arrival_ns = feed_.last_arrival_ns();
   const std::optional<int64_t> measured = mid_time_ns(frame);
   if (s_.device_time && measured) {
     out.stamp_ns = clock_.stamp_ns(*measured, receive_ns);
@@ -93,8 +56,8 @@ StampedCloud OusterSource::cloud_of(const OusterFrame& frame, int64_t receive_ns
 }
 
 std::vector<StampedCloud> OusterSource::poll(int64_t now_ns) {
-  if (capture_) feed_due_packets(now_ns);
-  else feed_live_packets();
+  if (feed_.poll(now_ns, [this](const uint8_t* data, size_t size) { decoder_.feed(data, size); }))
+    decoder_.finish();  // the capture ended: the last rotation, complete or not
   std::vector<StampedCloud> out;
   while (auto frame = decoder_.next()) {
     out.push_back(cloud_of(*frame, now_ns));

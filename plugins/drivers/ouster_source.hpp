@@ -6,9 +6,7 @@
 #include "drivers/common/device_clock.hpp"
 #include "drivers/common/ouster_packets.hpp"
 #include "drivers/common/ouster_xyz.hpp"
-#include "drivers/common/pcap_reader.hpp"
-#include "drivers/common/replay_pacer.hpp"
-#include "drivers/io/byte_source.hpp"
+#include "drivers/packet_feed.hpp"
 
 #include <cstdint>
 #include <memory>
@@ -44,30 +42,21 @@ class OusterSource {
   std::vector<StampedCloud> poll(int64_t now_ns);
 
   const OusterLidarDecoder& decoder() const { return decoder_; }
-  const PcapCounters* capture() const { return capture_ ? &capture_->counters() : nullptr; }
+  const PcapCounters* capture() const { return feed_.capture(); }
   const std::vector<double>& delays_s() const { return delays_s_; }
-  const std::string& device_error() const { return device_error_; }
-  bool replay_finished() const { return capture_ && capture_done_; }
-  int fd() const { return device_ && device_error_.empty() ? device_->fd() : -1; }  // a live device's, to wait on
+  const std::string& device_error() const { return feed_.device_error(); }
+  bool replay_finished() const { return feed_.replay_finished(); }
+  int fd() const { return feed_.fd(); }  // a live device's, to wait on
 
  private:
-  void feed_due_packets(int64_t now_ns);
-  void feed_live_packets();
   StampedCloud cloud_of(const OusterFrame& frame, int64_t receive_ns);
 
   OusterSourceSettings s_;
   OusterLidarDecoder decoder_;
   OusterXyzTable table_;
   DeviceClock clock_;
-  std::unique_ptr<ByteSource> device_;
-  std::vector<uint8_t> capture_bytes_;
-  std::optional<PcapReader> capture_;
-  std::optional<UdpDatagram> pending_;  // read from the capture, not yet due
-  bool capture_done_ = false;
-  ReplayPacer pacer_;
+  PacketFeed feed_;
   std::vector<double> delays_s_;
-  std::string device_error_;
-  int64_t last_arrival_ns_ = -1;  // of the last poll's newest packet
 };
 
 }  // namespace brickyard::drivers

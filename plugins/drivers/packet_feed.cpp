@@ -1,0 +1,57 @@
+#include "packet_feed.hpp"
+
+#include "io/bounded_read.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace brickyard::drivers {
+
+namespace {
+constexpr size_t kMaxCaptureBytes = size_t{4} << 30;
+constexpr size_t kMaxPollBytes = size_t{16} << 20;  // per step: several frames of the largest sensor
+}  // namespace
+
+PacketFeed::PacketFeed(const SourceSpec& source, const std::string& capture_path, uint16_t capture_port)
+    : capture_port_(capture_port), pacer_(source.rate) {
+  std::string error;
+  if (source.kind == SourceSpec::Kind::pcap) {
+    if (!io::read_regular_file(capture_path, kMaxCaptureBytes, capture_bytes_, error)) throw std::runtime_error(error);
+    capture_.emplace(capture_bytes_);
+    if (!capture_->ok()) throw std::runtime_error(capture_path + ": " + capture_->error());
+    return;
+  }
+  device_ = open_source(source, error);
+  if (!device_) throw std::runtime_error(error);
+}
+
+bool PacketFeed::poll(int64_t now_ns, const Take& take) {
+  if (capture_) return poll_capture(now_ns, take);
+  poll_device(take);
+  return false;
+}
+
+bool PacketFeed::poll_capture(int64_t now_ns, const Take& take) {
+  for (;;) {
+    if (!pending_) pending_ = capture_->next();
+    if (!pending_) {
+      const bool ends_now = !capture_done_;
+      capture_done_ = true;
+      return ends_now;
+    }
+    if (!pacer_.due(static_cast<double>(pending_->time_ns) * 1e-9, now_ns)) return false;
+    if (pending_->destination_port == capture_port_) take(pending_->payload.data(), pending_->payload.size());
+    pending_.reset();
+  }
+}
+
+void PacketFeed::poll_device(const Take& take) {
+  if (!device_error_.empty()) return;
+  std::vector<std::vector<uint8_t>> packets;
+  if (!device_->poll(packets, kMaxPollBytes)) device_error_ = device_->error();
+  for (const auto& p : packets) take(p.data(), p.size());
+  last_arrival_ns_ = -1;
+  for (int64_t a : device_->arrivals_ns()) last_arrival_ns_ = std::max(last_arrival_ns_, a);
+}
+
+}  // namespace brickyard::drivers
