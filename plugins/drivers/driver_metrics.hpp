@@ -5,6 +5,7 @@
 #include "drivers/common/decode_counters.hpp"
 #include "drivers/common/latency_spread.hpp"
 #include "drivers/gnss_source.hpp"
+#include "drivers/ouster_imu_source.hpp"
 #include "drivers/ouster_source.hpp"
 
 #include <algorithm>
@@ -72,6 +73,20 @@ inline void report_ouster(Context& ctx, const OusterSource& source, uint64_t fra
     ctx.metric("capture_refused", static_cast<double>(p->refused()));
   }
   ctx.metric("frames", static_cast<double>(frames));
+  ctx.metric("silences", static_cast<double>(silences));
+  report_spread(ctx, "stamp_delay_s", source.delays_s());
+  report_wire_latency(ctx, wire);
+}
+
+inline void report_ouster_imu(Context& ctx, const OusterImuSource& source, uint64_t samples, uint64_t silences, const LatencySpread& wire) {
+  const OusterImuCounters& c = source.counters();
+  ctx.metric("packets", static_cast<double>(c.packets));
+  ctx.metric("malformed", static_cast<double>(c.malformed));
+  if (const PcapCounters* p = source.capture()) {
+    ctx.metric("capture_datagrams", static_cast<double>(p->datagrams));
+    ctx.metric("capture_refused", static_cast<double>(p->refused()));
+  }
+  ctx.metric("samples", static_cast<double>(samples));
   ctx.metric("silences", static_cast<double>(silences));
   report_spread(ctx, "stamp_delay_s", source.delays_s());
   report_wire_latency(ctx, wire);

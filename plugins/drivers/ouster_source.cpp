@@ -56,7 +56,7 @@ StampedCloud OusterSource::cloud_of(const OusterFrame& frame, int64_t receive_ns
 }
 
 std::vector<StampedCloud> OusterSource::poll(int64_t now_ns) {
-  if (feed_.poll(now_ns, [this](const uint8_t* data, size_t size) { decoder_.feed(data, size); }))
+  if (feed_.poll(now_ns, [this](const uint8_t* data, size_t size, int64_t) { decoder_.feed(data, size); }))
     decoder_.finish();  // the capture ended: the last rotation, complete or not
   std::vector<StampedCloud> out;
   while (auto frame = decoder_.next()) {

@@ -40,7 +40,7 @@ bool PacketFeed::poll_capture(int64_t now_ns, const Take& take) {
       return ends_now;
     }
     if (!pacer_.due(static_cast<double>(pending_->time_ns) * 1e-9, now_ns)) return false;
-    if (pending_->destination_port == capture_port_) take(pending_->payload.data(), pending_->payload.size());
+    if (pending_->destination_port == capture_port_) take(pending_->payload.data(), pending_->payload.size(), -1);
     pending_.reset();
   }
 }
@@ -49,9 +49,13 @@ void PacketFeed::poll_device(const Take& take) {
   if (!device_error_.empty()) return;
   std::vector<std::vector<uint8_t>> packets;
   if (!device_->poll(packets, kMaxPollBytes)) device_error_ = device_->error();
-  for (const auto& p : packets) take(p.data(), p.size());
+  const std::vector<int64_t>& arrivals = device_->arrivals_ns();
   last_arrival_ns_ = -1;
-  for (int64_t a : device_->arrivals_ns()) last_arrival_ns_ = std::max(last_arrival_ns_, a);
+  for (size_t i = 0; i < packets.size(); ++i) {
+    const int64_t arrival = arrivals.size() == packets.size() ? arrivals[i] : -1;
+    take(packets[i].data(), packets[i].size(), arrival);
+  }
+  for (int64_t a : arrivals) last_arrival_ns_ = std::max(last_arrival_ns_, a);
 }
 
 }  // namespace brickyard::drivers

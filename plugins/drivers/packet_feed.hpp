@@ -17,7 +17,8 @@ namespace brickyard::drivers {
 
 class PacketFeed {
  public:
-  using Take = std::function<void(const uint8_t* data, size_t size)>;
+  // A payload, and the kernel's receive time of its datagram (udp), else -1.
+  using Take = std::function<void(const uint8_t* data, size_t size, int64_t arrival_ns)>;
 
   // `source`: udp:// (the port opened) or pcap:// (`capture_path`, the file found; its datagrams
   // to `capture_port` taken, the others skipped). Throws std::runtime_error naming the device or

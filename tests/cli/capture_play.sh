@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # `brickyard capture play` (docs/drivers.md, "Captures: info and play"), run in a private network
 # namespace (scripts/netns-run: loopback only): an Ouster capture played to drivers.ouster_lidar
-# listening on UDP comes out as its three rotations; a receiver gets the pcap's datagrams to the
+# listening on UDP comes out as its three rotations, and its IMU packets to drivers.ouster_imu as
+# its 30 samples; a receiver gets the pcap's datagrams to the
 # lidar port byte for byte, and a GNSS log's bytes whole, at the recorded pace times --rate; a
 # driver polling once a second, woken by its socket, publishes each fix as it arrives; a --loop
 # play ends cleanly on SIGINT and on SIGTERM.
@@ -31,6 +32,15 @@ for _ in $(seq 300); do grep -q "\[brickyard\] running" "$out/ouster.log" && bre
 wait $run || { cat "$out/ouster.log"; fail "drivers.ouster_lidar did not get three rotations"; }
 grep -q "frames_complete 3 .*packets 192" "$out/ouster.log" || { cat "$out/ouster.log"; fail "the driver's counts"; }
 cat "$out/play_ouster.log"
+
+# 1b. The same capture's IMU packets (to 7503) to drivers.ouster_imu listening: its 30 samples.
+port=$(free_port)
+"$by" run "$graphs/ouster_imu_over_udp.json" --set imu.source=udp://127.0.0.1:$port --domain "$domain" > "$out/ouster_imu.log" 2>&1 &
+run=$!
+for _ in $(seq 300); do grep -q "\[brickyard\] running" "$out/ouster_imu.log" && break; sleep 0.05; done
+"$by" capture play "$lidar" --to udp://127.0.0.1:$port --port 7503 2> "$out/play_ouster_imu.log" || { cat "$out/play_ouster_imu.log"; fail "capture play to the IMU driver"; }
+wait $run || { cat "$out/ouster_imu.log"; fail "drivers.ouster_imu did not get the 30 samples"; }
+grep -q "malformed 0 · packets 30 · samples 30" "$out/ouster_imu.log" || { cat "$out/ouster_imu.log"; fail "the IMU driver's counts"; }
 
 # 2. The datagrams to 7502 (not the IMU's to 7503), each as captured, at twice the recorded pace.
 receive pcap

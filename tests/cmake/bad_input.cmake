@@ -73,6 +73,10 @@ bad_config(driver_datum "node 'gnss' \\(drivers.gnss\\): parameter 'datum': lati
 bad_config(driver_log_not_regular "node 'gnss' \\(drivers.gnss\\): /dev/zero: not a regular file" run ${DRIVER_GNSS} --set gnss.source=file:///dev/zero)
 bad_config(driver_metadata_missing "node 'lidar' \\(drivers.ouster_lidar\\): .*nowhere_metadata.json" validate ${DRIVER_OUSTER} --set lidar.metadata=nowhere_metadata.json)
 bad_config(driver_metadata_malformed "node 'lidar' \\(drivers.ouster_lidar\\): parameter 'metadata': .*malformed.json: metadata: not a JSON object" validate ${DRIVER_OUSTER} --set lidar.metadata=${BAD}/malformed.json)
+set(DRIVER_OUSTER_IMU ${CMAKE_CURRENT_SOURCE_DIR}/graphs/expect_drivers_ouster_imu_pcap.json)
+bad_config(driver_imu_source_not_udp "node 'imu' \\(drivers.ouster_imu\\): parameter 'source': tcp://127.0.0.1:7503: an Ouster sensor's IMU is read from udp:// or pcap://" validate ${DRIVER_OUSTER_IMU} --set imu.source=tcp://127.0.0.1:7503)
+bad_config(driver_imu_metadata_missing "node 'imu' \\(drivers.ouster_imu\\): .*nowhere_metadata.json" validate ${DRIVER_OUSTER_IMU} --set imu.metadata=nowhere_metadata.json)
+bad_config(driver_imu_capture_missing "node 'imu' \\(drivers.ouster_imu\\): file not found: /nonexistent.pcap" run ${DRIVER_OUSTER_IMU} --set imu.source=pcap:///nonexistent.pcap)
 # The vehicle interface (docs/vehicle-interface.md): a DBC without a message the mapping needs, at
 # validation; a SocketCAN interface that does not exist, when configure opens it; a vehicle file
 # without the drive-by-wire's section; shift rules the car's gears cannot follow. No simulator.

@@ -48,6 +48,7 @@ set(stack_killed_can_want "vehicle: commands: ACTIVE -> STOPPING: none fresh.*ve
 # The receiver as a SPAN INS: every fix from INSPVAX; BESTPOS and BESTVEL, one each a fix, the driver's other reports.
 set(sim_gnss_wire_inspvax_want "rx +drivers\\.gnss .* fixes (9[5-9]|10[0-1]) .* other_reports (19[0-9]|20[0-2]) .*wire +sim\\.gnss_wire .*\\[brickyard\\] success")
 # An Ouster on its wire: every packet of the rotations read (the last one sent as the run ends), every frame whole.
+set(expect_drivers_ouster_imu_pcap_want "imu +drivers\\.ouster_imu .* capture_datagrams 74 · capture_refused 0 · malformed 0 · packets 10 · samples 10 · silences 0 .*\\[brickyard\\] success")
 set(ouster_on_wire_want "lidar +drivers\\.ouster_lidar .* bad_column 0 · bad_crc 0 · bad_packet_type 0 · bad_size 0 · decoded_packets 3199 .* frames 49 · frames_complete 49 · frames_incomplete 0 · late 0 · missing_columns 0 .*lidar_wire +sim\\.ouster +[0-9]+ +bytes_dropped 0 · frames 51 · packets_sent 3200 .*\\[brickyard\\] success")
 foreach(g race_can_ims race_can_ims_lossy can_stack_silent_stops can_bus_cut stack_killed_can sim_gnss_wire race_control_yellow race_control_red race_control_checkered
         race_control_silent fail_race_control_red_soft_brake ouster_on_wire sim_gnss_wire_inspvax)
