@@ -117,15 +117,13 @@ class GnssDriver : public Plugin {
   void deactivate(Context& ctx) override { report_gnss(ctx, *source_, fixes_, silence_.silences(), wire_); }
 
  private:
-  // Each message's wire to message taken as it is handed to its port (LatencySpread).
   void publish(Context& ctx, const StampedFix& f) {
     msgs::GnssFix m;
     m.header().stamp_ns(f.stamp_ns), m.header().seq(fixes_++), m.header().frame_id("map");
-    m.receiver_id(id_);
-    m.x(f.fix.x), m.y(f.fix.y), m.z(f.fix.z);
+    m.receiver_id(id_), m.x(f.fix.x), m.y(f.fix.y), m.z(f.fix.z);
     m.sigma_x(f.fix.sigma_x), m.sigma_y(f.fix.sigma_y), m.sigma_z(f.fix.sigma_z);
     m.fix_type(f.fix.fix_type), m.valid(f.fix.valid);
-    wire_.add(ctx.now_ns(), f.arrival_ns);
+    wire_.add(ctx.now_ns(), f.arrival_ns);  // as it is handed to its port (LatencySpread)
     io_.fix.publish(std::move(m));
   }
 
