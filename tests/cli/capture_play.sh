@@ -23,23 +23,24 @@ receive() {
 }
 free_port() { python3 -c 'import socket; s = socket.socket(socket.AF_INET, socket.SOCK_DGRAM); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])'; }
 
-# 1. End to end: the driver, listening, assembles the played packets into the three rotations.
-port=$(free_port)
-"$by" run "$graphs/ouster_over_udp.json" --set lidar.source=udp://127.0.0.1:$port --domain "$domain" > "$out/ouster.log" 2>&1 &
-run=$!
-for _ in $(seq 300); do grep -q "\[brickyard\] running" "$out/ouster.log" && break; sleep 0.05; done
-"$by" capture play "$lidar" --to udp://127.0.0.1:$port --port 7502 2> "$out/play_ouster.log" || { cat "$out/play_ouster.log"; fail "capture play to the driver"; }
-wait $run || { cat "$out/ouster.log"; fail "drivers.ouster_lidar did not get three rotations"; }
+# play_to_driver NAME GRAPH NODE PORT: GRAPH run in the background, its NODE listening on a free
+# UDP port, the capture's datagrams to PORT played to it; the run must end well ($out/NAME.log).
+play_to_driver() {
+  local name=$1 graph=$2 node=$3 to=$4 port run
+  port=$(free_port)
+  "$by" run "$graphs/$graph" --set "$node.source=udp://127.0.0.1:$port" --domain "$domain" > "$out/$name.log" 2>&1 &
+  run=$!
+  for _ in $(seq 300); do grep -q "\[brickyard\] running" "$out/$name.log" && break; sleep 0.05; done
+  "$by" capture play "$lidar" --to udp://127.0.0.1:$port --port "$to" 2> "$out/play_$name.log" || { cat "$out/play_$name.log"; fail "capture play to $node"; }
+  wait $run || { cat "$out/$name.log"; fail "$graph did not end well"; }
+}
+
+# 1. End to end: the driver, listening, assembles the played packets into the three rotations;
+# the same capture's IMU packets (to 7503) reach drivers.ouster_imu as its 30 samples.
+play_to_driver ouster ouster_over_udp.json lidar 7502
 grep -q "frames_complete 3 .*packets 192" "$out/ouster.log" || { cat "$out/ouster.log"; fail "the driver's counts"; }
 cat "$out/play_ouster.log"
-
-# 1b. The same capture's IMU packets (to 7503) to drivers.ouster_imu listening: its 30 samples.
-port=$(free_port)
-"$by" run "$graphs/ouster_imu_over_udp.json" --set imu.source=udp://127.0.0.1:$port --domain "$domain" > "$out/ouster_imu.log" 2>&1 &
-run=$!
-for _ in $(seq 300); do grep -q "\[brickyard\] running" "$out/ouster_imu.log" && break; sleep 0.05; done
-"$by" capture play "$lidar" --to udp://127.0.0.1:$port --port 7503 2> "$out/play_ouster_imu.log" || { cat "$out/play_ouster_imu.log"; fail "capture play to the IMU driver"; }
-wait $run || { cat "$out/ouster_imu.log"; fail "drivers.ouster_imu did not get the 30 samples"; }
+play_to_driver ouster_imu ouster_imu_over_udp.json imu 7503
 grep -q "malformed 0 · packets 30 · samples 30" "$out/ouster_imu.log" || { cat "$out/ouster_imu.log"; fail "the IMU driver's counts"; }
 
 # 2. The datagrams to 7502 (not the IMU's to 7503), each as captured, at twice the recorded pace.

@@ -50,11 +50,7 @@ ParamBinding<Settings> bindings() {
 
 template <class Files> OusterImuSourceSettings source_settings(const Files& files, const Settings& s, const std::array<double, 3>& rpy_deg) {
   OusterImuSourceSettings o;
-  o.source = parse_source_param(s.source);
-  if (o.source.kind != SourceSpec::Kind::udp && o.source.kind != SourceSpec::Kind::pcap)
-    throw BadInput("parameter 'source': " + s.source + ": an Ouster sensor's IMU is read from udp:// or pcap://");
-  if (o.source.kind == SourceSpec::Kind::pcap) o.capture_path = files.find_file(o.source.path);
-  o.metadata = read_ouster_metadata_param(files, s.metadata, "metadata");
+  read_ouster_wire(files, s.source, s.metadata, "an Ouster sensor's IMU", o);
   o.sensor_to_vehicle = imu_mount(rpy_deg[0], rpy_deg[1], rpy_deg[2]);
   o.device_time = s.device_time;
   return o;

@@ -51,11 +51,7 @@ ParamBinding<Settings> bindings() {
 
 template <class Files> OusterSourceSettings source_settings(const Files& files, const Settings& s) {
   OusterSourceSettings o;
-  o.source = parse_source_param(s.source);
-  if (o.source.kind != SourceSpec::Kind::udp && o.source.kind != SourceSpec::Kind::pcap)
-    throw BadInput("parameter 'source': " + s.source + ": an Ouster sensor is read from udp:// or pcap://");
-  if (o.source.kind == SourceSpec::Kind::pcap) o.capture_path = files.find_file(o.source.path);
-  o.metadata = read_ouster_metadata_param(files, s.metadata, "metadata");
+  read_ouster_wire(files, s.source, s.metadata, "an Ouster sensor", o);
   o.second_return = s.second_return;
   if (s.second_return && o.metadata.profile != OusterProfile::dual_return)
     throw BadInput("parameter 'second_return': " + files.find_file(s.metadata) + ": the profile " + to_string(o.metadata.profile) + " has one return");
