@@ -1,6 +1,7 @@
 #pragma once
 // Plugin-side (SDK): a driver's live device that failed (closed by its peer, unplugged) said once
-// in the log, and the node no longer woken by it (its descriptor is gone: Context::wake_on_readable).
+// in the log, the node no longer woken by it (its descriptor is gone: Context::wake_on_readable),
+// and, when the device is opened again (reopening_device.hpp), said again and waited on anew.
 #include <brickyard/context.hpp>
 
 #include <string>
@@ -9,16 +10,26 @@ namespace brickyard::drivers {
 
 class DeviceFailure {
  public:
-  // `error`: the source's device error, empty while it works; `lost`: what no longer comes ("fixes").
-  void check(Context& ctx, const std::string& error, const char* lost) {
-    if (error.empty() || said_) return;
-    said_ = true;
-    ctx.log(LogLevel::error, "source " + error + ": no more " + lost + " from it");
-    ctx.wake_on_readable(-1);
+  // The node woken by the device's descriptor (-1: none), at configure.
+  void watch(Context& ctx, int fd) { ctx.wake_on_readable(fd_ = fd); }
+
+  // `error`: the device's failure, empty while it is open; `fd`: its descriptor now; `lost`: what
+  // does not come meanwhile ("fixes").
+  void check(Context& ctx, const std::string& error, int fd, const char* lost) {
+    if (!error.empty()) {
+      if (!failed_) ctx.log(LogLevel::error, "source " + error + ": no more " + lost + " from it until it opens again");
+      failed_ = true;
+      fd = -1;
+    } else if (failed_) {
+      ctx.log(LogLevel::info, "source open again: " + std::string(lost) + " from it again");
+      failed_ = false;
+    }
+    if (fd != fd_) ctx.wake_on_readable(fd_ = fd);
   }
 
  private:
-  bool said_ = false;
+  int fd_ = -1;
+  bool failed_ = false;
 };
 
 }  // namespace brickyard::drivers

@@ -42,6 +42,13 @@ inline void report_wire_latency(Context& ctx, const LatencySpread& wire) {
   ctx.metric("wire_to_message_s_max", wire.max_s());
 }
 
+// A live device's failures and how often it was opened again (reopening_device.hpp).
+inline void report_device(Context& ctx, const ReopeningDevice* device) {
+  if (!device) return;
+  ctx.metric("device_failures", static_cast<double>(device->failures()));
+  ctx.metric("device_reopened", static_cast<double>(device->reopened()));
+}
+
 inline void report_gnss(Context& ctx, const GnssSource& source, uint64_t fixes, uint64_t silences, const LatencySpread& wire) {
   const GnssStreamCounters& c = source.stream().counters();
   report_decoder(ctx, source.stream().decoder());
@@ -54,6 +61,7 @@ inline void report_gnss(Context& ctx, const GnssSource& source, uint64_t fixes, 
   ctx.metric("imu_unscaled", static_cast<double>(c.imu_unscaled));
   ctx.metric("gst_sigmas", static_cast<double>(c.gst_sigmas));
   ctx.metric("bytes", static_cast<double>(source.bytes()));
+  report_device(ctx, source.device());
   ctx.metric("silences", static_cast<double>(silences));
   report_spread(ctx, "stamp_delay_s", source.delays_s());
   report_wire_latency(ctx, wire);
@@ -73,6 +81,7 @@ inline void report_ouster(Context& ctx, const OusterSource& source, uint64_t fra
     ctx.metric("capture_refused", static_cast<double>(p->refused()));
   }
   ctx.metric("frames", static_cast<double>(frames));
+  report_device(ctx, source.device());
   ctx.metric("silences", static_cast<double>(silences));
   report_spread(ctx, "stamp_delay_s", source.delays_s());
   report_wire_latency(ctx, wire);
@@ -87,6 +96,7 @@ inline void report_ouster_imu(Context& ctx, const OusterImuSource& source, uint6
     ctx.metric("capture_refused", static_cast<double>(p->refused()));
   }
   ctx.metric("samples", static_cast<double>(samples));
+  report_device(ctx, source.device());
   ctx.metric("silences", static_cast<double>(silences));
   report_spread(ctx, "stamp_delay_s", source.delays_s());
   report_wire_latency(ctx, wire);

@@ -23,9 +23,7 @@ GnssSource::GnssSource(const GnssSourceSettings& s) : s_(s), stream_(s.stream), 
     while (auto v = stream_.next_imu()) imu_.all.push_back(*v);
     return;
   }
-  std::string error;
-  device_ = open_source(s.source, error);
-  if (!device_) throw std::runtime_error(error);
+  device_.emplace(s.source, s.source.reopen_s);
 }
 
 int64_t GnssSource::stamp(std::optional<int64_t> device_ns, int64_t receive_ns) {
@@ -63,9 +61,8 @@ GnssPoll GnssSource::poll(int64_t now_ns) {
     replay_due(now_ns, out);
     return out;
   }
-  if (!device_error_.empty()) return out;
   std::vector<std::vector<uint8_t>> chunks;
-  if (!device_->poll(chunks, kMaxPollBytes)) device_error_ = device_->error();
+  device_->poll(now_ns, chunks, kMaxPollBytes);
   // Chunk by chunk: what a chunk completes is credited to its arrival.
   const std::vector<int64_t>& arrivals = device_->arrivals_ns();
   for (size_t i = 0; i < chunks.size(); ++i) {

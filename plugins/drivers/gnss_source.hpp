@@ -6,6 +6,7 @@
 #include "drivers/common/gnss_stream.hpp"
 #include "drivers/common/replay_pacer.hpp"
 #include "drivers/io/byte_source.hpp"
+#include "drivers/io/reopening_device.hpp"
 
 #include <cstdint>
 #include <memory>
@@ -52,9 +53,10 @@ class GnssSource {
 
   const GnssStream& stream() const { return stream_; }
   const std::vector<double>& delays_s() const { return delays_s_; }  // credited to each device-timed message
-  const std::string& device_error() const { return device_error_; }   // set once a live device failed
+  const std::string& device_error() const { return device_ ? device_->error() : kNoError; }  // while a live device is failed
+  const ReopeningDevice* device() const { return device_ ? &*device_ : nullptr; }
   uint64_t bytes() const { return bytes_; }
-  int fd() const { return device_ && device_error_.empty() ? device_->fd() : -1; }  // a live device's, to wait on
+  int fd() const { return device_ ? device_->fd() : -1; }  // a live device's, to wait on
   bool replay_finished() const { return !device_ && fixes_.done() && imu_.done(); }
 
  private:
@@ -72,13 +74,13 @@ class GnssSource {
   GnssSourceSettings s_;
   GnssStream stream_;
   DeviceClock clock_;
-  std::unique_ptr<ByteSource> device_;
+  std::optional<ReopeningDevice> device_;
   Recorded<GnssFixValues> fixes_;  // file://: every fix of the log
   Recorded<ImuValues> imu_;        // and every IMU sample
   ReplayPacer pacer_;
   std::vector<double> delays_s_;
-  std::string device_error_;
   uint64_t bytes_ = 0;
+  inline static const std::string kNoError;
 };
 
 }  // namespace brickyard::drivers

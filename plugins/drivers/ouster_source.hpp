@@ -45,6 +45,7 @@ class OusterSource {
   const PcapCounters* capture() const { return feed_.capture(); }
   const std::vector<double>& delays_s() const { return delays_s_; }
   const std::string& device_error() const { return feed_.device_error(); }
+  const ReopeningDevice* device() const { return feed_.device(); }
   bool replay_finished() const { return feed_.replay_finished(); }
   int fd() const { return feed_.fd(); }  // a live device's, to wait on
 

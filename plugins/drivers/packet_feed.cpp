@@ -21,13 +21,12 @@ PacketFeed::PacketFeed(const SourceSpec& source, const std::string& capture_path
     if (!capture_->ok()) throw std::runtime_error(capture_path + ": " + capture_->error());
     return;
   }
-  device_ = open_source(source, error);
-  if (!device_) throw std::runtime_error(error);
+  device_.emplace(source, source.reopen_s);
 }
 
 bool PacketFeed::poll(int64_t now_ns, const Take& take) {
   if (capture_) return poll_capture(now_ns, take);
-  poll_device(take);
+  poll_device(now_ns, take);
   return false;
 }
 
@@ -45,10 +44,9 @@ bool PacketFeed::poll_capture(int64_t now_ns, const Take& take) {
   }
 }
 
-void PacketFeed::poll_device(const Take& take) {
-  if (!device_error_.empty()) return;
+void PacketFeed::poll_device(int64_t now_ns, const Take& take) {
   std::vector<std::vector<uint8_t>> packets;
-  if (!device_->poll(packets, kMaxPollBytes)) device_error_ = device_->error();
+  device_->poll(now_ns, packets, kMaxPollBytes);
   const std::vector<int64_t>& arrivals = device_->arrivals_ns();
   last_arrival_ns_ = -1;
   for (size_t i = 0; i < packets.size(); ++i) {

@@ -5,6 +5,7 @@
 #include "drivers/common/pcap_reader.hpp"
 #include "drivers/common/replay_pacer.hpp"
 #include "drivers/io/byte_source.hpp"
+#include "drivers/io/reopening_device.hpp"
 
 #include <cstdint>
 #include <functional>
@@ -32,23 +33,24 @@ class PacketFeed {
   // The kernel's receive time of the newest packet the last poll handed out (udp), else -1.
   int64_t last_arrival_ns() const { return last_arrival_ns_; }
   const PcapCounters* capture() const { return capture_ ? &capture_->counters() : nullptr; }
-  const std::string& device_error() const { return device_error_; }
+  const std::string& device_error() const { return device_ ? device_->error() : kNoError; }  // while a live device is failed
+  const ReopeningDevice* device() const { return device_ ? &*device_ : nullptr; }
   bool replay_finished() const { return capture_ && capture_done_; }
-  int fd() const { return device_ && device_error_.empty() ? device_->fd() : -1; }  // a live device's, to wait on
+  int fd() const { return device_ ? device_->fd() : -1; }  // a live device's, to wait on
 
  private:
   bool poll_capture(int64_t now_ns, const Take& take);
-  void poll_device(const Take& take);
+  void poll_device(int64_t now_ns, const Take& take);
 
   uint16_t capture_port_ = 0;
-  std::unique_ptr<ByteSource> device_;
+  std::optional<ReopeningDevice> device_;
   std::vector<uint8_t> capture_bytes_;
   std::optional<PcapReader> capture_;
   std::optional<UdpDatagram> pending_;  // read from the capture, not yet due
   bool capture_done_ = false;
   ReplayPacer pacer_;
-  std::string device_error_;
   int64_t last_arrival_ns_ = -1;
+  inline static const std::string kNoError;
 };
 
 }  // namespace brickyard::drivers

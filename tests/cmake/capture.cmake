@@ -15,6 +15,11 @@ by_next_domain(d)
 add_test(NAME cli.capture_play COMMAND ${NETNS} ${CMAKE_CURRENT_SOURCE_DIR}/cli/capture_play.sh ${BY} ${CAPTURE_DATA}
          ${CMAKE_CURRENT_SOURCE_DIR}/graphs/capture ${d} ${RUNS}/capture_play)
 set_tests_properties(cli.capture_play PROPERTIES TIMEOUT 120)
+# A receiver that reboots: the driver opens its TCP port again and reads on (docs/drivers-transports.md).
+by_next_domain(d)
+add_test(NAME cli.gnss_reopen COMMAND ${NETNS} ${CMAKE_CURRENT_SOURCE_DIR}/cli/gnss_reopen.sh ${BY}
+         ${CMAKE_CURRENT_SOURCE_DIR}/graphs/capture ${d} ${RUNS}/gnss_reopen)
+set_tests_properties(cli.gnss_reopen PROPERTIES TIMEOUT 120)
 
 # Bad input: exit 2, the culprit named, nothing read forever and nothing sent.
 function(capture_bad name regex)

@@ -102,7 +102,7 @@ class GnssDriver : public Plugin {
       throw BadInput("parameter 'source': " + std::string(e.what()));
     }
     io_ = ports().connect(ctx);
-    ctx.wake_on_readable(source_->fd());
+    device_failure_.watch(ctx, source_->fd());
   }
 
   void step(Context& ctx) override {
@@ -110,7 +110,7 @@ class GnssDriver : public Plugin {
     const GnssPoll got = source_->poll(now);
     for (const StampedFix& f : got.fixes) publish(ctx, f), silence_.heard(now);
     for (const StampedImu& v : got.imu) publish(ctx, v);
-    device_failure_.check(ctx, source_->device_error(), "fixes");
+    device_failure_.check(ctx, source_->device_error(), source_->fd(), "fixes");
     silence_.check(ctx, now, !source_->replay_finished());
   }
 

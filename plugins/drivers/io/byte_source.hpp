@@ -33,6 +33,7 @@ struct SourceSpec {
   int baud = 115200;           // serial
   std::string framing = "8N1"; // serial
   double rate = 1.0;           // file, pcap
+  double reopen_s = 1.0;       // udp, tcp, serial: a device that failed is opened again this long after, s (0: never)
   std::string text;            // the spec as given (for messages)
 };
 

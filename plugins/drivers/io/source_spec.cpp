@@ -21,9 +21,9 @@ struct Scheme {
   SourceSpec::Kind kind;
   std::string_view params;  // the parameters it takes, for messages and checks
 };
-constexpr std::array<Scheme, 5> kSchemes{{{"udp", SourceSpec::Kind::udp, "group"},
-                                          {"tcp", SourceSpec::Kind::tcp, ""},
-                                          {"serial", SourceSpec::Kind::serial, "baud, framing"},
+constexpr std::array<Scheme, 5> kSchemes{{{"udp", SourceSpec::Kind::udp, "group, reopen"},
+                                          {"tcp", SourceSpec::Kind::tcp, "reopen"},
+                                          {"serial", SourceSpec::Kind::serial, "baud, framing, reopen"},
                                           {"file", SourceSpec::Kind::file, "rate"},
                                           {"pcap", SourceSpec::Kind::pcap, "rate, port"}}};
 
@@ -127,14 +127,15 @@ std::string read_framing(std::string_view text, SourceSpec& spec) {
   return {};
 }
 
-std::string read_rate(std::string_view text, SourceSpec& spec) {
+// A finite number, 0 or more, into `value` (`zero_means` for the message); empty, or what is wrong.
+std::string read_nonnegative(std::string_view key, std::string_view text, const char* zero_means, double& value) {
   const char* end = text.data() + text.size();
-  double value = 0;
-  auto [ptr, ec] = std::from_chars(text.data(), end, value);
-  if (ec != std::errc() || ptr != end || text.empty()) return "rate '" + std::string(text) + "' is not a number";
-  if (!std::isfinite(value) || value < 0)
-    return "rate " + std::string(text) + " must be finite and 0 (as fast as read) or more";
-  spec.rate = value;
+  double read = 0;
+  auto [ptr, ec] = std::from_chars(text.data(), end, read);
+  if (ec != std::errc() || ptr != end || text.empty()) return std::string(key) + " '" + std::string(text) + "' is not a number";
+  if (!std::isfinite(read) || read < 0)
+    return std::string(key) + " " + std::string(text) + " must be finite and 0 (" + zero_means + ") or more";
+  value = read;
   return {};
 }
 
@@ -151,7 +152,8 @@ std::string read_param(std::string_view key, std::string_view value, SourceSpec&
   if (key == "group") return read_group(value, spec);
   if (key == "baud") return read_baud(value, spec);
   if (key == "framing") return read_framing(value, spec);
-  if (key == "rate") return read_rate(value, spec);
+  if (key == "rate") return read_nonnegative(key, value, "as fast as read", spec.rate);
+  if (key == "reopen") return read_nonnegative(key, value, "never", spec.reopen_s);
   std::string error = read_port(value, spec.port);  // pcap's filter, the only other key taken
   return error.empty() ? error : "filter " + error;
 }

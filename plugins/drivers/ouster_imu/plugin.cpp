@@ -92,13 +92,13 @@ class OusterImu : public Plugin {
       throw BadInput("parameter 'source': " + std::string(e.what()));
     }
     io_ = ports().connect(ctx);
-    ctx.wake_on_readable(source_->fd());
+    device_failure_.watch(ctx, source_->fd());
   }
 
   void step(Context& ctx) override {
     const std::int64_t now = ctx.now_ns();
     for (const StampedOusterImu& sample : source_->poll(now)) publish(ctx, sample), silence_.heard(now);
-    device_failure_.check(ctx, source_->device_error(), "samples");
+    device_failure_.check(ctx, source_->device_error(), source_->fd(), "samples");
     silence_.check(ctx, now, !source_->replay_finished());
   }
 

@@ -96,13 +96,13 @@ class OusterLidar : public Plugin {
       throw BadInput("parameter 'source': " + std::string(e.what()));
     }
     io_ = ports().connect(ctx);
-    ctx.wake_on_readable(source_->fd());
+    device_failure_.watch(ctx, source_->fd());
   }
 
   void step(Context& ctx) override {
     const std::int64_t now = ctx.now_ns();
     for (StampedCloud& c : source_->poll(now)) publish(ctx, std::move(c)), silence_.heard(now);
-    device_failure_.check(ctx, source_->device_error(), "frames");
+    device_failure_.check(ctx, source_->device_error(), source_->fd(), "frames");
     silence_.check(ctx, now, !source_->replay_finished());
   }
 

@@ -3,6 +3,7 @@
 // poll, and the bound on one poll. Bytes are compared exactly. Tests may sleep to wait for the
 // kernel; the transports never do.
 #include "drivers/io/byte_source.hpp"
+#include "drivers/io/reopening_device.hpp"
 
 #include "free_port.hpp"
 
@@ -17,6 +18,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <stdexcept>
 #include <string>
 #include <thread>
 #include <vector>
@@ -150,7 +152,7 @@ TEST(ParseSource, NamesWhatIsWrong) {
             "source 'udp://0.0.0.0:7502?group=10.1.1.1': group '10.1.1.1' is not an IPv4 multicast address "
             "(224.0.0.0 to 239.255.255.255)");
   EXPECT_EQ(refusal("tcp://10.0.0.2:3001?group=239.1.1.1"),
-            "source 'tcp://10.0.0.2:3001?group=239.1.1.1': unknown parameter 'group' for tcp (takes: none)");
+            "source 'tcp://10.0.0.2:3001?group=239.1.1.1': unknown parameter 'group' for tcp (takes: reopen)");
   EXPECT_EQ(refusal("http://x"), "source 'http://x': unknown scheme 'http' (udp, tcp, serial, file, pcap)");
   EXPECT_EQ(refusal("/dev/ttyUSB0"),
             "source '/dev/ttyUSB0': expected SCHEME://..., SCHEME one of udp, tcp, serial, file, pcap");
@@ -163,7 +165,7 @@ TEST(ParseSource, NamesWhatIsWrong) {
   EXPECT_EQ(refusal("serial:///dev/ttyS0?baud=115200&baud=9600"),
             "source 'serial:///dev/ttyS0?baud=115200&baud=9600': parameter 'baud' given twice");
   EXPECT_EQ(refusal("serial:///dev/ttyS0?parity=even"),
-            "source 'serial:///dev/ttyS0?parity=even': unknown parameter 'parity' for serial (takes: baud, framing)");
+            "source 'serial:///dev/ttyS0?parity=even': unknown parameter 'parity' for serial (takes: baud, framing, reopen)");
   EXPECT_EQ(refusal("serial:///dev/ttyS0?baud="), "source 'serial:///dev/ttyS0?baud=': parameter 'baud' has no value");
   EXPECT_EQ(refusal("serial:///dev/ttyS0?&baud=9600"), "source 'serial:///dev/ttyS0?&baud=9600': empty parameter in the query");
   EXPECT_EQ(refusal("file://run.bin?rate=-1"),
@@ -172,6 +174,9 @@ TEST(ParseSource, NamesWhatIsWrong) {
             "source 'file://run.bin?rate=inf': rate inf must be finite and 0 (as fast as read) or more");
   EXPECT_EQ(refusal("file://run.bin?rate=fast"), "source 'file://run.bin?rate=fast': rate 'fast' is not a number");
   EXPECT_EQ(refusal("file://"), "source 'file://': path missing");
+  EXPECT_EQ(refusal("tcp://10.0.0.2:3001?reopen=-1"),
+            "source 'tcp://10.0.0.2:3001?reopen=-1': reopen -1 must be finite and 0 (never) or more");
+  EXPECT_EQ(refusal("file://run.bin?reopen=1"), "source 'file://run.bin?reopen=1': unknown parameter 'reopen' for file (takes: rate)");
   EXPECT_EQ(refusal("pcap://os1.pcap?port=99999"), "source 'pcap://os1.pcap?port=99999': filter port 99999 out of 1..65535");
   EXPECT_EQ(refusal("pcap://os1.pcap?group=239.1.1.1"),
             "source 'pcap://os1.pcap?group=239.1.1.1': unknown parameter 'group' for pcap (takes: rate, port)");
@@ -515,6 +520,88 @@ TEST(Open, NoDescriptorOutlivesItsOwner) {
     EXPECT_NE(::fcntl(pair.pty.master_fd, F_GETFD) & FD_CLOEXEC, 0);
   }
   EXPECT_EQ(open_fds(), before);
+}
+
+// --- a device opened again after it failed (reopening_device.hpp) --------------------------
+
+// Polls `device` (the run clock at now_ns) while `sink` sends probes, until one arrives; false
+// when none does in 2 s.
+bool heard_through(ReopeningDevice& device, ByteSink& sink, int64_t now_ns) {
+  const uint8_t probe = 'x';
+  for (int i = 0; i < 400; ++i) {
+    sink.send(&probe, 1);
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    Entries got;
+    if (device.poll(now_ns, got, 1 << 16) && !got.empty()) return true;
+  }
+  return false;
+}
+
+// Polls until the device fails; false when it does not in 2 s.
+bool fails(ReopeningDevice& device, int64_t now_ns) {
+  for (int i = 0; i < 400; ++i) {
+    Entries got;
+    if (!device.poll(now_ns, got, 1 << 16)) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  return false;
+}
+
+// A receiver that reboots: its port closes, then listens again; the client is opened anew once
+// the retry time has passed on the run's clock, not before, and reads again.
+TEST(ReopeningDevice, ATcpReceiverThatComesBackIsReadAgain) {
+  const uint16_t port = free_port(SOCK_STREAM);
+  const std::string name = "tcp://127.0.0.1:" + std::to_string(port);
+  std::string error;
+  auto receiver = open_sink(spec_of(name), error);
+  ASSERT_TRUE(receiver) << error;
+  ReopeningDevice device(spec_of(name), 0.5);
+  ASSERT_TRUE(heard_through(device, *receiver, 0));
+  EXPECT_GE(device.fd(), 0);
+
+  receiver.reset();  // the receiver reboots
+  ASSERT_TRUE(fails(device, 1'000'000'000));
+  EXPECT_EQ(device.error(), name + ": closed by the peer");
+  EXPECT_EQ(device.fd(), -1);
+  EXPECT_EQ(device.failures(), 1u);
+
+  receiver = open_sink(spec_of(name), error);
+  ASSERT_TRUE(receiver) << error;
+  Entries none;
+  EXPECT_FALSE(device.poll(1'400'000'000, none, 1 << 16));  // 0.4 s after the failure: not yet
+  EXPECT_EQ(device.reopened(), 0u);
+  ASSERT_TRUE(heard_through(device, *receiver, 1'500'000'000));
+  EXPECT_EQ(device.reopened(), 1u);
+  EXPECT_EQ(device.error(), "");
+  EXPECT_GE(device.fd(), 0);
+}
+
+TEST(ReopeningDevice, WithNoRetryAFailedDeviceStaysFailed) {
+  const uint16_t port = free_port(SOCK_STREAM);
+  const std::string name = "tcp://127.0.0.1:" + std::to_string(port);
+  std::string error;
+  auto receiver = open_sink(spec_of(name), error);
+  ASSERT_TRUE(receiver) << error;
+  ReopeningDevice device(spec_of(name), 0);
+  ASSERT_TRUE(heard_through(device, *receiver, 0));
+  receiver.reset();
+  ASSERT_TRUE(fails(device, 0));
+  receiver = open_sink(spec_of(name), error);
+  ASSERT_TRUE(receiver) << error;
+  Entries none;
+  EXPECT_FALSE(device.poll(3'600'000'000'000, none, 1 << 16));
+  EXPECT_EQ(device.reopened(), 0u);
+  EXPECT_EQ(device.error(), name + ": closed by the peer");
+}
+
+TEST(ReopeningDevice, ADeviceThatCannotBeOpenedAtTheStartIsRefused) {
+  EXPECT_THROW(ReopeningDevice(spec_of("serial:///dev/ttyBY_NONE"), 1.0), std::runtime_error);
+}
+
+TEST(ParseSource, ReopenIsOneSecondUnlessSaid) {
+  EXPECT_EQ(spec_of("tcp://10.0.0.2:3001").reopen_s, 1.0);
+  EXPECT_EQ(spec_of("tcp://10.0.0.2:3001?reopen=0").reopen_s, 0.0);
+  EXPECT_EQ(spec_of("serial:///dev/ttyS0?baud=9600&reopen=2.5").reopen_s, 2.5);
 }
 
 }  // namespace
