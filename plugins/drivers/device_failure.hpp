@@ -10,14 +10,18 @@ namespace brickyard::drivers {
 
 class DeviceFailure {
  public:
-  // The node woken by the device's descriptor (-1: none), at configure.
-  void watch(Context& ctx, int fd) { ctx.wake_on_readable(fd_ = fd); }
+  // The node woken by the device's descriptor (-1: none), at configure; `reopens`: whether the
+  // device is opened again after a failure.
+  void watch(Context& ctx, int fd, bool reopens) {
+    reopens_ = reopens;
+    ctx.wake_on_readable(fd_ = fd);
+  }
 
   // `error`: the device's failure, empty while it is open; `fd`: its descriptor now; `lost`: what
   // does not come meanwhile ("fixes").
   void check(Context& ctx, const std::string& error, int fd, const char* lost) {
     if (!error.empty()) {
-      if (!failed_) ctx.log(LogLevel::error, "source " + error + ": no more " + lost + " from it until it opens again");
+      if (!failed_) ctx.log(LogLevel::error, "source " + error + ": no more " + lost + " from it" + (reopens_ ? " until it opens again" : ""));
       failed_ = true;
       fd = -1;
     } else if (failed_) {
@@ -29,7 +33,7 @@ class DeviceFailure {
 
  private:
   int fd_ = -1;
-  bool failed_ = false;
+  bool reopens_ = false, failed_ = false;
 };
 
 }  // namespace brickyard::drivers

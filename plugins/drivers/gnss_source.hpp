@@ -55,6 +55,7 @@ class GnssSource {
   const std::vector<double>& delays_s() const { return delays_s_; }  // credited to each device-timed message
   const std::string& device_error() const { return device_ ? device_->error() : kNoError; }  // while a live device is failed
   const ReopeningDevice* device() const { return device_ ? &*device_ : nullptr; }
+  bool reopens() const { return device_ && device_->reopens(); }
   uint64_t bytes() const { return bytes_; }
   int fd() const { return device_ ? device_->fd() : -1; }  // a live device's, to wait on
   bool replay_finished() const { return !device_ && fixes_.done() && imu_.done(); }

@@ -51,6 +51,7 @@ class OusterImuSource {
   const std::vector<double>& delays_s() const { return delays_s_; }
   const std::string& device_error() const { return feed_.device_error(); }
   const ReopeningDevice* device() const { return feed_.device(); }
+  bool reopens() const { return feed_.reopens(); }
   bool replay_finished() const { return feed_.replay_finished(); }
   int fd() const { return feed_.fd(); }
 

@@ -35,6 +35,7 @@ class PacketFeed {
   const PcapCounters* capture() const { return capture_ ? &capture_->counters() : nullptr; }
   const std::string& device_error() const { return device_ ? device_->error() : kNoError; }  // while a live device is failed
   const ReopeningDevice* device() const { return device_ ? &*device_ : nullptr; }
+  bool reopens() const { return device_ && device_->reopens(); }
   bool replay_finished() const { return capture_ && capture_done_; }
   int fd() const { return device_ ? device_->fd() : -1; }  // a live device's, to wait on
 

@@ -33,4 +33,5 @@ grep -q "source open again: fixes from it again" "$out/reopen.log" || { cat "$ou
 grep -Eq "device_failures ([1-9][0-9]*) · device_reopened \1 " "$out/reopen.log" || { cat "$out/reopen.log"; fail "the driver's counts"; }
 run 0 never && { cat "$out/never.log"; fail "with reopen=0 the graph passed: it cannot tell"; }
 grep -q "count.*20" "$out/never.log" || { cat "$out/never.log"; fail "with reopen=0, not the first 20 fixes"; }
+grep -q "closed by the peer: no more fixes from it$" "$out/never.log" || { cat "$out/never.log"; fail "with reopen=0, the failure said as if it would open again"; }
 echo "gnss_reopen: ok"

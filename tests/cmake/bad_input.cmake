@@ -77,6 +77,10 @@ set(DRIVER_OUSTER_IMU ${CMAKE_CURRENT_SOURCE_DIR}/graphs/expect_drivers_ouster_i
 bad_config(driver_imu_source_not_udp "node 'imu' \\(drivers.ouster_imu\\): parameter 'source': tcp://127.0.0.1:7503: an Ouster sensor's IMU is read from udp:// or pcap://" validate ${DRIVER_OUSTER_IMU} --set imu.source=tcp://127.0.0.1:7503)
 bad_config(driver_imu_metadata_missing "node 'imu' \\(drivers.ouster_imu\\): .*nowhere_metadata.json" validate ${DRIVER_OUSTER_IMU} --set imu.metadata=nowhere_metadata.json)
 bad_config(driver_imu_capture_missing "node 'imu' \\(drivers.ouster_imu\\): file not found: /nonexistent.pcap" run ${DRIVER_OUSTER_IMU} --set imu.source=pcap:///nonexistent.pcap)
+# The test of the test: the same capture mounted upside down fails the graph's expectations (exit 1).
+by_next_domain(d)
+add_test(NAME graph.fail_ouster_imu_upside_down
+  COMMAND ${NETNS} ${EXPECT} 1 "accel_z within \\[9.5, 10.5\\].*accel_z = -10\\." -- ${BY} run ${DRIVER_OUSTER_IMU} --set imu.mount_rpy_deg=[180,0,0] --domain ${d})
 # The vehicle interface (docs/vehicle-interface.md): a DBC without a message the mapping needs, at
 # validation; a SocketCAN interface that does not exist, when configure opens it; a vehicle file
 # without the drive-by-wire's section; shift rules the car's gears cannot follow. No simulator.

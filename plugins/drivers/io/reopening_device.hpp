@@ -26,6 +26,7 @@ class ReopeningDevice {
   // The failure, empty while the device is open.
   const std::string& error() const { return error_; }
   int fd() const { return device_ ? device_->fd() : -1; }
+  bool reopens() const { return retry_ns_ > 0; }
   uint64_t reopened() const { return reopened_; }  // opens that worked after a failure
   uint64_t failures() const { return failures_; }
 

@@ -92,7 +92,7 @@ class OusterImu : public Plugin {
       throw BadInput("parameter 'source': " + std::string(e.what()));
     }
     io_ = ports().connect(ctx);
-    device_failure_.watch(ctx, source_->fd());
+    device_failure_.watch(ctx, source_->fd(), source_->reopens());
   }
 
   void step(Context& ctx) override {
