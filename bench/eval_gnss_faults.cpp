@@ -10,7 +10,9 @@
 // the longest time in each mode; "ok" or what missed the target.
 // usage: eval_gnss_faults [--tracks DIR] [--track NAME]... [--layout outer|both] [--faults a,b]
 //                         [--durations 7,60,laps] [--placements N] [--seed N] [--jobs N]
-//                         [--domain N] [--maps DIR] [--set NODE.PARAM=V]...
+//                         [--domain N] [--maps DIR] [--brickyard HOST] [--set NODE.PARAM=V]...
+// --brickyard: the host that races (default this build's); a copy of bin/brickyard with its lib/
+// beside it lets the build go on while a sweep runs.
 // Runs and maps go under $EVAL_GNSS_FAULTS_DIR (default /tmp/eval_gnss_faults). Exit 1 when any
 // row missed its target, 2 on a bad option.
 #include "race_runs.hpp"
@@ -85,7 +87,7 @@ std::vector<std::string> fault_sets(const std::string& cls, double start, double
 }
 
 struct Options {
-  std::string tracks, only_layout, maps;
+  std::string tracks, only_layout, maps, host = BRICKYARD_HOST;
   std::vector<std::string> names, classes = {"dropout", "bias_both", "bias_one", "lidar_loss"}, durations = {"60", "laps"};
   std::vector<std::string> sets;
   int placements = 2, seed = 0, jobs = 1, domain0 = 150;
@@ -253,6 +255,7 @@ int parse(int argc, char** argv, Options& o) {
     else if (k == "--jobs") o.jobs = std::clamp(std::atoi(v), 1, 16);
     else if (k == "--domain") o.domain0 = std::clamp(std::atoi(v), 0, 200);
     else if (k == "--maps") o.maps = v;
+    else if (k == "--brickyard") o.host = v;
     else if (k == "--set") o.sets.push_back(v);
     else return std::fprintf(stderr, "eval_gnss_faults: %s: unknown option\n", k.c_str()), 2;
   }
@@ -276,10 +279,12 @@ bool track_map(const std::string& src, const std::string& by, const std::vector<
 }  // namespace
 
 int main(int argc, char** argv) {
-  const std::string src = BRICKYARD_SOURCE_DIR, by = BRICKYARD_HOST;
+  const std::string src = BRICKYARD_SOURCE_DIR;
   Options o;
   o.tracks = src + "/data/tracks";
   if (const int rc = parse(argc, argv, o)) return rc;
+  if (!fs::is_regular_file(o.host)) return std::fprintf(stderr, "eval_gnss_faults: --brickyard: %s: not a file\n", o.host.c_str()), 2;
+  const std::string by = o.host;
   const std::string dir = std::getenv("EVAL_GNSS_FAULTS_DIR") ? std::getenv("EVAL_GNSS_FAULTS_DIR") : "/tmp/eval_gnss_faults";
   if (o.maps.empty()) o.maps = dir + "/maps";
   fs::create_directories(dir);

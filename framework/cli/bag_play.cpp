@@ -74,9 +74,13 @@ int read_recording(const BagPlayOptions& o, RecordingInfo& info) {
   return 0;
 }
 
+// --identity P: the player stands in for process P of a split graph (its participant named as
+// P's is, so that P's readers' peers take it for P where security is off; secured, P's
+// certificate decides).
 DdsSettings player_settings(const BagPlayOptions& o) {
   DdsSettings ds;
   ds.domain = o.domain;
+  if (!o.identity.empty()) ds.name = participant_name(o.identity);
   if (!o.security.empty()) {
     if (o.identity.empty()) throw InvalidInput("--security " + o.security, "bag play writes topics: it needs --identity NAME, a process of the graph allowed to write them");
     ds.security = security::security_identity(o.security, o.identity);

@@ -75,9 +75,7 @@ DdsSecurity run_security(const Args& a, const GraphDecl& g, const ResolvedGraph&
                              "taking a process's name (docs/security.md)\n", g.file.c_str());
       return DdsSecurity{};
     case security::SecurityChoice::by_default:
-      // Not yet a split run on the sim clock (its processes in lockstep): secured, one whose
-      // process failed in configure once left its peer hanging (docs/security.md "Not yet").
-      if (!split || validate_only || g.clock.sim) return DdsSecurity{};
+      if (!split || validate_only) return DdsSecurity{};
       secured.transport.security = default_keys(a, g, reg, said_here);
       break;
     case security::SecurityChoice::folder:

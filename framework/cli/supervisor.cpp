@@ -34,6 +34,9 @@ void on_child(int) {}  // only to wake the poll below when a child ends
 
 // Children are stopped with SIGINT and have 2 s to end (their own watchdog); past this they are killed.
 constexpr double kStopGrace_s = 5.0;
+// On the sim clock, past transport.end_timeout_s after a process ended: its peers' own waits for
+// its end (Lockstep::finish), then their last samples acknowledged (5 s) and their ending (2 s).
+constexpr double kEndSlack_s = 10.0;
 constexpr double kMaxBackoff_s = 5.0;
 // A restart with less of the run left than this is not worth making.
 constexpr double kLeastRun_s = 0.5;
@@ -146,6 +149,7 @@ class Supervisor {
   void watch();
   void wait_for_children();
   void kill_overdue();
+  void stop_overdue_lockstep_peers();
   int conclude();
 
   const GraphDecl& g_;
@@ -158,6 +162,7 @@ class Supervisor {
   std::optional<std::string> failed_, invalid_, finished_by_;
   bool stopping_ = false, interrupted_ = false;
   Clock::time_point stop_deadline_;
+  std::optional<std::pair<std::string, Clock::time_point>> first_end_;  // the sim clock: the first process to end, when
 };
 
 void Supervisor::spawn(Child& c) {
@@ -266,6 +271,7 @@ void Supervisor::stop_all(int sig) {
 void Supervisor::ended(Child& c, int status) {
   relay(c, true);
   c.state = Child::State::done;
+  if (g_.clock.sim && !first_end_) first_end_ = {c.name, Clock::now()};
   const double at = elapsed();
   int code = -1, sig = 0;
   if (WIFEXITED(status)) code = WEXITSTATUS(status);
@@ -457,6 +463,26 @@ void Supervisor::kill_overdue() {
   stop_deadline_ = Clock::now() + std::chrono::hours(1);
 }
 
+// On the sim clock the processes end together (exec/lockstep.hpp): one still running well past
+// end_timeout_s after another ended is held by something its own watchdogs do not see (it once
+// kept a failed run alive until CTest killed it, 17 minutes). It is stopped, killed past the
+// grace, and fails the run, named.
+void Supervisor::stop_overdue_lockstep_peers() {
+  if (!first_end_ || stopping_) return;
+  const double limit = g_.transport.end_timeout_s + kEndSlack_s;
+  if (std::chrono::duration<double>(Clock::now() - first_end_->second).count() < limit) return;
+  for (const auto& c : children_)
+    if (c.state == Child::State::running) {
+      char secs[32];
+      std::snprintf(secs, sizeof secs, "%.3g s", limit);
+      const std::string what = "process '" + c.name + "' did not end within " + secs + " of process '" + first_end_->first +
+                               "''s end (on the sim clock the processes end together; transport.end_timeout_s)";
+      say(what + ": stopped", true);
+      fail(what);
+    }
+  stop_all(SIGINT);
+}
+
 // Until every child is done: signals acted on, children started when due, their ends handled.
 void Supervisor::watch() {
   int signals_seen = 0;
@@ -476,6 +502,7 @@ void Supervisor::watch() {
       int status = 0;
       if (waitpid(c.pid, &status, WNOHANG) == c.pid) ended(c, status);
     }
+    stop_overdue_lockstep_peers();
     if (stopping_ && Clock::now() > stop_deadline_) kill_overdue();
     if (std::all_of(children_.begin(), children_.end(), [](const Child& c) { return c.state == Child::State::done; })) break;
   }

@@ -463,7 +463,7 @@ void Executive::finish_lockstep(const std::vector<LockRecord>& asked) {
     std::lock_guard<std::mutex> l(stop_m_);
     if (stop_result_) result = *stop_result_, reason = stop_reason_;
   }
-  std::vector<LockRecord> all = lock_->finish(result, reason, writers, asked, why);
+  std::vector<LockRecord> all = lock_->finish(result, reason, writers, asked, why, graph_.decl->transport.end_timeout_s);
   all.insert(all.end(), asked.begin(), asked.end());
   // Deactivation runs downstream first (reverse schedule order): the same requests in the same
   // order as in one process, so the same verdict.

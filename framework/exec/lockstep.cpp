@@ -324,7 +324,7 @@ void Lockstep::flush() {
 }
 
 std::vector<LockRecord> Lockstep::finish(RunResult r, const std::string& reason, const std::vector<DdsWriter*>& writers,
-                                        const std::vector<LockRecord>& mine, std::string& why) {
+                                        const std::vector<LockRecord>& mine, std::string& why, double end_wait_s) {
   for (LockRecord d : mine) {
     d.kind = LockRecord::deactivated;
     d.stop = true;
@@ -338,15 +338,23 @@ std::vector<LockRecord> Lockstep::finish(RunResult r, const std::string& reason,
   e.reason = reason;
   outbox_.push_back(std::move(e));
   flush();
-  // Every peer's end: its verdicts come before it. A peer behind this one is still stepping:
-  // no limit but its death, its leaving, or an interrupt.
+  // Every peer's end: its verdicts come before it. A peer behind this one is still stepping, to
+  // its end: until its death, its leaving, an interrupt or end_wait_s (kPeerEndWait_s says why).
   std::vector<LockRecord> theirs;
   {
+    const auto until = std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                                              std::chrono::duration<double>(end_wait_s));
     std::unique_lock<std::mutex> l(m_);
     for (auto& [name, p] : peers_) {
       if (!p.hello) continue;  // it never joined (start-up failed): no end will come
       while (!p.end) {
-        if (const std::string g = gone(name, nullptr); !g.empty()) {
+        std::string g = gone(name, nullptr);
+        if (g.empty() && std::chrono::steady_clock::now() > until) {
+          char secs[32];
+          std::snprintf(secs, sizeof secs, "%.3g s", end_wait_s);
+          g = "lockstep: process '" + name + "' did not end its run within " + secs + " of this one's end (its end record never came)";
+        }
+        if (!g.empty()) {
           if (why.empty()) why = g;
           break;
         }

@@ -91,9 +91,10 @@ class Lockstep {
   // The run is over here and this process's nodes deactivated: what their deactivate asked for
   // (`mine`: a sink's verdict), then an end record, sent; every peer's awaited (those still
   // stepping, to their end) and returned; everything written acknowledged by the peers (at most
-  // 5 s) before the transport goes. A lost peer is left out (`why` says so).
+  // 5 s) before the transport goes. A lost peer is left out (`why` says so), and so is one whose
+  // end has not come `end_wait_s` after this process's own (`why` names it).
   std::vector<LockRecord> finish(RunResult r, const std::string& reason, const std::vector<DdsWriter*>& writers,
-                                 const std::vector<LockRecord>& mine, std::string& why);
+                                 const std::vector<LockRecord>& mine, std::string& why, double end_wait_s);
 
  private:
   struct Peer {

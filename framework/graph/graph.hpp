@@ -48,6 +48,13 @@ struct TransportDecl {
   std::vector<std::string> interfaces{"127.0.0.1"};  // UDP interfaces allowed; loopback only by default
   std::vector<std::string> peers{"127.0.0.1"};       // unicast discovery peers
   double startup_timeout_s = 10;  // a split run waits this long for its inputs' writers in other processes
+  // A split run on the sim clock: a process that ended waits this long for its peers' ends
+  // (Lockstep::finish), its supervisor a little longer. A peer is behind by little once a process
+  // ended: every event's owner did it before the others replayed it, so what a peer has left is
+  // replaying the last events and deactivating its nodes, and a deactivation stuck for
+  // kLifecycleHang_s (60 s) ends its process (then it is lost, not awaited). Twice that is room
+  // enough, and a peer whose end record never comes (alive, matched) holds no one for ever.
+  double end_timeout_s = 120;
   bool shared_memory = true;  // "shared_memory": false: UDP only between processes (docs/reliability.md: a killed writer can lock a peer's port)
   bool accept_foreign_writers = false;  // "foreign_writers": "accept": samples from writers the graph does not name are used (warned of either way)
   // "security": the folder `brickyard security init` made (resolved against the graph file's

@@ -52,7 +52,15 @@ add_test(NAME evidence.lockstep_same_failure
 by_next_domain(d)
 add_test(NAME evidence.lockstep_same_invalid
   COMMAND ${NETNS} ${CMAKE_CURRENT_SOURCE_DIR}/cli/lockstep_same.sh ${BY} ${CMAKE_CURRENT_SOURCE_DIR}/graphs/multiprocess/sim_lockstep.json ${d} ${RUNS}/lockstep_same_invalid --seed 7 --arg fault=configure)
+# Lockstep's waits between two participants over DDS (framework/tests/test_lockstep_dds.cpp): a
+# peer whose end record never comes holds the other no longer than the limit, named.
+foreach(t PeersThatEndHearEachOthersEndsAndVerdicts APeerWhoseEndNeverComesIsNamedOnceTheWaitIsOver)
+  by_next_domain(d)
+  add_test(NAME LockstepDds.${t} COMMAND ${NETNS} $<TARGET_FILE:brickyard_lockstep_dds_tests> --gtest_filter=LockstepDds.${t})
+  set_tests_properties(LockstepDds.${t} PROPERTIES ENVIRONMENT BRICKYARD_TEST_DOMAIN=${d} TIMEOUT 120 LABELS unit.framework)
+endforeach()
 evidence_script(lockstep_peer_killed lockstep_peer_killed.sh ${CMAKE_CURRENT_SOURCE_DIR}/graphs/multiprocess/sim_lockstep.json)
+evidence_script(lockstep_peer_stopped lockstep_peer_stopped.sh ${CMAKE_CURRENT_SOURCE_DIR}/graphs/multiprocess/sim_lockstep.json)
 evidence_script(lockstep_faults lockstep_faults.sh ${CMAKE_CURRENT_SOURCE_DIR}/graphs/multiprocess/sim_fault_split.json)
 # A peer that never starts: the process fails within its start-up timeout, named (it used to wait for its end forever).
 by_next_domain(d)
@@ -90,6 +98,12 @@ if(BRICKYARD_SIM)
   # 2-core machine the stack was starved past the 0.5 s liveliness lease (CI, a 1.7 s command
   # gap, then the stack's writers lost): it takes both cores.
   set_tests_properties(evidence.two_hosts PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 400 PROCESSORS 2)
+  # The split race attacked from the machine, secured by default and with "off" (which must show
+  # what the attacks get): no command value on the wire or in /dev/shm, none read without an
+  # identity, no command forged under the stack's name taken; over shared memory and over UDP.
+  # Real clock, both cores (as two_hosts).
+  evidence_script(race_attacked race_attacked.sh ${CMAKE_CURRENT_SOURCE_DIR}/graphs/multiprocess/ims_race_split.json)
+  set_tests_properties(evidence.race_attacked PROPERTIES TIMEOUT 400 PROCESSORS 2)
 endif()
 
 # A graph of 100 000 nodes validated, and a zero-delay cycle through them all refused.
