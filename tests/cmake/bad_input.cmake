@@ -13,6 +13,7 @@ function(bad_input name regex)
   bad_case(${name} "${regex}" "${NOT_STARTED}" ${ARGN})
 endfunction()
 
+bad_input(end_timeout_zero "sim_lockstep.json#/transport/end_timeout_s: expected seconds, more than 0 and at most 600, found 0" validate ${CMAKE_CURRENT_SOURCE_DIR}/graphs/multiprocess/sim_lockstep.json --arg end_timeout_s=0)
 bad_input(huge_seed "--seed 99999999999999999999999: expected a non-negative integer of at most 19 digits" run ${GOOD} --seed 99999999999999999999999)
 bad_input(malformed_json        "malformed.json:3:[0-9]+: invalid JSON"          run ${BAD}/malformed.json)
 bad_input(top_level_array       "top_array.json#: expected object, found array"   run ${BAD}/top_array.json)
