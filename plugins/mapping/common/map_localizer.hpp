@@ -12,6 +12,7 @@
 #include "voxel_map.hpp"
 
 #include <Eigen/Geometry>
+#include <Eigen/LU>
 
 #include <cstddef>
 
@@ -105,6 +106,14 @@ class MapLocalizer {
   // The frame's surfaces (vehicle frame) with its road level in the map's frame, its attitude
   // that of `guess`.
   Surfaces frame_surfaces(const Points& near, const Eigen::Isometry3d& guess) const;
+  // The frame's own answer: the registration's minimum leans toward the guess by the weak prior's
+  // pull, most where the frame tells little (along a smooth wall), while the covariance reported
+  // is the frame's alone: a pose so leaned follows an estimate that drifts, sure of itself (both
+  // receivers drifting together on Monza, 12 s into the fault: the map's poses 3.3 m off, said
+  // sure to 0.5 m; docs/map-localization.md). One Gauss-Newton step of the frame's terms alone,
+  // from the minimum, takes the pull back out (`frame_information`: the system less the prior).
+  Eigen::Isometry3d without_prior_pull(const RegistrationResult& r, const Eigen::Isometry3d& guess,
+                                       const Eigen::FullPivLU<Eigen::Matrix<double, 6, 6>>& frame_information) const;
   // The weak prior's information (prior_sigma, prior_sigma_turn).
   Eigen::Matrix<double, 6, 6> weak_prior() const;
   // The weak prior, and a hold along the `unseen` directions (a projector).

@@ -230,6 +230,7 @@ RegistrationResult register_scan(const Points& scan, const Surfaces& surfaces, c
   Linearized L = at(r.transform);
   auto keep = [&](const Linearized& at_T) {
     r.hessian = at_T.H;
+    r.gradient = at_T.g;
     r.matched = at_T.matched;
     r.cost = at_T.matched ? at_T.cost / static_cast<double>(at_T.matched) : 0;
   };

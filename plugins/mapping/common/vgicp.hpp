@@ -55,6 +55,9 @@ struct RegistrationResult {
   // is the pose's covariance (the car's turn and position), as far as the points' own
   // covariances are right and their errors independent.
   Eigen::Matrix<double, 6, 6> hessian = Eigen::Matrix<double, 6, 6>::Zero();
+  // The objective's gradient there (prior included), over the same coordinates: not quite zero
+  // where the steps stopped before the minimum.
+  Eigen::Matrix<double, 6, 1> gradient = Eigen::Matrix<double, 6, 1>::Zero();
 };
 
 // Registers `scan` (scan frame, with its points' surfaces in the scan frame: point_surfaces)
