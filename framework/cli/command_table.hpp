@@ -16,5 +16,6 @@ int cmd_bag(const Args& a);                      // bag info | play RECORDING
 int cmd_capture(const Args& a);                  // capture info | play FILE (a pcap or a GNSS log)
 int cmd_security(const Args& a);                 // security init GRAPH --out DIR
 int cmd_topic(const Args& a);                    // topic list | echo | hz
+int cmd_ros2(const Args& a);                     // ros2 msgs --out DIR
 
 }  // namespace brickyard::fw::cli

@@ -27,7 +27,8 @@ int dispatch(const cli::Args& a) {
   if (a.command == "capture") return cli::cmd_capture(a);
   if (a.command == "security") return cli::cmd_security(a);
   if (a.command == "topic") return cli::cmd_topic(a);
-  cli::usage_error(a.command, "unknown command (commands: run, validate, plugins, graph, report, map, bag, capture, topic, security, new-plugin)");
+  if (a.command == "ros2") return cli::cmd_ros2(a);
+  cli::usage_error(a.command, "unknown command (commands: run, validate, plugins, graph, report, map, bag, capture, topic, security, ros2, new-plugin)");
 }
 
 }  // namespace

@@ -35,6 +35,8 @@ usage:
                                            and one to observe, signed governance and permissions from
                                            its wires (--protect encrypt|sign, --days N; docs/security.md)
                                            topic and bag play take --security DIR (bag play --identity P)
+  brickyard ros2 msgs --out DIR            the SDK's messages as a ROS 2 message package (package.xml,
+                                           CMakeLists.txt, msg/*.msg: the same CDR; docs/ros2.md)
   brickyard new-plugin NAME --dir DIR [--role ROLE]
                                            scaffold a plugin project from the SDK template (or from
                                            the template of a role: a plugin that plays it, docs/roles.md)

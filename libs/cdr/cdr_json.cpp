@@ -9,63 +9,7 @@
 
 namespace brickyard::cdr {
 
-// A member's type: a primitive, a string, a struct (by name), or a sequence of / array of one.
-struct CdrJson::Type {
-  enum Kind { Primitive, String, Struct, Sequence, Array } kind = Primitive;
-  std::string name;          // primitive or struct name
-  std::size_t size = 0;      // primitive: bytes; array: length
-  std::shared_ptr<Type> of;  // sequence, array: the element
-};
-struct CdrJson::Member {
-  std::string name;
-  Type type;
-};
-
 namespace {
-
-struct Token {
-  std::string text;
-  int line;
-};
-
-std::vector<Token> tokenize(const std::string& idl) {
-  std::vector<Token> out;
-  int line = 1;
-  for (std::size_t i = 0; i < idl.size();) {
-    const char c = idl[i];
-    if (c == '\n') ++line, ++i;
-    else if (std::isspace(static_cast<unsigned char>(c))) ++i;
-    else if (c == '#' || (c == '/' && i + 1 < idl.size() && idl[i + 1] == '/')) {  // a directive or a comment: to the line's end
-      while (i < idl.size() && idl[i] != '\n') ++i;
-    } else if (c == '/' && i + 1 < idl.size() && idl[i + 1] == '*') {
-      const std::size_t end = idl.find("*/", i + 2);
-      for (std::size_t k = i; k < std::min(end, idl.size()); ++k) line += idl[k] == '\n';
-      i = end == std::string::npos ? idl.size() : end + 2;
-    } else if (std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == ':') {
-      std::size_t j = i;
-      while (j < idl.size() && (std::isalnum(static_cast<unsigned char>(idl[j])) || idl[j] == '_' || idl[j] == ':')) ++j;
-      out.push_back({idl.substr(i, j - i), line});
-      i = j;
-    } else {
-      out.push_back({std::string(1, c), line});
-      ++i;
-    }
-  }
-  return out;
-}
-
-std::size_t primitive_size(const std::string& t) {
-  static const std::map<std::string, std::size_t> sizes = {
-      {"boolean", 1}, {"octet", 1}, {"char", 1}, {"int8", 1}, {"uint8", 1}, {"int16", 2}, {"uint16", 2}, {"short", 2},
-      {"int32", 4}, {"uint32", 4}, {"long", 4}, {"float", 4}, {"int64", 8}, {"uint64", 8}, {"double", 8}};
-  const auto it = sizes.find(t);
-  return it == sizes.end() ? 0 : it->second;
-}
-
-std::string bare(const std::string& name) {
-  const auto at = name.rfind("::");
-  return at == std::string::npos ? name : name.substr(at + 2);
-}
 
 // Reading CDR: alignment from the first byte after the encapsulation header.
 struct Reader {
@@ -99,127 +43,11 @@ struct Reader {
 
 using Type = CdrJson::Type;
 using Member = CdrJson::Member;
-using StructMap = std::map<std::string, std::shared_ptr<std::vector<Member>>>;
-
-// Reads the IDL's tokens front to back into `structs`; each error names the line of the token it
-// stopped at (the last line at the end of the text).
-class IdlParser {
- public:
-  IdlParser(std::vector<Token> tokens, StructMap& structs) : t_(std::move(tokens)), structs_(structs) {}
-
-  void parse() {
-    while (i_ < t_.size()) {
-      if (t_[i_].text == "module") {
-        open_module();
-      } else if (t_[i_].text == "}" && !scope_.empty()) {
-        close_module();
-      } else if (t_[i_].text == "struct") {
-        struct_definition();
-      } else {
-        fail("expected module, struct or the end of a module, found '" + t_[i_].text + "'");
-      }
-    }
-    if (!scope_.empty()) fail("module '" + scope_.back() + "' is not closed");
-  }
-
- private:
-  [[noreturn]] void fail(const std::string& what) const {
-    const int line = i_ < t_.size() ? t_[i_].line : (t_.empty() ? 1 : t_.back().line);
-    throw std::invalid_argument("IDL line " + std::to_string(line) + ": " + what);
-  }
-  void expect(const std::string& s) {
-    if (i_ >= t_.size() || t_[i_].text != s) fail("expected '" + s + "'" + (i_ < t_.size() ? ", found '" + t_[i_].text + "'" : ""));
-    ++i_;
-  }
-  std::size_t number() {
-    if (i_ >= t_.size() || t_[i_].text.empty() || t_[i_].text.size() > 9 ||
-        t_[i_].text.find_first_not_of("0123456789") != std::string::npos)
-      fail("expected a number (at most 9 digits)");
-    return static_cast<std::size_t>(std::stoul(t_[i_++].text));
-  }
-
-  void open_module() {
-    ++i_;
-    if (i_ >= t_.size()) fail("expected a module name");
-    scope_.push_back(t_[i_++].text);
-    expect("{");
-  }
-  void close_module() {
-    ++i_;
-    expect(";");
-    scope_.pop_back();
-  }
-
-  Type type() {
-    if (i_ >= t_.size()) fail("expected a type");
-    const std::string name = t_[i_++].text;
-    Type ty;
-    if (name == "sequence") {
-      expect("<");
-      ty.kind = Type::Sequence;
-      ty.of = std::make_shared<Type>(type());
-      if (i_ < t_.size() && t_[i_].text == ",") ++i_, number();  // a bound: not checked
-      expect(">");
-    } else if (name == "string") {
-      ty.kind = Type::String;
-      if (i_ < t_.size() && t_[i_].text == "<") ++i_, number(), expect(">");
-    } else if (const std::size_t k = primitive_size(name)) {
-      ty.kind = Type::Primitive, ty.name = name, ty.size = k;
-    } else {
-      if (!structs_.count(name) && !structs_.count(bare(name))) fail("unknown type '" + name + "' (defined after its use?)");
-      ty.kind = Type::Struct, ty.name = bare(name);
-    }
-    return ty;
-  }
-
-  // A member: its type, its name, then a fixed array's length when it has one.
-  Member member() {
-    Member m;
-    m.type = type();
-    if (i_ >= t_.size()) fail("expected a member name");
-    m.name = t_[i_++].text;
-    if (i_ < t_.size() && t_[i_].text == "[") {
-      ++i_;
-      auto el = std::make_shared<Type>(m.type);
-      m.type = Type{};
-      m.type.kind = Type::Array;
-      m.type.size = number();
-      m.type.of = el;
-      expect("]");
-    }
-    expect(";");
-    return m;
-  }
-
-  void struct_definition() {
-    ++i_;
-    if (i_ >= t_.size()) fail("expected a struct name");
-    const std::string name = t_[i_++].text;
-    expect("{");
-    std::vector<Member> members;
-    while (i_ < t_.size() && t_[i_].text != "}") members.push_back(member());
-    expect("}");
-    expect(";");
-    std::string qualified;
-    for (const auto& s : scope_) qualified += s + "::";
-    // An IDL is untrusted input (a recording's schema): a struct defined twice could make a
-    // cycle, one with no members an endless count of nothing.
-    if (structs_.count(qualified + name)) fail("struct '" + qualified + name + "' is defined twice");
-    if (members.empty()) fail("struct '" + name + "' has no members");
-    auto def = std::make_shared<std::vector<Member>>(std::move(members));
-    structs_[qualified + name] = def;
-    structs_[name] = def;
-  }
-
-  const std::vector<Token> t_;
-  std::size_t i_ = 0;
-  std::vector<std::string> scope_;
-  StructMap& structs_;
-};
+using StructMap = IdlStructs;
 
 }  // namespace
 
-CdrJson::CdrJson(const std::string& idl) { IdlParser(tokenize(idl), structs_).parse(); }
+CdrJson::CdrJson(const std::string& idl) : structs_(parse_idl(idl).structs) {}
 
 nlohmann::json CdrJson::decode(const std::string& type, const unsigned char* data, std::size_t size) const {
   Reader r{data, size};
@@ -272,7 +100,7 @@ nlohmann::json CdrJson::decode(const std::string& type, const unsigned char* dat
     }
     return nullptr;
   };
-  return object(bare(type));
+  return object(idl_bare_name(type));
 }
 
 namespace {
@@ -299,7 +127,7 @@ class Encoder {
   explicit Encoder(const StructMap& structs) : structs_(structs) {}
 
   std::vector<unsigned char> encode(const std::string& type, const nlohmann::json& sample) {
-    object(bare(type), &sample, "");
+    object(idl_bare_name(type), &sample, "");
     return w_.out;
   }
 
@@ -409,9 +237,9 @@ std::vector<unsigned char> CdrJson::encode(const std::string& type, const nlohma
 }
 
 std::string CdrJson::field_kind(const std::string& type, const FieldPath& path) const {
-  auto it = structs_.find(bare(type));
+  auto it = structs_.find(idl_bare_name(type));
   if (it == structs_.end()) throw std::invalid_argument("no struct '" + type + "' in the IDL");
-  std::string struct_name = bare(type);
+  std::string struct_name = idl_bare_name(type);
   const std::vector<Member>* members = it->second.get();
   const Type* ty = nullptr;
   for (std::size_t s = 0; s < path.steps.size(); ++s) {

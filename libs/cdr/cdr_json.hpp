@@ -6,6 +6,7 @@
 // (XCDR1, either byte order, each primitive aligned to its size from the end of the 4-byte
 // encapsulation header).
 #include "cdr/field_path.hpp"
+#include "cdr/idl_model.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -38,11 +39,11 @@ class CdrJson {
   // error: it is a "sequence").
   std::string field_kind(const std::string& type, const FieldPath& path) const;
 
-  struct Type;
-  struct Member;
+  using Type = IdlType;
+  using Member = IdlMember;
 
  private:
-  std::map<std::string, std::shared_ptr<std::vector<Member>>> structs_;  // by name, qualified and bare
+  IdlStructs structs_;  // by name, qualified and bare
 };
 
 }  // namespace brickyard::cdr

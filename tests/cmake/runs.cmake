@@ -112,6 +112,15 @@ add_test(NAME cli.can_play_bad_rate COMMAND ${EXPECT} 2 "brickyard-can: --rate -
 add_test(NAME evidence.stack_killed_sweep
   COMMAND ${PROJECT_SOURCE_DIR}/scripts/sweep-stack-kill --by ${BY} --cuts 9:89:40 --jobs 1 --out ${RUNS}/stack_killed_sweep)
 set_tests_properties(evidence.stack_killed_sweep PROPERTIES TIMEOUT 600)
+# The ROS 2 message package: kept in step with sdk/msgs, refusals; with the simulator, a race's
+# recording read by a third party's ROS 2 libraries through the package as by the IDL.
+by_next_domain(d)
+if(BRICKYARD_SIM)
+  add_test(NAME cli.ros2_msgs COMMAND ${NETNS} ${CMAKE_CURRENT_SOURCE_DIR}/cli/ros2_msgs.sh ${BY} ${PROJECT_SOURCE_DIR} ${d} ${RUNS}/ros2_msgs
+                                      ${PROJECT_SOURCE_DIR}/configs/race.json)
+else()
+  add_test(NAME cli.ros2_msgs COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/cli/ros2_msgs.sh ${BY} ${PROJECT_SOURCE_DIR} ${d} ${RUNS}/ros2_msgs)
+endif()
 # MCAP, read by Foxglove's libraries (tests/clients, installed by scripts/setup from npm).
 by_next_domain(d)
 add_test(NAME evidence.mcap_recording

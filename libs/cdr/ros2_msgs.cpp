@@ -1,0 +1,133 @@
+#include "cdr/ros2_msgs.hpp"
+
+#include <cctype>
+#include <map>
+#include <set>
+#include <stdexcept>
+
+namespace brickyard::cdr {
+
+namespace {
+
+// The IDL primitives our messages use, and ROS 2's name for the one with the same CDR
+// (rosidl's "Interface definition and language mapping": float64 is IDL double, byte is octet).
+const std::map<std::string, std::string>& ros2_primitives() {
+  static const std::map<std::string, std::string> names = {
+      {"boolean", "bool"}, {"octet", "byte"},    {"int8", "int8"},       {"uint8", "uint8"},     {"int16", "int16"},
+      {"short", "int16"},  {"uint16", "uint16"}, {"int32", "int32"},     {"long", "int32"},      {"uint32", "uint32"},
+      {"int64", "int64"},  {"uint64", "uint64"}, {"float", "float32"},   {"double", "float64"}};
+  return names;
+}
+
+// ROS 2's rules for names (rosidl_adapter): a type is CamelCase, a field lower_snake_case with no
+// double or trailing underscore.
+bool camel_case(const std::string& s) {
+  if (s.empty() || !std::isupper(static_cast<unsigned char>(s[0]))) return false;
+  for (char c : s)
+    if (!std::isalnum(static_cast<unsigned char>(c))) return false;
+  return true;
+}
+bool snake_case(const std::string& s) {
+  if (s.empty() || !std::islower(static_cast<unsigned char>(s[0])) || s.back() == '_' || s.find("__") != std::string::npos) return false;
+  for (char c : s)
+    if (!(std::islower(static_cast<unsigned char>(c)) || std::isdigit(static_cast<unsigned char>(c)) || c == '_')) return false;
+  return true;
+}
+
+// "brickyard::msgs::Imu" -> "brickyard::msgs".
+std::string module_of(const std::string& qualified) {
+  const auto at = qualified.rfind("::");
+  return at == std::string::npos ? std::string() : qualified.substr(0, at);
+}
+
+std::string msg_text(const std::string& name, const std::vector<IdlMember>& members, const std::string& package) {
+  std::string text = "# " + name + ": written by `brickyard ros2 msgs` from the SDK's IDL (sdk/msgs); do not edit.\n";
+  for (const IdlMember& m : members) {
+    if (!snake_case(m.name)) throw std::invalid_argument("struct " + name + ": member '" + m.name + "' is not a ROS 2 field name (lower_snake_case)");
+    try {
+      text += ros2_type(m.type, package) + " " + m.name + "\n";
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument("struct " + name + ", member '" + m.name + "': " + e.what());
+    }
+  }
+  return text;
+}
+
+std::string package_xml(const Ros2PackageInfo& info) {
+  return "<?xml version=\"1.0\"?>\n"
+         "<?xml-model href=\"http://download.ros.org/schema/package_format3.xsd\" schematypens=\"http://www.w3.org/2001/XMLSchema\"?>\n"
+         "<package format=\"3\">\n"
+         "  <name>" + info.name + "</name>\n"
+         "  <version>" + info.version + "</version>\n"
+         "  <description>" + info.description + "</description>\n"
+         "  <maintainer email=\"" + info.maintainer_email + "\">" + info.maintainer + "</maintainer>\n"
+         "  <license>" + info.license + "</license>\n"
+         "  <buildtool_depend>ament_cmake</buildtool_depend>\n"
+         "  <buildtool_depend>rosidl_default_generators</buildtool_depend>\n"
+         "  <exec_depend>rosidl_default_runtime</exec_depend>\n"
+         "  <member_of_group>rosidl_interface_packages</member_of_group>\n"
+         "  <export>\n"
+         "    <build_type>ament_cmake</build_type>\n"
+         "  </export>\n"
+         "</package>\n";
+}
+
+std::string cmakelists(const Ros2PackageInfo& info, const std::vector<std::string>& msgs) {
+  std::string text = "# Written by `brickyard ros2 msgs` from the SDK's IDL; do not edit.\n"
+                     "cmake_minimum_required(VERSION 3.8)\n"
+                     "project(" + info.name + ")\n"
+                     "find_package(ament_cmake REQUIRED)\n"
+                     "find_package(rosidl_default_generators REQUIRED)\n"
+                     "rosidl_generate_interfaces(${PROJECT_NAME}\n";
+  for (const auto& m : msgs) text += "  \"" + m + "\"\n";
+  text += ")\n"
+          "ament_export_dependencies(rosidl_default_runtime)\n"
+          "ament_package()\n";
+  return text;
+}
+
+}  // namespace
+
+std::string ros2_type(const IdlType& t, const std::string& package) {
+  switch (t.kind) {
+    case IdlType::Primitive: {
+      const auto it = ros2_primitives().find(t.name);
+      if (it == ros2_primitives().end()) throw std::invalid_argument("type '" + t.name + "' has no ROS 2 twin");
+      return it->second;
+    }
+    case IdlType::String: return t.bound ? "string<=" + std::to_string(t.bound) : "string";
+    case IdlType::Struct: return package + "/" + t.name;
+    case IdlType::Sequence: {
+      if (t.of->kind == IdlType::Sequence || t.of->kind == IdlType::Array)
+        throw std::invalid_argument("a sequence of sequences or arrays has no ROS 2 form");
+      return ros2_type(*t.of, package) + (t.bound ? "[<=" + std::to_string(t.bound) + "]" : "[]");
+    }
+    case IdlType::Array: {
+      if (t.of->kind == IdlType::Sequence || t.of->kind == IdlType::Array)
+        throw std::invalid_argument("an array of sequences or arrays has no ROS 2 form");
+      return ros2_type(*t.of, package) + "[" + std::to_string(t.size) + "]";
+    }
+  }
+  throw std::invalid_argument("unknown type");
+}
+
+std::vector<Ros2File> ros2_package(const IdlModel& model, const Ros2PackageInfo& info) {
+  std::vector<Ros2File> files;
+  std::vector<std::string> msgs;
+  std::set<std::string> done;
+  const std::string module = model.defined.empty() ? std::string() : module_of(model.defined.front());
+  for (const std::string& qualified : model.defined) {
+    if (!done.insert(qualified).second) continue;
+    const std::string name = idl_bare_name(qualified);
+    if (module_of(qualified) != module)
+      throw std::invalid_argument("struct " + qualified + ": not in module " + module + " (one package, one module)");
+    if (!camel_case(name)) throw std::invalid_argument("struct " + qualified + ": not a ROS 2 type name (CamelCase)");
+    msgs.push_back("msg/" + name + ".msg");
+    files.push_back({msgs.back(), msg_text(name, *model.structs.at(qualified), info.name)});
+  }
+  files.push_back({"package.xml", package_xml(info)});
+  files.push_back({"CMakeLists.txt", cmakelists(info, msgs)});
+  return files;
+}
+
+}  // namespace brickyard::cdr

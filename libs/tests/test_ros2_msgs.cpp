@@ -1,0 +1,70 @@
+// The ROS 2 message package from IDL (cdr/ros2_msgs.hpp): each IDL type as the ROS 2 type with the
+// same CDR, bounds kept, structs by package; names ROS 2 does not allow and types it has no form
+// for refused, named.
+#include "cdr/ros2_msgs.hpp"
+
+#include <gtest/gtest.h>
+
+#include <stdexcept>
+#include <string>
+
+using namespace brickyard::cdr;
+
+namespace {
+const char* kIdl = R"(
+module brickyard { module msgs {
+struct Inner { double x; };
+struct Outer {
+  boolean ok; octet raw; int8 a; uint8 b; int16 c; uint16 d; int32 e; uint32 f; int64 g; uint64 h; float i; double j;
+  string name; string<8> tag;
+  sequence<float> xs; sequence<uint8, 64> data; double pose[3];
+  Inner one; sequence<Inner> many; brickyard::msgs::Inner qualified;
+};
+}; };
+)";
+
+std::string file_text(const std::vector<Ros2File>& files, const std::string& path) {
+  for (const auto& f : files)
+    if (f.path == path) return f.text;
+  return "";
+}
+
+std::vector<Ros2File> package_of(const std::string& idl) {
+  Ros2PackageInfo info;
+  info.version = "1.0.0";
+  return ros2_package(parse_idl(idl), info);
+}
+}  // namespace
+
+TEST(Ros2Msgs, EachTypeIsTheRos2TypeOfTheSameCdr) {
+  const auto files = package_of(kIdl);
+  EXPECT_EQ(file_text(files, "msg/Inner.msg").substr(file_text(files, "msg/Inner.msg").find('\n') + 1), "float64 x\n");
+  const std::string outer = file_text(files, "msg/Outer.msg");
+  EXPECT_EQ(outer.substr(outer.find('\n') + 1),
+            "bool ok\nbyte raw\nint8 a\nuint8 b\nint16 c\nuint16 d\nint32 e\nuint32 f\nint64 g\nuint64 h\nfloat32 i\nfloat64 j\n"
+            "string name\nstring<=8 tag\nfloat32[] xs\nuint8[<=64] data\nfloat64[3] pose\n"
+            "brickyard_msgs/Inner one\nbrickyard_msgs/Inner[] many\nbrickyard_msgs/Inner qualified\n");
+  const std::string cmake = file_text(files, "CMakeLists.txt");
+  EXPECT_NE(cmake.find("rosidl_generate_interfaces(${PROJECT_NAME}\n  \"msg/Inner.msg\"\n  \"msg/Outer.msg\"\n)"), std::string::npos) << cmake;
+  const std::string xml = file_text(files, "package.xml");
+  EXPECT_NE(xml.find("<name>brickyard_msgs</name>"), std::string::npos);
+  EXPECT_NE(xml.find("<version>1.0.0</version>"), std::string::npos);
+  EXPECT_NE(xml.find("<member_of_group>rosidl_interface_packages</member_of_group>"), std::string::npos);
+}
+
+TEST(Ros2Msgs, WhatRos2CannotNameIsRefusedNamed) {
+  auto refused = [](const std::string& idl, const std::string& what) {
+    try {
+      package_of(idl);
+      ADD_FAILURE() << "accepted: " << idl;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
+    }
+  };
+  refused("module m { struct lower { double x; }; };", "struct m::lower: not a ROS 2 type name (CamelCase)");
+  refused("module m { struct A { double X; }; };", "struct A: member 'X' is not a ROS 2 field name");
+  refused("module m { struct A { double a__b; }; };", "member 'a__b'");
+  refused("module m { struct A { char c; }; };", "struct A, member 'c': type 'char' has no ROS 2 twin");
+  refused("module m { struct A { sequence<sequence<double>> s; }; };", "a sequence of sequences or arrays has no ROS 2 form");
+  refused("module m { struct A { double x; }; }; module n { struct B { double y; }; };", "struct n::B: not in module m");
+}
