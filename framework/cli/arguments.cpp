@@ -154,6 +154,11 @@ bool tool_option(Args& a, const std::string& f, Cursor& c) {
   }
   else if (f == "--security") a.security = c.value();
   else if (f == "--identity") a.identity = c.value();
+  else if (f == "--naming") {
+    const std::string v = c.value();
+    if (v != "ros2" && v != "brickyard") usage_error("--naming " + v, "expected brickyard or ros2 (the graph's transport.naming)");
+    a.ros2_naming = v == "ros2";
+  }
   else if (f == "--protect") {
     a.protect = c.value();
     if (a.protect != "sign" && a.protect != "encrypt") usage_error("--protect " + a.protect, "expected sign or encrypt");

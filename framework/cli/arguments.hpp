@@ -29,6 +29,7 @@ struct Args {
   bool json = false, dot = false, quiet = false, no_report = false, profile = false, one_process = false;
   std::vector<std::string> child_flags;  // what a supervised run's children are given as they are
   std::string security, identity, protect = "encrypt";  // security init; topic and bag play against a secured graph
+  bool ros2_naming = false;  // topic, bag play: --naming ros2 (a graph whose transport.naming is "ros2")
   int days = 365;
   std::string to, metadata;         // capture play's sink; capture info's Ouster metadata
   std::optional<int> port;          // capture: a pcap's UDP destination port

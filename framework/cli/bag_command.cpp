@@ -25,6 +25,7 @@ int bag_play_command(const Args& a) {
   o.only = a.only;
   o.security = a.security;
   o.identity = a.identity;
+  o.ros2_naming = a.ros2_naming;
   return bag_play(o);
 }
 

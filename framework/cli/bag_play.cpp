@@ -81,6 +81,7 @@ DdsSettings player_settings(const BagPlayOptions& o) {
   DdsSettings ds;
   ds.domain = o.domain;
   if (!o.identity.empty()) ds.name = participant_name(o.identity);
+  ds.ros2_naming = o.ros2_naming;
   if (!o.security.empty()) {
     if (o.identity.empty()) throw InvalidInput("--security " + o.security, "bag play writes topics: it needs --identity NAME, a process of the graph allowed to write them");
     ds.security = security::security_identity(o.security, o.identity);

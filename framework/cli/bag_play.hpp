@@ -12,6 +12,7 @@ struct BagPlayOptions {
   std::string file;
   int domain = 0;
   std::string security, identity;  // --security DIR (--identity NAME): join a secured graph as that identity
+  bool ros2_naming = false;        // --naming ros2: play onto topics named as ROS 2 names them
   double rate = 1.0;
   std::vector<std::string> only;  // NODE.PORT patterns ('*' any); empty: every topic
   double preroll_s = 1.0;         // for readers elsewhere to match the new writers

@@ -25,13 +25,24 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// "brickyard/node/port" → "node.port"; other DDS topics as they are.
+// "brickyard/node/port" (or ROS 2's "rt/brickyard/node/port") → "node.port"; other DDS topics as
+// they are.
 std::string ours(const std::string& dds) {
-  if (dds.rfind("brickyard/", 0) != 0) return dds;
-  std::string t = dds.substr(10);
+  const std::size_t from = dds.rfind("brickyard/", 0) == 0 ? 10 : dds.rfind("rt/brickyard/", 0) == 0 ? 13 : std::string::npos;
+  if (from == std::string::npos) return dds;
+  std::string t = dds.substr(from);
   const auto slash = t.find('/');
   if (slash != std::string::npos) t[slash] = '.';
   return t;
+}
+
+// A type as the wire names it, ours: a ROS 2 name of one of the SDK's types back to it.
+std::string our_type(const std::string& wire) {
+  std::size_t n = 0;
+  const msgs::TypeEntry* types = msgs::all_types(&n);
+  for (std::size_t i = 0; i < n; ++i)
+    if (wire_type(types[i].name, true) == wire) return types[i].name;
+  return wire;
 }
 
 void on_signal(int) { g_interrupt = true; }
@@ -40,6 +51,7 @@ struct Heard {
   std::mutex m;
   std::condition_variable cv;
   std::map<std::string, std::string> writers;  // node.port → type
+  std::map<std::string, std::string> wire;     // node.port → "DDS topic, DDS type" where ROS 2 names them
 };
 
 // Waits until `done` (checked under the lock) or the deadline or Ctrl-C.
@@ -75,9 +87,11 @@ DdsSettings listener_settings(const TopicOptions& o, Heard& heard) {
   DdsSettings ds;
   ds.domain = o.domain;
   if (!o.security.empty()) ds.security = security::security_identity(o.security, o.identity.empty() ? security::kObserver : o.identity);
+  ds.ros2_naming = o.ros2_naming;
   ds.on_writer = [&heard](const std::string& topic, const std::string& type) {
     std::lock_guard<std::mutex> l(heard.m);
-    heard.writers[ours(topic)] = type;
+    heard.writers[ours(topic)] = our_type(type);
+    if (our_type(type) != type) heard.wire[ours(topic)] = topic + ", " + type;
     heard.cv.notify_all();
   };
   return ds;
@@ -95,7 +109,10 @@ int list_topics(const TopicOptions& o, Heard& heard) {
   }
   std::size_t w = 5;
   for (const auto& [t, type] : heard.writers) w = std::max(w, t.size());
-  for (const auto& [t, type] : heard.writers) std::printf("%-*s  %s\n", static_cast<int>(w), t.c_str(), type.c_str());
+  for (const auto& [t, type] : heard.writers) {
+    const auto wire = heard.wire.find(t);  // ROS 2's names: as they are on the wire too
+    std::printf("%-*s  %s%s\n", static_cast<int>(w), t.c_str(), type.c_str(), wire == heard.wire.end() ? "" : ("  (ROS 2 names: " + wire->second + ")").c_str());
+  }
   return 0;
 }
 

@@ -12,6 +12,7 @@ struct TopicOptions {
   std::string topic;                // NODE.PORT (echo, hz)
   int domain = 0;
   std::string security, identity;  // --security DIR (--identity NAME): join a secured graph as that identity
+  bool ros2_naming = false;        // --naming ros2: the graph's topics carry ROS 2's names
   std::optional<double> duration;  // seconds to listen (list: 2 by default; echo, hz: until --count or Ctrl-C)
   std::optional<long> count;       // echo, hz: stop after this many samples
   double wait = 5;                  // echo, hz: seconds to wait for the topic's writer

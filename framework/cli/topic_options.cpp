@@ -15,6 +15,7 @@ int cmd_topic(const Args& a) {
   o.count = a.count;
   o.security = a.security;
   o.identity = a.identity;
+  o.ros2_naming = a.ros2_naming;
   return topic_command(o);
 }
 

@@ -30,6 +30,7 @@ DdsSettings dds_settings(const ResolvedGraph& graph, const RunOptions& opt) {
   ds.interfaces = g.transport.interfaces;
   ds.peers = g.transport.peers;
   ds.shared_memory = g.transport.shared_memory;
+  ds.ros2_naming = g.transport.ros2_naming;
   ds.security = opt.security;
   ds.lockstep = graph.lockstep;
   ds.name = participant_name(opt.process.empty() ? "all" : opt.process);

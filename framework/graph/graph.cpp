@@ -118,7 +118,7 @@ void parse_string_list(const json& j, std::vector<std::string>& out, const std::
 
 void parse_transport(const json& j, GraphDecl& g, Ctx& c) {
   if (!c.expect(j, json::value_t::object, "object", "/transport")) return;
-  c.only_keys(j, {"domain", "interfaces", "peers", "startup_timeout_s", "end_timeout_s", "foreign_writers", "shared_memory", "security"}, "/transport");
+  c.only_keys(j, {"domain", "interfaces", "peers", "startup_timeout_s", "end_timeout_s", "naming", "foreign_writers", "shared_memory", "security"}, "/transport");
   if (j.contains("security") && c.expect(j["security"], json::value_t::string, "string", "/transport/security")) {
     g.transport.security = j["security"];  // "": by default (a graph argument's default, say)
   }
@@ -133,6 +133,11 @@ void parse_transport(const json& j, GraphDecl& g, Ctx& c) {
     const double t = j["startup_timeout_s"].get<double>();
     if (!(t > 0 && t <= 600)) c.err("/transport/startup_timeout_s", "expected seconds, more than 0 and at most 600, found " + j["startup_timeout_s"].dump());
     else g.transport.startup_timeout_s = t;
+  }
+  if (j.contains("naming") && c.expect(j["naming"], json::value_t::string, "string", "/transport/naming")) {
+    const std::string v = j["naming"];
+    if (v == "brickyard" || v == "ros2") g.transport.ros2_naming = v == "ros2";
+    else c.err("/transport/naming", "expected \"brickyard\" or \"ros2\", found \"" + v + "\"");
   }
   if (j.contains("end_timeout_s") && c.expect(j["end_timeout_s"], json::value_t::number_float, "number", "/transport/end_timeout_s")) {
     const double t = j["end_timeout_s"].get<double>();

@@ -55,6 +55,7 @@ struct TransportDecl {
   // kLifecycleHang_s (60 s) ends its process (then it is lost, not awaited). Twice that is room
   // enough, and a peer whose end record never comes (alive, matched) holds no one for ever.
   double end_timeout_s = 120;
+  bool ros2_naming = false;  // "naming": "ros2": topics and types on the wire as ROS 2 names them (docs/ros2.md)
   bool shared_memory = true;  // "shared_memory": false: UDP only between processes (docs/reliability.md: a killed writer can lock a peer's port)
   bool accept_foreign_writers = false;  // "foreign_writers": "accept": samples from writers the graph does not name are used (warned of either way)
   // "security": the folder `brickyard security init` made (resolved against the graph file's

@@ -51,6 +51,13 @@ std::map<std::string, Access> access_of(const ResolvedGraph& g) {
         if (q != p) out[p].subscribe.insert(topic(q));
     }
   }
+  if (g.decl->transport.ros2_naming)  // the names the topics have on the wire
+    for (auto& [_, a] : out)
+      for (auto* names : {&a.publish, &a.subscribe}) {
+        std::set<std::string> named;
+        for (const auto& t : *names) named.insert(wire_topic(t, true));
+        *names = std::move(named);
+      }
   return out;
 }
 

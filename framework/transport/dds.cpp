@@ -34,6 +34,17 @@ using eprosima::fastrtps::rtps::Locator_t;
 
 std::string topic_name(const std::string& node, const std::string& port) { return "brickyard/" + node + "/" + port; }
 
+std::string wire_topic(const std::string& topic, bool ros2) { return ros2 ? "rt/" + topic : topic; }
+
+std::string wire_type(const std::string& type, bool ros2) {
+  if (!ros2) return type;
+  const auto at = type.rfind("::");
+  if (at == std::string::npos) return type;
+  std::string package = type.substr(0, at);
+  for (std::size_t k; (k = package.find("::")) != std::string::npos;) package.replace(k, 2, "_");
+  return package + "::msg::dds_::" + type.substr(at + 2) + "_";
+}
+
 namespace {
 const eprosima::fastrtps::Duration_t kLease(0.5);  // a writer silent this long (its process gone) is lost
 constexpr std::uint32_t kMaxParticipants = 120;     // participant ids on a domain's ports: 7410 + 2 id < 7400 + 250
@@ -143,7 +154,7 @@ bool DdsWriter::wait_acked(double seconds) {
   return writer_->wait_for_acknowledgments(eprosima::fastrtps::Duration_t(seconds)) == ReturnCode_t::RETCODE_OK;
 }
 
-DdsTransport::DdsTransport(const DdsSettings& s) : secured_(s.security.on()), lockstep_(s.lockstep) {
+DdsTransport::DdsTransport(const DdsSettings& s) : secured_(s.security.on()), lockstep_(s.lockstep), ros2_naming_(s.ros2_naming) {
   auto* factory = DomainParticipantFactory::get_instance();
   // Profiles (FASTRTPS_DEFAULT_PROFILES_FILE) first, then read the defaults, then make them ours.
   factory->load_profiles();
@@ -223,17 +234,18 @@ void DdsTransport::close_readers() {
 }
 
 Topic* DdsTransport::topic(const std::string& name, const std::string& type_name) {
+  const std::string dds_name = wire_topic(name, ros2_naming_), dds_type = wire_type(type_name, ros2_naming_);
   // create_topic returns null for a topic that exists: get-or-create.
-  if (auto* d = participant_->lookup_topicdescription(name)) return static_cast<Topic*>(d);
-  if (!participant_->find_type(type_name)) {
+  if (auto* d = participant_->lookup_topicdescription(dds_name)) return static_cast<Topic*>(d);
+  if (!participant_->find_type(dds_type)) {
     const auto* entry = msgs::find_type(type_name.c_str());
     if (!entry) throw std::runtime_error("no message type " + type_name);
     TypeSupport ts(entry->make());
-    if (ts.register_type(participant_) != ReturnCode_t::RETCODE_OK)
-      throw std::runtime_error("cannot register type " + type_name);
+    if (ts.register_type(participant_, dds_type) != ReturnCode_t::RETCODE_OK)
+      throw std::runtime_error("cannot register type " + dds_type);
   }
-  Topic* t = participant_->create_topic(name, type_name, TOPIC_QOS_DEFAULT);
-  if (!t) throw std::runtime_error("cannot create topic " + name + (secured_ ? " (its permissions name it neither to publish nor to subscribe)" : ""));
+  Topic* t = participant_->create_topic(dds_name, dds_type, TOPIC_QOS_DEFAULT);
+  if (!t) throw std::runtime_error("cannot create topic " + dds_name + (secured_ ? " (its permissions name it neither to publish nor to subscribe)" : ""));
   return t;
 }
 
@@ -256,7 +268,7 @@ DdsWriter* DdsTransport::make_writer(const std::string& topic_n, const std::stri
   w->listener_->matched = &w->matched_;
   w->writer_ = publisher_->create_datawriter(t, q, w->listener_.get());
   if (!w->writer_)
-    throw std::runtime_error("cannot create a writer on " + topic_n + (secured_ ? " (its permissions do not let this identity publish it)" : ""));
+    throw std::runtime_error("cannot create a writer on " + wire_topic(topic_n, ros2_naming_) + (secured_ ? " (its permissions do not let this identity publish it)" : ""));
   writers_.push_back(std::move(w));
   return writers_.back().get();
 }
@@ -284,7 +296,7 @@ DdsReader* DdsTransport::make_reader(const std::string& topic_n, const std::stri
   r->listener_->matched = &r->matched_;
   r->reader_ = subscriber_->create_datareader(t, q, r->listener_.get());
   if (!r->reader_)
-    throw std::runtime_error("cannot create a reader on " + topic_n + (secured_ ? " (its permissions do not let this identity subscribe to it)" : ""));
+    throw std::runtime_error("cannot create a reader on " + wire_topic(topic_n, ros2_naming_) + (secured_ ? " (its permissions do not let this identity subscribe to it)" : ""));
   readers_.push_back(std::move(r));
   return readers_.back().get();
 }

@@ -23,6 +23,14 @@ namespace brickyard::fw {
 // Topic of an output port: every wire is a DDS topic any DDS application can subscribe to.
 std::string topic_name(const std::string& node, const std::string& port);
 
+// The names a topic and a type have on the wire. Brickyard's own: as they are. ROS 2's (a graph's
+// transport.naming "ros2", docs/ros2.md): the topic as ROS 2's DDS middlewares write the ROS
+// topic "/brickyard/node/port" ("rt/brickyard/node/port"), the type as they name a message type
+// of the package `brickyard ros2 msgs` writes ("brickyard::msgs::Imu" ->
+// "brickyard_msgs::msg::dds_::Imu_"), the CDR unchanged.
+std::string wire_topic(const std::string& topic, bool ros2);
+std::string wire_type(const std::string& type, bool ros2);
+
 class DdsWriter {
  public:
   // Same-process readers take the pointer path; serialization is skipped while no reader in
@@ -74,6 +82,7 @@ struct DdsSettings {
   std::function<void(const std::string& topic, const std::string& type)> on_writer;
   std::string name = "brickyard";
   DdsSecurity security;
+  bool ros2_naming = false;  // topics and types named as ROS 2 names them (wire_topic, wire_type)
   // A split run on the sim clock (exec/lockstep.hpp): no sample may be lost between processes, so
   // writers and readers keep all (no depth drops the oldest unacknowledged one) and a writer
   // blocks, at most 10 s, rather than overwrite.
@@ -119,6 +128,7 @@ class DdsTransport {
   eprosima::fastdds::dds::Topic* topic(const std::string& name, const std::string& type_name);
   bool secured_ = false;
   bool lockstep_ = false;
+  bool ros2_naming_ = false;
   eprosima::fastdds::dds::DomainParticipant* participant_ = nullptr;
   std::unique_ptr<struct DiscoveryListener> discovery_;
   std::shared_ptr<struct PeerNames> peers_;  // participants discovered: GUID prefix -> name

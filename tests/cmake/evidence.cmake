@@ -84,6 +84,10 @@ evidence_script(supervisor supervisor.sh ${CMAKE_CURRENT_SOURCE_DIR}/graphs/mult
 # A writer the graph does not name, on a wire between processes: its samples dropped, said.
 evidence_script(foreign_writer foreign_writer.sh ${CMAKE_CURRENT_SOURCE_DIR}/graphs/multiprocess/two_process.json)
 
+# ROS 2's names on the wire: a split graph with transport.naming ros2, secured by default, heard
+# by topic list and echo under those names.
+evidence_script(ros2_naming ros2_naming.sh ${CMAKE_CURRENT_SOURCE_DIR}/graphs/multiprocess/two_process.json)
+
 # DDS security from the graph: a secured split run, attacked without an identity, with a stolen
 # one, and with permissions signed by another CA; bad security files refused.
 evidence_script(security security.sh ${CMAKE_CURRENT_SOURCE_DIR}/graphs/multiprocess/two_process.json)
