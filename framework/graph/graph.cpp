@@ -116,6 +116,24 @@ void parse_string_list(const json& j, std::vector<std::string>& out, const std::
     if (c.expect(j[i], json::value_t::string, "string", ptr + "/" + std::to_string(i))) out.push_back(j[i]);
 }
 
+// transport.KEY, one of two words: `second` true when it is the second.
+void transport_choice(const json& j, const char* key, const char* first, const char* second, Ctx& c, bool& is_second) {
+  const std::string at = std::string("/transport/") + key;
+  if (!j.contains(key) || !c.expect(j[key], json::value_t::string, "string", at)) return;
+  const std::string v = j[key];
+  if (v == first || v == second) is_second = v == second;
+  else c.err(at, std::string("expected \"") + first + "\" or \"" + second + "\", found \"" + v + "\"");
+}
+
+// transport.KEY, seconds in (0, 600].
+void transport_seconds(const json& j, const char* key, Ctx& c, double& out) {
+  const std::string at = std::string("/transport/") + key;
+  if (!j.contains(key) || !c.expect(j[key], json::value_t::number_float, "number", at)) return;
+  const double t = j[key].get<double>();
+  if (!(t > 0 && t <= 600)) c.err(at, "expected seconds, more than 0 and at most 600, found " + j[key].dump());
+  else out = t;
+}
+
 void parse_transport(const json& j, GraphDecl& g, Ctx& c) {
   if (!c.expect(j, json::value_t::object, "object", "/transport")) return;
   c.only_keys(j, {"domain", "interfaces", "peers", "startup_timeout_s", "end_timeout_s", "naming", "foreign_writers", "shared_memory", "security"}, "/transport");
@@ -124,26 +142,10 @@ void parse_transport(const json& j, GraphDecl& g, Ctx& c) {
   }
   if (j.contains("shared_memory") && c.expect(j["shared_memory"], json::value_t::boolean, "boolean", "/transport/shared_memory"))
     g.transport.shared_memory = j["shared_memory"];
-  if (j.contains("foreign_writers") && c.expect(j["foreign_writers"], json::value_t::string, "string", "/transport/foreign_writers")) {
-    const std::string v = j["foreign_writers"];
-    if (v == "ignore" || v == "accept") g.transport.accept_foreign_writers = v == "accept";
-    else c.err("/transport/foreign_writers", "expected \"ignore\" or \"accept\", found \"" + v + "\"");
-  }
-  if (j.contains("startup_timeout_s") && c.expect(j["startup_timeout_s"], json::value_t::number_float, "number", "/transport/startup_timeout_s")) {
-    const double t = j["startup_timeout_s"].get<double>();
-    if (!(t > 0 && t <= 600)) c.err("/transport/startup_timeout_s", "expected seconds, more than 0 and at most 600, found " + j["startup_timeout_s"].dump());
-    else g.transport.startup_timeout_s = t;
-  }
-  if (j.contains("naming") && c.expect(j["naming"], json::value_t::string, "string", "/transport/naming")) {
-    const std::string v = j["naming"];
-    if (v == "brickyard" || v == "ros2") g.transport.ros2_naming = v == "ros2";
-    else c.err("/transport/naming", "expected \"brickyard\" or \"ros2\", found \"" + v + "\"");
-  }
-  if (j.contains("end_timeout_s") && c.expect(j["end_timeout_s"], json::value_t::number_float, "number", "/transport/end_timeout_s")) {
-    const double t = j["end_timeout_s"].get<double>();
-    if (!(t > 0 && t <= 600)) c.err("/transport/end_timeout_s", "expected seconds, more than 0 and at most 600, found " + j["end_timeout_s"].dump());
-    else g.transport.end_timeout_s = t;
-  }
+  transport_choice(j, "foreign_writers", "ignore", "accept", c, g.transport.accept_foreign_writers);
+  transport_choice(j, "naming", "brickyard", "ros2", c, g.transport.ros2_naming);
+  transport_seconds(j, "startup_timeout_s", c, g.transport.startup_timeout_s);
+  transport_seconds(j, "end_timeout_s", c, g.transport.end_timeout_s);
   if (j.contains("domain") && c.expect(j["domain"], json::value_t::number_integer, "integer", "/transport/domain")) {
     if (!j["domain"].is_number_integer()) c.err("/transport/domain", "expected integer, found " + j["domain"].dump());
     else if (j["domain"].get<long long>() < 0 || j["domain"].get<long long>() > 232)

@@ -12,12 +12,8 @@ rm -rf "$out"; mkdir -p "$out"
 timeout 90 "$by" run "$graph" --domain "$domain" --duration 1000 --set check.finish_after=0 --pace 1 --arg end_timeout_s=1 \
   --out "$out/run" --no-report 2> "$out/run.log" &
 sup=$!
-pid=""
-for _ in $(seq 1 200); do
-  pid=$(sed -n "s/.*process 'b' started (pid \([0-9]*\)).*/\1/p" "$out/run.log" | head -n 1)
-  [ -n "$pid" ] && grep -q "\[b\] \[brickyard\] running" "$out/run.log" && break
-  sleep 0.1
-done
+. "$(dirname "$0")/supervised_child.sh"
+pid=$(child_pid b "$out/run.log")
 [ -n "$pid" ] || { echo "FAIL: process b never started"; cat "$out/run.log"; kill $sup; exit 1; }
 sleep 1
 kill -STOP "$pid"
