@@ -339,7 +339,8 @@ std::vector<LockRecord> Lockstep::finish(RunResult r, const std::string& reason,
   outbox_.push_back(std::move(e));
   flush();
   // Every peer's end: its verdicts come before it. A peer behind this one is still stepping, to
-  // its end: until its death, its leaving, an interrupt or end_wait_s (kPeerEndWait_s says why).
+  // its end: until its death, its leaving, an interrupt or end_wait_s (transport.end_timeout_s:
+  // graph.hpp says why it is enough).
   std::vector<LockRecord> theirs;
   {
     const auto until = std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
