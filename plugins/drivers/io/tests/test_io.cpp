@@ -547,51 +547,58 @@ bool fails(ReopeningDevice& device, int64_t now_ns) {
   return false;
 }
 
+// A receiver listening on a free TCP port (a GNSS receiver's), which can reboot: closed, then
+// listening again on the same port.
+struct Receiver {
+  std::string name = "tcp://127.0.0.1:" + std::to_string(free_port(SOCK_STREAM));
+  std::unique_ptr<ByteSink> sink = listen();
+  std::unique_ptr<ByteSink> listen() const {
+    std::string error;
+    auto s = open_sink(spec_of(name), error);
+    EXPECT_TRUE(s) << error;
+    return s;
+  }
+};
+
 // A receiver that reboots: its port closes, then listens again; the client is opened anew once
 // the retry time has passed on the run's clock, not before, and reads again.
 TEST(ReopeningDevice, ATcpReceiverThatComesBackIsReadAgain) {
-  const uint16_t port = free_port(SOCK_STREAM);
-  const std::string name = "tcp://127.0.0.1:" + std::to_string(port);
-  std::string error;
-  auto receiver = open_sink(spec_of(name), error);
-  ASSERT_TRUE(receiver) << error;
-  ReopeningDevice device(spec_of(name), 0.5);
-  ASSERT_TRUE(heard_through(device, *receiver, 0));
+  Receiver receiver;
+  ASSERT_TRUE(receiver.sink);
+  ReopeningDevice device(spec_of(receiver.name), 0.5);
+  ASSERT_TRUE(heard_through(device, *receiver.sink, 0));
   EXPECT_GE(device.fd(), 0);
 
-  receiver.reset();  // the receiver reboots
+  receiver.sink.reset();  // the receiver reboots
   ASSERT_TRUE(fails(device, 1'000'000'000));
-  EXPECT_EQ(device.error(), name + ": closed by the peer");
+  EXPECT_EQ(device.error(), receiver.name + ": closed by the peer");
   EXPECT_EQ(device.fd(), -1);
   EXPECT_EQ(device.failures(), 1u);
 
-  receiver = open_sink(spec_of(name), error);
-  ASSERT_TRUE(receiver) << error;
+  receiver.sink = receiver.listen();
+  ASSERT_TRUE(receiver.sink);
   Entries none;
   EXPECT_FALSE(device.poll(1'400'000'000, none, 1 << 16));  // 0.4 s after the failure: not yet
   EXPECT_EQ(device.reopened(), 0u);
-  ASSERT_TRUE(heard_through(device, *receiver, 1'500'000'000));
+  ASSERT_TRUE(heard_through(device, *receiver.sink, 1'500'000'000));
   EXPECT_EQ(device.reopened(), 1u);
   EXPECT_EQ(device.error(), "");
   EXPECT_GE(device.fd(), 0);
 }
 
 TEST(ReopeningDevice, WithNoRetryAFailedDeviceStaysFailed) {
-  const uint16_t port = free_port(SOCK_STREAM);
-  const std::string name = "tcp://127.0.0.1:" + std::to_string(port);
-  std::string error;
-  auto receiver = open_sink(spec_of(name), error);
-  ASSERT_TRUE(receiver) << error;
-  ReopeningDevice device(spec_of(name), 0);
-  ASSERT_TRUE(heard_through(device, *receiver, 0));
-  receiver.reset();
+  Receiver receiver;
+  ASSERT_TRUE(receiver.sink);
+  ReopeningDevice device(spec_of(receiver.name), 0);
+  ASSERT_TRUE(heard_through(device, *receiver.sink, 0));
+  receiver.sink.reset();
   ASSERT_TRUE(fails(device, 0));
-  receiver = open_sink(spec_of(name), error);
-  ASSERT_TRUE(receiver) << error;
+  receiver.sink = receiver.listen();
+  ASSERT_TRUE(receiver.sink);
   Entries none;
   EXPECT_FALSE(device.poll(3'600'000'000'000, none, 1 << 16));
   EXPECT_EQ(device.reopened(), 0u);
-  EXPECT_EQ(device.error(), name + ": closed by the peer");
+  EXPECT_EQ(device.error(), receiver.name + ": closed by the peer");
 }
 
 TEST(ReopeningDevice, ADeviceThatCannotBeOpenedAtTheStartIsRefused) {
