@@ -155,19 +155,10 @@ Located MapLocalizer::locate(const Points& frame, Eigen::Isometry3d guess) const
 
 Eigen::Isometry3d MapLocalizer::without_prior_pull(const RegistrationResult& r, const Eigen::Isometry3d& guess,
                                                   const Eigen::FullPivLU<Eigen::Matrix<double, 6, 6>>& frame_information) const {
-  // The weak prior's residual at the pose found, as the registration adds it (vgicp.cpp).
-  Eigen::Matrix<double, 6, 1> residual;
-  const Eigen::AngleAxisd turn(r.transform.linear() * guess.linear().transpose());
-  residual.head<3>() = turn.angle() * turn.axis();
-  residual.tail<3>() = r.transform.translation() - guess.translation();
-  // One Gauss-Newton step of the frame's terms alone (the hold along unseen directions kept).
-  const Eigen::Matrix<double, 6, 1> step = frame_information.solve(-(r.gradient - weak_prior() * residual));
-  if (!step.allFinite()) return r.transform;
-  Eigen::Isometry3d pose = r.transform;
-  const double angle = step.head<3>().norm();
-  if (angle > 0) pose.linear() = Eigen::AngleAxisd(angle, step.head<3>() / angle).toRotationMatrix() * pose.linear();
-  pose.translation() += step.tail<3>();
-  return pose;
+  // One Gauss-Newton step of the frame's terms alone (the hold along unseen directions kept): the
+  // gradient less the weak prior's, as the registration added it.
+  const Eigen::Matrix<double, 6, 1> d = frame_information.solve(-(r.gradient - weak_prior() * prior_residual(guess, r.transform)));
+  return d.allFinite() ? moved_by(d, r.transform) : r.transform;
 }
 
 void MapLocalizer::floor_position_spread(Eigen::Matrix<double, 6, 6>& covariance) const {

@@ -192,18 +192,25 @@ Linearized linearize(const Points& scan, const Surfaces& surfaces, const VoxelMa
 // The prior's term at T, added to L (see PosePrior): r = (log(R R_p^T), t - t_p) changes by
 // (omega, v) in the step's coordinates (the turn is about T's own position).
 void add_prior(const PosePrior& pr, const Eigen::Isometry3d& T, Linearized& L) {
-  Vec6 r;
-  const Eigen::AngleAxisd turn(T.linear() * pr.mean.linear().transpose());
-  r.head<3>() = turn.angle() * turn.axis();
-  r.tail<3>() = T.translation() - pr.mean.translation();
+  const Vec6 r = prior_residual(pr.mean, T);
   const Vec6 Lr = pr.information * r;
   L.cost += r.dot(Lr);
   L.H += pr.information;
   L.g += Lr;
 }
 
-// The step (omega, v) from T: a turn about T's position, then a move.
-Eigen::Isometry3d step(const Vec6& d, const Eigen::Isometry3d& T) {
+
+}  // namespace
+
+Eigen::Matrix<double, 6, 1> prior_residual(const Eigen::Isometry3d& mean, const Eigen::Isometry3d& T) {
+  Eigen::Matrix<double, 6, 1> r;
+  const Eigen::AngleAxisd turn(T.linear() * mean.linear().transpose());
+  r.head<3>() = turn.angle() * turn.axis();
+  r.tail<3>() = T.translation() - mean.translation();
+  return r;
+}
+
+Eigen::Isometry3d moved_by(const Eigen::Matrix<double, 6, 1>& d, const Eigen::Isometry3d& T) {
   const Eigen::Vector3d w = d.head<3>(), v = d.tail<3>();
   const double a = w.norm();
   const Eigen::Matrix3d dR = a > 0 ? Eigen::AngleAxisd(a, w / a).toRotationMatrix() : Eigen::Matrix3d::Identity();
@@ -212,8 +219,6 @@ Eigen::Isometry3d step(const Vec6& d, const Eigen::Isometry3d& T) {
   out.translation() = T.translation() + v;
   return out;
 }
-
-}  // namespace
 
 RegistrationResult register_scan(const Points& scan, const Surfaces& surfaces, const VoxelMap& map,
                                  const Eigen::Isometry3d& guess, const RegistrationParams& p, const PosePrior* prior) {
@@ -245,7 +250,7 @@ RegistrationResult register_scan(const Points& scan, const Surfaces& surfaces, c
       A.diagonal() += lambda * L.H.diagonal().cwiseMax(1e-9);
       d = A.ldlt().solve(-L.g);
       if (!d.allFinite()) return r;
-      const Eigen::Isometry3d next = step(d, r.transform);
+      const Eigen::Isometry3d next = moved_by(d, r.transform);
       Linearized N = at(next);
       if (N.matched >= 6 && N.cost <= L.cost) {
         r.transform = next;

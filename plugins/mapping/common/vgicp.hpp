@@ -60,6 +60,11 @@ struct RegistrationResult {
   Eigen::Matrix<double, 6, 1> gradient = Eigen::Matrix<double, 6, 1>::Zero();
 };
 
+// The prior's residual at T, r = (log(R R_p^T), t - t_p), over the step's coordinates.
+Eigen::Matrix<double, 6, 1> prior_residual(const Eigen::Isometry3d& mean, const Eigen::Isometry3d& T);
+// The step (omega, v) from T: a turn about T's position, then a move.
+Eigen::Isometry3d moved_by(const Eigen::Matrix<double, 6, 1>& d, const Eigen::Isometry3d& T);
+
 // Registers `scan` (scan frame, with its points' surfaces in the scan frame: point_surfaces)
 // onto `map`, from `guess` (map from scan). Fewer than 6 matched points: not converged, the
 // guess returned.
