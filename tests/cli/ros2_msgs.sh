@@ -20,6 +20,9 @@ mkdir -p "$out/other" && echo x > "$out/other/notes.txt"
 "$by" ros2 msgs --out "$out/other" > "$out/other.log" 2>&1; rc=$?
 [ $rc = 2 ] && grep -q "other: holds files and no brickyard_msgs package" "$out/other.log" || { cat "$out/other.log"; fail "exit $rc into a foreign folder"; }
 [ "$(ls "$out/other")" = notes.txt ] || fail "files written into a foreign folder"
+: > "$out/a_file"
+"$by" ros2 msgs --out "$out/a_file" > "$out/file.log" 2>&1; rc=$?
+[ $rc = 2 ] && grep -q "a_file: not a folder" "$out/file.log" || { cat "$out/file.log"; fail "exit $rc with --out a file"; }
 "$by" ros2 msgs > "$out/none.log" 2>&1; rc=$?
 [ $rc = 2 ] && grep -q "needs --out DIR" "$out/none.log" || { cat "$out/none.log"; fail "exit $rc without --out"; }
 if [ -n "$race" ]; then

@@ -17,6 +17,8 @@ python3 -c "import json,sys; g=json.load(open(sys.argv[1])); g['transport']={'na
   "$graph" "$out/bad.json" ros1 || exit 1
 "$by" validate "$out/bad.json" > "$out/bad.log" 2>&1; rc=$?
 [ $rc = 2 ] && grep -q 'bad.json#/transport/naming: expected "brickyard" or "ros2", found "ros1"' "$out/bad.log" || { cat "$out/bad.log"; fail "naming ros1: exit $rc"; }
+"$by" topic echo src.out --naming ros1 --domain "$domain" > "$out/bad_flag.log" 2>&1; rc=$?
+[ $rc = 2 ] && grep -q "\-\-naming ros1: expected brickyard or ros2" "$out/bad_flag.log" || { cat "$out/bad_flag.log"; fail "--naming ros1: exit $rc"; }
 
 "$by" run "$out/ros2.json" --domain "$domain" --duration 12 --progress 0 --no-report --out "$out/run" 2> "$out/run.log" &
 sup=$!

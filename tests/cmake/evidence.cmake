@@ -167,6 +167,8 @@ if(BRICKYARD_BENCH)  # bench/ is built with the simulator only
   # 10 m claiming RTK-fixed, and one biased; each row held to the issue's targets (laps,
   # contacts, error, the bias found within 1 s).
   by_next_domain(d)
+  add_test(NAME cli.eval_gnss_faults_no_host COMMAND ${EXPECT} 2 "eval_gnss_faults: --brickyard: /nonexistent/brickyard: not a file"
+    -- $<TARGET_FILE:eval_gnss_faults> --brickyard /nonexistent/brickyard)
   by_next_domain(d_fault)  # the fault runs' (eval_gnss_faults --domain d: d + 1)
   add_test(NAME evidence.gnss_faults_spielberg
     COMMAND ${NETNS} env EVAL_GNSS_FAULTS_DIR=${RUNS}/gnss_faults $<TARGET_FILE:eval_gnss_faults> --track Spielberg --layout outer
