@@ -2,6 +2,8 @@
 // (cdr/ros2_msgs.hpp) in DIR: package.xml, CMakeLists.txt and msg/*.msg, for a colcon workspace.
 // DIR is made, or holds this package already (written again, stale messages removed); any other
 // folder is refused (exit 2), never written into.
+// `brickyard ros2 idl --out FILE`: the same messages in IDL as ROS 2's DDS middlewares name them
+// on the wire, for a DDS program without ROS 2 (written whole or not at all).
 #include "cli/command_table.hpp"
 #include "graph/diagnostics.hpp"
 #include "record/recorder.hpp"
@@ -55,15 +57,33 @@ void check_out_folder(const fs::path& dir, const std::string& package) {
     throw InvalidInput("--out " + dir.string(), "holds files and no " + package + " package: name a new or empty folder");
 }
 
-}  // namespace
-
-int cmd_ros2(const Args& a) {
-  if (a.target != "msgs") usage_error(a.target.empty() ? "ros2" : "ros2 " + a.target, "expected: brickyard ros2 msgs --out DIR");
-  if (!a.more.empty()) usage_error("ros2 msgs", "takes no file, only --out DIR");
-  if (a.out.empty()) usage_error("ros2 msgs", "needs --out DIR (the package's folder, in a colcon workspace's src/)");
+cdr::Ros2PackageInfo package_info() {
   cdr::Ros2PackageInfo info;
   info.version = BRICKYARD_SDK_VERSION;
   info.description = "Brickyard's messages (the SDK's IDL) for ROS 2 nodes: the same CDR as Brickyard's samples";
+  return info;
+}
+
+int write_dds_idl(const Args& a) {
+  if (!a.more.empty()) usage_error("ros2 idl", "takes no file, only --out FILE");
+  if (a.out.empty()) usage_error("ros2 idl", "needs --out FILE (the IDL file to write)");
+  std::error_code ec;
+  if (fs::is_directory(a.out, ec)) throw InvalidInput("--out " + a.out, "a folder: name the IDL file to write");
+  const cdr::Ros2PackageInfo info = package_info();
+  io::write_whole_file(a.out, cdr::ros2_dds_idl(sdk_messages(), info));
+  std::printf("ros2 idl: %s: module %s::msg::dds_, the types as ROS 2's DDS middlewares name them\n", a.out.c_str(), info.name.c_str());
+  return 0;
+}
+
+}  // namespace
+
+int cmd_ros2(const Args& a) {
+  if (a.target == "idl") return write_dds_idl(a);
+  if (a.target != "msgs")
+    usage_error(a.target.empty() ? "ros2" : "ros2 " + a.target, "expected: brickyard ros2 msgs --out DIR, or brickyard ros2 idl --out FILE");
+  if (!a.more.empty()) usage_error("ros2 msgs", "takes no file, only --out DIR");
+  if (a.out.empty()) usage_error("ros2 msgs", "needs --out DIR (the package's folder, in a colcon workspace's src/)");
+  const cdr::Ros2PackageInfo info = package_info();
   const std::vector<cdr::Ros2File> files = cdr::ros2_package(sdk_messages(), info);
   const fs::path dir(a.out);
   check_out_folder(dir, info.name);

@@ -37,6 +37,8 @@ usage:
                                            topic and bag play take --security DIR (bag play --identity P)
   brickyard ros2 msgs --out DIR            the SDK's messages as a ROS 2 message package (package.xml,
                                            CMakeLists.txt, msg/*.msg: the same CDR; docs/ros2.md)
+  brickyard ros2 idl --out FILE            the same in IDL as ROS 2's DDS middlewares name it on the
+                                           wire, for a DDS program without ROS 2 (Cyclone DDS's idlc)
   brickyard new-plugin NAME --dir DIR [--role ROLE]
                                            scaffold a plugin project from the SDK template (or from
                                            the template of a role: a plugin that plays it, docs/roles.md)

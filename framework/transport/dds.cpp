@@ -279,7 +279,12 @@ DdsReader* DdsTransport::make_reader(const std::string& topic_n, const std::stri
   Topic* t = topic(topic_n, type_name);
   DataReaderQos q = DATAREADER_QOS_DEFAULT;
   q.liveliness().kind = AUTOMATIC_LIVELINESS_QOS;
-  q.liveliness().lease_duration = kLease;
+  // On ROS 2's names a port's reader asks no lease, as ROS 2's default profile offers none: a
+  // ROS 2 publisher with it would not match a reader asking 0.5 s (DDS matches an offered lease
+  // only as short as the one asked). A writer's death is then the supervisor's to see, and its
+  // input's staleness; the framework's own topics keep the lease (docs/ros2.md).
+  const bool ros2_port = ros2_naming_ && topic_n.rfind("brickyard/", 0) == 0;
+  q.liveliness().lease_duration = ros2_port ? eprosima::fastrtps::c_TimeInfinite : kLease;
   q.reliability().kind = RELIABLE_RELIABILITY_QOS;
   q.history().kind = KEEP_LAST_HISTORY_QOS;
   q.history().depth = static_cast<int32_t>(depth);

@@ -4,6 +4,7 @@
 #include <map>
 #include <set>
 #include <stdexcept>
+#include <utility>
 
 namespace brickyard::cdr {
 
@@ -86,7 +87,49 @@ std::string cmakelists(const Ros2PackageInfo& info, const std::vector<std::strin
   return text;
 }
 
+// A member's type in IDL, a struct by its dds_ name.
+std::string dds_idl_type(const IdlType& t) {
+  switch (t.kind) {
+    case IdlType::Primitive: return t.name;
+    case IdlType::String: return t.bound ? "string<" + std::to_string(t.bound) + ">" : "string";
+    case IdlType::Struct: return t.name + "_";
+    case IdlType::Sequence: return "sequence<" + dds_idl_type(*t.of) + (t.bound ? ", " + std::to_string(t.bound) : "") + ">";
+    case IdlType::Array: return dds_idl_type(*t.of);
+  }
+  return "?";
+}
+
+// The structs of `model` in order, each checked as ros2_package checks it: (qualified, bare) names.
+std::vector<std::pair<std::string, std::string>> package_structs(const IdlModel& model) {
+  std::vector<std::pair<std::string, std::string>> out;
+  std::set<std::string> done;
+  const std::string module = model.defined.empty() ? std::string() : module_of(model.defined.front());
+  for (const std::string& qualified : model.defined) {
+    if (!done.insert(qualified).second) continue;
+    const std::string name = idl_bare_name(qualified);
+    if (module_of(qualified) != module)
+      throw std::invalid_argument("struct " + qualified + ": not in module " + module + " (one package, one module)");
+    if (!camel_case(name)) throw std::invalid_argument("struct " + qualified + ": not a ROS 2 type name (CamelCase)");
+    out.emplace_back(qualified, name);
+  }
+  return out;
+}
+
 }  // namespace
+
+std::string ros2_dds_idl(const IdlModel& model, const Ros2PackageInfo& info) {
+  std::string text = "// " + info.name + " " + info.version + " as ROS 2's DDS middlewares name it on the wire: written by\n"
+                     "// `brickyard ros2 idl` from the SDK's IDL (sdk/msgs); do not edit.\n"
+                     "module " + info.name + " {\nmodule msg {\nmodule dds_ {\n";
+  for (const auto& [qualified, name] : package_structs(model)) {
+    msg_text(name, *model.structs.at(qualified), info.name);  // ROS 2's refusals, the same
+    text += "@final struct " + name + "_ {\n";
+    for (const IdlMember& m : *model.structs.at(qualified))
+      text += "  " + dds_idl_type(m.type) + " " + m.name + (m.type.kind == IdlType::Array ? "[" + std::to_string(m.type.size) + "]" : "") + ";\n";
+    text += "};\n";
+  }
+  return text + "};  // module dds_\n};  // module msg\n};  // module " + info.name + "\n";
+}
 
 std::string ros2_type(const IdlType& t, const std::string& package) {
   switch (t.kind) {
@@ -114,14 +157,7 @@ std::string ros2_type(const IdlType& t, const std::string& package) {
 std::vector<Ros2File> ros2_package(const IdlModel& model, const Ros2PackageInfo& info) {
   std::vector<Ros2File> files;
   std::vector<std::string> msgs;
-  std::set<std::string> done;
-  const std::string module = model.defined.empty() ? std::string() : module_of(model.defined.front());
-  for (const std::string& qualified : model.defined) {
-    if (!done.insert(qualified).second) continue;
-    const std::string name = idl_bare_name(qualified);
-    if (module_of(qualified) != module)
-      throw std::invalid_argument("struct " + qualified + ": not in module " + module + " (one package, one module)");
-    if (!camel_case(name)) throw std::invalid_argument("struct " + qualified + ": not a ROS 2 type name (CamelCase)");
+  for (const auto& [qualified, name] : package_structs(model)) {
     msgs.push_back("msg/" + name + ".msg");
     files.push_back({msgs.back(), msg_text(name, *model.structs.at(qualified), info.name)});
   }

@@ -31,6 +31,13 @@ struct Ros2PackageInfo {
 // type without a ROS 2 twin, a struct of another module than the first's.
 std::vector<Ros2File> ros2_package(const IdlModel& model, const Ros2PackageInfo& info);
 
+// The same structs as ROS 2's DDS middlewares (rmw_fastrtps, rmw_cyclonedds) name them on the wire,
+// in OMG IDL: module PACKAGE::msg::dds_, each struct TYPE_ (its members and their IDL types as in
+// `model`, a struct member by its dds_ name). A DDS program of any vendor compiled from it (Cyclone
+// DDS's idlc) reads and writes a graph with transport.naming "ros2" without ROS 2. The same
+// refusals as ros2_package.
+std::string ros2_dds_idl(const IdlModel& model, const Ros2PackageInfo& info);
+
 // One member's ROS 2 type: "float64", "uint8[<=64]", "brickyard_msgs/Header[]".
 std::string ros2_type(const IdlType& t, const std::string& package);
 

@@ -68,3 +68,32 @@ TEST(Ros2Msgs, WhatRos2CannotNameIsRefusedNamed) {
   refused("module m { struct A { sequence<sequence<double>> s; }; };", "a sequence of sequences or arrays has no ROS 2 form");
   refused("module m { struct A { double x; }; }; module n { struct B { double y; }; };", "struct n::B: not in module m");
 }
+
+// The same structs in IDL as ROS 2's DDS middlewares name them on the wire: module
+// PACKAGE::msg::dds_, each type TYPE_, a struct member by its dds_ name, bounds and arrays kept;
+// extensibility said (final, as ours and ROS 2's are); the IDL reader takes it back with the same
+// members; ROS 2's refusals the same.
+TEST(Ros2Msgs, TheDdsIdlNamesTypesAsRos2MiddlewaresDo) {
+  Ros2PackageInfo info;
+  info.version = "1.0.0";
+  const std::string idl = ros2_dds_idl(parse_idl(kIdl), info);
+  std::string plain = idl;  // our IDL reader's subset has no annotations
+  for (std::size_t at; (at = plain.find("@final ")) != std::string::npos;) plain.erase(at, 7);
+  const IdlModel back = parse_idl(plain);
+  ASSERT_EQ(back.defined, (std::vector<std::string>{"brickyard_msgs::msg::dds_::Inner_", "brickyard_msgs::msg::dds_::Outer_"}));
+  EXPECT_NE(idl.find("@final struct Outer_ {"), std::string::npos) << idl;
+  for (const char* member : {"  uint8 b;", "  string<8> tag;", "  sequence<float> xs;", "  sequence<uint8, 64> data;", "  double pose[3];",
+                             "  Inner_ one;", "  sequence<Inner_> many;", "  Inner_ qualified;"})
+    EXPECT_NE(idl.find(member), std::string::npos) << member << " in\n" << idl;
+  const auto& outer = *back.structs.at("brickyard_msgs::msg::dds_::Outer_");
+  const IdlModel source = parse_idl(kIdl);
+  const auto& original = *source.structs.at("brickyard::msgs::Outer");
+  ASSERT_EQ(outer.size(), original.size());
+  for (std::size_t i = 0; i < outer.size(); ++i) {
+    EXPECT_EQ(outer[i].name, original[i].name);
+    EXPECT_EQ(outer[i].type.kind, original[i].type.kind) << outer[i].name;
+    EXPECT_EQ(outer[i].type.bound, original[i].type.bound) << outer[i].name;
+    EXPECT_EQ(outer[i].type.size, original[i].type.size) << outer[i].name;
+  }
+  EXPECT_THROW(ros2_dds_idl(parse_idl("module m { struct A { double X; }; };"), info), std::invalid_argument);
+}

@@ -25,6 +25,13 @@ mkdir -p "$out/other" && echo x > "$out/other/notes.txt"
 [ $rc = 2 ] && grep -q "a_file: not a folder" "$out/file.log" || { cat "$out/file.log"; fail "exit $rc with --out a file"; }
 "$by" ros2 msgs > "$out/none.log" 2>&1; rc=$?
 [ $rc = 2 ] && grep -q "needs --out DIR" "$out/none.log" || { cat "$out/none.log"; fail "exit $rc without --out"; }
+# The same messages in IDL on ROS 2's DDS names (tests/cli/ros2_cyclone.sh compiles a Cyclone DDS peer from it).
+"$by" ros2 idl --out "$out/dds.idl" > /dev/null || fail "ros2 idl"
+grep -q "^@final struct LocalizationEstimate_ {" "$out/dds.idl" && grep -q "^module dds_ {" "$out/dds.idl" || fail "ros2 idl: no dds_ module or type"
+"$by" ros2 idl --out "$out/other" > "$out/idl_dir.log" 2>&1; rc=$?
+[ $rc = 2 ] && grep -q "other: a folder: name the IDL file to write" "$out/idl_dir.log" || { cat "$out/idl_dir.log"; fail "ros2 idl --out a folder: exit $rc"; }
+"$by" ros2 idl > "$out/idl_none.log" 2>&1; rc=$?
+[ $rc = 2 ] && grep -q "needs --out FILE" "$out/idl_none.log" || { cat "$out/idl_none.log"; fail "ros2 idl without --out: exit $rc"; }
 if [ -n "$race" ]; then
   "$by" run "$race" --domain "$domain" --duration 2 --quiet --progress 0 --no-report --record "$out/race.mcap" > "$out/race.log" 2>&1
   [ -s "$out/race.mcap" ] || { cat "$out/race.log"; fail "recording the race"; }
