@@ -1,7 +1,8 @@
 // Recording's cost and size on the main job (configs/ims_race.json, two laps of IMS, the whole
 // stack on the simulator), every wire but the point clouds, as `--out` records it: ours (MCAP,
 // zstd chunks) beside the baseline in the same run (the SQLite .db3 the recorder wrote before,
-// still written for FILE.db3) and beside the same run without recording. Runs alternate so that
+// still written for FILE.db3) and beside the same run without recording; and ours with the scene
+// (/tf, /scene/*: --record-scene on, the default), what drawing it adds. Runs alternate so that
 // all three see the same load; medians. Exits 1 when a run fails or the two recordings of the
 // last round (the sim clock's runs are the same bit for bit) hold other messages per topic.
 // usage: bench_recording [--quick] [--runs N]
@@ -54,18 +55,20 @@ int main(int argc, char** argv) {
     const std::string info = dir + "/info.json";
     if (std::system((by + " bag info " + dir + "/out/recording.mcap --json > " + info).c_str()) != 0) return 1;
     const auto j = nlohmann::json::parse(std::ifstream(info));
-    for (const auto& t : j["topics"]) topics += (topics.empty() ? "" : ",") + t["name"].get<std::string>();
+    for (const auto& t : j["topics"])  // the wires (the scene's channels, foxglove.*, are no wire)
+      if (t["type"].get<std::string>().rfind("foxglove.", 0) != 0) topics += (topics.empty() ? "" : ",") + t["name"].get<std::string>();
   }
-  std::vector<double> factor[3], mb[3];
-  std::map<std::string, std::uint64_t> recorded[3];
+  std::vector<double> factor[4], mb[4];
+  std::map<std::string, std::uint64_t> recorded[4];
   double sim_s = 0;
   for (int i = 0; i < runs; ++i)
-    for (int mode : {0, 1, 2}) {  // none, MCAP, SQLite
-      const std::string out = dir + "/run", file = dir + (mode == 1 ? "/r.mcap" : "/r.db3");
+    for (int mode : {0, 1, 2, 3}) {  // none, MCAP, SQLite, MCAP with the scene
+      const std::string out = dir + "/run", file = dir + (mode == 2 ? "/r.db3" : "/r.mcap");
       fs::remove_all(out);
       fs::remove(file);
       std::string cmd = by + " run " + graph + " --quiet --progress 0 --no-report --out " + out;
       if (mode > 0) cmd += " --record " + file + " --record-only '" + topics + "'";
+      if (mode == 1) cmd += " --record-scene off";  // the wires alone, as SQLite holds them
       if (std::system((cmd + " > /dev/null 2>&1").c_str()) != 0) return std::printf("run failed: %s\n", cmd.c_str()), 1;
       const auto j = nlohmann::json::parse(std::ifstream(out + "/summary.json"));
       sim_s = j["sim_time_s"].get<double>();
@@ -82,6 +85,7 @@ int main(int argc, char** argv) {
   };
   row("ours: MCAP, zstd chunks", 1);
   row("baseline: SQLite (.db3)", 2);
+  row("ours with the scene (the default)", 3);
   std::printf("%-36s %14.1f %10s %18s\n", "not recording", none, "-", "-");
   std::printf("ratio of sizes SQLite / MCAP: %.2f\n", median(mb[2]) / median(mb[1]));
   if (recorded[1].empty() || recorded[1] != recorded[2])

@@ -109,6 +109,16 @@ bool record_option(Args& a, const std::string& f, Cursor& c) {
     if (a.record_compression != "zstd" && a.record_compression != "lz4" && a.record_compression != "none")
       usage_error("--record-compression " + a.record_compression, "expected zstd, lz4 or none");
   }
+  else if (f == "--record-scene") {
+    const std::string v = c.value();
+    if (v != "on" && v != "off") usage_error("--record-scene " + v, "expected on or off");
+    a.record_scene = v == "on";
+  }
+  else if (f == "--record-profile") {
+    a.record_profile = c.value();
+    if (a.record_profile != "brickyard" && a.record_profile != "ros2")
+      usage_error("--record-profile " + a.record_profile, "expected brickyard or ros2");
+  }
   else if (f == "--record-cloud-precision") {
     a.record_cloud_precision = parse_number(f, c.value());
     if (!(a.record_cloud_precision > 0 && a.record_cloud_precision <= 0.1))

@@ -9,7 +9,8 @@
 namespace brickyard::fw::cli {
 
 struct Args {
-  std::string command, target, dir, role, out, process, record, record_compression = "zstd";
+  std::string command, target, dir, role, out, process, record, record_compression = "zstd", record_profile = "brickyard";
+  bool record_scene = true;  // --record-scene on|off
   std::vector<std::string> more;  // positional arguments after the target (map build RECORDING)
   std::vector<std::string> record_only;
   std::vector<std::string> sets, args, plugin_paths;

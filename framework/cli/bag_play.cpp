@@ -94,6 +94,7 @@ DdsSettings player_settings(const BagPlayOptions& o) {
 int make_players(const BagPlayOptions& o, const RecordingInfo& info, DdsTransport& dds, Players& topics) {
   for (const auto& [name, type] : info.topics) {
     if (!o.only.empty() && !topic_selected(name, o.only)) continue;
+    if (type.rfind("foxglove.", 0) == 0) continue;  // the scene (/tf, /scene/*): drawn from the wires, no wire of its own
     const auto* entry = msgs::find_type(type.c_str());
     const auto dot = name.find('.');
     if (!entry || dot == std::string::npos) {

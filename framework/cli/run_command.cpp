@@ -12,6 +12,7 @@
 #include "graph/diagnostics.hpp"
 #include "graph/resolve.hpp"
 #include "io/whole_file.hpp"
+#include "record/recorder.hpp"
 #include "security/default_keys.hpp"
 #include "security/security_files.hpp"
 
@@ -129,6 +130,10 @@ RunOptions run_options(const Args& a, const GraphDecl& g, const DdsSecurity& sec
   opt.progress_s = a.progress;
   opt.record_only = a.record_only;
   opt.record_compression = a.record_compression;
+  opt.record_profile = a.record_profile;
+  opt.record_scene = a.record_scene;
+  if (a.record_profile == "ros2" && is_sqlite_recording(a.record))
+    usage_error("--record-profile ros2", "MCAP's profile: --record " + a.record + " is SQLite (name a .mcap file)");
   opt.record_cloud_precision = a.record_cloud_precision;
   opt.profile = a.profile;
   opt.threads = a.threads;

@@ -67,6 +67,10 @@ options:
   --record FILE        record every wire's samples into FILE: MCAP, or SQLite when FILE ends in
                        .db3 (docs/recording.md)
   --record-compression zstd|lz4|none   the MCAP chunks' (default zstd)
+  --record-scene on|off                the scene in Foxglove's schemas (/tf, /scene/*) into an MCAP
+                       recording too, as the live view draws it (default on; docs/recording.md)
+  --record-profile brickyard|ros2      the MCAP file's names: ours (omgidl schemas, default) or a ROS 2
+                       bag's (ros2msg schemas, topics /brickyard/NODE/PORT; docs/recording.md)
   --record-only P,...  record only the topics NODE.PORT matching these patterns ('*' any)
   --record-cloud-precision M   record point clouds compact, each coordinate to M metres
                        (0 < M <= 0.1; about 4x smaller; docs/recording.md)

@@ -93,6 +93,8 @@ class Executive final : public NodeHost {
   void wire(const WireDecl& w, const NodesByName& by_name);
   void connect_remote_input(const WireDecl& w, const NodeRuntime& to, InputQueue* in, const std::string& wire_type,
                             OutputPort* by_phantom);
+  // What the scenes (the live view's, the recording's) draw of a topic's samples (exec/output_tap.cpp).
+  std::function<void(const void*, std::uint64_t)> scene_handler(const std::string& topic, const std::string& type);
   // Records an output's samples, serves them live and draws them in the scene (exec/output_tap.cpp).
   void tap_output(OutputPort& out, const std::string& topic, const std::string& type);
   bool call(NodeRuntime& n, const char* phase, const std::function<void()>& f);
@@ -129,6 +131,8 @@ class Executive final : public NodeHost {
   std::unique_ptr<Recorder> recorder_;
   std::unique_ptr<LiveServer> live_;
   std::unique_ptr<LiveScene> scene_;  // the scene in Foxglove's schemas, beside the wires (--live)
+  std::unique_ptr<SceneOutlet> scene_recording_;  // the same scene into the recording (MCAP), and its drawing
+  std::unique_ptr<LiveScene> recorded_scene_;
   std::vector<std::unique_ptr<NodeRuntime>> nodes_;
   // Every node the sim scheduler steps, in schedule order: this process's, and in a lockstep run
   // the others' phantoms (kept in phantoms_) between them.

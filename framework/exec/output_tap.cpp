@@ -34,6 +34,17 @@ struct Tap {
 
 }  // namespace
 
+// What the scenes (the live view's, the recording's) draw of a sample of this topic: none, either, or both.
+std::function<void(const void*, std::uint64_t)> Executive::scene_handler(const std::string& topic, const std::string& type) {
+  using Handler = std::function<void(const void*, std::uint64_t)>;
+  Handler live = scene_ ? scene_->handler(topic, type) : Handler(), recorded = recorded_scene_ ? recorded_scene_->handler(topic, type) : Handler();
+  if (!live || !recorded) return live ? live : recorded;
+  return [live, recorded](const void* m, std::uint64_t ns) {
+    live(m, ns);
+    recorded(m, ns);
+  };
+}
+
 void Executive::tap_output(OutputPort& out, const std::string& topic, const std::string& type) {
   const bool skip = std::find(opt_.record_skip_types.begin(), opt_.record_skip_types.end(), type) != opt_.record_skip_types.end();
   const bool pack_cloud = opt_.record_cloud_precision > 0 && type == kCloud;
@@ -43,8 +54,8 @@ void Executive::tap_output(OutputPort& out, const std::string& topic, const std:
   const long live = live_ ? static_cast<long>(live_->add_channel(topic, "cdr", type, "omgidl",
                                                                    omgidl_schema(idl_text(type) ? idl_text(type) : ""), type == kCloud))
                           : -1;
-  auto scene = scene_ ? scene_->handler(topic, type) : std::function<void(const void*, std::uint64_t)>();
-  if (!rec && live < 0) return;
+  auto scene = scene_handler(topic, type);
+  if (!rec && live < 0 && !scene) return;
   auto tap = std::make_shared<Tap>(type);
   if (pack_cloud && rec) tap->packed = std::make_unique<SampleSerializer>(kPackedCloud);
   const double precision = opt_.record_cloud_precision;

@@ -7,7 +7,7 @@
 namespace brickyard::fw {
 
 std::unique_ptr<Recorder> open_recording(const RunOptions& opt, const GraphDecl& g, bool sim) {
-  auto r = std::make_unique<Recorder>(opt.record, opt.record_compression);
+  auto r = std::make_unique<Recorder>(opt.record, opt.record_compression, opt.record_profile);
   r->set_metadata("graph", g.name);
   r->set_metadata("graph_file", g.file);
   r->set_metadata("clock", sim ? "sim" : "real");

@@ -9,6 +9,7 @@
 #include "record/recorder.hpp"
 #include "record/sample_serializer.hpp"
 #include "transport/shm_reclaim.hpp"
+#include "record/recorded_scene.hpp"
 
 #include <algorithm>
 #include <map>
@@ -114,6 +115,10 @@ void Executive::make_transport() {
   transport_ = std::make_unique<DdsTransport>(ds);
   crash_guard::note_shared_memory();  // the participant's own segment and port files, made just now
   if (live_) scene_ = std::make_unique<LiveScene>(*live_);
+  if (recorder_ && opt_.record_scene) {
+    scene_recording_ = std::make_unique<RecordedScene>(*recorder_);
+    recorded_scene_ = std::make_unique<LiveScene>(*scene_recording_);
+  }
 }
 
 NodeRuntime* Executive::add_node(const ResolvedNode& rn) {

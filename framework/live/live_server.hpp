@@ -10,6 +10,8 @@
 // bytes (a slow or stalled client) loses samples (counted) rather than slowing the run. A client
 // that sends garbage gets a status message; one that floods requests or sends an oversized
 // message is disconnected. Serializing a sample costs only while someone is subscribed to it.
+#include "live/scene_outlet.hpp"
+
 #include <atomic>
 #include <cstdint>
 #include <memory>
@@ -38,7 +40,7 @@ struct LiveStats {
   double server_cpu_s = 0;           // the server thread's CPU time so far (its own share of the run's cost)
 };
 
-class LiveServer {
+class LiveServer : public SceneOutlet {
  public:
   // Binds and listens; throws std::runtime_error naming address:port when it cannot.
   explicit LiveServer(LiveOptions opt);
@@ -50,14 +52,14 @@ class LiveServer {
   // A channel (before start()): its id for publish(). `cloud`: its samples are point clouds, sent
   // at most at LiveOptions::cloud_hz.
   std::uint32_t add_channel(const std::string& topic, const std::string& encoding, const std::string& schema_name,
-                            const std::string& schema_encoding, const std::string& schema, bool cloud = false);
+                            const std::string& schema_encoding, const std::string& schema, bool cloud = false) override;
   void start();  // serves from here on, on its own thread
 
   // Whether any client is subscribed to the channel and, for a cloud channel, a cloud is due
   // (cheap: check before serializing).
-  bool wanted(std::uint32_t channel) const;
+  bool wanted(std::uint32_t channel) const override;
   // One sample to every client subscribed to its channel; never blocks on a client.
-  void publish(std::uint32_t channel, std::uint64_t stamp_ns, const unsigned char* data, std::size_t size);
+  void publish(std::uint32_t channel, std::uint64_t stamp_ns, const unsigned char* data, std::size_t size) override;
   // The run's time (sim clock), sent when it has moved on by `every_ns` since the last.
   void time(std::uint64_t stamp_ns, std::uint64_t every_ns = 10'000'000);
   LiveStats stats() const;

@@ -1,6 +1,6 @@
 #include "live/scene.hpp"
 
-#include "live/live_server.hpp"
+#include "live/scene_outlet.hpp"
 #include "live/scene_converter.hpp"
 
 #include <string_view>
@@ -31,7 +31,7 @@ const std::unordered_map<std::string_view, SceneConverter>& converters() {
 }
 }  // namespace
 
-LiveScene::LiveScene(LiveServer& server) : state_(std::make_shared<SceneState>(server)) {
+LiveScene::LiveScene(SceneOutlet& outlet) : state_(std::make_shared<SceneState>(outlet)) {
   SceneState& s = *state_;
   s.tf = channel(s, "/tf", "foxglove.FrameTransform");
   s.track = channel(s, "/scene/track", "foxglove.SceneUpdate");

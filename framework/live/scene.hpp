@@ -19,14 +19,15 @@
 
 namespace brickyard::fw {
 
-class LiveServer;
+class SceneOutlet;
 namespace live_scene {
 struct SceneState;
 }
 
 class LiveScene {
  public:
-  explicit LiveScene(LiveServer& server);  // adds its fixed channels (before the server starts)
+  // Adds its fixed channels to the outlet (the live server, before it starts; or a recording).
+  explicit LiveScene(SceneOutlet& outlet);
   ~LiveScene();
   // What the scene makes of a topic of this type: a function to call with each sample (the
   // message object and the run's clock), or an empty one. Called while the graph is built.

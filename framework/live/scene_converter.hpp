@@ -4,7 +4,7 @@
 // scene_track.cpp, scene_path.cpp, scene_perception.cpp, scene_cloud.cpp), listed there by its
 // type's name from the SDK's message traits; scene.cpp looks a topic's type up in those lists.
 // A new message type is its converter and one line in its file's list.
-#include "live/live_server.hpp"
+#include "live/scene_outlet.hpp"
 
 #include <brickyard/message_traits.hpp>
 
@@ -19,14 +19,14 @@
 
 namespace brickyard::fw::live_scene {
 
-// What the converters share: the server, the fixed channels, and what one topic tells another.
+// What the converters share: the outlet, the fixed channels, and what one topic tells another.
 struct SceneState {
-  explicit SceneState(LiveServer& s) : server(s) {}
+  explicit SceneState(SceneOutlet& s) : server(s) {}
   void send(std::uint32_t ch, std::uint64_t ns, const std::string& text) {
     server.publish(ch, ns, reinterpret_cast<const unsigned char*>(text.data()), text.size());
   }
 
-  LiveServer& server;
+  SceneOutlet& server;  // the live server, or a recording
   std::uint32_t tf = 0, track = 0, path = 0, wall = 0, obstacles = 0;
   bool has_estimate = false;  // the graph has an estimator: the vehicle frame is its estimate, not the truth
   // A frame's transform at most every 20 ms of the run (50 Hz; Foxglove interpolates between

@@ -1,6 +1,8 @@
 #include "record/recorder.hpp"
 
+#include "cdr/ros2_msgs.hpp"
 #include "mcap/mcap_writer.hpp"
+#include "mcap/ros2_profile.hpp"
 
 #include <brickyard/msgs/registry.hpp>
 
@@ -96,7 +98,10 @@ struct Recorder::Topic {
   std::uint16_t channel = 0, schema = 0;  // MCAP
 };
 
-Recorder::Recorder(const std::string& path, const std::string& compression) : path_(path), part_(path + ".part") {
+Recorder::Recorder(const std::string& path, const std::string& compression, const std::string& profile)
+    : path_(path), part_(path + ".part"), ros2_(profile == "ros2") {
+  if (profile != "brickyard" && profile != "ros2") throw std::runtime_error(path + ": profile '" + profile + "' is neither brickyard nor ros2");
+  if (ros2_ && is_sqlite_recording(path)) throw std::runtime_error(path + ": the ros2 profile is MCAP's: name a .mcap file");
   struct stat st {};
   if (::lstat(path.c_str(), &st) == 0) throw std::runtime_error(path + ": exists; a recording is never overwritten");
   // Written as PATH.part, created exclusively (two runs given the same FILE cannot both pass an
@@ -115,6 +120,7 @@ Recorder::Recorder(const std::string& path, const std::string& compression) : pa
       ::unlink(part_.c_str());
       throw std::runtime_error(path + ": compression '" + compression + "' is none of zstd, lz4, none");
     }
+    if (ros2_) o.profile = "ros2";
     ::unlink(part_.c_str());  // the MCAP writer makes it, exclusively, itself
     mcap_ = std::make_unique<mcap::Writer>(part_, o);
     return;
@@ -195,16 +201,16 @@ int Recorder::add_topic(const std::string& name, const std::string& type) {
   t->name = name;
   t->type = type;
   if (mcap_) {
-    if (!metadata_.empty()) {  // the run's, once: set before any topic
-      mcap_->add_metadata("brickyard", {metadata_.begin(), metadata_.end()});
-      metadata_.clear();
-    }
+    write_metadata_once();
     std::uint16_t schema = 0;
     for (const auto& other : topics_)
       if (other->type == type) schema = other->schema;
+    if (schema == 0 && ros2_)
+      schema = mcap_->add_schema(mcap::ros2_schema_name(type), "ros2msg",
+                                 cdr::ros2msg_schema(cdr::parse_idl(omgidl_schema(idl)), type, mcap::kRos2Package));
     if (schema == 0) schema = mcap_->add_schema(type, "omgidl", omgidl_schema(idl));
     t->schema = schema;
-    t->channel = mcap_->add_channel(schema, name, "cdr", {{"type_hash", entry->hash}});
+    t->channel = mcap_->add_channel(schema, ros2_ ? mcap::ros2_topic_name(name) : name, "cdr", {{"type_hash", entry->hash}});
     topics_.push_back(std::move(t));
     return static_cast<int>(topics_.size());
   }
@@ -222,6 +228,28 @@ int Recorder::add_topic(const std::string& name, const std::string& type) {
   if (rc != SQLITE_DONE) fail("topic " + name);
   topics_.push_back(std::move(t));
   return id;
+}
+
+void Recorder::write_metadata_once() {
+  if (metadata_.empty()) return;  // the run's, once: set before any channel
+  mcap_->add_metadata("brickyard", {metadata_.begin(), metadata_.end()});
+  metadata_.clear();
+}
+
+int Recorder::add_channel(const std::string& topic, const std::string& encoding, const std::string& schema_name,
+                          const std::string& schema_encoding, const std::string& schema) {
+  std::lock_guard<std::mutex> l(m_);
+  if (!mcap_) return 0;
+  write_metadata_once();
+  auto t = std::make_unique<Topic>();
+  t->name = topic;
+  t->type = schema_name;
+  for (const auto& other : topics_)
+    if (other->type == schema_name) t->schema = other->schema;
+  if (t->schema == 0) t->schema = mcap_->add_schema(schema_name, schema_encoding, schema);
+  t->channel = mcap_->add_channel(t->schema, topic, encoding);
+  topics_.push_back(std::move(t));
+  return static_cast<int>(topics_.size());
 }
 
 void Recorder::write(int topic, std::int64_t stamp_ns, const unsigned char* cdr, std::size_t size) {

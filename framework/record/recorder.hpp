@@ -20,8 +20,10 @@ namespace brickyard::fw {
 class Recorder {
  public:
   // Creates the file; throws std::runtime_error naming it (an existing file is not overwritten).
-  // compression: MCAP's chunks', "zstd", "lz4" or "none" (ignored for .db3).
-  explicit Recorder(const std::string& path, const std::string& compression = "zstd");
+  // compression: MCAP's chunks', "zstd", "lz4" or "none" (ignored for .db3). profile: MCAP's,
+  // "brickyard" (omgidl schemas, wires named node.port) or "ros2" (a ROS 2 bag's: ros2msg schemas,
+  // topics /brickyard/node/port; mcap/ros2_profile.hpp); a .db3 is refused any but "brickyard".
+  explicit Recorder(const std::string& path, const std::string& compression = "zstd", const std::string& profile = "brickyard");
   ~Recorder();
   Recorder(const Recorder&) = delete;
   Recorder& operator=(const Recorder&) = delete;
@@ -29,6 +31,10 @@ class Recorder {
   void set_metadata(const std::string& key, const std::string& value);
   // A topic ("node.port") of a message type; returns its id for write().
   int add_topic(const std::string& name, const std::string& type);
+  // A channel of messages that are no wire's (the scene's, in Foxglove's schemas: encoding "json",
+  // schema_encoding "jsonschema"): its id for write(), or 0 in a .db3 (which holds wires only).
+  int add_channel(const std::string& topic, const std::string& encoding, const std::string& schema_name, const std::string& schema_encoding,
+                  const std::string& schema);
   // One sample, serialized as on the wire (SampleSerializer), at the run's clock. Thread-safe.
   void write(int topic, std::int64_t stamp_ns, const unsigned char* cdr, std::size_t size);
   // Commits and closes, then renames PATH.part to PATH: a file at PATH is a whole recording.
@@ -42,12 +48,14 @@ class Recorder {
  private:
   struct Topic;
   void create_schema();
+  void write_metadata_once();  // MCAP: the run's metadata, before the first channel
   void flush_batch(std::int64_t stamp_ns);  // commits (SQLite) or writes the chunk (MCAP) once a second
   void exec(const char* sql);
   [[noreturn]] void fail(const std::string& what);
   void publish();
   std::string path_, part_;  // the recording's name, and the name it is written under until closed
   bool published_ = false;
+  bool ros2_ = false;
   sqlite3* db_ = nullptr;
   std::unique_ptr<mcap::Writer> mcap_;
   std::vector<std::pair<std::string, std::string>> metadata_;  // MCAP: written with the first topic

@@ -3,6 +3,7 @@
 #include "io/bounded_read.hpp"
 #include "mcap/mcap_format.hpp"
 #include "mcap/mcap_reader.hpp"
+#include "mcap/ros2_profile.hpp"
 
 #include <sqlite3.h>
 
@@ -11,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <utility>
 #include <map>
 #include <memory>
 #include <stdexcept>
@@ -18,6 +20,14 @@
 namespace brickyard::fw {
 
 namespace {
+
+// A channel's wire and type as we name them, whichever profile the file was recorded in (ours, or
+// a ROS 2 bag's: mcap/ros2_profile.hpp).
+std::pair<std::string, std::string> recorded_names(const mcap::Reader& r, const mcap::ChannelInfo& c) {
+  const auto sc = r.schemas().find(c.schema);
+  if (sc == r.schemas().end()) return {c.topic, ""};
+  return mcap::brickyard_names(c.topic, sc->second.name, sc->second.encoding);
+}
 
 // An open read-only database, closed however the reading ends.
 struct Db {
@@ -95,10 +105,9 @@ void read_mcap_recording(const std::string& path, RecordingInfo& info, std::vect
     // read as a time before the epoch (a span of -9223372036.855 s).
     if (c.messages && c.last > static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max()))
       throw std::runtime_error("channel '" + c.topic + "' has a message stamped " + std::to_string(c.last) + " ns: past any run's clock (2^63 ns)");
-    const auto sc = r->schemas().find(c.schema);
-    const std::string type = sc == r->schemas().end() ? "" : sc->second.name;
-    info.topics.emplace_back(c.topic, type);
-    topics.push_back({c.topic, type, c.messages, c.bytes, static_cast<std::int64_t>(c.first), static_cast<std::int64_t>(c.last)});
+    const auto [topic, type] = recorded_names(*r, c);
+    info.topics.emplace_back(topic, type);
+    topics.push_back({topic, type, c.messages, c.bytes, static_cast<std::int64_t>(c.first), static_cast<std::int64_t>(c.last)});
     info.messages += c.messages;
     if (c.messages) info.last_ns = std::max(info.last_ns, static_cast<std::int64_t>(c.last));
   }
@@ -115,10 +124,7 @@ void for_each_sample(const std::string& path, const std::function<void(const std
       throw std::runtime_error(e.what());
     }
     std::map<std::uint16_t, std::pair<std::string, std::string>> names;
-    for (const auto& [id, c] : r->channels()) {
-      const auto sc = r->schemas().find(c.schema);
-      names[id] = {c.topic, sc == r->schemas().end() ? "" : sc->second.name};
-    }
+    for (const auto& [id, c] : r->channels()) names[id] = recorded_names(*r, c);
     r->read([&](const mcap::MessageView& m) {
       const auto& [topic, type] = names[m.channel];
       f(topic, type, static_cast<std::int64_t>(m.log_time), m.data, m.size);

@@ -115,7 +115,32 @@ std::vector<std::pair<std::string, std::string>> package_structs(const IdlModel&
   return out;
 }
 
+// The structs a member's type names (through sequences and arrays), in order.
+void struct_names(const IdlType& t, std::vector<std::string>& out) {
+  if (t.kind == IdlType::Struct) out.push_back(t.name);
+  else if (t.of) struct_names(*t.of, out);
+}
+
 }  // namespace
+
+std::string ros2msg_schema(const IdlModel& model, const std::string& qualified, const std::string& package) {
+  const auto top = model.structs.find(qualified);
+  if (top == model.structs.end()) throw std::invalid_argument("no struct " + qualified);
+  std::vector<std::string> order = {idl_bare_name(qualified)};
+  std::set<std::string> seen(order.begin(), order.end());
+  std::string out;
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    const auto it = model.structs.find(order[i]);
+    if (it == model.structs.end()) throw std::invalid_argument("struct " + qualified + " uses " + order[i] + ", which is not defined");
+    if (i > 0) out += "\n" + std::string(80, '=') + "\nMSG: " + package + "/" + order[i] + "\n";
+    out += msg_text(order[i], *it->second, package);
+    std::vector<std::string> used;
+    for (const IdlMember& m : *it->second) struct_names(m.type, used);
+    for (const std::string& u : used)
+      if (seen.insert(idl_bare_name(u)).second) order.push_back(idl_bare_name(u));
+  }
+  return out;
+}
 
 std::string ros2_dds_idl(const IdlModel& model, const Ros2PackageInfo& info) {
   std::string text = "// " + info.name + " " + info.version + " as ROS 2's DDS middlewares name it on the wire: written by\n"

@@ -38,6 +38,11 @@ std::vector<Ros2File> ros2_package(const IdlModel& model, const Ros2PackageInfo&
 // refusals as ros2_package.
 std::string ros2_dds_idl(const IdlModel& model, const Ros2PackageInfo& info);
 
+// One type's definition as a ROS 2 bag's "ros2msg" schema carries it: its .msg text, then each
+// struct it uses (in the order first met, each once) after a line of 80 '=' and "MSG: PACKAGE/Type".
+// `qualified` must be a struct of `model`; the same refusals as ros2_package.
+std::string ros2msg_schema(const IdlModel& model, const std::string& qualified, const std::string& package);
+
 // One member's ROS 2 type: "float64", "uint8[<=64]", "brickyard_msgs/Header[]".
 std::string ros2_type(const IdlType& t, const std::string& package);
 

@@ -2,11 +2,13 @@
 // same CDR, bounds kept, structs by package; names ROS 2 does not allow and types it has no form
 // for refused, named.
 #include "cdr/ros2_msgs.hpp"
+#include "mcap/ros2_profile.hpp"
 
 #include <gtest/gtest.h>
 
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 using namespace brickyard::cdr;
 
@@ -96,4 +98,35 @@ TEST(Ros2Msgs, TheDdsIdlNamesTypesAsRos2MiddlewaresDo) {
     EXPECT_EQ(outer[i].type.size, original[i].type.size) << outer[i].name;
   }
   EXPECT_THROW(ros2_dds_idl(parse_idl("module m { struct A { double X; }; };"), info), std::invalid_argument);
+}
+
+// A type's ros2msg schema (a ROS 2 bag's): its .msg text, then every struct it uses, each once,
+// after a line of 80 '=' and "MSG: PACKAGE/Type", as @foxglove/rosmsg parses them.
+TEST(Ros2Msgs, ARos2msgSchemaHoldsItsTypeThenEveryTypeItUses) {
+  const std::string schema = ros2msg_schema(parse_idl(kIdl), "brickyard::msgs::Outer", "brickyard_msgs");
+  const std::string separator = "\n" + std::string(80, '=') + "\nMSG: brickyard_msgs/Inner\n";
+  const auto at = schema.find(separator);
+  ASSERT_NE(at, std::string::npos) << schema;
+  EXPECT_EQ(schema.find(separator, at + 1), std::string::npos) << "Inner once, though Outer uses it three times";
+  EXPECT_EQ(schema.rfind("# Outer:", 0), 0u) << schema;
+  EXPECT_NE(schema.find("brickyard_msgs/Inner[] many\n"), std::string::npos);
+  EXPECT_EQ(schema.substr(at + separator.size()).rfind("# Inner:", 0), 0u);
+  EXPECT_NE(schema.find("float64 x\n", at), std::string::npos);
+  EXPECT_THROW(ros2msg_schema(parse_idl(kIdl), "brickyard::msgs::Missing", "brickyard_msgs"), std::invalid_argument);
+}
+
+// A recording's names in MCAP's ros2 profile, and back: node.port is /brickyard/node/port, our
+// types brickyard_msgs/msg/T (ros2msg); anything else (another profile's, another package's, a
+// topic not ours) is left as it is.
+TEST(Ros2Profile, NamesGoToRos2AndBack) {
+  using namespace brickyard::mcap;
+  EXPECT_EQ(ros2_topic_name("estimator.estimate"), "/brickyard/estimator/estimate");
+  EXPECT_EQ(ros2_schema_name("brickyard::msgs::Imu"), "brickyard_msgs/msg/Imu");
+  EXPECT_EQ(brickyard_names("/brickyard/estimator/estimate", "brickyard_msgs/msg/LocalizationEstimate", "ros2msg"),
+            std::make_pair(std::string("estimator.estimate"), std::string("brickyard::msgs::LocalizationEstimate")));
+  EXPECT_EQ(brickyard_names("estimator.estimate", "brickyard::msgs::LocalizationEstimate", "omgidl"),
+            std::make_pair(std::string("estimator.estimate"), std::string("brickyard::msgs::LocalizationEstimate")));
+  EXPECT_EQ(brickyard_names("/points", "sensor_msgs/msg/PointCloud2", "ros2msg"),
+            std::make_pair(std::string("/points"), std::string("sensor_msgs/msg/PointCloud2")));
+  EXPECT_EQ(brickyard_names("/a/b/c", "brickyard_msgs/msg/Imu", "ros2msg").first, "/a/b/c");
 }

@@ -23,9 +23,11 @@ for name, typ in c.execute("SELECT name, type FROM topics ORDER BY id"):
         h.update(struct.pack("<Q", t)); h.update(d); n += 1
     want[name] = {"schema": typ, "count": n, "sha256": h.hexdigest()}
 same = sum(1 for k in want if got["topics"].get(k) == want[k])
-print(f"MCAP against SQLite: {len(got['topics'])} topics, {got['messages']} messages decoded; {same} of {len(want)} topics identical")
+wires = [k for k, v in got["topics"].items() if not v["schema"].startswith("foxglove.")]  # a .db3 holds no scene
+scene = len(got["topics"]) - len(wires)
+print(f"MCAP against SQLite: {len(wires)} wires (and {scene} scene channels), {got['messages']} messages decoded; {same} of {len(want)} topics identical")
 last = got.get("last", {})
-ok = same == len(want) == len(got["topics"]) and got["messages"] > 1000 and got["metadata"]["brickyard"]["clock"] == "sim"
+ok = same == len(want) == len(wires) and scene >= 2 and got["messages"] > 1000 and got["metadata"]["brickyard"]["clock"] == "sim"
 ok = ok and isinstance(last.get("header", {}).get("stamp_ns"), int) and isinstance(last.get("x"), float) and len(last.get("covariance", [])) == 9
 sys.exit(0 if ok else 1)
 PY

@@ -31,6 +31,7 @@ python3 -c "import json,sys; g=json.load(open(sys.argv[1])); g['transport']={'na
 reader=$!
 sleep 1
 "$by" run "$out/race.json" --domain "$domain" --duration 10 --quiet --progress 0 --no-report --record "$out/race.mcap" \
+  --record-only estimator.estimate,manager.command \
   --arg track="$(dirname "$race")/../data/tracks/IMS.csv" > "$out/race.log" 2>&1 || true
 wait $reader; reader_rc=$?
 cat "$out/reader.log"

@@ -1,7 +1,8 @@
 // Reads an MCAP recording with Foxglove's own libraries, not ours: @mcap/core through the summary
 // and indexes (McapIndexedReader) and front to back with every chunk's CRC checked
 // (McapStreamReader); each channel's OMG IDL schema parsed by @foxglove/omgidl-parser and every
-// message decoded from CDR by @foxglove/omgidl-serialization. Prints one JSON object: per topic its
+// message decoded from CDR by @foxglove/omgidl-serialization (the scene's channels, JSON in
+// Foxglove's schemas, parsed as JSON: tests/clients/scene_check.cjs checks them against the schemas). Prints one JSON object: per topic its
 // schema, count and a SHA-256 over (log time, bytes) in order, so a test can hold it against the
 // same run's SQLite recording, and one over every message in the file's order (channel, time,
 // bytes); with --last TOPIC, that topic's last message decoded.
@@ -49,10 +50,11 @@ async function main() {
   const decoders = new Map(), hashes = new Map();
   for (const [id, ch] of reader.channelsById) {
     const schema = reader.schemasById.get(ch.schemaId);
-    if (!schema || schema.encoding !== "omgidl" || ch.messageEncoding !== "cdr")
-      throw new Error(`channel ${ch.topic}: schema ${schema && schema.encoding}, messages ${ch.messageEncoding} (want omgidl, cdr)`);
-    const defs = parseIDL(new TextDecoder().decode(schema.data));
-    decoders.set(id, new MessageReader(schema.name, defs));
+    const scene = schema && schema.encoding === "jsonschema" && ch.messageEncoding === "json";  // the scene, in Foxglove's schemas
+    if (!scene && (!schema || schema.encoding !== "omgidl" || ch.messageEncoding !== "cdr"))
+      throw new Error(`channel ${ch.topic}: schema ${schema && schema.encoding}, messages ${ch.messageEncoding} (want omgidl, cdr; or the scene's jsonschema, json)`);
+    if (scene) decoders.set(id, { readMessage: (d) => JSON.parse(new TextDecoder().decode(d)) });
+    else decoders.set(id, new MessageReader(schema.name, parseIDL(new TextDecoder().decode(schema.data))));
     hashes.set(id, crypto.createHash("sha256"));
     out.topics[ch.topic] = { schema: schema.name, count: 0 };
   }

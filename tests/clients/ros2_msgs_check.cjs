@@ -67,6 +67,7 @@ async function main() {
   const reader = await McapIndexedReader.Initialize({ readable, decompressHandlers });
   const readers = new Map(), out = { package: pkg.name, messages: pkg.msgs.size, topics: {} };
   for (const [id, ch] of reader.channelsById) {
+    if (ch.messageEncoding !== "cdr") continue;  // the scene's channels (JSON, Foxglove's schemas): no message of ours
     const schema = reader.schemasById.get(ch.schemaId);
     const type = schema.name.split("::").pop();
     readers.set(id, {
@@ -76,6 +77,7 @@ async function main() {
     out.topics[ch.topic] = { type: `${pkg.name}/${type}`, count: 0 };
   }
   for await (const m of reader.readMessages()) {
+    if (!readers.has(m.channelId)) continue;
     const ch = reader.channelsById.get(m.channelId), r = readers.get(m.channelId);
     const d = firstDifference(r.theirs.readMessage(m.data), r.ours.readMessage(m.data));
     if (d) throw new Error(`${ch.topic}, message ${out.topics[ch.topic].count}: the ROS 2 definition reads ${d.replace(" against ", " where the IDL reads ")}`);

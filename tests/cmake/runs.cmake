@@ -121,6 +121,15 @@ if(BRICKYARD_SIM)
 else()
   add_test(NAME cli.ros2_msgs COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/cli/ros2_msgs.sh ${BY} ${PROJECT_SOURCE_DIR} ${d} ${RUNS}/ros2_msgs)
 endif()
+# A recording in MCAP's ros2 profile, read as a ROS 2 bag by a third party's libraries: every
+# message equal to the same run recorded in ours.
+if(BRICKYARD_SIM)
+  by_next_domain(d)
+  add_test(NAME evidence.ros2_recording
+    COMMAND ${NETNS} ${CMAKE_CURRENT_SOURCE_DIR}/cli/ros2_recording.sh ${BY} ${CMAKE_CURRENT_SOURCE_DIR}/clients
+            ${PROJECT_SOURCE_DIR}/configs/race.json ${d} ${RUNS}/ros2_recording)
+  set_tests_properties(evidence.ros2_recording PROPERTIES TIMEOUT 300)
+endif()
 # MCAP, read by Foxglove's libraries (tests/clients, installed by scripts/setup from npm).
 by_next_domain(d)
 add_test(NAME evidence.mcap_recording

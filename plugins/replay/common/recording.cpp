@@ -2,6 +2,7 @@
 
 #include "mcap/mcap_format.hpp"
 #include "mcap/mcap_reader.hpp"
+#include "mcap/ros2_profile.hpp"
 
 #include <sqlite3.h>
 
@@ -27,8 +28,10 @@ Recording::Recording(const std::string& path) : path_(path) {
     for (const auto& [id, c] : mcap_->channels()) {
       const auto sc = mcap_->schemas().find(c.schema);
       const auto hash = c.metadata.find("type_hash");
-      topics_.push_back({id, c.topic, sc == mcap_->schemas().end() ? "" : sc->second.name,
-                         hash == c.metadata.end() ? "" : hash->second, sc == mcap_->schemas().end() ? "" : sc->second.data});
+      const bool schema = sc != mcap_->schemas().end();
+      // Named as we name them, in either profile (a ROS 2 bag's: mcap/ros2_profile.hpp).
+      const auto [topic, type] = mcap::brickyard_names(c.topic, schema ? sc->second.name : "", schema ? sc->second.encoding : "");
+      topics_.push_back({id, topic, type, hash == c.metadata.end() ? "" : hash->second, schema ? sc->second.data : ""});
     }
     return;
   }

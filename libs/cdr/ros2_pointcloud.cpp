@@ -1,0 +1,259 @@
+#include "cdr/ros2_pointcloud.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+namespace brickyard::cdr {
+
+namespace {
+
+// PointField's datatypes (sensor_msgs/msg/PointField) and their sizes.
+enum Datatype : std::uint8_t { INT8 = 1, UINT8, INT16, UINT16, INT32, UINT32, FLOAT32, FLOAT64 };
+std::size_t datatype_size(std::uint8_t t) {
+  static const std::size_t sizes[] = {0, 1, 1, 2, 2, 4, 4, 4, 8};
+  return t >= INT8 && t <= FLOAT64 ? sizes[t] : 0;
+}
+
+bool host_little() {
+  const std::uint16_t one = 1;
+  unsigned char b;
+  std::memcpy(&b, &one, 1);
+  return b == 1;
+}
+
+// A value of `n` bytes at p, in `little` byte order, into host order.
+void load(void* out, const unsigned char* p, std::size_t n, bool little) {
+  unsigned char b[8];
+  for (std::size_t i = 0; i < n; ++i) b[i] = p[little == host_little() ? i : n - 1 - i];
+  std::memcpy(out, b, n);
+}
+
+// CDR read from after the encapsulation header: each primitive aligned to its size from there.
+class Reader {
+ public:
+  Reader(const unsigned char* data, std::size_t size) : p_(data), size_(size) {
+    if (size < 4) throw BadPointCloud2("PointCloud2: " + std::to_string(size) + " bytes, no CDR header");
+    little_ = (data[1] & 1) != 0;
+    at_ = 4;
+  }
+  template <class T>
+  T get(const char* what) {
+    align(sizeof(T));
+    need(sizeof(T), what);
+    T v;
+    load(&v, p_ + at_, sizeof(T), little_);
+    at_ += sizeof(T);
+    return v;
+  }
+  std::string string(const char* what) {
+    const auto n = get<std::uint32_t>(what);
+    need(n, what);
+    std::string s(reinterpret_cast<const char*>(p_ + at_), n ? n - 1 : 0);  // without its NUL
+    at_ += n;
+    return s;
+  }
+  // A byte sequence: where its bytes start and how many.
+  std::pair<const unsigned char*, std::size_t> bytes(const char* what) {
+    const auto n = get<std::uint32_t>(what);
+    need(n, what);
+    const unsigned char* start = p_ + at_;
+    at_ += n;
+    return {start, n};
+  }
+
+ private:
+  void align(std::size_t n) { at_ += (n - (at_ - 4) % n) % n; }
+  void need(std::size_t n, const char* what) const {
+    if (at_ > size_ || size_ - at_ < n)
+      throw BadPointCloud2(std::string("PointCloud2: ") + what + " at byte " + std::to_string(at_) + " runs past the sample's " + std::to_string(size_) +
+                           " bytes");
+  }
+  const unsigned char* p_;
+  std::size_t size_, at_ = 4;
+  bool little_ = true;
+};
+
+struct Field {
+  std::string name;
+  std::uint32_t offset = 0, count = 0;
+  std::uint8_t datatype = 0;
+};
+
+// A numeric field's value of one point, as a double.
+double value_of(const unsigned char* p, std::uint8_t t, bool little) {
+  switch (t) {
+    case INT8: return static_cast<std::int8_t>(*p);
+    case UINT8: return *p;
+    case INT16: { std::int16_t v; load(&v, p, 2, little); return v; }
+    case UINT16: { std::uint16_t v; load(&v, p, 2, little); return v; }
+    case INT32: { std::int32_t v; load(&v, p, 4, little); return v; }
+    case UINT32: { std::uint32_t v; load(&v, p, 4, little); return v; }
+    case FLOAT32: { float v; load(&v, p, 4, little); return v; }
+    default: { double v; load(&v, p, 8, little); return v; }
+  }
+}
+
+const Field* field_named(const std::vector<Field>& fields, std::initializer_list<const char*> names) {
+  for (const char* n : names)
+    for (const Field& f : fields)
+      if (f.name == n) return &f;
+  return nullptr;
+}
+
+std::vector<Field> read_fields(Reader& r) {
+  std::vector<Field> fields(r.get<std::uint32_t>("fields' count"));
+  for (Field& f : fields) {
+    f.name = r.string("a field's name");
+    f.offset = r.get<std::uint32_t>("a field's offset");
+    f.datatype = r.get<std::uint8_t>("a field's datatype");
+    f.count = r.get<std::uint32_t>("a field's count");
+  }
+  return fields;
+}
+
+void check_fields(const std::vector<Field>& fields, std::uint32_t point_step) {
+  for (const Field& f : fields) {
+    const std::size_t size = datatype_size(f.datatype);
+    if (size == 0) throw BadPointCloud2("PointCloud2: field '" + f.name + "' has datatype " + std::to_string(f.datatype) + ", none of 1 to 8");
+    if (static_cast<std::size_t>(f.offset) + size * std::max<std::uint32_t>(f.count, 1) > point_step)
+      throw BadPointCloud2("PointCloud2: field '" + f.name + "' (" + std::to_string(size) + " bytes at " + std::to_string(f.offset) +
+                           ") is past the point step " + std::to_string(point_step));
+  }
+  for (const char* axis : {"x", "y", "z"}) {
+    const Field* f = field_named(fields, {axis});
+    if (!f) {
+      std::string names;
+      for (const Field& g : fields) names += (names.empty() ? "" : ", ") + g.name;
+      throw BadPointCloud2(std::string("PointCloud2: no field '") + axis + "' (fields: " + (names.empty() ? "none" : names) + ")");
+    }
+    if (f->datatype != FLOAT32 && f->datatype != FLOAT64)
+      throw BadPointCloud2(std::string("PointCloud2: field '") + axis + "' is not FLOAT32 or FLOAT64 (datatype " + std::to_string(f->datatype) + ")");
+  }
+}
+
+// Appends the little-endian bytes of v, aligned to its size from after the 4-byte header.
+template <class T>
+void put(std::vector<unsigned char>& out, T v) {
+  while ((out.size() - 4) % sizeof(T)) out.push_back(0);
+  unsigned char b[sizeof(T)];
+  load(b, reinterpret_cast<const unsigned char*>(&v), sizeof(T), true);  // host order to little-endian
+  out.insert(out.end(), b, b + sizeof(T));
+}
+void put_string(std::vector<unsigned char>& out, const std::string& s) {
+  put<std::uint32_t>(out, static_cast<std::uint32_t>(s.size() + 1));
+  out.insert(out.end(), s.begin(), s.end());
+  out.push_back(0);
+}
+
+}  // namespace
+
+CloudColumns read_pointcloud2(const unsigned char* cdr, std::size_t size) {
+  CloudColumns c;
+  read_pointcloud2(cdr, size, c);
+  return c;
+}
+
+void read_pointcloud2(const unsigned char* cdr, std::size_t size, CloudColumns& c) {
+  Reader r(cdr, size);
+  const auto sec = r.get<std::int32_t>("header.stamp.sec");
+  const auto nanosec = r.get<std::uint32_t>("header.stamp.nanosec");
+  c.stamp_ns = static_cast<std::int64_t>(sec) * 1'000'000'000 + nanosec;
+  c.frame_id = r.string("header.frame_id");
+  const auto height = r.get<std::uint32_t>("height"), width = r.get<std::uint32_t>("width");
+  const std::vector<Field> fields = read_fields(r);
+  const bool big = r.get<std::uint8_t>("is_bigendian") != 0;
+  const auto point_step = r.get<std::uint32_t>("point_step"), row_step = r.get<std::uint32_t>("row_step");
+  const auto [data, bytes] = r.bytes("data");
+  check_fields(fields, point_step);
+  const std::uint64_t points = static_cast<std::uint64_t>(height) * width;
+  if (row_step < static_cast<std::uint64_t>(width) * point_step || bytes < static_cast<std::uint64_t>(height) * row_step)
+    throw BadPointCloud2("PointCloud2: " + std::to_string(height) + " x " + std::to_string(width) + " points of " + std::to_string(point_step) +
+                         " bytes, rows of " + std::to_string(row_step) + ", in " + std::to_string(bytes) + " bytes of data");
+  const Field *fx = field_named(fields, {"x"}), *fy = field_named(fields, {"y"}), *fz = field_named(fields, {"z"});
+  const Field* fi = field_named(fields, {"intensity"});
+  const Field* ft = field_named(fields, {"t", "time", "time_offset"});
+  const bool little = !big;
+  // Filled in place, each column as long as the points, then cut to those with a return.
+  c.x.resize(points), c.y.resize(points), c.z.resize(points);
+  c.intensity.resize(fi ? points : 0);
+  c.time_offset.resize(ft ? points : 0);
+  const bool floats = little == host_little() && fx->datatype == FLOAT32 && fy->datatype == FLOAT32 && fz->datatype == FLOAT32 &&
+                      (!fi || fi->datatype == FLOAT32) && (!ft || ft->datatype == FLOAT32);
+  std::size_t k = 0;
+  for (std::uint32_t row = 0; row < height; ++row) {
+    const unsigned char* p = data + static_cast<std::size_t>(row) * row_step;
+    for (std::uint32_t col = 0; col < width; ++col, p += point_step) {
+      float x, y, z;
+      if (floats) {  // the common layout, read as it lies
+        std::memcpy(&x, p + fx->offset, 4), std::memcpy(&y, p + fy->offset, 4), std::memcpy(&z, p + fz->offset, 4);
+        if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z)) continue;
+        if (fi) std::memcpy(&c.intensity[k], p + fi->offset, 4);
+        if (ft) std::memcpy(&c.time_offset[k], p + ft->offset, 4);
+      } else {
+        x = static_cast<float>(value_of(p + fx->offset, fx->datatype, little));
+        y = static_cast<float>(value_of(p + fy->offset, fy->datatype, little));
+        z = static_cast<float>(value_of(p + fz->offset, fz->datatype, little));
+        if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z)) continue;
+        if (fi) c.intensity[k] = static_cast<float>(value_of(p + fi->offset, fi->datatype, little));
+        if (ft) {
+          const double t = value_of(p + ft->offset, ft->datatype, little);
+          c.time_offset[k] = static_cast<float>(ft->datatype == FLOAT32 || ft->datatype == FLOAT64 ? t : t * 1e-9);
+        }
+      }
+      c.x[k] = x, c.y[k] = y, c.z[k] = z;
+      ++k;
+    }
+  }
+  c.x.resize(k), c.y.resize(k), c.z.resize(k);
+  if (fi) c.intensity.resize(k);
+  if (ft) c.time_offset.resize(k);
+}
+
+std::vector<unsigned char> write_pointcloud2(const CloudColumns& c) {
+  std::vector<unsigned char> out;
+  write_pointcloud2(c, out);
+  return out;
+}
+
+void write_pointcloud2(const CloudColumns& c, std::vector<unsigned char>& out) {
+  const std::size_t n = c.x.size();
+  const bool with_i = c.intensity.size() == n && n > 0, with_t = c.time_offset.size() == n && n > 0;
+  std::vector<std::pair<std::string, const std::vector<float>*>> columns = {{"x", &c.x}, {"y", &c.y}, {"z", &c.z}};
+  if (with_i) columns.emplace_back("intensity", &c.intensity);
+  if (with_t) columns.emplace_back("t", &c.time_offset);
+  const std::uint32_t step = static_cast<std::uint32_t>(4 * columns.size());
+  out.assign({0x00, 0x01, 0x00, 0x00});  // CDR, little-endian
+  out.reserve(256 + n * step);
+  const std::int64_t nanosec = ((c.stamp_ns % 1'000'000'000) + 1'000'000'000) % 1'000'000'000;  // builtin_interfaces/Time: whole seconds down
+  put<std::int32_t>(out, static_cast<std::int32_t>((c.stamp_ns - nanosec) / 1'000'000'000));
+  put<std::uint32_t>(out, static_cast<std::uint32_t>(nanosec));
+  put_string(out, c.frame_id);
+  put<std::uint32_t>(out, 1);
+  put<std::uint32_t>(out, static_cast<std::uint32_t>(n));
+  put<std::uint32_t>(out, static_cast<std::uint32_t>(columns.size()));
+  for (std::size_t k = 0; k < columns.size(); ++k) {
+    put_string(out, columns[k].first);
+    put<std::uint32_t>(out, static_cast<std::uint32_t>(4 * k));
+    put<std::uint8_t>(out, FLOAT32);
+    put<std::uint32_t>(out, 1);
+  }
+  put<std::uint8_t>(out, 0);  // little-endian points
+  put<std::uint32_t>(out, step);
+  put<std::uint32_t>(out, static_cast<std::uint32_t>(n * step));
+  put<std::uint32_t>(out, static_cast<std::uint32_t>(n * step));
+  const std::size_t at = out.size();
+  out.resize(at + n * step);
+  unsigned char* p = out.data() + at;
+  const bool as_is = host_little();  // little-endian floats are the host's own bytes
+  for (std::size_t k = 0; k < columns.size(); ++k) {
+    const float* column = columns[k].second->data();
+    unsigned char* q = p + 4 * k;
+    for (std::size_t i = 0; i < n; ++i, q += step)
+      if (as_is) std::memcpy(q, column + i, 4);
+      else load(q, reinterpret_cast<const unsigned char*>(column + i), 4, true);
+  }
+  put<std::uint8_t>(out, 1);  // is_dense
+}
+
+}  // namespace brickyard::cdr
