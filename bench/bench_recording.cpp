@@ -2,7 +2,7 @@
 // stack on the simulator), every wire but the point clouds, as `--out` records it: ours (MCAP,
 // zstd chunks) beside the baseline in the same run (the SQLite .db3 the recorder wrote before,
 // still written for FILE.db3) and beside the same run without recording; and ours with the scene
-// (/tf, /scene/*: --record-scene on, the default), what drawing it adds. Runs alternate so that
+// (/tf, /scene/*: --record-scene on, the default of a recording of every wire), what drawing it adds. Runs alternate so that
 // all three see the same load; medians. Exits 1 when a run fails or the two recordings of the
 // last round (the sim clock's runs are the same bit for bit) hold other messages per topic.
 // usage: bench_recording [--quick] [--runs N]
@@ -68,7 +68,7 @@ int main(int argc, char** argv) {
       fs::remove(file);
       std::string cmd = by + " run " + graph + " --quiet --progress 0 --no-report --out " + out;
       if (mode > 0) cmd += " --record " + file + " --record-only '" + topics + "'";
-      if (mode == 1) cmd += " --record-scene off";  // the wires alone, as SQLite holds them
+      if (mode == 3) cmd += " --record-scene on";  // else --record-only leaves it out: the wires alone, as SQLite holds them
       if (std::system((cmd + " > /dev/null 2>&1").c_str()) != 0) return std::printf("run failed: %s\n", cmd.c_str()), 1;
       const auto j = nlohmann::json::parse(std::ifstream(out + "/summary.json"));
       sim_s = j["sim_time_s"].get<double>();

@@ -156,6 +156,7 @@ bool tool_option(Args& a, const std::string& f, Cursor& c) {
         usage_error("--rate", "expected a factor of the recorded pace, 0 (as fast as possible) or from 0.001 to 1e6");
     } else if (!(a.rate >= 1e-3 && a.rate <= 1e6)) usage_error("--rate", "expected a factor of the recorded speed from 0.001 to 1e6");
   } else if (f == "--only") a.only = patterns(f, c.value());
+  else if (f == "--map") a.bag_map = c.value();
   else if (f == "--count") {
     const std::string v = c.value();
     if (v.empty() || v.size() > 9 || v.find_first_not_of("0123456789") != std::string::npos || std::stol(v) < 1)

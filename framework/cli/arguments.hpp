@@ -10,7 +10,7 @@ namespace brickyard::fw::cli {
 
 struct Args {
   std::string command, target, dir, role, out, process, record, record_compression = "zstd", record_profile = "brickyard";
-  bool record_scene = true;  // --record-scene on|off
+  std::optional<bool> record_scene;  // --record-scene on|off
   std::vector<std::string> more;  // positional arguments after the target (map build RECORDING)
   std::vector<std::string> record_only;
   std::vector<std::string> sets, args, plugin_paths;
@@ -29,6 +29,7 @@ struct Args {
   std::uint64_t seed = 0;
   bool json = false, dot = false, quiet = false, no_report = false, profile = false, one_process = false;
   std::vector<std::string> child_flags;  // what a supervised run's children are given as they are
+  std::string bag_map;  // bag play --map FILE: a ROS 2 bag's topics onto wires (cli/bag_map.hpp)
   std::string security, identity, protect = "encrypt";  // security init; topic and bag play against a secured graph
   bool ros2_naming = false;  // topic, bag play: --naming ros2 (a graph whose transport.naming is "ros2")
   int days = 365;

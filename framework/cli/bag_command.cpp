@@ -26,6 +26,7 @@ int bag_play_command(const Args& a) {
   o.security = a.security;
   o.identity = a.identity;
   o.ros2_naming = a.ros2_naming;
+  o.map = a.bag_map;
   return bag_play(o);
 }
 

@@ -1,5 +1,7 @@
 #include "cli/bag_play.hpp"
 
+#include "cli/bag_players.hpp"
+
 #include "exec/executive.hpp"  // g_interrupt
 #include "cdr/cdr_json.hpp"
 #include "record/recorder.hpp"
@@ -31,19 +33,6 @@ namespace brickyard::fw {
 namespace {
 void on_signal(int) { g_interrupt = true; }
 
-// One recorded topic's writer and a message object to deserialize its samples into.
-struct Played {
-  DdsWriter* writer = nullptr;
-  std::unique_ptr<eprosima::fastdds::dds::TopicDataType> support;
-  void* sample = nullptr;
-  eprosima::fastrtps::rtps::SerializedPayload_t payload;
-  std::uint64_t count = 0;
-  bool packed = false;     // a QuantizedPointCloud, played as the PointCloud it was (--record-cloud-precision)
-  msgs::PointCloud cloud;
-  ~Played() {
-    if (sample) support->deleteData(sample);
-  }
-};
 // Where a sample stops fitting its type: the IDL decoder, which counts bytes, says.
 std::string where_it_breaks(const std::string& type, const unsigned char* data, std::size_t size) {
   const char* idl = idl_text(type);
@@ -56,8 +45,6 @@ std::string where_it_breaks(const std::string& type, const unsigned char* data, 
   return {};
 }
 
-using Clock = std::chrono::steady_clock;
-using Players = std::map<std::string, std::unique_ptr<Played>>;
 
 // The recording's summary, `info`: 0, or 2 (said on stderr) when it cannot be read, is damaged or
 // holds no sample.
@@ -65,7 +52,8 @@ int read_recording(const BagPlayOptions& o, RecordingInfo& info) {
   try {
     info = read_recording_info(o.file);
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "error: %s: %s\n", o.file.c_str(), e.what());
+    const bool foreign = std::strstr(e.what(), "not a brickyard recording") != nullptr;
+    std::fprintf(stderr, "error: %s: %s%s\n", o.file.c_str(), e.what(), foreign ? " (a ROS 2 bag of your own plays with --map FILE: docs/ros2.md)" : "");
     return 2;
   }
   // A damaged file is refused: what it lacks is unknown (bag info reads up to the damage).
@@ -113,6 +101,10 @@ int make_players(const BagPlayOptions& o, const RecordingInfo& info, DdsTranspor
 
 // One sample of `topic`, decoded into its message and written: empty, or why it could not be.
 std::string play_sample(Played& p, const std::string& topic, const unsigned char* data, std::size_t size) {
+  if (p.convert) {
+    const std::string why = p.convert(data, size);
+    return why.empty() ? why : "sample " + std::to_string(p.count) + " of " + topic + ": " + why;
+  }
   if (p.payload.max_size < size) p.payload.reserve(static_cast<std::uint32_t>(size));
   std::memcpy(p.payload.data, data, size);
   p.payload.length = static_cast<std::uint32_t>(size);
@@ -132,6 +124,8 @@ std::string play_sample(Played& p, const std::string& topic, const unsigned char
   }
   return {};
 }
+
+}  // namespace
 
 // Every sample of the played topics at its recorded time from `start` (`rate` times as fast),
 // until the end or Ctrl-C: empty, or what went wrong. `played` counts them.
@@ -158,16 +152,15 @@ std::string play_samples(const BagPlayOptions& o, Players& topics, Clock::time_p
   return error;
 }
 
-}  // namespace
-
 int bag_play(const BagPlayOptions& o) {
   RecordingInfo info;
-  if (const int rc = read_recording(o, info)) return rc;
+  if (o.map.empty())
+    if (const int rc = read_recording(o, info)) return rc;
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
   DdsTransport dds(player_settings(o));
   Players topics;
-  if (const int rc = make_players(o, info, dds, topics)) return rc;
+  if (const int rc = o.map.empty() ? make_players(o, info, dds, topics) : make_mapped_players(o, dds, topics)) return rc;
   if (topics.empty()) return std::fprintf(stderr, "error: %s: no recorded topic matches --only\n", o.file.c_str()), 2;
   // Readers elsewhere need a moment to match the new writers before the first sample.
   std::this_thread::sleep_for(std::chrono::duration<double>(o.preroll_s));

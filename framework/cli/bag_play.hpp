@@ -16,10 +16,11 @@ struct BagPlayOptions {
   double rate = 1.0;
   std::vector<std::string> only;  // NODE.PORT patterns ('*' any); empty: every topic
   double preroll_s = 1.0;         // for readers elsewhere to match the new writers
+  std::string map;                // --map FILE: a ROS 2 bag (not a Brickyard recording), its topics onto wires (cli/bag_map.hpp)
 };
 
 // 0 played through; 1 interrupted; 2 the file is not a recording, is damaged, or holds a type
-// this build does not know (named).
+// this build does not know (named); with --map, the map is wrong or names what the bag lacks.
 int bag_play(const BagPlayOptions& o);
 
 }  // namespace brickyard::fw

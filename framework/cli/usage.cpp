@@ -13,7 +13,8 @@ usage:
   brickyard bag info RECORDING [--json]    a recording's clock, span and topics (types, counts, rates,
                                            bytes)
   brickyard bag play RECORDING             republish its topics over DDS at the recorded times
-                                           (--rate X, --only NODE.PORT,..., --domain N)
+                                           (--rate X, --only NODE.PORT,..., --domain N); a ROS 2 bag
+                                           of your own with --map FILE: its topics onto wires (docs/ros2.md)
   brickyard capture info FILE [--json]     a sensor's capture: a pcap's UDP datagrams by port, span, rate
                                            and refusals (--metadata OUSTER.json: its lidar port's packets
                                            decoded into frames; --port P: that port's), or a GNSS log's
@@ -68,7 +69,8 @@ options:
                        .db3 (docs/recording.md)
   --record-compression zstd|lz4|none   the MCAP chunks' (default zstd)
   --record-scene on|off                the scene in Foxglove's schemas (/tf, /scene/*) into an MCAP
-                       recording too, as the live view draws it (default on; docs/recording.md)
+                       recording too, as the live view draws it (default: on, but with
+                       --record-only; docs/recording.md)
   --record-profile brickyard|ros2      the MCAP file's names: ours (omgidl schemas, default) or a ROS 2
                        bag's (ros2msg schemas, topics /brickyard/NODE/PORT; docs/recording.md)
   --record-only P,...  record only the topics NODE.PORT matching these patterns ('*' any)

@@ -25,7 +25,9 @@ struct RunOptions {
   std::string record;                    // --record FILE: every wire's samples (docs/recording.md)
   std::string record_compression = "zstd";  // --record-compression: an MCAP recording's chunks
   std::string record_profile = "brickyard";  // --record-profile: an MCAP recording's names (brickyard or ros2)
-  bool record_scene = true;              // the scene (/tf, /scene/*) into an MCAP recording too (--record-scene off)
+  // The scene (/tf, /scene/*) into an MCAP recording too: --record-scene on|off; unsaid, on
+  // unless --record-only narrows the recording to the wires it names.
+  std::optional<bool> record_scene;
   std::vector<std::string> record_only;  // --record-only: "node.port" patterns ('*' any); empty: all
   std::vector<std::string> record_skip_types;  // message types not recorded (the --out default skips clouds)
   std::optional<int> live_port;          // --live PORT: the Foxglove WebSocket server (docs/live.md)

@@ -115,7 +115,7 @@ void Executive::make_transport() {
   transport_ = std::make_unique<DdsTransport>(ds);
   crash_guard::note_shared_memory();  // the participant's own segment and port files, made just now
   if (live_) scene_ = std::make_unique<LiveScene>(*live_);
-  if (recorder_ && opt_.record_scene) {
+  if (recorder_ && opt_.record_scene.value_or(opt_.record_only.empty())) {
     scene_recording_ = std::make_unique<RecordedScene>(*recorder_);
     recorded_scene_ = std::make_unique<LiveScene>(*scene_recording_);
   }

@@ -1,5 +1,7 @@
 #include "cdr/ros2_pointcloud.hpp"
 
+#include "cdr/cdr_reader.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -14,65 +16,6 @@ std::size_t datatype_size(std::uint8_t t) {
   static const std::size_t sizes[] = {0, 1, 1, 2, 2, 4, 4, 4, 8};
   return t >= INT8 && t <= FLOAT64 ? sizes[t] : 0;
 }
-
-bool host_little() {
-  const std::uint16_t one = 1;
-  unsigned char b;
-  std::memcpy(&b, &one, 1);
-  return b == 1;
-}
-
-// A value of `n` bytes at p, in `little` byte order, into host order.
-void load(void* out, const unsigned char* p, std::size_t n, bool little) {
-  unsigned char b[8];
-  for (std::size_t i = 0; i < n; ++i) b[i] = p[little == host_little() ? i : n - 1 - i];
-  std::memcpy(out, b, n);
-}
-
-// CDR read from after the encapsulation header: each primitive aligned to its size from there.
-class Reader {
- public:
-  Reader(const unsigned char* data, std::size_t size) : p_(data), size_(size) {
-    if (size < 4) throw BadPointCloud2("PointCloud2: " + std::to_string(size) + " bytes, no CDR header");
-    little_ = (data[1] & 1) != 0;
-    at_ = 4;
-  }
-  template <class T>
-  T get(const char* what) {
-    align(sizeof(T));
-    need(sizeof(T), what);
-    T v;
-    load(&v, p_ + at_, sizeof(T), little_);
-    at_ += sizeof(T);
-    return v;
-  }
-  std::string string(const char* what) {
-    const auto n = get<std::uint32_t>(what);
-    need(n, what);
-    std::string s(reinterpret_cast<const char*>(p_ + at_), n ? n - 1 : 0);  // without its NUL
-    at_ += n;
-    return s;
-  }
-  // A byte sequence: where its bytes start and how many.
-  std::pair<const unsigned char*, std::size_t> bytes(const char* what) {
-    const auto n = get<std::uint32_t>(what);
-    need(n, what);
-    const unsigned char* start = p_ + at_;
-    at_ += n;
-    return {start, n};
-  }
-
- private:
-  void align(std::size_t n) { at_ += (n - (at_ - 4) % n) % n; }
-  void need(std::size_t n, const char* what) const {
-    if (at_ > size_ || size_ - at_ < n)
-      throw BadPointCloud2(std::string("PointCloud2: ") + what + " at byte " + std::to_string(at_) + " runs past the sample's " + std::to_string(size_) +
-                           " bytes");
-  }
-  const unsigned char* p_;
-  std::size_t size_, at_ = 4;
-  bool little_ = true;
-};
 
 struct Field {
   std::string name;
@@ -101,7 +44,7 @@ const Field* field_named(const std::vector<Field>& fields, std::initializer_list
   return nullptr;
 }
 
-std::vector<Field> read_fields(Reader& r) {
+std::vector<Field> read_fields(CdrReader<BadPointCloud2>& r) {
   std::vector<Field> fields(r.get<std::uint32_t>("fields' count"));
   for (Field& f : fields) {
     f.name = r.string("a field's name");
@@ -155,10 +98,8 @@ CloudColumns read_pointcloud2(const unsigned char* cdr, std::size_t size) {
 }
 
 void read_pointcloud2(const unsigned char* cdr, std::size_t size, CloudColumns& c) {
-  Reader r(cdr, size);
-  const auto sec = r.get<std::int32_t>("header.stamp.sec");
-  const auto nanosec = r.get<std::uint32_t>("header.stamp.nanosec");
-  c.stamp_ns = static_cast<std::int64_t>(sec) * 1'000'000'000 + nanosec;
+  CdrReader<BadPointCloud2> r(cdr, size, "PointCloud2");
+  c.stamp_ns = r.time_ns("header.stamp");
   c.frame_id = r.string("header.frame_id");
   const auto height = r.get<std::uint32_t>("height"), width = r.get<std::uint32_t>("width");
   const std::vector<Field> fields = read_fields(r);

@@ -5,7 +5,8 @@
 # @foxglove/rosmsg2-serialization) read the second as a ROS 2 bag and find every message of every
 # topic equal to the first's (read by Foxglove's IDL decoder). Both hold the scene (/tf, /scene/*)
 # in Foxglove's schemas, every message valid by Foxglove's published JSON schemas
-# (tests/clients/scene_check.cjs); --record-scene off leaves it out. Our own `bag info` names the
+# (tests/clients/scene_check.cjs); --record-scene off leaves it out, and so does --record-only
+# unless --record-scene on. Our own `bag info` names the
 # ros2 recording's topics and types as ours. --record-profile ros1, --record-scene maybe, or ros2
 # into a .db3: exit 2, named.
 # usage: ros2_recording.sh BRICKYARD CLIENTS RACE_GRAPH DOMAIN OUT
@@ -29,10 +30,17 @@ for profile in brickyard ros2; do
 done
 "$by" run "$race" --domain "$domain" --duration 1 --seed 5 --quiet --progress 0 --no-report --record "$out/no_scene.mcap" --record-scene off \
   > "$out/no_scene.log" 2>&1
-for f in brickyard no_scene; do "$by" bag info "$out/$f.mcap" > "$out/info_$f.txt" 2>&1 || { cat "$out/info_$f.txt"; fail "bag info $f.mcap"; }; done
+for how in "" "--record-scene on"; do  # --record-only: the wires it names, the scene only when said
+  f=only${how:+_scene}
+  "$by" run "$race" --domain "$domain" --duration 1 --seed 5 --quiet --progress 0 --no-report --record "$out/$f.mcap" \
+    --record-only estimator.estimate $how > "$out/$f.log" 2>&1
+done
+for f in brickyard no_scene only only_scene; do "$by" bag info "$out/$f.mcap" > "$out/info_$f.txt" 2>&1 || { cat "$out/info_$f.txt"; fail "bag info $f.mcap"; }; done
 grep -q "^/tf .*foxglove.FrameTransform" "$out/info_brickyard.txt" || { cat "$out/info_brickyard.txt"; fail "bag info does not list /tf"; }
 grep -q "^estimator.estimate " "$out/info_no_scene.txt" && ! grep -q "^/tf " "$out/info_no_scene.txt" \
   || { cat "$out/info_no_scene.txt"; fail "--record-scene off: /tf recorded, or the wires not"; }
+grep -q "^estimator.estimate " "$out/info_only.txt" && ! grep -q "^/tf " "$out/info_only.txt" || { cat "$out/info_only.txt"; fail "--record-only recorded the scene"; }
+grep -q "^/tf " "$out/info_only_scene.txt" || { cat "$out/info_only_scene.txt"; fail "--record-only with --record-scene on: no /tf"; }
 node "$clients/ros2_bag_check.cjs" "$out/ros2.mcap" "$out/brickyard.mcap" > "$out/check.json" || fail "the ros2 recording is not the same run read as a ROS 2 bag"
 python3 -c "import json,sys; t=json.load(open(sys.argv[1]))['topics']; print(f'{sum(t.values())} messages of {len(t)} topics read as a ROS 2 bag, each equal to our profile\'s')" "$out/check.json"
 "$by" bag info "$out/ros2.mcap" > "$out/info.txt" 2>&1 || { cat "$out/info.txt"; fail "bag info of the ros2 recording"; }

@@ -129,6 +129,13 @@ if(BRICKYARD_SIM)
     COMMAND ${NETNS} ${CMAKE_CURRENT_SOURCE_DIR}/cli/ros2_recording.sh ${BY} ${CMAKE_CURRENT_SOURCE_DIR}/clients
             ${PROJECT_SOURCE_DIR}/configs/race.json ${d} ${RUNS}/ros2_recording)
   set_tests_properties(evidence.ros2_recording PROPERTIES TIMEOUT 300)
+  # A ROS 2 bag written by third-party libraries from a race's recording, played onto the wires
+  # by bag play --map; its bad inputs refused, named.
+  by_next_domain(d)
+  add_test(NAME evidence.ros2_bag_play
+    COMMAND ${NETNS} ${CMAKE_CURRENT_SOURCE_DIR}/cli/ros2_bag_play.sh ${BY} ${CMAKE_CURRENT_SOURCE_DIR}/clients
+            ${PROJECT_SOURCE_DIR}/configs/race.json ${d} ${RUNS}/ros2_bag_play)
+  set_tests_properties(evidence.ros2_bag_play PROPERTIES TIMEOUT 300)
 endif()
 # MCAP, read by Foxglove's libraries (tests/clients, installed by scripts/setup from npm).
 by_next_domain(d)

@@ -1,0 +1,98 @@
+#!/usr/bin/env bash
+# A ROS 2 bag of a team's own played onto Brickyard's wires (issue 45, docs/ros2.md): 3 s of the
+# main job recorded (the LiDARs' clouds, the two receivers' fixes, the IMU), made into a rosbag2
+# MCAP by third-party libraries (tests/clients/ros2_bag_write.cjs: PointCloud2, NavSatFix with
+# latitude and longitude from tests/cli/enu_to_geodetic.py, Imu; ROS 2 Humble's definitions), and
+# played by `bag play --map` while `topic echo` reads the wires: each sample read equals the
+# recording's (the clouds' points exactly, the IMU exactly, a fix's position within 1 mm after
+# latitude and longitude and back). The bag's topics not in the map are listed as not played.
+# Bad input, each exit 2 named: a topic the bag lacks, a wire not NODE.PORT, a NavSatFix without
+# a datum, a type bag play does not convert, a PointCloud2 without z, a ROS 2 bag without --map.
+# usage: ros2_bag_play.sh BRICKYARD CLIENTS RACE_GRAPH DOMAIN OUT
+set -u
+by=$1; clients=$2; race=$3; domain=$4; out=$5
+here=$(cd "$(dirname "$0")" && pwd)
+rm -rf "$out"; mkdir -p "$out"
+fail() { echo "FAIL: $*"; exit 1; }
+"$by" run "$race" --domain "$domain" --duration 3 --seed 3 --quiet --progress 0 --no-report --record-scene off \
+  --record "$out/src.mcap" --record-only 'lidar_*.cloud,gnss_*.fix,imu.imu' > "$out/src.log" 2>&1
+# 3 s of a two-lap race: it ends at its duration, the laps not done (said so), and nothing else.
+grep -q "did not finish: 0 of 2 laps.*(sim 3\.0" "$out/src.log" && [ -s "$out/src.mcap" ] || { tail -5 "$out/src.log"; fail "recording the source"; }
+node "$clients/mcap_dump.cjs" "$out/src.mcap" gnss_left.fix gnss_right.fix > "$out/fixes.jsonl" || fail "reading the fixes"
+python3 "$here/enu_to_geodetic.py" 39.7930 -86.2389 220.0 "$out/fixes.jsonl" "$out/fixes_ll.json" || fail "latitude and longitude"
+node "$clients/ros2_bag_write.cjs" "$out/src.mcap" "$out/fixes_ll.json" "$out/bag.mcap" > "$out/written.json" || fail "writing the ROS 2 bag"
+echo "the ROS 2 bag (third-party written): $(cat "$out/written.json")"
+
+map() {  # map FILE [extra python edits]: the map of the bag's topics onto the race's wires
+  python3 - "$1" "${2:-}" <<'PY'
+import json, sys
+m = {"topics": {"/lidar_front/points": {"wire": "lidar_front.cloud", "sensor_id": 0, "mount": {"x": 1.5, "z": 1.1}},
+                "/gnss_left/fix": {"wire": "gnss_left.fix", "receiver_id": 0},
+                "/gnss_right/fix": {"wire": "gnss_right.fix", "receiver_id": 1},
+                "/imu/data": {"wire": "imu.imu"}},
+     "datum": {"latitude": 39.7930, "longitude": -86.2389, "altitude": 220.0}}
+exec(sys.argv[2])
+json.dump(m, open(sys.argv[1], "w"))
+PY
+}
+refused() {  # refused NAME PATTERN BAG play-args...: exit 2 and the pattern said
+  local name=$1 pattern=$2; shift 2
+  "$by" bag play "$@" --domain "$domain" > "$out/$name.log" 2>&1; local rc=$?
+  [ $rc = 2 ] && grep -q -- "$pattern" "$out/$name.log" || { cat "$out/$name.log"; fail "$name: exit $rc, or not said: $pattern"; }
+}
+map "$out/map.json"
+map "$out/lacks.json" 'm["topics"]["/lidar_rear/points"] = {"wire": "lidar_rear.cloud"}'
+refused lacks "lacks.json#/topics/~1lidar_rear~1points: the bag .*bag.mcap has no topic /lidar_rear/points (its topics: " "$out/bag.mcap" --map "$out/lacks.json"
+map "$out/wire.json" 'm["topics"]["/imu/data"]["wire"] = "imu"'
+refused wire 'wire.json#/topics/~1imu~1data/wire: expected "NODE.PORT", found "imu"' "$out/bag.mcap" --map "$out/wire.json"
+map "$out/datum.json" 'del m["datum"]'
+refused datum "datum.json#/datum: missing: /gnss_left/fix is a NavSatFix" "$out/bag.mcap" --map "$out/datum.json"
+map "$out/string.json" 'm["topics"]["/rosout_text"] = {"wire": "log.text"}'
+refused string "/rosout_text holds std_msgs/msg/String, which bag play does not convert" "$out/bag.mcap" --map "$out/string.json"
+map "$out/bad_cloud.json" 'm["topics"] = {"/bad/points": {"wire": "lidar_front.cloud"}}'
+refused bad_cloud "sample 0 of /bad/points: PointCloud2: no field 'z' (fields: x, y, intensity)" "$out/bag.mcap" --map "$out/bad_cloud.json"
+refused no_map "not a brickyard recording" "$out/bag.mcap"
+
+"$by" topic echo gnss_left.fix --domain "$domain" --count 30 --duration 25 > "$out/echo_fix.jsonl" 2> "$out/echo_fix.log" &
+e1=$!
+"$by" topic echo imu.imu --domain "$domain" --count 100 --duration 25 > "$out/echo_imu.jsonl" 2> "$out/echo_imu.log" &
+e2=$!
+"$by" topic echo lidar_front.cloud --domain "$domain" --count 3 --duration 25 > "$out/echo_cloud.jsonl" 2> "$out/echo_cloud.log" &
+e3=$!
+sleep 1
+"$by" bag play "$out/bag.mcap" --map "$out/map.json" --domain "$domain" > "$out/play.log" 2>&1 || { cat "$out/play.log"; fail "bag play --map"; }
+wait $e1 && wait $e2 && wait $e3 || { tail -3 "$out"/echo_*.log; fail "topic echo did not read the played wires"; }
+cat "$out/play.log"
+grep -q "not in the map, not played: .*/bad/points (sensor_msgs/msg/PointCloud2).*/rosout_text (std_msgs/msg/String)" "$out/play.log" \
+  || fail "the bag's unmapped topics were not said"
+node "$clients/mcap_dump.cjs" "$out/src.mcap" gnss_left.fix imu.imu lidar_front.cloud > "$out/src.jsonl" || fail "reading the source"
+python3 - "$out" <<'PY' || fail "the played samples are not the recording's"
+import json, sys
+out = sys.argv[1]
+src = {}
+for line in open(f"{out}/src.jsonl"):
+    r = json.loads(line)
+    src[(r["topic"], r["msg"]["header"]["stamp_ns"])] = r["msg"]
+for topic, name in (("gnss_left.fix", "fix"), ("imu.imu", "imu"), ("lidar_front.cloud", "cloud")):
+    got = [json.loads(l) for l in open(f"{out}/echo_{name}.jsonl") if l.strip()]
+    if not got: sys.exit(f"{topic}: nothing read")
+    worst = 0.0
+    for g in got:
+        want = src.get((topic, g["header"]["stamp_ns"]))
+        if want is None: sys.exit(f"{topic}: a sample stamped {g['header']['stamp_ns']} is not the recording's")
+        if name == "fix":
+            err = max(abs(g[k] - want[k]) for k in ("x", "y", "z"))
+            if err > 1e-3: sys.exit(f"{topic}: a fix {err:.6f} m from the recording's")
+            worst = max(worst, err)
+            if (g["fix_type"], g["valid"]) != (want["fix_type"], want["valid"]) and not (want["fix_type"] in (1, 2) and g["fix_type"] == 1):
+                sys.exit(f"{topic}: fix_type {g['fix_type']} valid {g['valid']} against {want['fix_type']} {want['valid']}")
+        elif name == "imu":
+            for k in ("accel_x", "accel_y", "accel_z", "gyro_x", "gyro_y", "gyro_z"):
+                if g[k] != want[k]: sys.exit(f"{topic}: {k} {g[k]} against {want[k]}")
+        else:
+            for k in ("x", "y", "z", "intensity"):
+                if g[k] != want[k]: sys.exit(f"{topic}: the points' {k} differ")
+            if (g["sensor_x"], g["sensor_z"]) != (1.5, 1.1): sys.exit(f"{topic}: the mount is not the map's")
+    print(f"{topic}: {len(got)} samples read from the played bag, each the recording's" + (f" (positions within {worst:.1e} m)" if name == "fix" else ""))
+PY
+echo "ros2_bag_play: ok"
