@@ -4,21 +4,13 @@
 // 64-bit integers are written as numbers' digits (JSON has no 64-bit integer).
 // usage: node mcap_dump.cjs RECORDING.mcap TOPIC...
 "use strict";
-const fs = require("fs");
-const { McapIndexedReader } = require("@mcap/core");
 const { parseIDL } = require("@foxglove/omgidl-parser");
 const omgidl = require("@foxglove/omgidl-serialization");
-const zstd = require("@foxglove/wasm-zstd");
-const lz4 = require("@foxglove/wasm-lz4");
+const { openMcap } = require("./mcap_open.cjs");
 
 async function main() {
   const [file, ...topics] = process.argv.slice(2);
-  await zstd.isLoaded;
-  await lz4.isLoaded;
-  const buf = fs.readFileSync(file);
-  const readable = { size: async () => BigInt(buf.length), read: async (o, l) => buf.subarray(Number(o), Number(o + l)) };
-  const decompressHandlers = { zstd: (b, n) => zstd.decompress(b, Number(n)), lz4: (b, n) => lz4(b, Number(n)) };
-  const reader = await McapIndexedReader.Initialize({ readable, decompressHandlers });
+  const reader = await openMcap(file);
   const readers = new Map();
   for (const [id, ch] of reader.channelsById) {
     if (!topics.includes(ch.topic)) continue;

@@ -8,21 +8,11 @@
 // exit 1 with the first difference.
 // usage: node ros2_bag_check.cjs ROS2.mcap OURS.mcap
 "use strict";
-const fs = require("fs");
-const { McapIndexedReader } = require("@mcap/core");
 const { parseIDL } = require("@foxglove/omgidl-parser");
 const omgidl = require("@foxglove/omgidl-serialization");
 const { parse } = require("@foxglove/rosmsg");
 const ros2 = require("@foxglove/rosmsg2-serialization");
-const zstd = require("@foxglove/wasm-zstd");
-const lz4 = require("@foxglove/wasm-lz4");
-
-async function open(file) {
-  const buf = fs.readFileSync(file);
-  const readable = { size: async () => BigInt(buf.length), read: async (o, l) => buf.subarray(Number(o), Number(o + l)) };
-  const decompressHandlers = { zstd: (b, n) => zstd.decompress(b, Number(n)), lz4: (b, n) => lz4(b, Number(n)) };
-  return McapIndexedReader.Initialize({ readable, decompressHandlers });
-}
+const { openMcap } = require("./mcap_open.cjs");
 
 // topic -> decoded messages, in log-time order; `reader(schema)` makes a decoder.
 async function messages(mcap, decoder) {
@@ -41,9 +31,7 @@ const plain = (v) => JSON.stringify(v, (k, x) => (typeof x === "bigint" ? x.toSt
 
 async function main() {
   const [bagFile, oursFile] = process.argv.slice(2);
-  await zstd.isLoaded;
-  await lz4.isLoaded;
-  const bag = await open(bagFile), ours = await open(oursFile);
+  const bag = await openMcap(bagFile), ours = await openMcap(oursFile);
   if (bag.header.profile !== "ros2") throw new Error(`${bagFile}: profile "${bag.header.profile}", not ros2`);
   const theirs = await messages(bag, (schema) => {
     if (schema.encoding !== "ros2msg") throw new Error(`schema ${schema.name}: encoding ${schema.encoding}, not ros2msg`);

@@ -10,14 +10,13 @@
 // usage: node ros2_bag_write.cjs RECORDING.mcap FIXES.json OUT.mcap
 "use strict";
 const fs = require("fs");
-const { McapIndexedReader, McapWriter } = require("@mcap/core");
+const { McapWriter } = require("@mcap/core");
 const { parseIDL } = require("@foxglove/omgidl-parser");
 const omgidl = require("@foxglove/omgidl-serialization");
 const { stringify } = require("@foxglove/rosmsg");
 const { MessageWriter } = require("@foxglove/rosmsg2-serialization");
 const { ros2humble } = require("@foxglove/rosmsg-msgs-common");
-const zstd = require("@foxglove/wasm-zstd");
-const lz4 = require("@foxglove/wasm-lz4");
+const { openMcap } = require("./mcap_open.cjs");
 
 // TYPE's definitions, the root first then every type it uses, as MessageWriter and a ros2msg schema take them.
 function definitions(type) {
@@ -71,13 +70,8 @@ function pointCloud2(m, withZ = true) {
 
 async function main() {
   const [input, fixesFile, output] = process.argv.slice(2);
-  await zstd.isLoaded;
-  await lz4.isLoaded;
   const fixes = new Map(JSON.parse(fs.readFileSync(fixesFile, "utf8")).map((f) => [`${f[0]}#${f[1]}`, f]));
-  const buf = fs.readFileSync(input);
-  const readable = { size: async () => BigInt(buf.length), read: async (o, l) => buf.subarray(Number(o), Number(o + l)) };
-  const decompressHandlers = { zstd: (b, n) => zstd.decompress(b, Number(n)), lz4: (b, n) => lz4(b, Number(n)) };
-  const reader = await McapIndexedReader.Initialize({ readable, decompressHandlers });
+  const reader = await openMcap(input);
   const bag = new BagWriter(output);
   await bag.mcap.start({ profile: "ros2", library: "ros2_bag_write.cjs (@mcap/core)" });
   const decoders = new Map(), counts = {};

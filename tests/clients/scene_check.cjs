@@ -5,21 +5,13 @@
 // Prints a JSON object of counts per scene channel; exit 1 with the first message that fails.
 // usage: node scene_check.cjs RECORDING.mcap
 "use strict";
-const fs = require("fs");
-const { McapIndexedReader } = require("@mcap/core");
 const foxgloveSchemas = require("@foxglove/schemas/jsonschema");
 const Ajv = require("ajv");
-const zstd = require("@foxglove/wasm-zstd");
-const lz4 = require("@foxglove/wasm-lz4");
+const { openMcap } = require("./mcap_open.cjs");
 
 async function main() {
   const [file] = process.argv.slice(2);
-  await zstd.isLoaded;
-  await lz4.isLoaded;
-  const buf = fs.readFileSync(file);
-  const readable = { size: async () => BigInt(buf.length), read: async (o, l) => buf.subarray(Number(o), Number(o + l)) };
-  const decompressHandlers = { zstd: (b, n) => zstd.decompress(b, Number(n)), lz4: (b, n) => lz4(b, Number(n)) };
-  const reader = await McapIndexedReader.Initialize({ readable, decompressHandlers });
+  const reader = await openMcap(file);
   const ajv = new Ajv({ strict: false });
   const checks = new Map(), counts = {}, frames = new Set();
   for (const [id, ch] of reader.channelsById) {
