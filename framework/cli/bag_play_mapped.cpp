@@ -10,8 +10,7 @@
 #include "cli/bag_players.hpp"
 #include "graph/diagnostics.hpp"
 
-#include "cdr/ros2_pointcloud.hpp"
-#include "cdr/ros2_sensors.hpp"
+#include "cdr/ros2_to_msgs.hpp"
 #include "mcap/mcap_reader.hpp"
 #include "mcap/ros2_profile.hpp"
 
@@ -62,51 +61,32 @@ std::vector<Channel> bag_channels(const std::string& file) {
 std::function<std::string(const unsigned char*, std::size_t)> cloud_player(DdsWriter* w, const MappedTopic& t) {
   auto msg = std::make_shared<msgs::PointCloud>();
   auto cols = std::make_shared<cdr::CloudColumns>();
-  return [w, t, msg, cols, seq = std::uint32_t{0}](const unsigned char* data, std::size_t size) mutable -> std::string {
+  const cdr::CloudMount mount{t.sensor_id, t.mount};
+  return [w, mount, msg, cols, seq = std::uint32_t{0}](const unsigned char* data, std::size_t size) mutable -> std::string {
     try {
       cdr::read_pointcloud2(data, size, *cols);
     } catch (const std::invalid_argument& e) {
       return e.what();
     }
-    msg->header().stamp_ns(cols->stamp_ns);
-    msg->header().seq(seq++);
-    msg->header().frame_id(cols->frame_id);
-    msg->sensor_id(static_cast<std::uint8_t>(t.sensor_id));
-    msg->sensor_x(t.mount[0]), msg->sensor_y(t.mount[1]), msg->sensor_z(t.mount[2]);
-    msg->sensor_roll(t.mount[3]), msg->sensor_pitch(t.mount[4]), msg->sensor_yaw(t.mount[5]);
-    msg->x().swap(cols->x), msg->y().swap(cols->y), msg->z().swap(cols->z);
-    msg->intensity().swap(cols->intensity), msg->time_offset().swap(cols->time_offset);
+    cdr::to_point_cloud(*cols, mount, seq++, *msg);
     w->write(msg.get());
     return {};
   };
 }
 
-// NavSatStatus to our fix_type: no fix 0; a fix, or one SBAS-augmented, single (1); GBAS (a
-// ground station's corrections, as an RTK receiver's ROS driver reports them) fixed RTK (3).
-std::uint8_t fix_type_of(std::int8_t status) { return status < 0 ? 0 : status == 2 ? 3 : 1; }
-
 std::function<std::string(const unsigned char*, std::size_t)> fix_player(DdsWriter* w, const MappedTopic& t, const std::array<double, 3>& datum) {
   auto local = std::make_shared<GeographicLib::LocalCartesian>(datum[0], datum[1], datum[2]);
-  return [w, t, local, seq = std::uint32_t{0}](const unsigned char* data, std::size_t size) mutable -> std::string {
+  return [w, receiver = t.receiver_id, local, seq = std::uint32_t{0}](const unsigned char* data, std::size_t size) mutable -> std::string {
     cdr::NavSatFixValues v;
     try {
       v = cdr::read_navsatfix(data, size);
     } catch (const std::invalid_argument& e) {
       return e.what();
     }
+    std::array<double, 3> enu{};
+    local->Forward(v.latitude, v.longitude, v.altitude, enu[0], enu[1], enu[2]);
     msgs::GnssFix f;
-    f.header().stamp_ns(v.stamp_ns);
-    f.header().seq(seq++);
-    f.header().frame_id(v.frame_id);
-    f.receiver_id(static_cast<std::uint8_t>(t.receiver_id));
-    double x = 0, y = 0, z = 0;
-    local->Forward(v.latitude, v.longitude, v.altitude, x, y, z);
-    f.x(x), f.y(y), f.z(z);
-    f.sigma_x(std::sqrt(std::max(0.0, v.position_covariance[0])));
-    f.sigma_y(std::sqrt(std::max(0.0, v.position_covariance[4])));
-    f.sigma_z(std::sqrt(std::max(0.0, v.position_covariance[8])));
-    f.fix_type(fix_type_of(v.status));
-    f.valid(v.status >= 0 && std::isfinite(v.latitude) && std::isfinite(v.longitude));
+    cdr::to_gnss_fix(v, enu, receiver, seq++, f);
     w->write(&f);
     return {};
   };
@@ -121,11 +101,7 @@ std::function<std::string(const unsigned char*, std::size_t)> imu_player(DdsWrit
       return e.what();
     }
     msgs::Imu m;
-    m.header().stamp_ns(v.stamp_ns);
-    m.header().seq(seq++);
-    m.header().frame_id(v.frame_id);
-    m.accel_x(v.linear_acceleration[0]), m.accel_y(v.linear_acceleration[1]), m.accel_z(v.linear_acceleration[2]);
-    m.gyro_x(v.angular_velocity[0]), m.gyro_y(v.angular_velocity[1]), m.gyro_z(v.angular_velocity[2]);
+    cdr::to_imu(v, seq++, m);
     w->write(&m);
     return {};
   };

@@ -8,16 +8,19 @@
 # latitude and longitude and back). The bag's topics not in the map are listed as not played.
 # Bad input, each exit 2 named: a topic the bag lacks, a wire not NODE.PORT, a NavSatFix without
 # a datum, a type bag play does not convert, a PointCloud2 without z, a ROS 2 bag without --map.
+# Then the same drive in-process, through the perception and the fusion (the replay.ros2_* plugins
+# beside the replay of the recording): the same obstacles and walls frame by frame, the fusion's
+# track within 1 cm.
 # usage: ros2_bag_play.sh BRICKYARD CLIENTS RACE_GRAPH DOMAIN OUT
 set -u
 by=$1; clients=$2; race=$3; domain=$4; out=$5
 here=$(cd "$(dirname "$0")" && pwd)
 rm -rf "$out"; mkdir -p "$out"
 fail() { echo "FAIL: $*"; exit 1; }
-"$by" run "$race" --domain "$domain" --duration 3 --seed 3 --quiet --progress 0 --no-report --record-scene off \
-  --record "$out/src.mcap" --record-only 'lidar_*.cloud,gnss_*.fix,imu.imu' > "$out/src.log" 2>&1
-# 3 s of a two-lap race: it ends at its duration, the laps not done (said so), and nothing else.
-grep -q "did not finish: 0 of 2 laps.*(sim 3\.0" "$out/src.log" && [ -s "$out/src.mcap" ] || { tail -5 "$out/src.log"; fail "recording the source"; }
+"$by" run "$race" --domain "$domain" --duration 10 --seed 3 --quiet --progress 0 --no-report \
+  --record "$out/src.mcap" --record-only 'lidar_*.cloud,gnss_*.fix,imu.imu,wheels.speeds' > "$out/src.log" 2>&1
+# 10 s of a two-lap race: it ends at its duration, the laps not done (said so), and nothing else.
+grep -q "did not finish: 0 of 2 laps.*(sim 10\.0" "$out/src.log" && [ -s "$out/src.mcap" ] || { tail -5 "$out/src.log"; fail "recording the source"; }
 node "$clients/mcap_dump.cjs" "$out/src.mcap" gnss_left.fix gnss_right.fix > "$out/fixes.jsonl" || fail "reading the fixes"
 python3 "$here/enu_to_geodetic.py" 39.7930 -86.2389 220.0 "$out/fixes.jsonl" "$out/fixes_ll.json" || fail "latitude and longitude"
 node "$clients/ros2_bag_write.cjs" "$out/src.mcap" "$out/fixes_ll.json" "$out/bag.mcap" > "$out/written.json" || fail "writing the ROS 2 bag"
@@ -94,5 +97,46 @@ for topic, name in (("gnss_left.fix", "fix"), ("imu.imu", "imu"), ("lidar_front.
                 if g[k] != want[k]: sys.exit(f"{topic}: the points' {k} differ")
             if (g["sensor_x"], g["sensor_z"]) != (1.5, 1.1): sys.exit(f"{topic}: the mount is not the map's")
     print(f"{topic}: {len(got)} samples read from the played bag, each the recording's" + (f" (positions within {worst:.1e} m)" if name == "fix" else ""))
+PY
+
+# The same drive through the perception and the fusion in-process: from the recording, and from the
+# ROS 2 bag by the replay.ros2_* plugins (the clouds' mounts, which ROS 2's cloud does not carry,
+# from the recording's first cloud of each LiDAR; the wheel speeds from the recording in both).
+graphs=$(dirname "$race")/../tests/graphs/replay
+node "$clients/mcap_dump.cjs" "$out/src.mcap" --first lidar_front.cloud lidar_left.cloud lidar_right.cloud > "$out/mounts.jsonl" || fail "the mounts"
+mounts=$(python3 -c "
+import json, sys
+for line in open(sys.argv[1]):
+    r = json.loads(line); n = r['topic'].split('.')[0]; m = r['msg']
+    for k in ('x', 'y', 'z', 'roll', 'pitch', 'yaw'): print(f'--arg {n}_mount_{k}={m[\"sensor_\" + k]!r}', end=' ')
+" "$out/mounts.jsonl")
+keep='estimator.estimate,obstacles.obstacles,wall_left.wall,wall_right.wall'
+"$by" run "$graphs/perception_fusion_from_recording.json" --domain "$domain" --quiet --progress 0 --no-report --arg recording="$out/src.mcap" \
+  --arg duration=10 --record "$out/from_recording.mcap" --record-only "$keep" > "$out/from_recording.log" 2>&1 || { tail -3 "$out/from_recording.log"; fail "the replay of the recording"; }
+"$by" run "$graphs/perception_fusion_from_ros2_bag.json" --domain "$domain" --quiet --progress 0 --no-report --arg recording="$out/src.mcap" \
+  --arg bag="$out/bag.mcap" --arg duration=10 $mounts --record "$out/from_bag.mcap" --record-only "$keep" > "$out/from_bag.log" 2>&1 \
+  || { tail -3 "$out/from_bag.log"; fail "the replay of the ROS 2 bag"; }
+for f in from_recording from_bag; do
+  node "$clients/mcap_dump.cjs" "$out/$f.mcap" ${keep//,/ } > "$out/$f.jsonl" || fail "reading $f.mcap"
+done
+python3 - "$out" <<'PY' || fail "the ROS 2 bag's drive is not the recording's through the perception and the fusion"
+import json, math, sys
+out = sys.argv[1]
+def load(f):
+    by = {}
+    for line in open(f"{out}/{f}.jsonl"):
+        if line.strip():
+            r = json.loads(line); by.setdefault(r["topic"], []).append(r["msg"])
+    return by
+a, b = load("from_recording"), load("from_bag")
+for topic in ("obstacles.obstacles", "wall_left.wall", "wall_right.wall"):
+    if len(a.get(topic, [])) < 10: sys.exit(f"{topic}: {len(a.get(topic, []))} frames from the recording: too few to judge")
+    if a[topic] != b.get(topic): sys.exit(f"{topic}: {len(b.get(topic, []))} frames from the bag, {len(a[topic])} from the recording, or other values")
+ea, eb = a["estimator.estimate"], b.get("estimator.estimate", [])
+if len(ea) != len(eb) or len(ea) < 100: sys.exit(f"estimator.estimate: {len(eb)} estimates from the bag, {len(ea)} from the recording")
+worst = max(math.hypot(p["x"] - q["x"], p["y"] - q["y"]) for p, q in zip(ea, eb))
+if worst > 0.01: sys.exit(f"estimator.estimate: the tracks {worst:.4f} m apart")
+print(f"through the perception and the fusion: {len(a['obstacles.obstacles'])} obstacle frames and {len(a['wall_left.wall'])} + "
+      f"{len(a['wall_right.wall'])} wall frames the same, {len(ea)} estimates within {worst:.1e} m")
 PY
 echo "ros2_bag_play: ok"

@@ -2,14 +2,16 @@
 // third-party libraries (@mcap/core, @foxglove/omgidl-serialization with the recording's own IDL):
 // what a recording says was published, for a test to hold another reader's samples against.
 // 64-bit integers are written as numbers' digits (JSON has no 64-bit integer).
-// usage: node mcap_dump.cjs RECORDING.mcap TOPIC...
+// --first: only each topic's first message.
+// usage: node mcap_dump.cjs RECORDING.mcap [--first] TOPIC...
 "use strict";
 const { parseIDL } = require("@foxglove/omgidl-parser");
 const omgidl = require("@foxglove/omgidl-serialization");
 const { openMcap } = require("./mcap_open.cjs");
 
 async function main() {
-  const [file, ...topics] = process.argv.slice(2);
+  const [file, ...rest] = process.argv.slice(2);
+  const first = rest.includes("--first"), topics = rest.filter((t) => t !== "--first"), seen = new Set();
   const reader = await openMcap(file);
   const readers = new Map();
   for (const [id, ch] of reader.channelsById) {
@@ -21,6 +23,8 @@ async function main() {
     if (![...readers.keys()].some((id) => reader.channelsById.get(id).topic === t)) throw new Error(`${file}: no channel ${t}`);
   const out = [];
   for await (const m of reader.readMessages({ topics })) {
+    if (first && seen.has(m.channelId)) continue;
+    seen.add(m.channelId);
     const msg = readers.get(m.channelId).readMessage(m.data);
     const text = JSON.stringify(msg, (k, x) => (typeof x === "bigint" ? `@@${x}@@` : ArrayBuffer.isView(x) ? Array.from(x) : x));
     out.push(`{"topic":${JSON.stringify(reader.channelsById.get(m.channelId).topic)},"msg":${text.replace(/"@@(-?\d+)@@"/g, "$1")}}`);
