@@ -45,7 +45,6 @@ std::string where_it_breaks(const std::string& type, const unsigned char* data, 
   return {};
 }
 
-
 // The recording's summary, `info`: 0, or 2 (said on stderr) when it cannot be read, is damaged or
 // holds no sample.
 int read_recording(const BagPlayOptions& o, RecordingInfo& info) {
