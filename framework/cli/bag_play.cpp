@@ -4,6 +4,7 @@
 
 #include "exec/executive.hpp"  // g_interrupt
 #include "cdr/cdr_json.hpp"
+#include "cdr/cdr_reader.hpp"
 #include "record/recorder.hpp"
 #include "record/recording_info.hpp"
 #include "graph/diagnostics.hpp"
@@ -101,8 +102,16 @@ int make_players(const BagPlayOptions& o, const RecordingInfo& info, DdsTranspor
 // One sample of `topic`, decoded into its message and written: empty, or why it could not be.
 std::string play_sample(Played& p, const std::string& topic, const unsigned char* data, std::size_t size) {
   if (p.convert) {
-    const std::string why = p.convert(data, size);
-    return why.empty() ? why : "sample " + std::to_string(p.count) + " of " + topic + ": " + why;
+    const std::string which = "sample " + std::to_string(p.count + p.damaged) + " of " + topic + ": ";
+    try {
+      p.convert(data, size);
+    } catch (const cdr::DamagedSample& e) {  // one message lost: counted and skipped, the first named
+      if (p.damaged++ == 0) p.first_damage = which + e.what();
+      return {};
+    } catch (const std::invalid_argument& e) {
+      return which + e.what();
+    }
+    return {};
   }
   if (p.payload.max_size < size) p.payload.reserve(static_cast<std::uint32_t>(size));
   std::memcpy(p.payload.data, data, size);
@@ -140,8 +149,9 @@ std::string play_samples(const BagPlayOptions& o, Players& topics, Clock::time_p
       if (first < 0) first = stamp;
       const auto due = start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(static_cast<double>(stamp - first) * 1e-9 / o.rate));
       while (!g_interrupt && Clock::now() < due) std::this_thread::sleep_until(std::min(due, Clock::now() + std::chrono::milliseconds(50)));
+      const std::uint64_t damaged = p.damaged;
       error = play_sample(p, topic, data, size);
-      if (!error.empty()) return;
+      if (!error.empty() || p.damaged != damaged) return;  // (a damaged sample skipped: not played)
       ++p.count;
       ++played;
     });
@@ -168,6 +178,9 @@ int bag_play(const BagPlayOptions& o) {
   const std::string error = play_samples(o, topics, start, played);
   if (!error.empty()) return std::fprintf(stderr, "error: %s: %s\n", o.file.c_str(), error.c_str()), 2;
   const double wall = std::chrono::duration<double>(Clock::now() - start).count();
+  for (const auto& [name, p] : topics)
+    if (p->damaged) std::fprintf(stderr, "bag play: %llu damaged samples of %s skipped (the first: %s)\n", static_cast<unsigned long long>(p->damaged),
+                                 name.c_str(), p->first_damage.c_str());
   std::fprintf(stderr, "bag play: %llu samples of %zu topics in %.2f s%s\n", static_cast<unsigned long long>(played), topics.size(), wall,
                g_interrupt ? " (interrupted)" : "");
   return g_interrupt ? 1 : 0;

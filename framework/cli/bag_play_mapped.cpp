@@ -5,7 +5,7 @@
 //   sensor_msgs/msg/Imu          -> brickyard::msgs::Imu
 //   brickyard_msgs/msg/T         -> brickyard::msgs::T as it is (a recording in ROS 2's profile)
 // The bag's other topics are listed and skipped, said. A sample that does not fit its type stops
-// the play naming it (exit 2).
+// the play naming it (exit 2); one whose bytes end early is counted, the first named, and skipped.
 #include "cli/bag_map.hpp"
 #include "cli/bag_players.hpp"
 #include "graph/diagnostics.hpp"
@@ -58,68 +58,49 @@ std::vector<Channel> bag_channels(const std::string& file) {
   return out;
 }
 
-std::function<std::string(const unsigned char*, std::size_t)> cloud_player(DdsWriter* w, const MappedTopic& t) {
+std::function<void(const unsigned char*, std::size_t)> cloud_player(DdsWriter* w, const MappedTopic& t) {
   auto msg = std::make_shared<msgs::PointCloud>();
   auto cols = std::make_shared<cdr::CloudColumns>();
   const cdr::CloudMount mount{t.sensor_id, t.mount};
-  return [w, mount, msg, cols, seq = std::uint32_t{0}](const unsigned char* data, std::size_t size) mutable -> std::string {
-    try {
-      cdr::read_pointcloud2(data, size, *cols);
-    } catch (const std::invalid_argument& e) {
-      return e.what();
-    }
+  return [w, mount, msg, cols, seq = std::uint32_t{0}](const unsigned char* data, std::size_t size) mutable {
+    cdr::read_pointcloud2(data, size, *cols);
     cdr::to_point_cloud(*cols, mount, seq++, *msg);
     w->write(msg.get());
-    return {};
   };
 }
 
-std::function<std::string(const unsigned char*, std::size_t)> fix_player(DdsWriter* w, const MappedTopic& t, const std::array<double, 3>& datum) {
+std::function<void(const unsigned char*, std::size_t)> fix_player(DdsWriter* w, const MappedTopic& t, const std::array<double, 3>& datum) {
   auto local = std::make_shared<GeographicLib::LocalCartesian>(datum[0], datum[1], datum[2]);
-  return [w, receiver = t.receiver_id, local, seq = std::uint32_t{0}](const unsigned char* data, std::size_t size) mutable -> std::string {
-    cdr::NavSatFixValues v;
-    try {
-      v = cdr::read_navsatfix(data, size);
-    } catch (const std::invalid_argument& e) {
-      return e.what();
-    }
+  return [w, receiver = t.receiver_id, local, seq = std::uint32_t{0}](const unsigned char* data, std::size_t size) mutable {
+    const cdr::NavSatFixValues v = cdr::read_navsatfix(data, size);
     std::array<double, 3> enu{};
     local->Forward(v.latitude, v.longitude, v.altitude, enu[0], enu[1], enu[2]);
     msgs::GnssFix f;
     cdr::to_gnss_fix(v, enu, receiver, seq++, f);
     w->write(&f);
-    return {};
   };
 }
 
-std::function<std::string(const unsigned char*, std::size_t)> imu_player(DdsWriter* w) {
-  return [w, seq = std::uint32_t{0}](const unsigned char* data, std::size_t size) mutable -> std::string {
-    cdr::ImuValues v;
-    try {
-      v = cdr::read_imu(data, size);
-    } catch (const std::invalid_argument& e) {
-      return e.what();
-    }
+std::function<void(const unsigned char*, std::size_t)> imu_player(DdsWriter* w) {
+  return [w, seq = std::uint32_t{0}](const unsigned char* data, std::size_t size) mutable {
     msgs::Imu m;
-    cdr::to_imu(v, seq++, m);
+    cdr::to_imu(cdr::read_imu(data, size), seq++, m);
     w->write(&m);
-    return {};
   };
 }
 
 // Our own message (a recording in ROS 2's profile): deserialized as it is.
-std::function<std::string(const unsigned char*, std::size_t)> own_player(Played& p, const std::string& type) {
+std::function<void(const unsigned char*, std::size_t)> own_player(Played& p, const std::string& type) {
   const auto* entry = msgs::find_type(type.c_str());
   p.support.reset(entry->make());
   p.sample = p.support->createData();
-  return [&p](const unsigned char* data, std::size_t size) -> std::string {
+  return [&p](const unsigned char* data, std::size_t size) {
     if (p.payload.max_size < size) p.payload.reserve(static_cast<std::uint32_t>(size));
     std::memcpy(p.payload.data, data, size);
     p.payload.length = static_cast<std::uint32_t>(size);
     p.payload.pos = 0;
-    if (!p.support->deserialize(&p.payload, p.sample)) return std::string("a sample does not decode as ") + p.support->getName();
+    if (!p.support->deserialize(&p.payload, p.sample)) throw cdr::DamagedSample(std::string("does not decode as ") + p.support->getName());
     p.writer->write(p.sample);
-    return {};
   };
 }
 

@@ -29,9 +29,12 @@ struct Played {
   std::uint64_t count = 0;
   bool packed = false;     // a QuantizedPointCloud, played as the PointCloud it was (--record-cloud-precision)
   msgs::PointCloud cloud;
-  // A ROS 2 bag's sample converted and written: empty, or why it could not be (a sample that does
-  // not fit its type). Set, it replaces the deserialization.
-  std::function<std::string(const unsigned char*, std::size_t)> convert;
+  // A ROS 2 bag's sample converted and written; throws std::invalid_argument when it does not fit
+  // its type, cdr::DamagedSample when its bytes end early (counted, the first named, skipped). Set,
+  // it replaces the deserialization.
+  std::function<void(const unsigned char*, std::size_t)> convert;
+  std::uint64_t damaged = 0;
+  std::string first_damage;
   ~Played() {
     if (sample) support->deleteData(sample);
   }

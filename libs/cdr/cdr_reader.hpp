@@ -2,8 +2,8 @@
 // A CDR sample read field by field (XCDR1, as ROS 2 and Fast DDS write it): its 4-byte
 // encapsulation header first (its byte order), each primitive aligned to its size from after the
 // header. For the ROS 2 types read without generated code (ros2_pointcloud.hpp,
-// ros2_sensors.hpp). A read past the end throws std::invalid_argument naming the message, the
-// field and the byte ("NavSatFix: latitude at byte 28 runs past the sample's 30 bytes").
+// ros2_sensors.hpp). A read past the end throws DamagedSample naming the message, the field and
+// the byte ("NavSatFix: latitude at byte 28 runs past the sample's 30 bytes").
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
@@ -28,12 +28,18 @@ inline void load(void* out, const unsigned char* p, std::size_t n, bool little) 
   std::memcpy(out, b, n);
 }
 
-template <class Error = std::invalid_argument>
+// A sample whose bytes end before its type does (cut short, or no CDR at all): one message lost, not
+// a stream of the wrong shape. A player counts it, names the first, and goes on.
+class DamagedSample : public std::invalid_argument {
+ public:
+  using std::invalid_argument::invalid_argument;
+};
+
 class CdrReader {
  public:
   // `message`: the type's name, said in every error.
   CdrReader(const unsigned char* data, std::size_t size, std::string message) : p_(data), size_(size), message_(std::move(message)) {
-    if (size < 4) throw Error(message_ + ": " + std::to_string(size) + " bytes, no CDR header");
+    if (size < 4) throw DamagedSample(message_ + ": " + std::to_string(size) + " bytes, no CDR header");
     little_ = (data[1] & 1) != 0;
   }
   template <class T>
@@ -71,7 +77,7 @@ class CdrReader {
   void align(std::size_t n) { at_ += (n - (at_ - 4) % n) % n; }
   void need(std::size_t n, const char* what) const {
     if (at_ > size_ || size_ - at_ < n)
-      throw Error(message_ + ": " + what + " at byte " + std::to_string(at_) + " runs past the sample's " + std::to_string(size_) + " bytes");
+      throw DamagedSample(message_ + ": " + what + " at byte " + std::to_string(at_) + " runs past the sample's " + std::to_string(size_) + " bytes");
   }
   const unsigned char* p_;
   std::size_t size_, at_ = 4;

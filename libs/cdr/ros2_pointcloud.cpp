@@ -44,7 +44,7 @@ const Field* field_named(const std::vector<Field>& fields, std::initializer_list
   return nullptr;
 }
 
-std::vector<Field> read_fields(CdrReader<BadPointCloud2>& r) {
+std::vector<Field> read_fields(CdrReader& r) {
   std::vector<Field> fields(r.get<std::uint32_t>("fields' count"));
   for (Field& f : fields) {
     f.name = r.string("a field's name");
@@ -98,7 +98,7 @@ CloudColumns read_pointcloud2(const unsigned char* cdr, std::size_t size) {
 }
 
 void read_pointcloud2(const unsigned char* cdr, std::size_t size, CloudColumns& c) {
-  CdrReader<BadPointCloud2> r(cdr, size, "PointCloud2");
+  CdrReader r(cdr, size, "PointCloud2");
   c.stamp_ns = r.time_ns("header.stamp");
   c.frame_id = r.string("header.frame_id");
   const auto height = r.get<std::uint32_t>("height"), width = r.get<std::uint32_t>("width");
@@ -108,9 +108,10 @@ void read_pointcloud2(const unsigned char* cdr, std::size_t size, CloudColumns& 
   const auto [data, bytes] = r.bytes("data");
   check_fields(fields, point_step);
   const std::uint64_t points = static_cast<std::uint64_t>(height) * width;
-  if (row_step < static_cast<std::uint64_t>(width) * point_step || bytes < static_cast<std::uint64_t>(height) * row_step)
-    throw BadPointCloud2("PointCloud2: " + std::to_string(height) + " x " + std::to_string(width) + " points of " + std::to_string(point_step) +
-                         " bytes, rows of " + std::to_string(row_step) + ", in " + std::to_string(bytes) + " bytes of data");
+  const std::string shape = "PointCloud2: " + std::to_string(height) + " x " + std::to_string(width) + " points of " + std::to_string(point_step) +
+                            " bytes, rows of " + std::to_string(row_step);
+  if (row_step < static_cast<std::uint64_t>(width) * point_step) throw BadPointCloud2(shape + ": a row shorter than its points");
+  if (bytes < static_cast<std::uint64_t>(height) * row_step) throw DamagedSample(shape + ", in " + std::to_string(bytes) + " bytes of data");
   const Field *fx = field_named(fields, {"x"}), *fy = field_named(fields, {"y"}), *fz = field_named(fields, {"z"});
   const Field* fi = field_named(fields, {"intensity"});
   const Field* ft = field_named(fields, {"t", "time", "time_offset"});

@@ -18,15 +18,16 @@ struct CloudColumns {
   std::vector<float> x, y, z, intensity, time_offset;  // intensity, time_offset: empty when the cloud has none
 };
 
-// What does not fit: std::invalid_argument naming the field or the byte ("PointCloud2: no field
-// 'z' (fields: x, y, intensity)"; "field 'intensity' (4 bytes at 14) is past the point step 16").
+// A cloud whose fields do not make points: std::invalid_argument naming the field ("PointCloud2: no
+// field 'z' (fields: x, y, intensity)"; "field 'intensity' (2 bytes at 31) is past the point step
+// 32"). Bytes that end before the message does: cdr::DamagedSample (cdr_reader.hpp).
 class BadPointCloud2 : public std::invalid_argument {
  public:
   using std::invalid_argument::invalid_argument;
 };
 
 // One PointCloud2 sample's CDR (its 4-byte encapsulation header first, either endianness; the
-// points' own byte order by is_bigendian). Points whose x, y or z is not finite (a sensor's "no
+// points' own byte order by is_bigendian). Data shorter than its rows: DamagedSample. Points whose x, y or z is not finite (a sensor's "no
 // return") are left out.
 CloudColumns read_pointcloud2(const unsigned char* cdr, std::size_t size);
 // The same into `out`, its columns' memory kept (a player's next frame costs no allocation).

@@ -5,7 +5,7 @@
 namespace brickyard::cdr {
 
 NavSatFixValues read_navsatfix(const unsigned char* cdr, std::size_t size) {
-  CdrReader<> r(cdr, size, "NavSatFix");
+  CdrReader r(cdr, size, "NavSatFix");
   NavSatFixValues v;
   v.stamp_ns = r.time_ns("header.stamp");
   v.frame_id = r.string("header.frame_id");
@@ -20,7 +20,7 @@ NavSatFixValues read_navsatfix(const unsigned char* cdr, std::size_t size) {
 }
 
 ImuValues read_imu(const unsigned char* cdr, std::size_t size) {
-  CdrReader<> r(cdr, size, "Imu");
+  CdrReader r(cdr, size, "Imu");
   ImuValues v;
   v.stamp_ns = r.time_ns("header.stamp");
   v.frame_id = r.string("header.frame_id");

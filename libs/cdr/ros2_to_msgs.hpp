@@ -2,6 +2,7 @@
 // ROS 2's sensor messages, read (ros2_pointcloud.hpp, ros2_sensors.hpp), into ours: what `bag play
 // --map` and the replay.ros2_* plugins both do (docs/ros2.md). Templates over the message types, so
 // this library stays free of the SDK's generated code. Header-only.
+#include "cdr/cdr_reader.hpp"
 #include "cdr/ros2_pointcloud.hpp"
 #include "cdr/ros2_sensors.hpp"
 

@@ -1,7 +1,9 @@
 // sensor_msgs/PointCloud2 to a cloud's columns and back (cdr/ros2_pointcloud.hpp): our own clouds
 // round-trip exactly; a cloud as another driver lays it out (FLOAT64 axes, big-endian points,
 // padding, a UINT16 intensity, a UINT32 time in ns, rows with slack, no-return points) is read by
-// its fields; what does not fit is refused naming the field or byte.
+// its fields; fields that make no points are refused naming the field, bytes that end early are a
+// damaged sample naming the byte.
+#include "cdr/cdr_reader.hpp"
 #include "cdr/ros2_pointcloud.hpp"
 
 #include <gtest/gtest.h>
@@ -77,9 +79,12 @@ std::vector<unsigned char> foreign_cloud(const std::vector<FieldSpec>& fields, s
 
 const std::vector<FieldSpec> kForeignFields = {{"x", 0, 8}, {"y", 8, 8}, {"z", 16, 8}, {"intensity", 24, 4}, {"t", 28, 6}};
 
+// Why a cloud is refused, "damaged: " first when its bytes end early (one sample lost, skipped).
 std::string refusal(const std::vector<unsigned char>& b) {
   try {
     read_pointcloud2(b.data(), b.size());
+  } catch (const DamagedSample& e) {
+    return std::string("damaged: ") + e.what();
   } catch (const BadPointCloud2& e) {
     return e.what();
   }
@@ -132,9 +137,11 @@ TEST(Ros2PointCloud, WhatDoesNotFitIsRefusedNamed) {
             "PointCloud2: field 'intensity' (2 bytes at 31) is past the point step 32");
   EXPECT_EQ(refusal(foreign_cloud({{"x", 0, 5}, {"y", 8, 8}, {"z", 16, 8}})), "PointCloud2: field 'x' is not FLOAT32 or FLOAT64 (datatype 5)");
   EXPECT_EQ(refusal(foreign_cloud({{"x", 0, 9}, {"y", 8, 8}, {"z", 16, 8}})), "PointCloud2: field 'x' has datatype 9, none of 1 to 8");
-  EXPECT_EQ(refusal(foreign_cloud(kForeignFields, 32, 10)), "PointCloud2: 2 x 2 points of 32 bytes, rows of 72, in 134 bytes of data");
+  EXPECT_EQ(refusal(foreign_cloud(kForeignFields, 40)), "PointCloud2: 2 x 2 points of 40 bytes, rows of 72: a row shorter than its points");
+  EXPECT_EQ(refusal(foreign_cloud(kForeignFields, 32, 10)), "damaged: PointCloud2: 2 x 2 points of 32 bytes, rows of 72, in 134 bytes of data");
   auto cut = foreign_cloud(kForeignFields);
   cut.resize(40);
+  EXPECT_EQ(refusal(cut).rfind("damaged: ", 0), 0u) << refusal(cut);
   EXPECT_NE(refusal(cut).find("runs past the sample's 40 bytes"), std::string::npos) << refusal(cut);
-  EXPECT_EQ(refusal({0x00, 0x01}), "PointCloud2: 2 bytes, no CDR header");
+  EXPECT_EQ(refusal({0x00, 0x01}), "damaged: PointCloud2: 2 bytes, no CDR header");
 }

@@ -2,7 +2,8 @@
 // (rosbag2 MCAP: sensor_msgs/msg/PointCloud2, NavSatFix, Imu) replayed in-process as our messages
 // on the run's clock, so its drive runs through the perception and the fusion (docs/ros2.md). The
 // conversions are bag play --map's (cdr/ros2_to_msgs.hpp). A ROS 2 bag is stamped on the real
-// clock: on the sim clock, retime_from_ns is its drive's start (0: a bag of a simulated run).
+// clock: on the sim clock, retime_from_ns is its drive's start (0: a bag of a simulated run). A
+// sample that does not fit its type is bad input; one whose bytes end early is skipped, counted.
 #include <brickyard/plugin.hpp>
 
 #include <brickyard/msgs/GnssFix.h>
@@ -98,6 +99,7 @@ class Ros2Replay : public Plugin {
   void deactivate(Context& ctx) override {
     ctx.metric("replayed", static_cast<double>(samples_.sent()));
     ctx.metric("left", static_cast<double>(samples_.left()));
+    ctx.metric("damaged_skipped", static_cast<double>(damaged_));
   }
 
  private:
@@ -115,6 +117,11 @@ class Ros2Replay : public Plugin {
       auto m = std::make_shared<T>();
       try {
         convert_(s.data, seq, *m);
+      } catch (const cdr::DamagedSample& e) {  // one message lost: counted, the first named, skipped
+        if (damaged_++ == 0)
+          ctx.log(LogLevel::warn, "bag " + file + ": sample " + std::to_string(seq) + " of '" + s_.topic + "' is damaged, skipped: " + e.what());
+        ++seq;
+        continue;
       } catch (const std::invalid_argument& e) {
         throw BadInput("bag " + file + ": sample " + std::to_string(seq) + " of '" + s_.topic + "': " + e.what());
       }
@@ -128,6 +135,7 @@ class Ros2Replay : public Plugin {
 
   Settings s_;
   replay::Ros2Converter convert_;
+  std::uint64_t damaged_ = 0;
   replay::SampleQueue<std::shared_ptr<const T>> samples_;
   Ports<T> io_;
 };

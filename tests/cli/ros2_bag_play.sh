@@ -7,7 +7,8 @@
 # recording's (the clouds' points exactly, the IMU exactly, a fix's position within 1 mm after
 # latitude and longitude and back). The bag's topics not in the map are listed as not played.
 # Bad input, each exit 2 named: a topic the bag lacks, a wire not NODE.PORT, a NavSatFix without
-# a datum, a type bag play does not convert, a PointCloud2 without z, a ROS 2 bag without --map.
+# a datum, a type bag play does not convert, a PointCloud2 without z, a ROS 2 bag without --map;
+# a sample cut short is counted, named and skipped.
 # Then the same drive in-process, through the perception and the fusion (the replay.ros2_* plugins
 # beside the replay of the recording): the same obstacles and walls frame by frame, the fusion's
 # track within 1 cm.
@@ -55,6 +56,18 @@ refused string "/rosout_text holds std_msgs/msg/String, which bag play does not 
 map "$out/bad_cloud.json" 'm["topics"] = {"/bad/points": {"wire": "lidar_front.cloud"}}'
 refused bad_cloud "sample 0 of /bad/points: PointCloud2: no field 'z' (fields: x, y, intensity)" "$out/bag.mcap" --map "$out/bad_cloud.json"
 refused no_map "not a brickyard recording" "$out/bag.mcap"
+# A message whose bytes end early: counted, the first named, skipped; the others played.
+map "$out/damaged.json" 'm["topics"] = {"/imu/damaged": {"wire": "imu.imu"}}'
+"$by" bag play "$out/bag.mcap" --map "$out/damaged.json" --domain "$domain" --rate 100 > "$out/damaged.log" 2>&1 || { cat "$out/damaged.log"; fail "a damaged sample: exit $?"; }
+grep -q "bag play: 1 damaged samples of /imu/damaged skipped (the first: sample 4 of /imu/damaged: Imu: .* runs past the sample's 20 bytes)" "$out/damaged.log" \
+  && grep -q "bag play: 9 samples of 1 topics" "$out/damaged.log" || { cat "$out/damaged.log"; fail "the damaged sample not counted, named and skipped"; }
+# The same in-process: replay.ros2_imu skips it, says so and counts it.
+python3 -c "import json,sys; json.dump({'name': 'damaged', 'nodes': {'imu': {'plugin': 'replay.ros2_imu', 'params': {'file': sys.argv[2], 'topic': '/imu/damaged', 'retime_from_ns': 0}}},
+  'wires': [], 'clock': {'mode': 'sim', 'step_s': 0.002, 'duration_s': 2}}, open(sys.argv[1], 'w'))" "$out/damaged_graph.json" "$out/bag.mcap"
+"$by" run "$out/damaged_graph.json" --domain "$domain" --progress 0 --no-report --out "$out/damaged_run" > "$out/damaged_run.log" 2>&1 || { tail -3 "$out/damaged_run.log"; fail "replay.ros2_imu of a damaged sample"; }
+grep -q "sample 4 of '/imu/damaged' is damaged, skipped: Imu: .* runs past the sample's 20 bytes" "$out/damaged_run.log" \
+  && python3 -c "import json,sys; m=json.load(open(sys.argv[1]))['nodes']['imu']['metrics']; sys.exit(0 if (m['damaged_skipped'], m['replayed']) == (1, 9) else 1)" "$out/damaged_run/summary.json" \
+  || { cat "$out/damaged_run.log"; fail "replay.ros2_imu did not skip, say and count the damaged sample"; }
 
 "$by" topic echo gnss_left.fix --domain "$domain" --count 30 --duration 25 > "$out/echo_fix.jsonl" 2> "$out/echo_fix.log" &
 e1=$!

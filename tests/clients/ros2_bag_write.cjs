@@ -5,8 +5,9 @@
 // and @mcap/core's writer: each cloud a sensor_msgs/msg/PointCloud2 (x, y, z, intensity, FLOAT32)
 // on /NODE/points, each fix a sensor_msgs/msg/NavSatFix on /NODE/fix (its latitude, longitude and
 // altitude from FIXES, a JSON of [topic, seq, lat, lon, alt, status]), the IMU a sensor_msgs/msg/Imu
-// on /imu/data; also a cloud without z (/bad/points) and a topic of a type bag play does not know
-// (/rosout_text, std_msgs/msg/String).
+// on /imu/data; also a cloud without z (/bad/points), a topic of a type bag play does not know
+// (/rosout_text, std_msgs/msg/String), and the IMU's first 10 messages again on /imu/damaged, the
+// fifth cut to 20 bytes.
 // usage: node ros2_bag_write.cjs RECORDING.mcap FIXES.json OUT.mcap
 "use strict";
 const fs = require("fs");
@@ -48,9 +49,10 @@ class BagWriter {
     const id = await this.mcap.registerChannel({ topic, schemaId, messageEncoding: "cdr", metadata: new Map() });
     this.channels.set(topic, { id, writer: new MessageWriter(defs), seq: 0 });
   }
-  async message(topic, stamp, msg) {
+  async message(topic, stamp, msg, cut = 0) {
     const c = this.channels.get(topic);
-    await this.mcap.addMessage({ channelId: c.id, sequence: c.seq++, logTime: stamp, publishTime: stamp, data: c.writer.writeMessage(msg) });
+    const data = c.writer.writeMessage(msg);
+    await this.mcap.addMessage({ channelId: c.id, sequence: c.seq++, logTime: stamp, publishTime: stamp, data: cut ? data.subarray(0, cut) : data });
   }
 }
 
@@ -86,6 +88,8 @@ async function main() {
   }
   await bag.channel("/bad/points", "sensor_msgs/PointCloud2");
   await bag.channel("/rosout_text", "std_msgs/String");
+  await bag.channel("/imu/damaged", "sensor_msgs/Imu");
+  let damagedWritten = 0;
   let badWritten = false;
   for await (const m of reader.readMessages()) {
     const ch = reader.channelsById.get(m.channelId), schema = reader.schemasById.get(ch.schemaId);
@@ -110,6 +114,7 @@ async function main() {
     }
     if (!topic) continue;
     await bag.message(topic, m.logTime, out);
+    if (topic === "/imu/data" && damagedWritten < 10) await bag.message("/imu/damaged", m.logTime, out, damagedWritten++ === 4 ? 20 : 0);
     counts[topic] = (counts[topic] || 0) + 1;
   }
   await bag.message("/rosout_text", 1n, { data: "a type bag play does not know" });
