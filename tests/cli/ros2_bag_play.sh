@@ -56,6 +56,12 @@ refused string "/rosout_text holds std_msgs/msg/String, which bag play does not 
 map "$out/bad_cloud.json" 'm["topics"] = {"/bad/points": {"wire": "lidar_front.cloud"}}'
 refused bad_cloud "sample 0 of /bad/points: PointCloud2: no field 'z' (fields: x, y, intensity)" "$out/bag.mcap" --map "$out/bad_cloud.json"
 refused no_map "not a brickyard recording" "$out/bag.mcap"
+map "$out/key.json" 'm["topics"]["/imu/data"]["frame"] = "imu_link"'
+refused key 'key.json#/topics/~1imu~1data/frame: not a key here (keys: mount, receiver_id, sensor_id, wire)' "$out/bag.mcap" --map "$out/key.json"
+map "$out/range.json" 'm["datum"]["latitude"] = 95'
+refused range 'range.json#/datum/latitude: expected -90.0 to 90.0, found 95' "$out/bag.mcap" --map "$out/range.json"
+echo '{"topics": ' > "$out/not_json.json"
+refused not_json "not_json.json: not JSON" "$out/bag.mcap" --map "$out/not_json.json"
 # A message whose bytes end early: counted, the first named, skipped; the others played.
 map "$out/damaged.json" 'm["topics"] = {"/imu/damaged": {"wire": "imu.imu"}}'
 "$by" bag play "$out/bag.mcap" --map "$out/damaged.json" --domain "$domain" --rate 100 > "$out/damaged.log" 2>&1 || { cat "$out/damaged.log"; fail "a damaged sample: exit $?"; }
