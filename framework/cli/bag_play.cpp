@@ -10,6 +10,7 @@
 #include "graph/diagnostics.hpp"
 #include "security/security_files.hpp"
 #include "transport/dds.hpp"
+#include "transport/wire_types.hpp"
 
 #include "cloud/quantized_cloud.hpp"
 
@@ -83,7 +84,7 @@ int make_players(const BagPlayOptions& o, const RecordingInfo& info, DdsTranspor
   for (const auto& [name, type] : info.topics) {
     if (!o.only.empty() && !topic_selected(name, o.only)) continue;
     if (type.rfind("foxglove.", 0) == 0) continue;  // the scene (/tf, /scene/*): drawn from the wires, no wire of its own
-    const auto* entry = msgs::find_type(type.c_str());
+    const auto* entry = find_wire_type(type);
     const auto dot = name.find('.');
     if (!entry || dot == std::string::npos) {
       std::fprintf(stderr, "error: %s: topic %s holds %s, which this build does not know\n", o.file.c_str(), name.c_str(), type.c_str());

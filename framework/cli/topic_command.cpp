@@ -2,10 +2,12 @@
 
 #include "exec/executive.hpp"  // g_interrupt
 #include "cdr/cdr_json.hpp"
+#include "cdr/ros2_std_types.hpp"
 #include "record/recorder.hpp"
 #include "record/sample_serializer.hpp"
 #include "security/security_files.hpp"
 #include "transport/dds.hpp"
+#include "transport/wire_types.hpp"
 
 #include <brickyard/msgs/registry.hpp>
 
@@ -36,12 +38,15 @@ std::string ours(const std::string& dds) {
   return t;
 }
 
-// A type as the wire names it, ours: a ROS 2 name of one of the SDK's types back to it.
+// A type as the wire names it, ours: a ROS 2 name of one of the SDK's types, or of ROS 2's
+// standard types a port may carry (cdr/ros2_std_types.hpp), back to it.
 std::string our_type(const std::string& wire) {
   std::size_t n = 0;
   const msgs::TypeEntry* types = msgs::all_types(&n);
   for (std::size_t i = 0; i < n; ++i)
     if (wire_type(types[i].name, true) == wire) return types[i].name;
+  for (const std::string& standard : cdr::ros2_standard_types())
+    if (wire_type(standard, true) == wire) return standard;
   return wire;
 }
 
@@ -183,7 +188,7 @@ int follow_topic(const TopicOptions& o, Heard& heard, DdsTransport& dds) {
     type = heard.writers[o.topic];
   }
   const char* idl = idl_text(type);
-  if (!msgs::find_type(type.c_str()) || !idl) return refuse(o.topic + ": type " + type + " is not one this build knows");
+  if (!find_wire_type(type) || !idl) return refuse(o.topic + ": type " + type + " is not one this build knows");
   SampleSerializer serializer(type);
   const cdr::CdrJson decoder(omgidl_schema(idl));
   Listened listened;

@@ -2,7 +2,7 @@
 // readers' type's Fast DDS type support into the object typed readers take.
 #include "exec/channels.hpp"
 
-#include <brickyard/msgs/registry.hpp>
+#include "transport/wire_types.hpp"
 
 #include <fastdds/dds/topic/TopicDataType.hpp>
 #include <fastdds/rtps/common/SerializedPayload.h>
@@ -17,7 +17,7 @@ void OutputPort::make_any(std::string type, std::string idl) {
   wire_type_ = std::move(type);
   wire_idl_ = std::move(idl);
   if (wire_type_.empty()) return;
-  const auto* entry = msgs::find_type(wire_type_.c_str());
+  const auto* entry = find_wire_type(wire_type_);
   if (!entry) throw std::runtime_error(name_ + ": no type support for " + wire_type_);
   support_.reset(entry->make());
 }

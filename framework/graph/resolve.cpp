@@ -2,7 +2,7 @@
 
 #include "graph/diagnostics.hpp"
 
-#include <brickyard/msgs/registry.hpp>
+#include "transport/wire_types.hpp"
 #include <brickyard/roles.hpp>
 
 #include <cmath>
@@ -327,7 +327,7 @@ class Resolver {
         if (!rn.params.has(param)) continue;
         const std::string type = rn.params.string(param);
         if (type.empty()) continue;
-        const auto* entry = msgs::find_type(type.c_str());
+        const auto* entry = find_wire_type(type);
         if (!entry) {
           err("/nodes/" + pointer_escape(name) + "/params/" + pointer_escape(param), "no message type \"" + type + "\" in this build");
           continue;

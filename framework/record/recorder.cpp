@@ -1,11 +1,11 @@
 #include "record/recorder.hpp"
 
+#include "cdr/idl_model.hpp"
 #include "cdr/ros2_msgs.hpp"
+#include "cdr/ros2_std_types.hpp"
 #include "mcap/mcap_writer.hpp"
 #include "mcap/ros2_profile.hpp"
-
-#include <brickyard/msgs/registry.hpp>
-
+#include "transport/wire_types.hpp"
 
 #include <sqlite3.h>
 
@@ -14,8 +14,6 @@
 #include <cstring>
 #include <filesystem>
 #include <map>
-#include <set>
-#include <sstream>
 #include <stdexcept>
 
 #include <fcntl.h>
@@ -45,27 +43,10 @@ constexpr std::int64_t kBatchNs = 1'000'000'000;
 const char* idl_text(const std::string& type) {
   for (const auto& t : kIdl)
     if (type == t.type) return t.text;
-  return nullptr;
+  return cdr::ros2_standard_idl(type);
 }
 
-std::string omgidl_schema(const std::string& idl) {
-  // The text is a file then, depth first, what it includes (each ending "}; };"): reversed, every
-  // definition comes after what it uses. Foxglove's IDL parser takes no #include.
-  std::vector<std::string> blocks;
-  std::string block, line;
-  std::istringstream in(idl);
-  while (std::getline(in, line)) {
-    if (line.rfind("#include", 0) == 0) continue;
-    block += line + "\n";
-    if (line.find("}; };") != std::string::npos) blocks.push_back(std::move(block)), block.clear();
-  }
-  if (block.find_first_not_of(" \n") != std::string::npos) blocks.push_back(block);
-  std::string out;
-  std::set<std::string> seen;
-  for (auto it = blocks.rbegin(); it != blocks.rend(); ++it)
-    if (seen.insert(*it).second) out += *it;
-  return out;
-}
+std::string omgidl_schema(const std::string& idl) { return cdr::self_contained_idl(idl); }
 
 // FILE.db3, or FILE.db3.part (a recording not closed: a killed run's).
 bool is_sqlite_recording(const std::string& path) {
@@ -194,7 +175,7 @@ void Recorder::set_metadata(const std::string& key, const std::string& value) {
 
 int Recorder::add_topic(const std::string& name, const std::string& type) {
   std::lock_guard<std::mutex> l(m_);
-  const auto* entry = msgs::find_type(type.c_str());
+  const auto* entry = find_wire_type(type);
   const char* idl = idl_text(type);
   if (!entry || !idl) fail("no type support for " + type);
   auto t = std::make_unique<Topic>();

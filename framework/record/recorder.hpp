@@ -68,7 +68,8 @@ class Recorder {
   bool failed_ = false;
 };
 
-// The IDL text of a message type (with what it includes), or null.
+// The IDL text of a message type (with what it includes): the SDK's, or a ROS 2 standard type's
+// (cdr/ros2_std_types.hpp); null when neither.
 const char* idl_text(const std::string& type);
 // The same as one self-contained OMG IDL text, as an MCAP schema ("omgidl") carries it: no
 // #include lines, each included definition once and before what uses it.

@@ -1,6 +1,6 @@
 #include "record/sample_serializer.hpp"
 
-#include <brickyard/msgs/registry.hpp>
+#include "transport/wire_types.hpp"
 
 #include <fastdds/dds/topic/TopicDataType.hpp>
 #include <fastdds/rtps/common/SerializedPayload.h>
@@ -11,7 +11,7 @@ namespace brickyard::fw {
 
 SampleSerializer::SampleSerializer(const std::string& type)
     : type_(type), payload_(std::make_unique<eprosima::fastrtps::rtps::SerializedPayload_t>()) {
-  const auto* entry = msgs::find_type(type.c_str());
+  const auto* entry = find_wire_type(type);
   if (!entry) throw std::runtime_error("no type support for " + type);
   support_.reset(entry->make());
 }

@@ -1,4 +1,5 @@
 #include "transport/dds.hpp"
+#include "transport/wire_types.hpp"
 
 #include <cstdlib>
 #include <map>
@@ -41,6 +42,8 @@ std::string wire_type(const std::string& type, bool ros2) {
   const auto at = type.rfind("::");
   if (at == std::string::npos) return type;
   std::string package = type.substr(0, at);
+  // A ROS 2 standard type ("nav_msgs::msg::Odometry", cdr/ros2_std_types.hpp) is in its package's msg module already.
+  if (package.size() > 5 && package.compare(package.size() - 5, 5, "::msg") == 0) package.resize(package.size() - 5);
   for (std::size_t k; (k = package.find("::")) != std::string::npos;) package.replace(k, 2, "_");
   return package + "::msg::dds_::" + type.substr(at + 2) + "_";
 }
@@ -238,7 +241,7 @@ Topic* DdsTransport::topic(const std::string& name, const std::string& type_name
   // create_topic returns null for a topic that exists: get-or-create.
   if (auto* d = participant_->lookup_topicdescription(dds_name)) return static_cast<Topic*>(d);
   if (!participant_->find_type(dds_type)) {
-    const auto* entry = msgs::find_type(type_name.c_str());
+    const auto* entry = find_wire_type(type_name);
     if (!entry) throw std::runtime_error("no message type " + type_name);
     TypeSupport ts(entry->make());
     if (ts.register_type(participant_, dds_type) != ReturnCode_t::RETCODE_OK)
@@ -293,7 +296,7 @@ DdsReader* DdsTransport::make_reader(const std::string& topic_n, const std::stri
   if (lockstep_) keep_all(q);
   auto r = std::make_unique<DdsReader>();
   r->listener_ = std::make_unique<ReaderListener>();
-  r->listener_->type = TypeSupport(msgs::find_type(type_name.c_str())->make());
+  r->listener_->type = TypeSupport(find_wire_type(type_name)->make());
   r->listener_->deliver = std::move(deliver);
   r->listener_->liveliness = std::move(liveliness);
   r->listener_->peers = peers_;

@@ -1,6 +1,8 @@
 #include "cdr/idl_model.hpp"
 
 #include <cctype>
+#include <set>
+#include <sstream>
 #include <stdexcept>
 
 namespace brickyard::cdr {
@@ -176,6 +178,24 @@ IdlModel parse_idl(const std::string& idl) {
   IdlModel model;
   IdlParser(tokenize(idl), model).parse();
   return model;
+}
+
+std::string self_contained_idl(const std::string& idl) {
+  // Reversed, every definition comes after what it uses. Foxglove's IDL parser takes no #include.
+  std::vector<std::string> blocks;
+  std::string block, line;
+  std::istringstream in(idl);
+  while (std::getline(in, line)) {
+    if (line.rfind("#include", 0) == 0) continue;
+    block += line + "\n";
+    if (line.find("}; };") != std::string::npos) blocks.push_back(std::move(block)), block.clear();
+  }
+  if (block.find_first_not_of(" \n") != std::string::npos) blocks.push_back(block);
+  std::string out;
+  std::set<std::string> seen;
+  for (auto it = blocks.rbegin(); it != blocks.rend(); ++it)
+    if (seen.insert(*it).second) out += *it;
+  return out;
 }
 
 }  // namespace brickyard::cdr

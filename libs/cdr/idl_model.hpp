@@ -32,6 +32,11 @@ struct IdlModel {
 
 IdlModel parse_idl(const std::string& idl);
 
+// A type's IDL text in the form the SDK's texts have (the type's file, then depth first what it
+// includes, each block ending "}; };") as one self-contained text, as an MCAP schema ("omgidl")
+// carries it: no #include lines, each definition once and before what uses it.
+std::string self_contained_idl(const std::string& idl);
+
 // "brickyard::msgs::Imu" -> "Imu".
 std::string idl_bare_name(const std::string& name);
 

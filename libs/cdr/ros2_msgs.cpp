@@ -1,6 +1,7 @@
 #include "cdr/ros2_msgs.hpp"
 
 #include <cctype>
+#include <functional>
 #include <map>
 #include <set>
 #include <stdexcept>
@@ -41,12 +42,19 @@ std::string module_of(const std::string& qualified) {
   return at == std::string::npos ? std::string() : qualified.substr(0, at);
 }
 
-std::string msg_text(const std::string& name, const std::vector<IdlMember>& members, const std::string& package) {
-  std::string text = "# " + name + ": written by `brickyard ros2 msgs` from the SDK's IDL (sdk/msgs); do not edit.\n";
+// The ROS 2 package a struct (by its bare name, as a member names it) belongs to.
+using PackageOf = std::function<std::string(const std::string&)>;
+
+std::string type_in(const IdlType& t, const PackageOf& package_of);
+PackageOf one_package(const std::string& package);
+
+// A type's .msg text. Ours say where they come from; ROS 2's standard types are theirs.
+std::string msg_text(const std::string& name, const std::vector<IdlMember>& members, const PackageOf& package_of, bool ours = true) {
+  std::string text = ours ? "# " + name + ": written by `brickyard ros2 msgs` from the SDK's IDL (sdk/msgs); do not edit.\n" : std::string();
   for (const IdlMember& m : members) {
     if (!snake_case(m.name)) throw std::invalid_argument("struct " + name + ": member '" + m.name + "' is not a ROS 2 field name (lower_snake_case)");
     try {
-      text += ros2_type(m.type, package) + " " + m.name + "\n";
+      text += type_in(m.type, package_of) + " " + m.name + "\n";
     } catch (const std::invalid_argument& e) {
       throw std::invalid_argument("struct " + name + ", member '" + m.name + "': " + e.what());
     }
@@ -126,14 +134,26 @@ void struct_names(const IdlType& t, std::vector<std::string>& out) {
 std::string ros2msg_schema(const IdlModel& model, const std::string& qualified, const std::string& package) {
   const auto top = model.structs.find(qualified);
   if (top == model.structs.end()) throw std::invalid_argument("no struct " + qualified);
+  // A struct of a module "P::msg" is ROS 2's package P's (the standard types, cdr/ros2_std_types.hpp);
+  // any other is `package`'s.
+  std::map<std::string, std::string> packages;
+  for (const std::string& q : model.defined) {
+    const std::string module = module_of(q);
+    const auto at = module.rfind("::msg");
+    packages[idl_bare_name(q)] = at != std::string::npos && at + 5 == module.size() ? module.substr(0, at) : package;
+  }
+  const PackageOf package_of = [&packages, &package](const std::string& bare) {
+    const auto it = packages.find(bare);
+    return it == packages.end() ? package : it->second;
+  };
   std::vector<std::string> order = {idl_bare_name(qualified)};
   std::set<std::string> seen(order.begin(), order.end());
   std::string out;
   for (std::size_t i = 0; i < order.size(); ++i) {
     const auto it = model.structs.find(order[i]);
     if (it == model.structs.end()) throw std::invalid_argument("struct " + qualified + " uses " + order[i] + ", which is not defined");
-    if (i > 0) out += "\n" + std::string(80, '=') + "\nMSG: " + package + "/" + order[i] + "\n";
-    out += msg_text(order[i], *it->second, package);
+    if (i > 0) out += "\n" + std::string(80, '=') + "\nMSG: " + package_of(order[i]) + "/" + order[i] + "\n";
+    out += msg_text(order[i], *it->second, package_of, package_of(order[i]) == package);
     std::vector<std::string> used;
     for (const IdlMember& m : *it->second) struct_names(m.type, used);
     for (const std::string& u : used)
@@ -147,7 +167,7 @@ std::string ros2_dds_idl(const IdlModel& model, const Ros2PackageInfo& info) {
                      "// `brickyard ros2 idl` from the SDK's IDL (sdk/msgs); do not edit.\n"
                      "module " + info.name + " {\nmodule msg {\nmodule dds_ {\n";
   for (const auto& [qualified, name] : package_structs(model)) {
-    msg_text(name, *model.structs.at(qualified), info.name);  // ROS 2's refusals, the same
+    msg_text(name, *model.structs.at(qualified), one_package(info.name));  // ROS 2's refusals, the same
     text += "@final struct " + name + "_ {\n";
     for (const IdlMember& m : *model.structs.at(qualified))
       text += "  " + dds_idl_type(m.type) + " " + m.name + (m.type.kind == IdlType::Array ? "[" + std::to_string(m.type.size) + "]" : "") + ";\n";
@@ -156,7 +176,9 @@ std::string ros2_dds_idl(const IdlModel& model, const Ros2PackageInfo& info) {
   return text + "};  // module dds_\n};  // module msg\n};  // module " + info.name + "\n";
 }
 
-std::string ros2_type(const IdlType& t, const std::string& package) {
+namespace {
+
+std::string type_in(const IdlType& t, const PackageOf& package_of) {
   switch (t.kind) {
     case IdlType::Primitive: {
       const auto it = ros2_primitives().find(t.name);
@@ -164,27 +186,36 @@ std::string ros2_type(const IdlType& t, const std::string& package) {
       return it->second;
     }
     case IdlType::String: return t.bound ? "string<=" + std::to_string(t.bound) : "string";
-    case IdlType::Struct: return package + "/" + t.name;
+    case IdlType::Struct: return package_of(t.name) + "/" + t.name;
     case IdlType::Sequence: {
       if (t.of->kind == IdlType::Sequence || t.of->kind == IdlType::Array)
         throw std::invalid_argument("a sequence of sequences or arrays has no ROS 2 form");
-      return ros2_type(*t.of, package) + (t.bound ? "[<=" + std::to_string(t.bound) + "]" : "[]");
+      return type_in(*t.of, package_of) + (t.bound ? "[<=" + std::to_string(t.bound) + "]" : "[]");
     }
     case IdlType::Array: {
       if (t.of->kind == IdlType::Sequence || t.of->kind == IdlType::Array)
         throw std::invalid_argument("an array of sequences or arrays has no ROS 2 form");
-      return ros2_type(*t.of, package) + "[" + std::to_string(t.size) + "]";
+      return type_in(*t.of, package_of) + "[" + std::to_string(t.size) + "]";
     }
   }
   throw std::invalid_argument("unknown type");
 }
+
+// Every struct in `package`.
+PackageOf one_package(const std::string& package) {
+  return [package](const std::string&) { return package; };
+}
+
+}  // namespace
+
+std::string ros2_type(const IdlType& t, const std::string& package) { return type_in(t, one_package(package)); }
 
 std::vector<Ros2File> ros2_package(const IdlModel& model, const Ros2PackageInfo& info) {
   std::vector<Ros2File> files;
   std::vector<std::string> msgs;
   for (const auto& [qualified, name] : package_structs(model)) {
     msgs.push_back("msg/" + name + ".msg");
-    files.push_back({msgs.back(), msg_text(name, *model.structs.at(qualified), info.name)});
+    files.push_back({msgs.back(), msg_text(name, *model.structs.at(qualified), one_package(info.name))});
   }
   files.push_back({"package.xml", package_xml(info)});
   files.push_back({"CMakeLists.txt", cmakelists(info, msgs)});

@@ -1,6 +1,7 @@
 #include "cdr/ros2_pointcloud.hpp"
 
 #include "cdr/cdr_reader.hpp"
+#include "cdr/cdr_writer.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -73,20 +74,6 @@ void check_fields(const std::vector<Field>& fields, std::uint32_t point_step) {
     if (f->datatype != FLOAT32 && f->datatype != FLOAT64)
       throw BadPointCloud2(std::string("PointCloud2: field '") + axis + "' is not FLOAT32 or FLOAT64 (datatype " + std::to_string(f->datatype) + ")");
   }
-}
-
-// Appends the little-endian bytes of v, aligned to its size from after the 4-byte header.
-template <class T>
-void put(std::vector<unsigned char>& out, T v) {
-  while ((out.size() - 4) % sizeof(T)) out.push_back(0);
-  unsigned char b[sizeof(T)];
-  load(b, reinterpret_cast<const unsigned char*>(&v), sizeof(T), true);  // host order to little-endian
-  out.insert(out.end(), b, b + sizeof(T));
-}
-void put_string(std::vector<unsigned char>& out, const std::string& s) {
-  put<std::uint32_t>(out, static_cast<std::uint32_t>(s.size() + 1));
-  out.insert(out.end(), s.begin(), s.end());
-  out.push_back(0);
 }
 
 }  // namespace
@@ -165,25 +152,22 @@ void write_pointcloud2(const CloudColumns& c, std::vector<unsigned char>& out) {
   if (with_i) columns.emplace_back("intensity", &c.intensity);
   if (with_t) columns.emplace_back("t", &c.time_offset);
   const std::uint32_t step = static_cast<std::uint32_t>(4 * columns.size());
-  out.assign({0x00, 0x01, 0x00, 0x00});  // CDR, little-endian
+  CdrWriter w(out);
   out.reserve(256 + n * step);
-  const std::int64_t nanosec = ((c.stamp_ns % 1'000'000'000) + 1'000'000'000) % 1'000'000'000;  // builtin_interfaces/Time: whole seconds down
-  put<std::int32_t>(out, static_cast<std::int32_t>((c.stamp_ns - nanosec) / 1'000'000'000));
-  put<std::uint32_t>(out, static_cast<std::uint32_t>(nanosec));
-  put_string(out, c.frame_id);
-  put<std::uint32_t>(out, 1);
-  put<std::uint32_t>(out, static_cast<std::uint32_t>(n));
-  put<std::uint32_t>(out, static_cast<std::uint32_t>(columns.size()));
+  w.put_header(c.stamp_ns, c.frame_id);
+  w.put<std::uint32_t>(1);
+  w.put<std::uint32_t>(static_cast<std::uint32_t>(n));
+  w.put<std::uint32_t>(static_cast<std::uint32_t>(columns.size()));
   for (std::size_t k = 0; k < columns.size(); ++k) {
-    put_string(out, columns[k].first);
-    put<std::uint32_t>(out, static_cast<std::uint32_t>(4 * k));
-    put<std::uint8_t>(out, FLOAT32);
-    put<std::uint32_t>(out, 1);
+    w.put_string(columns[k].first);
+    w.put<std::uint32_t>(static_cast<std::uint32_t>(4 * k));
+    w.put<std::uint8_t>(FLOAT32);
+    w.put<std::uint32_t>(1);
   }
-  put<std::uint8_t>(out, 0);  // little-endian points
-  put<std::uint32_t>(out, step);
-  put<std::uint32_t>(out, static_cast<std::uint32_t>(n * step));
-  put<std::uint32_t>(out, static_cast<std::uint32_t>(n * step));
+  w.put<std::uint8_t>(0);  // little-endian points
+  w.put<std::uint32_t>(step);
+  w.put<std::uint32_t>(static_cast<std::uint32_t>(n * step));
+  w.put<std::uint32_t>(static_cast<std::uint32_t>(n * step));
   const std::size_t at = out.size();
   out.resize(at + n * step);
   unsigned char* p = out.data() + at;
@@ -195,7 +179,7 @@ void write_pointcloud2(const CloudColumns& c, std::vector<unsigned char>& out) {
       if (as_is) std::memcpy(q, column + i, 4);
       else load(q, reinterpret_cast<const unsigned char*>(column + i), 4, true);
   }
-  put<std::uint8_t>(out, 1);  // is_dense
+  w.put<std::uint8_t>(1);  // is_dense
 }
 
 }  // namespace brickyard::cdr

@@ -1,12 +1,13 @@
 #pragma once
 // ROS 2's sensor_msgs/msg/NavSatFix and sensor_msgs/msg/Imu, read from their CDR (a rosbag2 file's
 // messages, docs/ros2.md) without generated code: the values a player turns into our GnssFix and
-// Imu. A sample that does not fit throws std::invalid_argument naming the message, field and byte.
+// Imu; and written (the bridge's, plugins/ros2). A sample that does not fit throws std::invalid_argument naming the message, field and byte.
 // Framework-free.
 #include <array>
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace brickyard::cdr {
 
@@ -20,13 +21,18 @@ struct NavSatFixValues {
   std::uint8_t covariance_type = 0;                  // 0 unknown, 1 approximated, 2 diagonal known, 3 known
 };
 NavSatFixValues read_navsatfix(const unsigned char* cdr, std::size_t size);
+// The same written as its CDR (little-endian, the encapsulation header first) into `out`.
+void write_navsatfix(const NavSatFixValues& v, std::vector<unsigned char>& out);
 
 struct ImuValues {
   std::int64_t stamp_ns = 0;
   std::string frame_id;
   std::array<double, 4> orientation{};  // x, y, z, w
   std::array<double, 3> angular_velocity{}, linear_acceleration{};  // rad/s, m/s^2, the sensor's frame (REP 103: x forward, y left, z up)
+  bool has_orientation = true;  // written: false says none (orientation_covariance[0] -1, REP 145)
 };
 ImuValues read_imu(const unsigned char* cdr, std::size_t size);
+// The same written as its CDR; the covariances unknown (0), but the orientation's when it has none.
+void write_imu(const ImuValues& v, std::vector<unsigned char>& out);
 
 }  // namespace brickyard::cdr

@@ -2,6 +2,7 @@
 // same CDR, bounds kept, structs by package; names ROS 2 does not allow and types it has no form
 // for refused, named.
 #include "cdr/ros2_msgs.hpp"
+#include "cdr/ros2_std_types.hpp"
 #include "mcap/ros2_profile.hpp"
 
 #include <gtest/gtest.h>
@@ -129,4 +130,38 @@ TEST(Ros2Profile, NamesGoToRos2AndBack) {
   EXPECT_EQ(brickyard_names("/points", "sensor_msgs/msg/PointCloud2", "ros2msg"),
             std::make_pair(std::string("/points"), std::string("sensor_msgs/msg/PointCloud2")));
   EXPECT_EQ(brickyard_names("/a/b/c", "brickyard_msgs/msg/Imu", "ros2msg").first, "/a/b/c");
+}
+
+// A Brickyard port of a ROS 2 standard type (the bridge's, cdr/ros2_std_types.hpp) on our topics:
+// its schema keeps ROS 2's name, and reads back as our qualified one.
+TEST(Ros2Profile, StandardTypesOnOurTopicsGoToRos2AndBack) {
+  using namespace brickyard::mcap;
+  EXPECT_EQ(ros2_schema_name("nav_msgs::msg::Odometry"), "nav_msgs/msg/Odometry");
+  EXPECT_EQ(ros2_schema_name("a::b::C"), "a::b::C");
+  EXPECT_EQ(brickyard_names("/brickyard/bridge/odom", "nav_msgs/msg/Odometry", "ros2msg"),
+            std::make_pair(std::string("bridge.odom"), std::string("nav_msgs::msg::Odometry")));
+}
+
+// ROS 2 Humble's standard types as IDL: each parses, and its ros2msg schema names every struct by
+// its own package, as a ROS 2 bag's does (what Foxglove's and ROS 2's readers look types up by).
+TEST(Ros2StandardTypes, EachParsesAndItsSchemaNamesEachStructByItsPackage) {
+  for (const std::string& t : ros2_standard_types()) {
+    const char* idl = ros2_standard_idl(t);
+    ASSERT_NE(idl, nullptr) << t;
+    const IdlModel model = parse_idl(self_contained_idl(idl));
+    EXPECT_TRUE(model.structs.count(t)) << t;
+  }
+  EXPECT_EQ(ros2_standard_idl("nav_msgs::msg::Path"), nullptr) << "not one of those written";
+  const std::string odom = ros2msg_schema(parse_idl(self_contained_idl(ros2_standard_idl("nav_msgs::msg::Odometry"))), "nav_msgs::msg::Odometry", "brickyard_msgs");
+  EXPECT_EQ(odom.rfind("std_msgs/Header header\nstring child_frame_id\ngeometry_msgs/PoseWithCovariance pose\n", 0), 0u) << odom;
+  for (const char* section : {"MSG: std_msgs/Header\n", "MSG: builtin_interfaces/Time\n", "MSG: geometry_msgs/PoseWithCovariance\n",
+                              "MSG: geometry_msgs/Pose\n", "MSG: geometry_msgs/Point\n", "MSG: geometry_msgs/Quaternion\n",
+                              "MSG: geometry_msgs/TwistWithCovariance\n", "MSG: geometry_msgs/Twist\n", "MSG: geometry_msgs/Vector3\n"})
+    EXPECT_NE(odom.find(section), std::string::npos) << section << odom;
+  EXPECT_NE(odom.find("float64[36] covariance\n"), std::string::npos);
+  EXPECT_EQ(odom.find("brickyard"), std::string::npos) << "no line of ours in ROS 2's own definitions";
+  const std::string markers = ros2msg_schema(parse_idl(self_contained_idl(ros2_standard_idl("visualization_msgs::msg::MarkerArray"))),
+                                             "visualization_msgs::msg::MarkerArray", "brickyard_msgs");
+  EXPECT_NE(markers.find("builtin_interfaces/Duration lifetime\n"), std::string::npos) << markers;
+  EXPECT_NE(markers.find("MSG: sensor_msgs/CompressedImage\n"), std::string::npos);
 }

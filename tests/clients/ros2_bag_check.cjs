@@ -35,7 +35,7 @@ async function main() {
   if (bag.header.profile !== "ros2") throw new Error(`${bagFile}: profile "${bag.header.profile}", not ros2`);
   const theirs = await messages(bag, (schema) => {
     if (schema.encoding !== "ros2msg") throw new Error(`schema ${schema.name}: encoding ${schema.encoding}, not ros2msg`);
-    if (!/^brickyard_msgs\/msg\/\w+$/.test(schema.name)) throw new Error(`schema ${schema.name}: not a ROS 2 type name of brickyard_msgs`);
+    if (!/^\w+\/msg\/\w+$/.test(schema.name)) throw new Error(`schema ${schema.name}: not a ROS 2 type name`);
     return new ros2.MessageReader(parse(new TextDecoder().decode(schema.data), { ros2: true }));
   });
   const mine = await messages(ours, (schema) => new omgidl.MessageReader(schema.name, parseIDL(new TextDecoder().decode(schema.data))));

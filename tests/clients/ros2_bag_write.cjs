@@ -16,20 +16,8 @@ const { parseIDL } = require("@foxglove/omgidl-parser");
 const omgidl = require("@foxglove/omgidl-serialization");
 const { stringify } = require("@foxglove/rosmsg");
 const { MessageWriter } = require("@foxglove/rosmsg2-serialization");
-const { ros2humble } = require("@foxglove/rosmsg-msgs-common");
+const { definitions } = require("./ros2_humble.cjs");
 const { openMcap } = require("./mcap_open.cjs");
-
-// TYPE's definitions, the root first then every type it uses, as MessageWriter and a ros2msg schema take them.
-function definitions(type) {
-  const order = [type], out = [];
-  for (let i = 0; i < order.length; i++) {
-    const d = ros2humble[order[i]];
-    if (!d) throw new Error(`no ROS 2 definition of ${order[i]}`);
-    out.push(d);
-    for (const f of d.definitions) if (f.isComplex && !order.includes(f.type)) order.push(f.type);
-  }
-  return out;
-}
 
 class BagWriter {
   constructor(file) {

@@ -136,6 +136,13 @@ if(BRICKYARD_SIM)
     COMMAND ${NETNS} ${CMAKE_CURRENT_SOURCE_DIR}/cli/ros2_bag_play.sh ${BY} ${CMAKE_CURRENT_SOURCE_DIR}/clients
             ${PROJECT_SOURCE_DIR}/configs/race.json ${d} ${RUNS}/ros2_bag_play)
   set_tests_properties(evidence.ros2_bag_play PROPERTIES TIMEOUT 300)
+  # The car in ROS 2's standard messages (ros2.bridge), read by a third party with ROS 2's own
+  # definitions, held against what each was made from; live under ROS 2's names.
+  by_next_domain(d)
+  add_test(NAME evidence.ros2_bridge
+    COMMAND ${NETNS} ${CMAKE_CURRENT_SOURCE_DIR}/cli/ros2_bridge.sh ${BY} ${CMAKE_CURRENT_SOURCE_DIR}/clients
+            ${PROJECT_SOURCE_DIR}/configs ${d} ${RUNS}/ros2_bridge)
+  set_tests_properties(evidence.ros2_bridge PROPERTIES TIMEOUT 300)
 endif()
 # MCAP, read by Foxglove's libraries (tests/clients, installed by scripts/setup from npm).
 by_next_domain(d)
