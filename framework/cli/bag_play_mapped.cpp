@@ -3,6 +3,7 @@
 //   sensor_msgs/msg/PointCloud2  -> brickyard::msgs::PointCloud (the map's sensor_id and mount)
 //   sensor_msgs/msg/NavSatFix    -> brickyard::msgs::GnssFix (the map's datum, receiver_id)
 //   sensor_msgs/msg/Imu          -> brickyard::msgs::Imu
+//   nav_msgs/msg/Odometry        -> brickyard::msgs::LocalizationEstimate (a team's localization)
 //   brickyard_msgs/msg/T         -> brickyard::msgs::T as it is (a recording in ROS 2's profile)
 // The bag's other topics are listed and skipped, said. A sample that does not fit its type stops
 // the play naming it (exit 2); one whose bytes end early is counted, the first named, and skipped.
@@ -16,6 +17,7 @@
 
 #include <brickyard/msgs/GnssFix.h>
 #include <brickyard/msgs/Imu.h>
+#include <brickyard/msgs/LocalizationEstimate.h>
 #include <brickyard/msgs/registry.hpp>
 
 #include <GeographicLib/LocalCartesian.hpp>
@@ -89,6 +91,14 @@ std::function<void(const unsigned char*, std::size_t)> imu_player(DdsWriter* w) 
   };
 }
 
+std::function<void(const unsigned char*, std::size_t)> odometry_player(DdsWriter* w) {
+  return [w, seq = std::uint32_t{0}](const unsigned char* data, std::size_t size) mutable {
+    msgs::LocalizationEstimate e;
+    cdr::to_estimate(cdr::read_odometry(data, size), seq++, e);
+    w->write(&e);
+  };
+}
+
 // Our own message (a recording in ROS 2's profile): deserialized as it is.
 std::function<void(const unsigned char*, std::size_t)> own_player(Played& p, const std::string& type) {
   const auto* entry = msgs::find_type(type.c_str());
@@ -109,6 +119,7 @@ std::string wire_type_of(const Channel& c) {
   if (c.type == "sensor_msgs/msg/PointCloud2") return "brickyard::msgs::PointCloud";
   if (c.type == "sensor_msgs/msg/NavSatFix") return "brickyard::msgs::GnssFix";
   if (c.type == "sensor_msgs/msg/Imu") return "brickyard::msgs::Imu";
+  if (c.type == "nav_msgs/msg/Odometry") return "brickyard::msgs::LocalizationEstimate";
   const std::string ours = mcap::brickyard_names(c.topic, c.type, c.encoding).second;
   return ours != c.type && msgs::find_type(ours.c_str()) ? ours : std::string();
 }
@@ -118,7 +129,7 @@ void add_player(const BagMap& map, const MappedTopic& t, const Channel& c, DdsTr
   if (type.empty())
     throw InvalidInput(entry_of(map, t.topic), "the bag's " + t.topic + " holds " + (c.type.empty() ? "no schema" : c.type) +
                                                             ", which bag play does not convert (it converts sensor_msgs/msg/PointCloud2, "
-                                                            "NavSatFix, Imu and brickyard_msgs)");
+                                                            "NavSatFix, Imu, nav_msgs/msg/Odometry and brickyard_msgs)");
   if (type == "brickyard::msgs::GnssFix" && !map.datum)
     throw InvalidInput(map.file + "#/datum", "missing: " + t.topic + " is a NavSatFix, placed on the map from this origin");
   const auto dot = t.wire.find('.');
@@ -127,6 +138,7 @@ void add_player(const BagMap& map, const MappedTopic& t, const Channel& c, DdsTr
   if (type == "brickyard::msgs::PointCloud") p->convert = cloud_player(p->writer, t);
   else if (type == "brickyard::msgs::GnssFix") p->convert = fix_player(p->writer, t, *map.datum);
   else if (type == "brickyard::msgs::Imu" && c.type == "sensor_msgs/msg/Imu") p->convert = imu_player(p->writer);
+  else if (c.type == "nav_msgs/msg/Odometry") p->convert = odometry_player(p->writer);
   else p->convert = own_player(*p, type);
   // Keyed as the recording's reader names the channel (record/recording_info.hpp).
   topics[mcap::brickyard_names(c.topic, c.type, c.encoding).first] = std::move(p);

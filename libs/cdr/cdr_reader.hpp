@@ -58,6 +58,13 @@ class CdrReader {
     at_ += n;
     return s;
   }
+  // A sequence's length, each element at least `min_bytes` long: one the sample's bytes cannot hold
+  // is damage, found before anything is made for it (a count of 4 billion is not 200 GB).
+  std::uint32_t count(const char* what, std::size_t min_bytes) {
+    const auto n = get<std::uint32_t>(what);
+    need(static_cast<std::size_t>(n) * min_bytes, what);
+    return n;
+  }
   // A byte sequence: where its bytes start and how many.
   std::pair<const unsigned char*, std::size_t> bytes(const char* what) {
     const auto n = get<std::uint32_t>(what);

@@ -46,7 +46,8 @@ const Field* field_named(const std::vector<Field>& fields, std::initializer_list
 }
 
 std::vector<Field> read_fields(CdrReader& r) {
-  std::vector<Field> fields(r.get<std::uint32_t>("fields' count"));
+  // A field: its name's length, offset, datatype and count, 13 bytes at the least.
+  std::vector<Field> fields(r.count("fields' count", 13));
   for (Field& f : fields) {
     f.name = r.string("a field's name");
     f.offset = r.get<std::uint32_t>("a field's offset");
@@ -107,10 +108,13 @@ void read_pointcloud2(const unsigned char* cdr, std::size_t size, CloudColumns& 
   c.x.resize(points), c.y.resize(points), c.z.resize(points);
   c.intensity.resize(fi ? points : 0);
   c.time_offset.resize(ft ? points : 0);
+  // No points (a width of 0): nothing to walk, however many empty rows it claims (found by
+  // fuzz_ros2_sensors: 4 billion of them held a reader for minutes).
+  const std::uint32_t rows = points == 0 ? 0 : height;
   const bool floats = little == host_little() && fx->datatype == FLOAT32 && fy->datatype == FLOAT32 && fz->datatype == FLOAT32 &&
                       (!fi || fi->datatype == FLOAT32) && (!ft || ft->datatype == FLOAT32);
   std::size_t k = 0;
-  for (std::uint32_t row = 0; row < height; ++row) {
+  for (std::uint32_t row = 0; row < rows; ++row) {
     const unsigned char* p = data + static_cast<std::size_t>(row) * row_step;
     for (std::uint32_t col = 0; col < width; ++col, p += point_step) {
       float x, y, z;

@@ -71,6 +71,23 @@ void write_odometry(const Ros2Odometry& o, std::vector<unsigned char>& out) {
   put_covariance(w, o.twist_covariance);
 }
 
+Ros2Odometry read_odometry(const unsigned char* cdr, std::size_t size) {
+  CdrReader r(cdr, size, "Odometry");
+  Ros2Odometry o;
+  o.stamp_ns = r.time_ns("header.stamp");
+  o.frame_id = r.string("header.frame_id");
+  o.child_frame_id = r.string("child_frame_id");
+  double* pose[7] = {&o.pose.x, &o.pose.y, &o.pose.z, &o.pose.orientation.x, &o.pose.orientation.y, &o.pose.orientation.z, &o.pose.orientation.w};
+  for (double* v : pose) *v = r.get<double>("pose.pose");
+  for (double& c : o.pose_covariance) c = r.get<double>("pose.covariance");
+  for (double& v : o.linear) v = r.get<double>("twist.twist.linear");
+  for (double& v : o.angular) v = r.get<double>("twist.twist.angular");
+  for (double& c : o.twist_covariance) c = r.get<double>("twist.covariance");
+  return o;
+}
+
+double yaw_of(const Quaternion& q) { return std::atan2(2 * (q.w * q.z + q.x * q.y), 1 - 2 * (q.y * q.y + q.z * q.z)); }
+
 void write_pose_stamped(std::int64_t stamp_ns, const std::string& frame_id, const Ros2Pose& pose, std::vector<unsigned char>& out) {
   CdrWriter w(out);
   w.put_header(stamp_ns, frame_id);

@@ -3,8 +3,10 @@
 // (ROS 2 Humble's definitions, cdr/ros2_std_types.hpp) without generated code:
 // nav_msgs/msg/Odometry, geometry_msgs/msg/PoseStamped, tf2_msgs/msg/TFMessage and
 // visualization_msgs/msg/MarkerArray (issue 45's bridge, docs/ros2.md). Each writes into `out`
-// from its start, little-endian, the encapsulation header first; its memory kept. Framework-free.
+// from its start, little-endian, the encapsulation header first; its memory kept. Odometry is
+// read too (a team's bag through bag play --map and replay.ros2_odometry). Framework-free.
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -31,6 +33,11 @@ struct Ros2Odometry {
   std::array<double, 36> twist_covariance{};
 };
 void write_odometry(const Ros2Odometry& o, std::vector<unsigned char>& out);
+// An Odometry sample's CDR read (a team's bag, bag play --map; either byte order). A read past the
+// end throws DamagedSample naming the field and byte (cdr_reader.hpp).
+Ros2Odometry read_odometry(const unsigned char* cdr, std::size_t size);
+// The heading a quaternion turns the x axis to in the x-y plane (rad, -pi to pi).
+double yaw_of(const Quaternion& q);
 
 void write_pose_stamped(std::int64_t stamp_ns, const std::string& frame_id, const Ros2Pose& pose, std::vector<unsigned char>& out);
 

@@ -1,10 +1,12 @@
 #pragma once
-// ROS 2's sensor messages, read (ros2_pointcloud.hpp, ros2_sensors.hpp), into ours: what `bag play
+// ROS 2's sensor messages and odometry, read (ros2_pointcloud.hpp, ros2_sensors.hpp,
+// ros2_state_msgs.hpp), into ours: what `bag play
 // --map` and the replay.ros2_* plugins both do (docs/ros2.md). Templates over the message types, so
 // this library stays free of the SDK's generated code. Header-only.
 #include "cdr/cdr_reader.hpp"
 #include "cdr/ros2_pointcloud.hpp"
 #include "cdr/ros2_sensors.hpp"
+#include "cdr/ros2_state_msgs.hpp"
 
 #include <algorithm>
 #include <array>
@@ -59,6 +61,26 @@ void to_imu(const ImuValues& v, std::uint32_t seq, Imu& out) {
   out.header().frame_id(v.frame_id);
   out.accel_x(v.linear_acceleration[0]), out.accel_y(v.linear_acceleration[1]), out.accel_z(v.linear_acceleration[2]);
   out.gyro_x(v.angular_velocity[0]), out.gyro_y(v.angular_velocity[1]), out.gyro_z(v.angular_velocity[2]);
+}
+
+// A team's odometry (its localization) as our estimate: x, y and the heading in the plane; speed
+// and yaw rate the twist's x and z (in child_frame_id, the car's, REP 105); the covariance over x,
+// y and yaw taken from the pose's 6 x 6. No fusion stood behind it: update case 0, no deltas,
+// status NORMAL.
+template <class LocalizationEstimate>
+void to_estimate(const Ros2Odometry& o, std::uint32_t seq, LocalizationEstimate& out) {
+  out.header().stamp_ns(o.stamp_ns);
+  out.header().seq(seq);
+  out.header().frame_id(o.frame_id);
+  out.x(o.pose.x), out.y(o.pose.y), out.yaw(yaw_of(o.pose.orientation));
+  out.speed(o.linear[0]), out.yaw_rate(o.angular[2]);
+  const int at[3] = {0, 1, 5};
+  std::array<double, 9> c{};
+  for (int r = 0; r < 3; ++r)
+    for (int k = 0; k < 3; ++k) c[r * 3 + k] = o.pose_covariance[at[r] * 6 + at[k]];
+  out.covariance(c);
+  out.update_case(0);
+  out.status(0);
 }
 
 }  // namespace brickyard::cdr

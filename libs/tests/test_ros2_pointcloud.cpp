@@ -4,6 +4,7 @@
 // its fields; fields that make no points are refused naming the field, bytes that end early are a
 // damaged sample naming the byte.
 #include "cdr/cdr_reader.hpp"
+#include "cdr/cdr_writer.hpp"
 #include "cdr/ros2_pointcloud.hpp"
 
 #include <gtest/gtest.h>
@@ -144,4 +145,32 @@ TEST(Ros2PointCloud, WhatDoesNotFitIsRefusedNamed) {
   EXPECT_EQ(refusal(cut).rfind("damaged: ", 0), 0u) << refusal(cut);
   EXPECT_NE(refusal(cut).find("runs past the sample's 40 bytes"), std::string::npos) << refusal(cut);
   EXPECT_EQ(refusal({0x00, 0x01}), "damaged: PointCloud2: 2 bytes, no CDR header");
+  // A count of fields the sample cannot hold (found by fuzz_ros2_sensors: 4 billion fields were 200 GB).
+  const std::vector<unsigned char> many = {0x00, 0x01, 0x00, 0x00,  // CDR, little-endian
+                                           0, 0, 0, 0, 0, 0, 0, 0,  // stamp
+                                           1, 0, 0, 0, 0, 0, 0, 0,  // frame_id "" and its padding
+                                           1, 0, 0, 0, 1, 0, 0, 0,  // height, width
+                                           0xff, 0xff, 0xff, 0xff};  // fields: 4 294 967 295 of them
+  EXPECT_EQ(refusal(many), "damaged: PointCloud2: fields' count at byte 32 runs past the sample's 32 bytes");
+}
+
+// A cloud of no points however many empty rows it claims is read as empty, at once (found by
+// fuzz_ros2_sensors: 4 billion rows of width 0 held the reader for minutes).
+TEST(Ros2PointCloud, NoPointsInManyEmptyRowsIsReadAtOnce) {
+  std::vector<unsigned char> b;
+  CdrWriter w(b);
+  w.put_header(0, "lidar");
+  w.put<std::uint32_t>(0xFFFFFFFFu);  // height
+  w.put<std::uint32_t>(0);            // width
+  w.put<std::uint32_t>(3);
+  for (std::uint32_t k = 0; k < 3; ++k)  // x, y, z: FLOAT32 (7) at 0, 4, 8
+    w.put_string(std::string(1, static_cast<char>('x' + k))), w.put<std::uint32_t>(4 * k), w.put<std::uint8_t>(7), w.put<std::uint32_t>(1);
+  w.put<std::uint8_t>(0);   // little-endian
+  w.put<std::uint32_t>(12);  // point step
+  w.put<std::uint32_t>(0);   // row step
+  w.put<std::uint32_t>(0);   // no data
+  w.put<std::uint8_t>(1);
+  const auto c = read_pointcloud2(b.data(), b.size());
+  EXPECT_TRUE(c.x.empty());
+  EXPECT_EQ(c.frame_id, "lidar");
 }

@@ -1,9 +1,10 @@
 #pragma once
-// One sample of a ROS 2 bag (PointCloud2, NavSatFix, Imu) into our message, for the replay.ros2_*
+// One sample of a ROS 2 bag (PointCloud2, NavSatFix, Imu, Odometry) into our message, for the replay.ros2_*
 // plugins (ros2_plugin.cpp): the bytes read by cdr/ros2_*.hpp, the message filled as bag play
 // --map fills it (cdr/ros2_to_msgs.hpp), a fix placed on the map by the GNSS drivers' datum.
 #include <brickyard/msgs/GnssFix.h>
 #include <brickyard/msgs/Imu.h>
+#include <brickyard/msgs/LocalizationEstimate.h>
 #include <brickyard/msgs/PointCloud.h>
 
 #include "cdr/ros2_to_msgs.hpp"
@@ -33,6 +34,9 @@ struct Ros2Converter {
   }
   void operator()(const std::vector<unsigned char>& d, std::uint32_t seq, msgs::Imu& out) {
     cdr::to_imu(cdr::read_imu(d.data(), d.size()), seq, out);
+  }
+  void operator()(const std::vector<unsigned char>& d, std::uint32_t seq, msgs::LocalizationEstimate& out) {
+    cdr::to_estimate(cdr::read_odometry(d.data(), d.size()), seq, out);
   }
 };
 

@@ -1,16 +1,13 @@
-// replay.ros2_point_cloud, replay.ros2_gnss_fix, replay.ros2_imu: a ROS 2 bag of a team's own
-// (rosbag2 MCAP: sensor_msgs/msg/PointCloud2, NavSatFix, Imu) replayed in-process as our messages
-// on the run's clock, so its drive runs through the perception and the fusion (docs/ros2.md). The
+// replay.ros2_point_cloud, replay.ros2_gnss_fix, replay.ros2_imu, replay.ros2_odometry: a ROS 2
+// bag of a team's own (rosbag2 MCAP: sensor_msgs/msg/PointCloud2, NavSatFix, Imu; nav_msgs/msg/
+// Odometry, its localization, as our estimate) replayed in-process as our messages on the run's
+// clock, so its drive runs through the perception and the fusion (docs/ros2.md). The
 // conversions are bag play --map's (cdr/ros2_to_msgs.hpp). A ROS 2 bag is stamped on the real
 // clock: on the sim clock, retime_from_ns is its drive's start (0: a bag of a simulated run). A
 // sample that does not fit its type is bad input; one whose bytes end early is skipped, counted.
 #include <brickyard/plugin.hpp>
 
-#include <brickyard/msgs/GnssFix.h>
-#include <brickyard/msgs/Imu.h>
-#include <brickyard/msgs/PointCloud.h>
-
-#include "ros2_convert.hpp"
+#include "ros2_convert.hpp"  // and the messages it converts into
 #include "replay/common/recording.hpp"
 #include "replay/common/replay_checks.hpp"
 #include "replay/common/sample_queue.hpp"
@@ -140,10 +137,11 @@ class Ros2Replay : public Plugin {
   Ports<T> io_;
 };
 
-constexpr char kPointCloud[] = "point_cloud", kGnssFix[] = "gnss_fix", kImu[] = "imu";
+constexpr char kPointCloud[] = "point_cloud", kGnssFix[] = "gnss_fix", kImu[] = "imu", kOdometry[] = "odometry";
 constexpr char kPointCloud2[] = "sensor_msgs/msg/PointCloud2", kNavSatFix[] = "sensor_msgs/msg/NavSatFix", kRosImu[] = "sensor_msgs/msg/Imu";
+constexpr char kRosOdometry[] = "nav_msgs/msg/Odometry";
 
 }  // namespace
 
 BRICKYARD_PLUGINS(Ros2Replay<msgs::PointCloud, kPointCloud, kPointCloud2>, Ros2Replay<msgs::GnssFix, kGnssFix, kNavSatFix>,
-                  Ros2Replay<msgs::Imu, kImu, kRosImu>)
+                  Ros2Replay<msgs::Imu, kImu, kRosImu>, Ros2Replay<msgs::LocalizationEstimate, kOdometry, kRosOdometry>)

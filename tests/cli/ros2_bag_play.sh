@@ -19,7 +19,7 @@ here=$(cd "$(dirname "$0")" && pwd)
 rm -rf "$out"; mkdir -p "$out"
 fail() { echo "FAIL: $*"; exit 1; }
 "$by" run "$race" --domain "$domain" --duration 10 --seed 3 --quiet --progress 0 --no-report \
-  --record "$out/src.mcap" --record-only 'lidar_*.cloud,gnss_*.fix,imu.imu,wheels.speeds' > "$out/src.log" 2>&1
+  --record "$out/src.mcap" --record-only 'lidar_*.cloud,gnss_*.fix,imu.imu,wheels.speeds,estimator.estimate' > "$out/src.log" 2>&1
 # 10 s of a two-lap race: it ends at its duration, the laps not done (said so), and nothing else.
 grep -q "did not finish: 0 of 2 laps.*(sim 10\.0" "$out/src.log" && [ -s "$out/src.mcap" ] || { tail -5 "$out/src.log"; fail "recording the source"; }
 node "$clients/mcap_dump.cjs" "$out/src.mcap" gnss_left.fix gnss_right.fix > "$out/fixes.jsonl" || fail "reading the fixes"
@@ -33,7 +33,8 @@ import json, sys
 m = {"topics": {"/lidar_front/points": {"wire": "lidar_front.cloud", "sensor_id": 0, "mount": {"x": 1.5, "z": 1.1}},
                 "/gnss_left/fix": {"wire": "gnss_left.fix", "receiver_id": 0},
                 "/gnss_right/fix": {"wire": "gnss_right.fix", "receiver_id": 1},
-                "/imu/data": {"wire": "imu.imu"}},
+                "/imu/data": {"wire": "imu.imu"},
+                "/odom": {"wire": "estimator.estimate"}},
      "datum": {"latitude": 39.7930, "longitude": -86.2389, "altitude": 220.0}}
 exec(sys.argv[2])
 json.dump(m, open(sys.argv[1], "w"))
@@ -81,21 +82,28 @@ e1=$!
 e2=$!
 "$by" topic echo lidar_front.cloud --domain "$domain" --count 3 --duration 25 > "$out/echo_cloud.jsonl" 2> "$out/echo_cloud.log" &
 e3=$!
+"$by" topic echo estimator.estimate --domain "$domain" --count 100 --duration 25 > "$out/echo_odom.jsonl" 2> "$out/echo_odom.log" &
+e4=$!
 sleep 1
 "$by" bag play "$out/bag.mcap" --map "$out/map.json" --domain "$domain" > "$out/play.log" 2>&1 || { cat "$out/play.log"; fail "bag play --map"; }
-wait $e1 && wait $e2 && wait $e3 || { tail -3 "$out"/echo_*.log; fail "topic echo did not read the played wires"; }
+wait $e1 && wait $e2 && wait $e3 && wait $e4 || { tail -3 "$out"/echo_*.log; fail "topic echo did not read the played wires"; }
 cat "$out/play.log"
 grep -q "not in the map, not played: .*/bad/points (sensor_msgs/msg/PointCloud2).*/rosout_text (std_msgs/msg/String)" "$out/play.log" \
   || fail "the bag's unmapped topics were not said"
-node "$clients/mcap_dump.cjs" "$out/src.mcap" gnss_left.fix imu.imu lidar_front.cloud > "$out/src.jsonl" || fail "reading the source"
+node "$clients/mcap_dump.cjs" "$out/src.mcap" gnss_left.fix imu.imu lidar_front.cloud estimator.estimate > "$out/src.jsonl" || fail "reading the source"
 python3 - "$out" <<'PY' || fail "the played samples are not the recording's"
-import json, sys
+import json, math, sys
 out = sys.argv[1]
 src = {}
 for line in open(f"{out}/src.jsonl"):
     r = json.loads(line)
     src[(r["topic"], r["msg"]["header"]["stamp_ns"])] = r["msg"]
-for topic, name in (("gnss_left.fix", "fix"), ("imu.imu", "imu"), ("lidar_front.cloud", "cloud")):
+def same_estimate(topic, g, want):  # a team's odometry: the pose through a quaternion, the rest as it was
+    for k in ("x", "y", "speed", "yaw_rate"):
+        if g[k] != want[k]: sys.exit(f"{topic}: {k} {g[k]} against {want[k]}")
+    if abs(math.remainder(g["yaw"] - want["yaw"], 2 * math.pi)) > 1e-12: sys.exit(f"{topic}: yaw {g['yaw']} against {want['yaw']}")
+    if g["covariance"] != want["covariance"]: sys.exit(f"{topic}: covariance {g['covariance']} against {want['covariance']}")
+for topic, name in (("gnss_left.fix", "fix"), ("imu.imu", "imu"), ("lidar_front.cloud", "cloud"), ("estimator.estimate", "odom")):
     got = [json.loads(l) for l in open(f"{out}/echo_{name}.jsonl") if l.strip()]
     if not got: sys.exit(f"{topic}: nothing read")
     worst = 0.0
@@ -108,6 +116,8 @@ for topic, name in (("gnss_left.fix", "fix"), ("imu.imu", "imu"), ("lidar_front.
             worst = max(worst, err)
             if (g["fix_type"], g["valid"]) != (want["fix_type"], want["valid"]) and not (want["fix_type"] in (1, 2) and g["fix_type"] == 1):
                 sys.exit(f"{topic}: fix_type {g['fix_type']} valid {g['valid']} against {want['fix_type']} {want['valid']}")
+        elif name == "odom":
+            same_estimate(topic, g, want)
         elif name == "imu":
             for k in ("accel_x", "accel_y", "accel_z", "gyro_x", "gyro_y", "gyro_z"):
                 if g[k] != want[k]: sys.exit(f"{topic}: {k} {g[k]} against {want[k]}")
@@ -116,6 +126,25 @@ for topic, name in (("gnss_left.fix", "fix"), ("imu.imu", "imu"), ("lidar_front.
                 if g[k] != want[k]: sys.exit(f"{topic}: the points' {k} differ")
             if (g["sensor_x"], g["sensor_z"]) != (1.5, 1.1): sys.exit(f"{topic}: the mount is not the map's")
     print(f"{topic}: {len(got)} samples read from the played bag, each the recording's" + (f" (positions within {worst:.1e} m)" if name == "fix" else ""))
+PY
+
+# A team's odometry in-process: replay.ros2_odometry gives every estimate back, as bag play did.
+python3 -c "import json,sys; json.dump({'name': 'odometry', 'nodes': {'odom': {'plugin': 'replay.ros2_odometry', 'params': {'file': sys.argv[2], 'topic': '/odom', 'retime_from_ns': 0}}},
+  'wires': [], 'clock': {'mode': 'sim', 'duration_s': 10.5}}, open(sys.argv[1], 'w'))" "$out/odom_graph.json" "$out/bag.mcap"
+"$by" run "$out/odom_graph.json" --domain "$domain" --progress 0 --no-report --record "$out/odom.mcap" > "$out/odom_run.log" 2>&1 \
+  || { tail -3 "$out/odom_run.log"; fail "replay.ros2_odometry"; }
+node "$clients/mcap_dump.cjs" "$out/odom.mcap" odom.out > "$out/odom.jsonl" || fail "reading the odometry replayed"
+python3 - "$out" <<'PY' || fail "replay.ros2_odometry's estimates are not the recording's"
+import json, math, sys
+out = sys.argv[1]
+src = [json.loads(l)["msg"] for l in open(f"{out}/src.jsonl") if json.loads(l)["topic"] == "estimator.estimate"]
+got = [json.loads(l)["msg"] for l in open(f"{out}/odom.jsonl")]
+if len(got) != len(src) or not got: sys.exit(f"{len(got)} estimates replayed, {len(src)} recorded")
+for g, w in zip(got, src):
+    if (g["x"], g["y"], g["speed"], g["yaw_rate"], g["covariance"]) != (w["x"], w["y"], w["speed"], w["yaw_rate"], w["covariance"]) \
+       or abs(math.remainder(g["yaw"] - w["yaw"], 2 * math.pi)) > 1e-12 or g["header"]["stamp_ns"] != w["header"]["stamp_ns"]:
+        sys.exit(f"an estimate replayed differs: {g} against {w}")
+print(f"replay.ros2_odometry: {len(got)} estimates from the bag's /odom, each the recording's")
 PY
 
 # The same drive through the perception and the fusion in-process: from the recording, and from the

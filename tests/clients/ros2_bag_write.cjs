@@ -5,7 +5,7 @@
 // and @mcap/core's writer: each cloud a sensor_msgs/msg/PointCloud2 (x, y, z, intensity, FLOAT32)
 // on /NODE/points, each fix a sensor_msgs/msg/NavSatFix on /NODE/fix (its latitude, longitude and
 // altitude from FIXES, a JSON of [topic, seq, lat, lon, alt, status]), the IMU a sensor_msgs/msg/Imu
-// on /imu/data; also a cloud without z (/bad/points), a topic of a type bag play does not know
+// on /imu/data, the estimates a nav_msgs/msg/Odometry on /odom (a team's localization); also a cloud without z (/bad/points), a topic of a type bag play does not know
 // (/rosout_text, std_msgs/msg/String), and the IMU's first 10 messages again on /imu/damaged, the
 // fifth cut to 20 bytes.
 // usage: node ros2_bag_write.cjs RECORDING.mcap FIXES.json OUT.mcap
@@ -58,6 +58,19 @@ function pointCloud2(m, withZ = true) {
   };
 }
 
+// A localization's output as a team's stack publishes it: the car (base_link) in the map, its
+// covariance over x, y and yaw in the 6 x 6's places, z, roll and pitch unknown.
+function odometry(m) {
+  const cov = new Float64Array(36), at = [0, 1, 5];
+  for (let r = 0; r < 3; r++) for (let c = 0; c < 3; c++) cov[at[r] * 6 + at[c]] = m.covariance[r * 3 + c];
+  for (const k of [2, 3, 4]) cov[k * 6 + k] = 99999;
+  return {
+    header: header(m), child_frame_id: "base_link",
+    pose: { pose: { position: { x: m.x, y: m.y, z: 0 }, orientation: { x: 0, y: 0, z: Math.sin(m.yaw / 2), w: Math.cos(m.yaw / 2) } }, covariance: cov },
+    twist: { twist: { linear: { x: m.speed, y: 0, z: 0 }, angular: { x: 0, y: 0, z: m.yaw_rate } }, covariance: new Float64Array(36) },
+  };
+}
+
 async function main() {
   const [input, fixesFile, output] = process.argv.slice(2);
   const fixes = new Map(JSON.parse(fs.readFileSync(fixesFile, "utf8")).map((f) => [`${f[0]}#${f[1]}`, f]));
@@ -73,6 +86,7 @@ async function main() {
     if (schema.name.endsWith("::PointCloud")) await bag.channel(`/${node}/points`, "sensor_msgs/PointCloud2");
     else if (schema.name.endsWith("::GnssFix")) await bag.channel(`/${node}/fix`, "sensor_msgs/NavSatFix");
     else if (schema.name.endsWith("::Imu")) await bag.channel("/imu/data", "sensor_msgs/Imu");
+    else if (schema.name.endsWith("::LocalizationEstimate")) await bag.channel("/odom", "nav_msgs/Odometry");
   }
   await bag.channel("/bad/points", "sensor_msgs/PointCloud2");
   await bag.channel("/rosout_text", "std_msgs/String");
@@ -99,6 +113,8 @@ async function main() {
       out = { header: header(msg), orientation: { x: 0, y: 0, z: 0, w: 1 }, orientation_covariance: new Float64Array(9).fill(0).map((v, i) => (i ? 0 : -1)),
               angular_velocity: { x: msg.gyro_x, y: msg.gyro_y, z: msg.gyro_z }, angular_velocity_covariance: new Float64Array(9),
               linear_acceleration: { x: msg.accel_x, y: msg.accel_y, z: msg.accel_z }, linear_acceleration_covariance: new Float64Array(9) };
+    } else if (schema.name.endsWith("::LocalizationEstimate")) {
+      topic = "/odom", out = odometry(msg);
     }
     if (!topic) continue;
     await bag.message(topic, m.logTime, out);

@@ -4,9 +4,10 @@
 // schema ROS 2's type name, every message decoded by @foxglove/rosmsg2-serialization with Humble's
 // definitions and, the same, with the recording's own schema; each held against what it was made
 // from in the same recording (the estimate, the three LiDARs' clouds, the path, the obstacles, the
-// IMU): counts, frames, stamps and values. Prints a JSON object of counts; exit 1 with the first
-// difference.
-// usage: node ros2_bridge_check.cjs RECORDING.mcap
+// IMU, the fixes: their latitude, longitude and height from FIXES, made without GeographicLib by
+// tests/cli/enu_to_geodetic.py): counts, frames, stamps and values. Prints a JSON object of counts;
+// exit 1 with the first difference.
+// usage: node ros2_bridge_check.cjs RECORDING.mcap FIXES.json
 "use strict";
 const { parse } = require("@foxglove/rosmsg");
 const { MessageReader } = require("@foxglove/rosmsg2-serialization");
@@ -16,7 +17,7 @@ const { openMcap } = require("./mcap_open.cjs");
 const kBridge = {
   odom: "nav_msgs/msg/Odometry", pose: "geometry_msgs/msg/PoseStamped", tf: "tf2_msgs/msg/TFMessage",
   points: "sensor_msgs/msg/PointCloud2", path_markers: "visualization_msgs/msg/MarkerArray",
-  obstacle_markers: "visualization_msgs/msg/MarkerArray", imu_data: "sensor_msgs/msg/Imu",
+  obstacle_markers: "visualization_msgs/msg/MarkerArray", imu_data: "sensor_msgs/msg/Imu", fix: "sensor_msgs/msg/NavSatFix",
 };
 const plain = (v) => JSON.stringify(v, (k, x) => (typeof x === "bigint" ? x.toString() : ArrayBuffer.isView(x) ? Array.from(x) : x));
 const ns = (stamp) => BigInt(stamp.sec) * 1000000000n + BigInt(stamp.nanosec);
@@ -137,6 +138,27 @@ function checkMarkersAndImu(t, out) {
   Object.assign(out, { paths: paths.length, obstacle_lists: obs.length, boxes, imu: imu.length });
 }
 
+// Each receiver's fixes as NavSatFix in its antenna's frame (gnss_N), about the datum.
+function checkFixes(t, fixesFile, out) {
+  const expected = new Map(JSON.parse(require("fs").readFileSync(fixesFile, "utf8")).map((f) => [`${f[0]}#${f[1]}`, f]));
+  const nav = new Map(t.get("/brickyard/bridge/fix").map((m) => [`${m.header.frame_id}@${ns(m.header.stamp)}`, m]));
+  let n = 0, worst = 0;
+  for (const topic of ["gnss_left.fix", "gnss_right.fix"])
+    for (const f of t.get(`/brickyard/${topic.replace(".", "/")}`)) {
+      const want = expected.get(`${topic}#${f.header.seq}`), got = nav.get(`gnss_${f.receiver_id}@${f.header.stamp_ns}`);
+      expect(want && got, `${topic} seq ${f.header.seq}: no NavSatFix in gnss_${f.receiver_id} stamped ${f.header.stamp_ns}`);
+      const m = 111320;  // metres in a degree of latitude, about: the errors below in metres
+      const err = Math.max(Math.abs(got.latitude - want[2]) * m, Math.abs(got.longitude - want[3]) * m * Math.cos((want[2] * Math.PI) / 180),
+                           Math.abs(got.altitude - want[4]));
+      expect(err <= 1e-6, `${topic} seq ${f.header.seq}: ${err} m from the position`);
+      expect(got.status.status === want[5], `${topic} seq ${f.header.seq}: status ${got.status.status}, expected ${want[5]}`);
+      expect(got.position_covariance[0] === f.sigma_x * f.sigma_x && got.position_covariance_type === 2, `${topic} seq ${f.header.seq}: covariance`);
+      worst = Math.max(worst, err), n++;
+    }
+  expect(n > 0 && nav.size === n, `${nav.size} NavSatFix for ${n} fixes`);
+  Object.assign(out, { fixes: n, fix_error_m: worst });
+}
+
 async function main() {
   const t = await read(process.argv[2]);
   for (const port of Object.keys(kBridge)) expect(t.has(`/brickyard/bridge/${port}`), `no topic /brickyard/bridge/${port}`);
@@ -144,6 +166,7 @@ async function main() {
   checkEstimates(t, out);
   checkClouds(t, out);
   checkMarkersAndImu(t, out);
+  checkFixes(t, process.argv[3], out);
   console.log(JSON.stringify(out));
 }
 

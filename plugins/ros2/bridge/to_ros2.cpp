@@ -113,6 +113,21 @@ std::vector<cdr::Ros2Marker> obstacle_markers(const msgs::ObstacleList& o, const
   return out;
 }
 
+void navsatfix_values(const msgs::GnssFix& f, const drivers::LocalDatum& datum, const Frames& frames, cdr::NavSatFixValues& out) {
+  out.stamp_ns = f.header().stamp_ns();
+  // ROS 2's fix names the antenna's frame; ours names the map's, where its position is.
+  const std::string& own = f.header().frame_id();
+  out.frame_id = own.empty() || own == "map" || own == "vehicle" ? "gnss_" + std::to_string(f.receiver_id()) : frames.of(own);
+  out.status = !f.valid() || f.fix_type() == 0 ? -1 : f.fix_type() == 3 ? 2 : 0;
+  out.service = 1;  // GPS
+  const drivers::Geodetic g = datum.to_geodetic({f.x(), f.y(), f.z()});
+  out.latitude = g.latitude_deg;
+  out.longitude = g.longitude_deg;
+  out.altitude = g.height_m;
+  out.position_covariance = {f.sigma_x() * f.sigma_x(), 0, 0, 0, f.sigma_y() * f.sigma_y(), 0, 0, 0, f.sigma_z() * f.sigma_z()};
+  out.covariance_type = 2;  // diagonal known
+}
+
 void imu_values(const msgs::Imu& m, const Frames& f, cdr::ImuValues& out) {
   out.stamp_ns = m.header().stamp_ns();
   out.frame_id = f.of(m.header().frame_id());

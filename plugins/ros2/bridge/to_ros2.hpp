@@ -3,6 +3,7 @@
 // ros2.bridge publishes so that RViz and ROS 2 nodes see the car, its clouds, its path and what
 // it found. Frames as REP 105 names them: ours "map" is the map frame, "vehicle" the base frame;
 // a sensor's own frame keeps its name. Framework-free: unit tests call it directly.
+#include <brickyard/msgs/GnssFix.h>
 #include <brickyard/msgs/Imu.h>
 #include <brickyard/msgs/LocalizationEstimate.h>
 #include <brickyard/msgs/ObstacleList.h>
@@ -12,6 +13,7 @@
 #include "cdr/ros2_pointcloud.hpp"
 #include "cdr/ros2_sensors.hpp"
 #include "cdr/ros2_state_msgs.hpp"
+#include "drivers/common/local_datum.hpp"
 
 #include <string>
 #include <vector>
@@ -43,6 +45,12 @@ std::vector<cdr::Ros2Marker> path_markers(const msgs::Path& p, const Frames& f);
 // Obstacles as boxes (ns "obstacles", ids 0, 1, ...), after a DELETEALL that clears the last
 // frame's: a marker array that says what this frame found, no more.
 std::vector<cdr::Ros2Marker> obstacle_markers(const msgs::ObstacleList& o, const Frames& f);
+// A fix back to latitude, longitude and height about the map frame's datum (GeographicLib, as the
+// GNSS drivers place fixes); its sigmas a diagonal covariance; status: fixed RTK GBAS (2), single
+// or float RTK a plain fix (0; bag play reads GBAS back as fixed RTK, a fix as single), none or
+// invalid no fix (-1); service GPS. Its frame the antenna's: "gnss_N" by the receiver's id when
+// ours names only the map.
+void navsatfix_values(const msgs::GnssFix& f, const drivers::LocalDatum& datum, const Frames& frames, cdr::NavSatFixValues& out);
 // An IMU sample (no orientation: the covariance's first element -1, REP 145).
 void imu_values(const msgs::Imu& m, const Frames& f, cdr::ImuValues& out);
 

@@ -6,6 +6,7 @@
 
 #include "cdr/cdr_json.hpp"
 #include "cdr/ros2_std_types.hpp"
+#include "cdr/ros2_to_msgs.hpp"
 
 #include <gtest/gtest.h>
 
@@ -173,4 +174,69 @@ TEST(Ros2Bridge, FramesAreNamedAsRep105NamesThem) {
   EXPECT_EQ(f.of("vehicle"), "base_link");
   EXPECT_EQ(f.of(""), "base_link");
   EXPECT_EQ(f.of("lidar_left"), "lidar_left");
+}
+
+// The other way (bag play --map, replay.ros2_odometry): a team's odometry read into our estimate;
+// the bridge's own odometry comes back as the estimate it was made of; bytes cut short are named.
+TEST(Ros2Bridge, OdometryReadBackIsTheEstimateItWasMadeOf) {
+  std::vector<unsigned char> cdr;
+  cdr::write_odometry(ros2::odometry(estimate(), ros2::Frames{}), cdr);
+  msgs::LocalizationEstimate back;
+  cdr::to_estimate(cdr::read_odometry(cdr.data(), cdr.size()), 7, back);
+  const auto e = estimate();
+  EXPECT_EQ(back.header().stamp_ns(), e.header().stamp_ns());
+  EXPECT_EQ(back.header().seq(), 7u);
+  EXPECT_EQ(back.header().frame_id(), "map");
+  EXPECT_EQ(back.x(), e.x());
+  EXPECT_EQ(back.y(), e.y());
+  EXPECT_NEAR(back.yaw(), e.yaw(), 1e-15);
+  EXPECT_EQ(back.speed(), e.speed());
+  EXPECT_EQ(back.yaw_rate(), e.yaw_rate());
+  EXPECT_EQ(back.covariance(), e.covariance());
+  EXPECT_EQ(back.status(), 0);
+  try {
+    (void)cdr::read_odometry(cdr.data(), 100);
+    FAIL() << "a cut odometry was read";
+  } catch (const cdr::DamagedSample& d) {
+    EXPECT_NE(std::string(d.what()).find("Odometry: pose.covariance at byte 100 runs past the sample's 100 bytes"), std::string::npos) << d.what();
+  }
+}
+
+// A fix about the map frame's datum: back where it was (GeographicLib both ways), its sigmas the
+// diagonal, its fix type as NavSatStatus says it (bag play reads GBAS back as fixed RTK).
+TEST(Ros2Bridge, AFixIsANavSatFixAboutTheDatum) {
+  const drivers::LocalDatum datum(drivers::Datum{39.7930, -86.2389, 220.0});
+  msgs::GnssFix f;
+  f.header().stamp_ns(2'000'000'000);
+  f.header().frame_id("gnss_left");
+  f.x(120.5), f.y(-340.25), f.z(1.5);
+  f.sigma_x(0.02), f.sigma_y(0.03), f.sigma_z(0.05);
+  f.fix_type(3);
+  f.valid(true);
+  cdr::NavSatFixValues v;
+  ros2::navsatfix_values(f, datum, ros2::Frames{}, v);
+  std::vector<unsigned char> cdr;
+  cdr::write_navsatfix(v, cdr);
+  const auto back = cdr::read_navsatfix(cdr.data(), cdr.size());
+  const Eigen::Vector3d enu = datum.to_map({back.latitude, back.longitude, back.altitude});
+  EXPECT_NEAR(enu.x(), 120.5, 1e-6);
+  EXPECT_NEAR(enu.y(), -340.25, 1e-6);
+  EXPECT_NEAR(enu.z(), 1.5, 1e-6);
+  EXPECT_EQ(back.frame_id, "gnss_left");
+  EXPECT_EQ(back.status, 2);
+  EXPECT_EQ(back.service, 1);
+  EXPECT_NEAR(back.position_covariance[4], 0.03 * 0.03, 1e-18);
+  EXPECT_EQ(back.position_covariance[1], 0.0);
+  EXPECT_EQ(back.covariance_type, 2);
+  EXPECT_EQ(cdr::fix_type_of(back.status), 3);
+  f.header().frame_id("map");  // ours names the map: the antenna's frame by the receiver
+  f.receiver_id(1);
+  ros2::navsatfix_values(f, datum, ros2::Frames{}, v);
+  EXPECT_EQ(v.frame_id, "gnss_1");
+  f.fix_type(2);  // float RTK: a plain fix, never claimed fixed
+  ros2::navsatfix_values(f, datum, ros2::Frames{}, v);
+  EXPECT_EQ(v.status, 0);
+  f.valid(false);
+  ros2::navsatfix_values(f, datum, ros2::Frames{}, v);
+  EXPECT_EQ(v.status, -1);
 }
