@@ -136,6 +136,12 @@ if(BRICKYARD_SIM)
     COMMAND ${NETNS} ${CMAKE_CURRENT_SOURCE_DIR}/cli/ros2_bag_play.sh ${BY} ${CMAKE_CURRENT_SOURCE_DIR}/clients
             ${PROJECT_SOURCE_DIR}/configs/race.json ${d} ${RUNS}/ros2_bag_play)
   set_tests_properties(evidence.ros2_bag_play PROPERTIES TIMEOUT 300)
+  # The object tracker in the main job: the pylons tracked standing where they stand.
+  by_next_domain(d)
+  add_test(NAME evidence.object_tracking
+    COMMAND ${NETNS} ${CMAKE_CURRENT_SOURCE_DIR}/cli/object_tracking.sh ${BY} ${CMAKE_CURRENT_SOURCE_DIR}/clients
+            ${CMAKE_CURRENT_SOURCE_DIR}/graphs ${d} ${RUNS}/object_tracking)
+  set_tests_properties(evidence.object_tracking PROPERTIES TIMEOUT 300)
   # The car in ROS 2's standard messages (ros2.bridge), read by a third party with ROS 2's own
   # definitions, held against what each was made from; live under ROS 2's names.
   by_next_domain(d)
