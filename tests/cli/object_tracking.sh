@@ -4,7 +4,8 @@
 # filter, clustering and the obstacle detector. Every pylon the car passes is a confirmed track
 # within 0.5 m of where the world put it, and no track seen for a second (20 frames: a young
 # track's speed is still its first frames' noise) moves faster than 1 m/s (nothing on this track
-# moves but the car: a track that does is a phantom).
+# moves but the car: a track that does is a phantom); each track's path foreseen 3 s ahead (30
+# points) ends within 3 m of where it stands.
 # usage: object_tracking.sh BRICKYARD CLIENTS GRAPHS DOMAIN OUT
 set -u
 by=$1; clients=$2; graphs=$3; domain=$4; out=$5
@@ -27,6 +28,12 @@ for line in open(sys.argv[1]):
 if len(pylons) != 3 or not tracks: sys.exit(f"{len(pylons)} pylons, {len(tracks)} frames of tracks")
 fastest = max((o["speed"] for frame in tracks for o in frame if o["age"] >= 20), default=0.0)
 if fastest > 1.0: sys.exit(f"a track seen for a second moved at {fastest:.2f} m/s: nothing here moves")
+for frame in tracks:
+    for o in frame:
+        p = o["prediction"]
+        if len(p) != 30: sys.exit(f"track {o['id']}: {len(p)} points foreseen, not 30")
+        if o["age"] >= 20 and math.hypot(p[-1]["x"] - o["x"], p[-1]["y"] - o["y"]) > 3.0:
+            sys.exit(f"track {o['id']}: foreseen {math.hypot(p[-1]['x'] - o['x'], p[-1]['y'] - o['y']):.1f} m away in 3 s, standing")
 for k, (x, y) in enumerate(pylons):
     near = [math.hypot(o["x"] - x, o["y"] - y) for frame in tracks for o in frame]
     best = min(near, default=float("inf"))

@@ -9,6 +9,7 @@
 
 #include "perception/common/ego_history.hpp"
 #include "perception/common/object_tracker.hpp"
+#include "perception/object_tracker/track_message.hpp"
 
 #include "map_msg.hpp"
 
@@ -22,6 +23,7 @@ using namespace brickyard::perception;
 
 struct Settings {
   TrackerParams tracker;
+  PredictionParams prediction;
   bool confirmed_only = true;
 };
 
@@ -39,6 +41,8 @@ ParamBinding<Settings> bindings() {
   b.bind("max_misses", &Settings::tracker, &T::max_misses).range(0, 1000).doc("frames a confirmed track may go unseen");
   b.bind("max_sigma", &Settings::tracker, &T::max_sigma).in_unit("m").range(0.01, 1000).doc("a track more spread than this is dropped");
   b.bind("confirmed_only", &Settings::confirmed_only).doc("publish only confirmed tracks");
+  b.bind("horizon_s", &Settings::prediction, &PredictionParams::horizon_s).in_unit("s").range(0, 30).doc("each track's path foreseen this far (0: none)");
+  b.bind("prediction_step_s", &Settings::prediction, &PredictionParams::step_s).in_unit("s").range(0.01, 5).doc("between its points");
   b.not_above("confirm_hits", "confirm_window");
   return b;
 }
@@ -116,19 +120,8 @@ class ObjectTrackerNode : public Plugin {
     out.header().stamp_ns(stamp_ns);
     out.header().seq(static_cast<std::uint32_t>(frames_++));
     out.header().frame_id("map");
-    for (const Track& t : tracker_->tracks()) {
-      if (settings_.confirmed_only && !t.confirmed) continue;
-      msgs::TrackedObject m;
-      m.id(t.id);
-      m.x(t.xy.x()), m.y(t.xy.y()), m.vx(t.velocity.x()), m.vy(t.velocity.y());
-      m.speed(t.speed()), m.heading(t.heading());
-      m.s(t.state[0]), m.d(t.state[1]), m.ds(t.state[2]), m.dd(t.state[3]);
-      m.covariance({t.xy_cov(0, 0), t.xy_cov(0, 1), t.xy_cov(1, 0), t.xy_cov(1, 1)});
-      m.size_x(t.size_x), m.size_y(t.size_y);
-      m.hits(static_cast<std::uint32_t>(t.hits)), m.age(static_cast<std::uint32_t>(t.age)), m.misses(static_cast<std::uint32_t>(t.misses));
-      m.confirmed(t.confirmed);
-      out.objects().push_back(std::move(m));
-    }
+    for (const Track& t : tracker_->tracks())
+      if (t.confirmed || !settings_.confirmed_only) out.objects().push_back(track_message(t, *track_, settings_.prediction));
     io_.tracks.publish(std::move(out));
   }
 

@@ -2,6 +2,7 @@
 // driving, detections with noise; each track's position and velocity against the scene's truth.
 #include "perception/common/ego_history.hpp"
 #include "perception/common/object_tracker.hpp"
+#include "perception/common/track_prediction.hpp"
 
 #include <gtest/gtest.h>
 
@@ -182,4 +183,34 @@ TEST(ObjectTracker, AFrameIsPlacedByThePoseAtItsStamp) {
   EXPECT_NEAR(p->x, 11.5, 1e-9);
   EXPECT_FALSE(h.at(999'000'000).has_value()) << "before every pose";
   EXPECT_FALSE(h.at(1'600'000'000).has_value()) << "past the gap";
+}
+
+// A car's path foreseen along the track: at its pace on its line, its spread growing with the
+// horizon; braking, it stops rather than backs up; across, it stays on the road; round the start
+// line, s wraps.
+TEST(ObjectTracker, APathForeseenAlongTheTrack) {
+  const auto track = circle_track(400);
+  Track car;
+  car.state << 100, 2, 50, 0, 0;
+  car.cov = Track::Mat::Identity() * 0.01;
+  const auto path = predict_along_track(car, track);
+  ASSERT_EQ(path.size(), 30u);
+  EXPECT_NEAR(path.back().t, 3.0, 1e-9);
+  EXPECT_NEAR(path.back().s, 250, 1e-6);
+  EXPECT_NEAR(path.back().d, 2, 1e-9);
+  const State truth = on_circle(400, 250.0 * (400 - 2) / 400, 50, 2);  // s is the centre line's
+  EXPECT_NEAR(path.back().x, truth.x, 0.05);
+  EXPECT_NEAR(path.back().y, truth.y, 0.05);
+  for (std::size_t k = 1; k < path.size(); ++k) EXPECT_GT(path[k].sigma_s, path[k - 1].sigma_s);
+  EXPECT_GT(path.back().sigma_s, 5.0) << "3 s ahead a car may have braked";
+
+  car.state << 100, 2, 10, 6, -15;  // braking hard at 10 m/s, moving over at 6 m/s
+  const auto stop = predict_along_track(car, track);
+  for (const auto& q : stop) EXPECT_GE(q.speed, 0.0);
+  EXPECT_LT(stop.back().s, 100 + 10 * 3.0) << "slower than at its pace";
+  EXPECT_LE(stop.back().d, 8.0) << "on the road (8 m each side)";
+
+  car.state << track.length() - 20, 0, 50, 0, 0;
+  const auto round = predict_along_track(car, track);
+  EXPECT_NEAR(round.back().s, 130, 1e-6);
 }
