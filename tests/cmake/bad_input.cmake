@@ -55,6 +55,8 @@ bad_config(tracker_latency_too_long "node 'path_tracker' \\(control.path_tracker
 # track files above are refused there too: "error:", before any run).
 if(BRICKYARD_SIM)
   bad_config(validate_missing_track "node 'map' \\(map.track_file\\): .*tracks/Nowhere.csv" validate ${PROJECT_SOURCE_DIR}/configs/race.json --arg track=tracks/Nowhere.csv)
+  # A rival's driver at no pace (issue 46).
+  bad_config(rival_speed_scale_zero "sim_truth_lap.json#/nodes/driver/params/speed_scale: .*found 0" validate ${PROJECT_SOURCE_DIR}/configs/sim_truth_lap.json --set driver.speed_scale=0)
 endif()
 # One pass: a structural error elsewhere in the graph does not hide a plugin's own check.
 bad_config(validate_checks_with_structure "map/params/bogus: unknown parameter \"bogus\".*node 'check' \\(testing.expect\\): parameter 'expect' /1/field: poses\\[\\*\\].q: no member 'q'" validate ${BAD}/expect_unknown_field.json --set map.bogus=1)

@@ -17,11 +17,27 @@ motion::VehicleLimits profile_limits(const DriverProfile& p, const vehicle::Vehi
 }
 
 DriverLine driver_line(const CenterLine& xy, const Track* track, const DriverProfile& p, const motion::VehicleLimits& limits) {
-  const CenterLine line = track ? motion::keep_inside(xy, *track, p.edge_margin) : xy;
+  const CenterLine moved = p.lateral_offset != 0 ? moved_across(xy, p.lateral_offset) : xy;
+  const CenterLine line = track ? motion::keep_inside(moved, *track, p.edge_margin) : moved;
   DriverLine d;
   d.line = motion::make_racing_line(line, limits, p.curvature_smooth_m);
+  if (p.speed_scale != 1)
+    for (double& v : d.line.speed) v *= p.speed_scale;
   d.planned_lap_s = planned_lap_s(d.line);
   return d;
+}
+
+CenterLine moved_across(const CenterLine& xy, double offset) {
+  CenterLine out = xy;
+  const std::size_t n = xy.x.size();
+  for (std::size_t i = 0; i < n && n >= 3; ++i) {
+    const std::size_t a = (i + n - 1) % n, b = (i + 1) % n;
+    const double tx = xy.x[b] - xy.x[a], ty = xy.y[b] - xy.y[a], len = std::hypot(tx, ty);
+    if (len <= 0) continue;
+    out.x[i] = xy.x[i] - offset * ty / len;  // the left normal of (tx, ty) is (-ty, tx)
+    out.y[i] = xy.y[i] + offset * tx / len;
+  }
+  return out;
 }
 
 double planned_lap_s(const motion::RacingLine& r) {

@@ -24,6 +24,10 @@ struct DriverProfile {
   double grip_use = 0.93;        // with it: the share of its lateral grip the profile plans with
   double curvature_smooth_m = 30;
   double edge_margin = 2.5;  // m: closest the line's points may come to a track edge
+  // A rival's driver (issue 46): its line moved across by this (m, left positive; then kept inside
+  // the track), and the profile's speeds times speed_scale (a car at 80 % of the line's pace).
+  double lateral_offset = 0;
+  double speed_scale = 1;
 };
 
 // The limits the speed profile plans with.
@@ -33,9 +37,13 @@ struct DriverLine {
   motion::RacingLine line;
   double planned_lap_s = 0;
 };
-// The racing line through `xy` (kept p.edge_margin inside `track` unless it is null) with its
-// speed profile under `limits`, and the lap it plans.
+// The racing line through `xy` (moved across by p.lateral_offset, kept p.edge_margin inside
+// `track` unless it is null) with its speed profile under `limits` times p.speed_scale, and the
+// lap it plans.
 DriverLine driver_line(const CenterLine& xy, const Track* track, const DriverProfile& p, const motion::VehicleLimits& limits);
+
+// A closed line moved `offset` m across it (left positive), each point along its own normal.
+CenterLine moved_across(const CenterLine& xy, double offset);
 
 // The time to drive a closed line's profile, point to point in straight steps.
 double planned_lap_s(const motion::RacingLine& r);

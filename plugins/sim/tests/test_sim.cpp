@@ -1139,6 +1139,33 @@ TEST(DriverLine, KeptInsideTheTrackWhenThereIsOne) {
   for (std::size_t i = 0; i < kept.line.x.size(); ++i) EXPECT_LE(t.project(kept.line.x[i], kept.line.y[i]).d, 5.0 + 0.05) << i;
 }
 
+// A rival's driver (issue 46): its line moved 3 m left of the file's, its speeds 80 % of the
+// profile's, its lap planned 1 / 0.8 as long.
+TEST(DriverLine, ARivalsLineMovedAcrossAndItsPaceScaled) {
+  WorldSpec w;
+  w.line = oval();
+  const Track t(w);
+  CenterLine xy;
+  for (double s = 0; s < t.length() - 2.5; s += 5) {
+    const Eigen::Vector2d p = t.position(t.at(s, 0.0));
+    xy.x.push_back(p.x());
+    xy.y.push_back(p.y());
+  }
+  DriverProfile p;
+  const auto limits = profile_limits(p, av21_vehicle());
+  const DriverLine own = driver_line(xy, nullptr, p, limits);
+  p.lateral_offset = 3.0;
+  p.speed_scale = 0.8;
+  const DriverLine rival = driver_line(xy, nullptr, p, limits);
+  for (std::size_t i = 0; i < rival.line.x.size(); ++i) EXPECT_NEAR(t.project(rival.line.x[i], rival.line.y[i]).d, 3.0, 0.05) << i;
+  double worst = 0;
+  const DriverLine moved = driver_line(moved_across(xy, 3.0), nullptr, DriverProfile{}, limits);
+  for (std::size_t i = 0; i < rival.line.speed.size(); ++i) worst = std::max(worst, std::abs(rival.line.speed[i] - 0.8 * moved.line.speed[i]));
+  EXPECT_LT(worst, 1e-9);
+  EXPECT_NEAR(rival.planned_lap_s, moved.planned_lap_s / 0.8, 1e-6);
+  EXPECT_GT(rival.planned_lap_s, own.planned_lap_s);
+}
+
 TEST(WorldBuilder, WallsOnTheirSides) {
   const CenterLine line = oval();  // counter-clockwise: its outside is on the right
   WallSettings s;

@@ -42,6 +42,8 @@ ParamBinding<Settings> bindings() {
       .doc("the profile reads the line's curvature averaged over this (30: as the planners; less for chicanes)");
   b.bind("edge_margin", &Settings::profile, &P::edge_margin).in_unit("m").range(0, 100)
       .doc("closest the line's points may come to a track edge (needs the world input)");
+  b.bind("speed_scale", &Settings::profile, &P::speed_scale).range(0.05, 1.5).doc("the profile's speeds times this (a rival's pace)");
+  b.bind("lateral_offset", &Settings::profile, &P::lateral_offset).in_unit("m").range(-30, 30).doc("the line moved across, left positive");
   plugins::bind_tracker(b, &Settings::tracker);
   plugins::bind_vehicle(b, &Settings::vehicle);
   return b;
