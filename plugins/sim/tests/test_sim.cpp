@@ -1,5 +1,6 @@
 // The simulator's algorithms, called directly (no framework): track files, banking, the vehicle
 // model against the analytical bicycle model, LiDAR ray casting, fault windows, the referee.
+#include "sim/common/car_contacts.hpp"
 #include "sim/common/car_on_track.hpp"
 #include "sim/common/command_watchdog.hpp"
 #include "sim/common/step_span.hpp"
@@ -1164,6 +1165,22 @@ TEST(DriverLine, ARivalsLineMovedAcrossAndItsPaceScaled) {
   EXPECT_LT(worst, 1e-9);
   EXPECT_NEAR(rival.planned_lap_s, moved.planned_lap_s / 0.8, 1e-6);
   EXPECT_GT(rival.planned_lap_s, own.planned_lap_s);
+}
+
+// Two cars' plan-view rectangles (4.9 m long from 1.7 m behind the rear axle, 1.9 m wide): nose to
+// tail 1 m apart, side by side 1.5 m apart, touching, and at an angle (a corner the nearest).
+TEST(CarContacts, TouchAndGapOfTwoCars) {
+  const Footprint fp{3.2, 1.7, 0.95};
+  const CarBox ours{0, 0, 0, fp};
+  EXPECT_NEAR(car_gap(ours, {3.2 + 1.0 + 1.7, 0, 0, fp}), 1.0, 1e-12) << "nose to tail";
+  EXPECT_NEAR(car_gap(ours, {0.5, 1.9 + 1.5, 0, fp}), 1.5, 1e-12) << "side by side";
+  EXPECT_TRUE(cars_touch(ours, {4.8, 0.3, 0.1, fp}));
+  EXPECT_EQ(car_gap(ours, {4.8, 0.3, 0.1, fp}), 0.0);
+  EXPECT_FALSE(cars_touch(ours, {3.2 + 1.7 + 0.01, 0, 0, fp})) << "1 cm apart";
+  // Turned 90 degrees ahead: its nearest point is its side's, 0.95 m from its centre line.
+  const CarBox across{3.2 + 2.0 + 0.95, -0.75, M_PI / 2, fp};
+  EXPECT_NEAR(car_gap(ours, across), 2.0, 1e-12);
+  EXPECT_EQ(car_gap(ours, across), car_gap(across, ours));
 }
 
 TEST(WorldBuilder, WallsOnTheirSides) {
