@@ -52,4 +52,18 @@ double car_gap(const CarBox& a, const CarBox& b) {
   return best;
 }
 
+std::vector<int> CarContactBook::update(const CarBox& ours, const std::vector<std::optional<CarBox>>& others) {
+  std::vector<int> began;
+  touching_.resize(others.size(), false);
+  for (std::size_t i = 0; i < others.size(); ++i) {
+    if (!others[i]) continue;
+    const double gap = car_gap(ours, *others[i]);
+    min_gap_ = std::min(min_gap_, gap);
+    const bool touch = gap == 0.0;
+    if (touch && !touching_[i]) began.push_back(static_cast<int>(i)), ++contacts_;
+    touching_[i] = touch;
+  }
+  return began;
+}
+
 }  // namespace brickyard::sim

@@ -7,6 +7,9 @@
 #include <Eigen/Core>
 
 #include <array>
+#include <limits>
+#include <optional>
+#include <vector>
 
 namespace brickyard::sim {
 
@@ -23,5 +26,21 @@ bool cars_touch(const CarBox& a, const CarBox& b);
 
 // The least distance between the two rectangles, m; 0 when they touch.
 double car_gap(const CarBox& a, const CarBox& b);
+
+// Our car against the others, sample by sample: a contact counted when a car's rectangle first
+// touches ours (not again while they stay touching), the least gap to any of them.
+class CarContactBook {
+ public:
+  // Ours now and each other car's latest pose (none: not seen yet): the others whose contact with
+  // ours begins now.
+  std::vector<int> update(const CarBox& ours, const std::vector<std::optional<CarBox>>& others);
+  int contacts() const { return contacts_; }
+  double min_gap() const { return min_gap_; }  // m; +inf: no other car seen
+
+ private:
+  std::vector<bool> touching_;
+  int contacts_ = 0;
+  double min_gap_ = std::numeric_limits<double>::infinity();
+};
 
 }  // namespace brickyard::sim

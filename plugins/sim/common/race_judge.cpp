@@ -19,10 +19,11 @@ RefereeNotice notice(Kind kind, std::string text, std::string field = {}) { retu
 
 }  // namespace
 
-RaceJudge::RaceJudge(const Track& track, Footprint fp, RaceRules rules) : ref_(track, fp), rules_(rules) {}
+RaceJudge::RaceJudge(const Track& track, Footprint fp, RaceRules rules) : ref_(track, fp), rules_(rules), fp_(fp) {}
 
 std::vector<RefereeNotice> RaceJudge::update(const TruthSample& s) {
   std::vector<RefereeNotice> out;
+  last_ = s;
   const Referee::Events ev = ref_.update(s);
   if (++samples_ % 100 == 0 || ev.lap_completed) progress(s, out);  // the progress line: a few times a second of sim time
   if (ev.lap_completed) lap_completed(out);
@@ -78,6 +79,17 @@ void RaceJudge::check_failures(const TruthSample& s, const Referee::Events& ev, 
     if (rules_.crash_ends_run) fail("crash: " + line, out);
     else out.push_back(notice(Kind::warn, line));
   }
+}
+
+std::vector<RefereeNotice> RaceJudge::other_cars(const std::vector<std::optional<CarBox>>& others) {
+  std::vector<RefereeNotice> out;
+  if (samples_ == 0) return out;
+  for (int k : cars_.update({last_.x, last_.y, last_.yaw, fp_}, others)) {
+    const std::string line = printed("contact with car %d at s = %.1f m, t = %.3f s, %.1f m/s", k, ref_.s(), last_.t, last_.speed);
+    if (rules_.crash_ends_run && !failed_) fail("crash: " + line, out);
+    else out.push_back(notice(Kind::warn, line));
+  }
+  return out;
 }
 
 void RaceJudge::fail(std::string why, std::vector<RefereeNotice>& out) {

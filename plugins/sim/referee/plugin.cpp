@@ -3,11 +3,15 @@
 #include <brickyard/msgs/LocalizationEstimate.h>
 #include <brickyard/plugin.hpp>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <optional>
+#include <vector>
 
 #include "vehicle_param.hpp"
 #include "sim/common/race_judge.hpp"
+#include "sim/referee/referee_report.hpp"
 #include "sim/world_msg.hpp"
 
 namespace {
@@ -45,6 +49,7 @@ struct Ports {
   Input<msgs::TrackWorld> world;
   Input<msgs::VehicleState> truth;
   Input<msgs::LocalizationEstimate> estimate;
+  std::array<Input<msgs::VehicleState>, 4> others;
 };
 
 PortBinding<Ports> ports() {
@@ -52,43 +57,15 @@ PortBinding<Ports> ports() {
   b.input("world", &Ports::world).doc("the world").depth(1);
   b.input("truth", &Ports::truth).doc("ground truth").depth(1024).steps();
   b.input("estimate", &Ports::estimate).doc("a localization estimate to score (optional)").optional().depth(1024);
+  b.inputs("other", &Ports::others).doc("another car's truth (other0 to other3): contacts and gaps, each the same model").required_first(0).depth(1);
   return b;
-}
-
-// What the judge says, through the run's context and in its order.
-void say(Context& ctx, const std::vector<RefereeNotice>& notices) {
-  using K = RefereeNotice::Kind;
-  for (const RefereeNotice& n : notices) {
-    switch (n.kind) {
-      case K::status: ctx.status(n.field, n.text); break;
-      case K::info: ctx.log(LogLevel::info, n.text); break;
-      case K::warn: ctx.log(LogLevel::warn, n.text); break;
-      case K::finish: ctx.finish(n.text); break;
-      case K::fail: ctx.fail(n.text); break;
-    }
-  }
-}
-
-void report_metrics(Context& ctx, const Referee& r) {
-  ctx.metric("laps_completed", static_cast<double>(r.laps_completed()));
-  ctx.metric("lap_times_s", r.lap_times());
-  ctx.metric("max_speed_mps", r.max_speed());
-  ctx.metric("wall_contacts", static_cast<double>(r.wall_contacts()));
-  ctx.metric("track_violations", static_cast<double>(r.track_violations()));
-  ctx.metric("min_wall_clearance_m", r.min_wall_clearance());
-  ctx.metric("min_wall_clearance_s_m", r.min_wall_clearance_s());
-  ctx.metric("obstacles_hit", static_cast<double>(r.obstacles_hit()));
-  ctx.metric("obstacle_min_clearance_m", r.obstacle_min_clearance());
-  ctx.metric("localization_rmse_m", r.localization_rmse());
-  ctx.metric("localization_max_error_m", r.localization_max_error());
-  ctx.metric("localization_samples", static_cast<double>(r.localization_samples()));
 }
 
 class RefereeNode : public Plugin {
  public:
   static Manifest manifest() {
     return Manifest("sim.referee", "1.0.0")
-        .describe("Laps, lap times, speed, wall contacts, track limits, clearances and localization error")
+        .describe("Laps, lap times, speed, wall contacts, track limits, clearances, localization error, contacts with other cars")
         .with_ports(ports())
         .parameters(bindings())
         .check(&plugins::check_vehicle_file<&bindings, &Settings::vehicle>);
@@ -113,6 +90,9 @@ class RefereeNode : public Plugin {
     }
     for (const auto& s : io_.truth.take())
       say(ctx, judge_->update({static_cast<double>(stamp(*s)) * 1e-9, s->x(), s->y(), s->yaw(), std::hypot(s->vx(), s->vy())}));
+    for (std::size_t i = 0; i < others_.size(); ++i)
+      if (auto o = newest(io_.others[i])) others_[i] = CarBox{o->x(), o->y(), o->yaw(), fp_};
+    if (rivals()) say(ctx, judge_->other_cars(others_));
     score_estimates();
   }
 
@@ -123,10 +103,13 @@ class RefereeNode : public Plugin {
     }
     score_estimates();
     say(ctx, judge_->run_ended());
-    report_metrics(ctx, judge_->referee());
+    report_metrics(ctx, *judge_, rivals());
   }
 
  private:
+  bool rivals() const {
+    return std::any_of(io_.others.begin(), io_.others.end(), [](const auto& in) { return in.connected(); });
+  }
   void score_estimates() {
     for (const auto& e : io_.estimate.take())
       judge_->referee().localization(static_cast<double>(e->header().stamp_ns()) * 1e-9, e->x(), e->y());
@@ -136,6 +119,7 @@ class RefereeNode : public Plugin {
   Footprint fp_;
   std::unique_ptr<Track> track_;
   std::unique_ptr<RaceJudge> judge_;
+  std::vector<std::optional<CarBox>> others_ = std::vector<std::optional<CarBox>>(4);
   Ports io_;
 };
 

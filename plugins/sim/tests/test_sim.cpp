@@ -1183,6 +1183,21 @@ TEST(CarContacts, TouchAndGapOfTwoCars) {
   EXPECT_EQ(car_gap(ours, across), car_gap(across, ours));
 }
 
+// A contact counted once while two cars touch, again when they touch anew; the least gap kept.
+TEST(CarContacts, AContactIsCountedOnceWhileTheCarsTouch) {
+  const Footprint fp{3.2, 1.7, 0.95};
+  CarContactBook book;
+  const CarBox ours{0, 0, 0, fp};
+  EXPECT_TRUE(book.update(ours, {std::nullopt, CarBox{20, 0, 0, fp}}).empty());
+  EXPECT_NEAR(book.min_gap(), 20 - 3.2 - 1.7, 1e-12);
+  EXPECT_EQ(book.update(ours, {std::nullopt, CarBox{4.5, 0, 0, fp}}), std::vector<int>{1});
+  EXPECT_TRUE(book.update(ours, {std::nullopt, CarBox{4.6, 0, 0, fp}}).empty()) << "still touching";
+  EXPECT_TRUE(book.update(ours, {std::nullopt, CarBox{6, 0, 0, fp}}).empty());
+  EXPECT_EQ(book.update(ours, {CarBox{0, 1.5, 0, fp}, CarBox{6, 0, 0, fp}}), std::vector<int>{0});
+  EXPECT_EQ(book.contacts(), 2);
+  EXPECT_EQ(book.min_gap(), 0.0);
+}
+
 TEST(WorldBuilder, WallsOnTheirSides) {
   const CenterLine line = oval();  // counter-clockwise: its outside is on the right
   WallSettings s;
