@@ -24,6 +24,10 @@ struct Ros2Pose {
   Quaternion orientation;
 };
 
+// Where a planar pose's (x, y, yaw) stand among the axes of ROS 2's pose covariance (x, y, z, roll,
+// pitch, yaw; 6 x 6 row-major): ours and theirs, both ways.
+inline constexpr int kPlanarAxes[3] = {0, 1, 5};
+
 struct Ros2Odometry {
   std::int64_t stamp_ns = 0;
   std::string frame_id, child_frame_id;

@@ -74,10 +74,9 @@ void to_estimate(const Ros2Odometry& o, std::uint32_t seq, LocalizationEstimate&
   out.header().frame_id(o.frame_id);
   out.x(o.pose.x), out.y(o.pose.y), out.yaw(yaw_of(o.pose.orientation));
   out.speed(o.linear[0]), out.yaw_rate(o.angular[2]);
-  const int at[3] = {0, 1, 5};
   std::array<double, 9> c{};
   for (int r = 0; r < 3; ++r)
-    for (int k = 0; k < 3; ++k) c[r * 3 + k] = o.pose_covariance[at[r] * 6 + at[k]];
+    for (int k = 0; k < 3; ++k) c[r * 3 + k] = o.pose_covariance[kPlanarAxes[r] * 6 + kPlanarAxes[k]];
   out.covariance(c);
   out.update_case(0);
   out.status(0);

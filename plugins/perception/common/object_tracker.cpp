@@ -3,7 +3,6 @@
 #include <Eigen/Dense>
 
 #include <algorithm>
-#include <bitset>
 #include <cmath>
 #include <tuple>
 
@@ -57,8 +56,8 @@ void steady_model(double dt, double along, double across, Track::Mat& F, Track::
   Q(4, 4) = 1e-4;  // a spread on the held acceleration keeps the covariance positive
 }
 
-// The maneuvering model over dt: constant acceleration along the track (white jerk), constant
-// velocity across it (white acceleration).
+}  // namespace
+
 void maneuver_model(double dt, double jerk, double across, Track::Mat& F, Track::Mat& Q) {
   F = Track::Mat::Identity();
   F(0, 2) = F(1, 3) = F(2, 4) = dt;
@@ -72,34 +71,18 @@ void maneuver_model(double dt, double jerk, double across, Track::Mat& F, Track:
   Q(1, 1) = a * t4 / 4, Q(1, 3) = Q(3, 1) = a * t3 / 2, Q(3, 3) = a * t2;
 }
 
-}  // namespace
-
 void ObjectTracker::predict(double dt) {
   Track::Mat F[2], Q[2];
   steady_model(dt, p_.accel_sigma, p_.lateral_accel_sigma, F[0], Q[0]);
   maneuver_model(dt, p_.jerk_sigma, p_.maneuver_lateral_sigma, F[1], Q[1]);
   Eigen::Matrix2d P;  // P(i, j): from model i to model j in a frame
   P << 1 - p_.switch_to_maneuver, p_.switch_to_maneuver, p_.switch_to_steady, 1 - p_.switch_to_steady;
-  const double L = track_->length();
   for (Track& tr : tracks_) {
     // IMM's mixing: each model starts from the models' estimates weighed by the chance it came from each.
     const Eigen::Vector2d c = P.transpose() * tr.mode;  // each model's prior probability
     Track::Vec x0[2];
     Track::Mat P0[2];
-    for (int j = 0; j < 2; ++j) {
-      x0[j].setZero();
-      for (int i = 0; i < 2; ++i) {
-        Track::Vec xi = tr.model_state[i];
-        xi[0] = tr.model_state[j][0] + std::remainder(xi[0] - tr.model_state[j][0], L);  // the short way round
-        x0[j] += P(i, j) * tr.mode[i] / c[j] * xi;
-      }
-      P0[j].setZero();
-      for (int i = 0; i < 2; ++i) {
-        Track::Vec e = tr.model_state[i] - x0[j];
-        e[0] = std::remainder(e[0], L);
-        P0[j] += P(i, j) * tr.mode[i] / c[j] * (tr.model_cov[i] + e * e.transpose());
-      }
-    }
+    for (int j = 0; j < 2; ++j) weighed(tr, Eigen::Vector2d(P(0, j) * tr.mode[0], P(1, j) * tr.mode[1]) / c[j], x0[j], P0[j]);
     for (int j = 0; j < 2; ++j) {
       tr.model_state[j] = F[j] * x0[j];
       tr.model_state[j][0] = track_->wrap_s(tr.model_state[j][0]);
@@ -110,27 +93,30 @@ void ObjectTracker::predict(double dt) {
   }
 }
 
-void ObjectTracker::mix(Track& tr) const {
+void ObjectTracker::weighed(const Track& tr, const Eigen::Vector2d& w, Track::Vec& x, Track::Mat& P) const {
   const double L = track_->length();
-  tr.state.setZero();
+  x.setZero();
   for (int i = 0; i < 2; ++i) {
     Track::Vec xi = tr.model_state[i];
     xi[0] = tr.model_state[0][0] + std::remainder(xi[0] - tr.model_state[0][0], L);
-    tr.state += tr.mode[i] * xi;
+    x += w[i] * xi;
   }
-  tr.cov.setZero();
+  P.setZero();
   for (int i = 0; i < 2; ++i) {
-    Track::Vec e = tr.model_state[i] - tr.state;
+    Track::Vec e = tr.model_state[i] - x;
     e[0] = std::remainder(e[0], L);
-    tr.cov += tr.mode[i] * (tr.model_cov[i] + e * e.transpose());
+    P += w[i] * (tr.model_cov[i] + e * e.transpose());
   }
+}
+
+void ObjectTracker::mix(Track& tr) const {
+  weighed(tr, tr.mode, tr.state, tr.cov);
   tr.state[0] = track_->wrap_s(tr.state[0]);
 }
 
-Eigen::Vector2d ObjectTracker::innovation(const Eigen::Vector2d& z, const Track& tr) const {
-  Eigen::Vector2d v = z - tr.state.head<2>();
-  const double L = track_->length();
-  v[0] -= L * std::round(v[0] / L);  // across the start line: the short way round
+Eigen::Vector2d ObjectTracker::innovation(const Eigen::Vector2d& z, const Track::Vec& x) const {
+  Eigen::Vector2d v = z - x.head<2>();
+  v[0] = std::remainder(v[0], track_->length());
   return v;
 }
 
@@ -141,7 +127,7 @@ std::vector<int> ObjectTracker::associate(const std::vector<Eigen::Vector2d>& z,
   std::vector<std::tuple<double, int, int>> pairs;
   for (std::size_t k = 0; k < z.size(); ++k)
     for (std::size_t j = 0; j < tracks_.size(); ++j) {
-      const Eigen::Vector2d v = innovation(z[k], tracks_[j]);
+      const Eigen::Vector2d v = innovation(z[k], tracks_[j].state);
       const Eigen::Matrix2d S = tracks_[j].cov.topLeftCorner<2, 2>() + Eigen::Matrix2d::Identity() * r[k] * r[k];
       const double d2 = v.dot(S.ldlt().solve(v));
       if (d2 <= p_.gate) pairs.emplace_back(d2, static_cast<int>(k), static_cast<int>(j));
@@ -162,8 +148,7 @@ void ObjectTracker::correct(Track& tr, const Eigen::Vector2d& z, double r) {
   for (int j = 0; j < 2; ++j) {
     Track::Mat& C = tr.model_cov[j];
     const Eigen::Matrix2d S = H * C * H.transpose() + R;
-    Eigen::Vector2d v = z - tr.model_state[j].head<2>();
-    v[0] = std::remainder(v[0], track_->length());  // across the start line: the short way round
+    const Eigen::Vector2d v = innovation(z, tr.model_state[j]);
     const Eigen::Matrix<double, 5, 2> K = C * H.transpose() * S.inverse();
     tr.model_state[j] += K * v;
     tr.model_state[j][0] = track_->wrap_s(tr.model_state[j][0]);
@@ -180,14 +165,13 @@ void ObjectTracker::correct(Track& tr, const Eigen::Vector2d& z, double r) {
 }
 
 void ObjectTracker::age_and_prune(const std::vector<bool>& hit) {
-  const std::uint32_t window = (1u << p_.confirm_window) - 1;
   for (std::size_t j = 0; j < tracks_.size(); ++j) {
     Track& tr = tracks_[j];
     ++tr.age;
-    tr.recent = ((tr.recent << 1) | (hit[j] ? 1u : 0u)) & window;
     if (hit[j]) ++tr.hits, tr.misses = 0;
     else ++tr.misses;
-    if (!tr.confirmed && static_cast<int>(std::bitset<32>(tr.recent).count()) >= p_.confirm_hits) tr.confirmed = true;
+    // Frames 0 to age seen: within its first confirm_window while age < confirm_window.
+    if (!tr.confirmed && tr.age < p_.confirm_window && tr.hits >= p_.confirm_hits) tr.confirmed = true;
   }
   // A tentative track that can no longer reach confirm_hits within its first confirm_window
   // frames dies; a confirmed one coasts max_misses frames.
@@ -211,7 +195,6 @@ void ObjectTracker::birth(const Eigen::Vector2d& z, double r, const Detection& d
   for (int j = 0; j < 2; ++j) tr.model_state[j] = tr.state, tr.model_cov[j] = tr.cov;
   tr.size_x = d.size_x, tr.size_y = d.size_y;
   tr.hits = 1;
-  tr.recent = 1;
   tr.confirmed = p_.confirm_hits <= 1;
   tracks_.push_back(tr);
   ++births_;

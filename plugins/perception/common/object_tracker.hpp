@@ -70,11 +70,15 @@ struct Track {
   Eigen::Matrix2d xy_cov = Eigen::Matrix2d::Identity();
   double size_x = 0, size_y = 0;
   int hits = 0, misses = 0, age = 0;  // age: frames since its birth
-  std::uint32_t recent = 0;           // a bit per frame, newest lowest: was it hit
   bool confirmed = false;
   double speed() const { return velocity.norm(); }
   double heading() const;  // of its velocity (rad); 0 when it stands still
 };
+
+// The maneuvering model over dt, the tracker's and the prediction's: constant acceleration along
+// the track whose jerk is white (`jerk`, m/s^3), constant velocity across it whose acceleration is
+// white (`across`, m/s^2).
+void maneuver_model(double dt, double jerk, double across, Track::Mat& F, Track::Mat& Q);
 
 class ObjectTracker {
  public:
@@ -90,11 +94,15 @@ class ObjectTracker {
   void predict(double dt);
   // Each detection's track (-1: none), the cheapest gated pairs first.
   std::vector<int> associate(const std::vector<Eigen::Vector2d>& z, const std::vector<double>& r) const;
-  Eigen::Vector2d innovation(const Eigen::Vector2d& z, const Track& tr) const;  // along the track wrapped
+  // A detection less an estimate's position, along the track the short way round the start line.
+  Eigen::Vector2d innovation(const Eigen::Vector2d& z, const Track::Vec& x) const;
   void correct(Track& track, const Eigen::Vector2d& z, double r);
   void age_and_prune(const std::vector<bool>& hit);
   void birth(const Eigen::Vector2d& z, double r, const Detection& d);
   void to_map(Track& tr) const;
+  // The track's models weighed by `w` as one estimate, and its spread (the models' own and their
+  // differences); s the short way round.
+  void weighed(const Track& tr, const Eigen::Vector2d& w, Track::Vec& x, Track::Mat& P) const;
   void mix(Track& tr) const;  // the track's state and spread from its models
 
   const track::Track* track_;

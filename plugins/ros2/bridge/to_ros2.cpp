@@ -29,9 +29,8 @@ cdr::Ros2Odometry odometry(const msgs::LocalizationEstimate& e, const Frames& f)
   o.child_frame_id = f.base;
   o.pose = planar_pose(e.x(), e.y(), e.yaw());
   // Ours is over (x, y, yaw): ROS 2's over (x, y, z, roll, pitch, yaw), row-major.
-  const int at[3] = {0, 1, 5};
   for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 3; ++c) o.pose_covariance[at[r] * 6 + at[c]] = e.covariance()[r * 3 + c];
+    for (int c = 0; c < 3; ++c) o.pose_covariance[cdr::kPlanarAxes[r] * 6 + cdr::kPlanarAxes[c]] = e.covariance()[r * 3 + c];
   for (int k : {2, 3, 4}) o.pose_covariance[k * 6 + k] = kUnknownVariance;
   o.linear = {e.speed(), 0, 0};
   o.angular = {0, 0, e.yaw_rate()};

@@ -30,7 +30,8 @@ DriverLine driver_line(const CenterLine& xy, const Track* track, const DriverPro
 CenterLine moved_across(const CenterLine& xy, double offset) {
   CenterLine out = xy;
   const std::size_t n = xy.x.size();
-  for (std::size_t i = 0; i < n && n >= 3; ++i) {
+  if (n < 3) return out;  // no normal to move along
+  for (std::size_t i = 0; i < n; ++i) {
     const std::size_t a = (i + n - 1) % n, b = (i + 1) % n;
     const double tx = xy.x[b] - xy.x[a], ty = xy.y[b] - xy.y[a], len = std::hypot(tx, ty);
     if (len <= 0) continue;

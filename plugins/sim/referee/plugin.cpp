@@ -45,11 +45,13 @@ ParamBinding<Settings> bindings() {
   return b;
 }
 
+constexpr std::size_t kOtherCars = 4;  // other0 to other3
+
 struct Ports {
   Input<msgs::TrackWorld> world;
   Input<msgs::VehicleState> truth;
   Input<msgs::LocalizationEstimate> estimate;
-  std::array<Input<msgs::VehicleState>, 4> others;
+  std::array<Input<msgs::VehicleState>, kOtherCars> others;
 };
 
 PortBinding<Ports> ports() {
@@ -119,7 +121,7 @@ class RefereeNode : public Plugin {
   Footprint fp_;
   std::unique_ptr<Track> track_;
   std::unique_ptr<RaceJudge> judge_;
-  std::vector<std::optional<CarBox>> others_ = std::vector<std::optional<CarBox>>(4);
+  std::vector<std::optional<CarBox>> others_ = std::vector<std::optional<CarBox>>(kOtherCars);
   Ports io_;
 };
 
