@@ -517,6 +517,10 @@ RunSummary Executive::summarize(std::chrono::steady_clock::time_point wall0, con
   if (!sim()) s.sim_time_s = s.wall_time_s;
   s.json = summary_json(s, *graph_.decl, opt_, sim(), recording, nodes_, now_ns());
   if (!live.is_null()) s.json["live"] = live;
+  // Per wire from another process: how many writers fed it (a second one is a stray or forged
+  // writer under the expected name, or the writer's process restarted).
+  for (const auto& r : remote_inputs_)
+    s.json["remote_inputs"][r->input] = {{"writer", r->writer}, {"writers_heard", r->reader->writers_heard()}};
   {
     std::lock_guard<std::mutex> l(stop_m_);
     if (!lost_peers_.empty()) s.json["lost_peers"] = lost_peers_;

@@ -77,6 +77,11 @@ struct ReaderListener : DataReaderListener {
   WriterCheck check;
   std::mutex others_m;  // the listener may be called from more than one transport's thread
   std::set<eprosima::fastrtps::rtps::GUID_t> others;  // writers told of
+  std::set<eprosima::fastrtps::rtps::GUID_t> heard;   // writers delivered, under others_m
+  void note_heard(const InstanceHandle_t& h) {
+    std::lock_guard<std::mutex> l(others_m);
+    heard.insert(eprosima::fastrtps::rtps::iHandle2GUID(h));
+  }
   // Whether a sample of this writer is delivered: one of the graph's, or accepted.
   bool from_ours(const InstanceHandle_t& h) {
     if (check.expected.empty()) return true;
@@ -118,6 +123,7 @@ struct ReaderListener : DataReaderListener {
         type->deleteData(data);
         continue;
       }
+      note_heard(info.publication_handle);
       TypeSupport t = type;
       deliver(std::shared_ptr<const void>(data, [t](const void* p) { t->deleteData(const_cast<void*>(p)); }));
     }
@@ -150,6 +156,11 @@ void keep_all(Qos& q) {
   q.reliability().max_blocking_time = eprosima::fastrtps::Duration_t(10.0);
 }
 }  // namespace
+
+int DdsReader::writers_heard() const {
+  std::lock_guard<std::mutex> l(listener_->others_m);
+  return static_cast<int>(listener_->heard.size());
+}
 
 bool DdsWriter::write(const void* sample) { return writer_->write(const_cast<void*>(sample)); }
 
@@ -228,12 +239,14 @@ DdsTransport::~DdsTransport() {
   DomainParticipantFactory::get_instance()->delete_participant(participant_);
 }
 
+// The readers' counts stay readable for the run's summary; their DDS entities go.
 void DdsTransport::close_readers() {
   for (auto& r : readers_) {
+    if (!r->reader_) continue;
     r->reader_->set_listener(nullptr);
     subscriber_->delete_datareader(r->reader_);
+    r->reader_ = nullptr;
   }
-  readers_.clear();
 }
 
 Topic* DdsTransport::topic(const std::string& name, const std::string& type_name) {

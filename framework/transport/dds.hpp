@@ -52,6 +52,9 @@ class DdsReader {
  public:
   // Writers in other participants matched with this reader now (a split run's start-up waits for them).
   int matched() const { return matched_.load(); }
+  // Distinct writers whose samples this reader delivered over the run: 1 on a healthy wire (more
+  // after a restart, or when a second writer under the expected name fed it).
+  int writers_heard() const;
 
  private:
   friend class DdsTransport;

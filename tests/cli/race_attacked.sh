@@ -9,7 +9,7 @@
 #    is searched for in the capture (race_attacked.py): none may be found;
 # 2. a stranger: `topic echo manager.command` with no identity reads nothing;
 # 3. a forger named as the stack's process (`bag play --identity stack`, no keys) plays 6 s of
-#    manager.command: the car may receive no more commands than the stack's manager sent.
+#    manager.command: one writer only (the stack's manager) may feed the car's commands.
 # The same with "security": "off" must show the plaintext and the forged commands taken (else
 # these checks could not see them, and prove nothing). Over shared memory (the default between
 # processes on one machine) and over UDP only.
