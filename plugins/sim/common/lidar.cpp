@@ -220,7 +220,7 @@ bool LidarCaster::rows_above_escape(const Eigen::Vector3d* dw, int r, int rows, 
 }
 
 LidarCaster::Frame LidarCaster::begin_frame(const Eigen::Isometry3d& world_from_body, int seg_hint, double noise_factor,
-                                             PointBuffers& out) const {
+                                             PointBuffers& out, const std::vector<CarBody>& cars) const {
   Frame f;
   const Eigen::Isometry3d ws = world_from_body * body_from_sensor_;
   f.o = ws.translation();
@@ -236,13 +236,18 @@ LidarCaster::Frame LidarCaster::begin_frame(const Eigen::Isometry3d& world_from_
   for (std::size_t i = 0; i < pylons_.size(); ++i)
     if (std::hypot(pylons_[i].x - f.o.x(), pylons_[i].y - f.o.y()) <= spec_.max_range + pylons_[i].radius)
       f.near_pylons.push_back(static_cast<int>(i));
+  if (!cars.empty()) f.cars = FrameCars(cars, f.o, f.R, spec_.h_fov, spec_.max_range, col_c_, col_s_, row_c_, row_s_);
   return f;
 }
 
+RayHit LidarCaster::with_cars(const Frame& f, const RayHit& world, int r, int c) const {
+  const CarHit k = f.cars.first_hit(r, c, world.surface == Surface::none ? 0.0 : world.range);
+  return k.t > 0 ? RayHit{k.t, Surface::car, k.cos_incidence} : world;
+}
+
 // Ray by ray (no AVX2, or spec.simd off).
-std::size_t LidarCaster::scan_one_by_one(const Eigen::Isometry3d& world_from_body, int seg_hint, Rng& rng,
-                                         double noise_factor, PointBuffers& out) const {
-  const auto [o, R, seg, sigma, rays, near_pylons] = begin_frame(world_from_body, seg_hint, noise_factor, out);
+std::size_t LidarCaster::scan_one_by_one(const Frame& f, Rng& rng, PointBuffers& out) const {
+  const auto& [o, R, seg, sigma, rays, near_pylons, cars] = f;
   // Rows go from the lowest up. The next row's ray lies within `shift` * t of this one
   // horizontally and higher by more than the road can rise over that distance, so it passes
   // over all road this one passed over; if this one also kept more than shift * t from the walls
@@ -266,19 +271,25 @@ std::size_t LidarCaster::scan_one_by_one(const Eigen::Isometry3d& world_from_bod
       shift[r] = apart;
       rest[r] = r + 2 == rows ? apart : rest[r + 1] >= 0 ? apart + rest[r + 1] : -1;
     }
+    // A column a car may be in: every ray is also held against the cars, the rows above an
+    // escape too (the world returns nothing there, a car may).
+    const bool sees_car = cars.sees(c);
     Resume from, checkpoint;
     bool resume = false;
     for (int r = 0; r < rows; ++r) {
       RayHit h = march(o, dw[r], seg, resume ? &from : nullptr, shift[r], rest[r], shift[r] >= 0 ? &checkpoint : nullptr);
       resume = shift[r] >= 0 && checkpoint.seg >= 0;
       from = checkpoint;
-      if (h.surface == Surface::none) {
-        if (shift[r] >= 0 && checkpoint.rest_escape) break;
-        if (spec_.skip_escaped_rows && shift[r] >= 0 && checkpoint.escape_t > 0 && rows_above_escape(dw.data(), r, rows, o.z(), checkpoint, near_pylons, o))
-          break;
-        continue;
-      }
-      add_point(h, r, c, sigma, rng, st);
+      const bool rest_escape =
+          h.surface == Surface::none && shift[r] >= 0 &&
+          (checkpoint.rest_escape || (spec_.skip_escaped_rows && checkpoint.escape_t > 0 &&
+                                      rows_above_escape(dw.data(), r, rows, o.z(), checkpoint, near_pylons, o)));
+      if (sees_car) h = with_cars(f, h, r, c);
+      if (h.surface != Surface::none) add_point(h, r, c, sigma, rng, st);
+      if (!rest_escape) continue;
+      for (int q = r + 1; q < rows && sees_car; ++q)
+        if (const RayHit k = with_cars(f, RayHit{}, q, c); k.surface != Surface::none) add_point(k, q, c, sigma, rng, st);
+      break;
     }
     st.flush(out);
   }
@@ -286,12 +297,13 @@ std::size_t LidarCaster::scan_one_by_one(const Eigen::Isometry3d& world_from_bod
 }
 
 std::size_t LidarCaster::scan(const Eigen::Isometry3d& world_from_body, int seg_hint, Rng& rng, double noise_factor,
-                              PointBuffers& out) const {
+                              PointBuffers& out, const std::vector<CarBody>& cars) const {
+  const Frame f = begin_frame(world_from_body, seg_hint, noise_factor, out, cars);
 #if defined(__x86_64__)
   static const bool avx2 = __builtin_cpu_supports("avx2");
-  if (avx2 && spec_.simd) return scan_avx2(world_from_body, seg_hint, rng, noise_factor, out);
+  if (avx2 && spec_.simd) return scan_avx2(f, rng, out);
 #endif
-  return scan_one_by_one(world_from_body, seg_hint, rng, noise_factor, out);
+  return scan_one_by_one(f, rng, out);
 }
 
 }  // namespace brickyard::sim

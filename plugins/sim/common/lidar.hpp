@@ -1,7 +1,9 @@
 #pragma once
-// Ray casting LiDAR against the track world: the banked road surface, the walls and the pylons.
+// Ray casting LiDAR against the track world: the banked road surface, the walls and the pylons;
+// and other cars, when a frame is given them (lidar_cars.hpp).
 // Framework-free. Rays march segment by segment along the centre line from the sensor's segment,
 // so a ray costs a few segment steps whatever the size of the track (see docs/simulator.md).
+#include "lidar_cars.hpp"
 #include "rng.hpp"
 #include "track.hpp"
 
@@ -15,7 +17,7 @@ namespace brickyard::sim {
 // grass: the ground beyond the road's edges (level at the edge's height), which returns more of
 // a LiDAR's near-infrared light than asphalt: what shows a mapping drive where an edge without a
 // wall is (docs/mapping.md).
-enum class Surface : unsigned char { none = 0, road = 1, wall = 2, pylon = 3, grass = 4 };
+enum class Surface : unsigned char { none = 0, road = 1, wall = 2, pylon = 3, grass = 4, car = 5 };
 
 struct RayHit {
   double range = 0;  // m along the ray
@@ -41,6 +43,7 @@ struct LidarSpec {
   // per frame there only costs its start (docs/performance.md).
   int threads = 1;
   double reflectivity_road = 0.15, reflectivity_wall = 0.6, reflectivity_pylon = 0.9, reflectivity_grass = 0.45;
+  double reflectivity_car = 0.5;  // painted bodywork
 };
 
 // Row elevations: "uniform" spacing, or "horizon": rows concentrated near 0 deg as the Hydra
@@ -87,10 +90,10 @@ class LidarCaster {
   RayHit cast(const Eigen::Vector3d& o, const Eigen::Vector3d& v, int seg, const Resume* from, double shift,
               double shift_rest, Resume* checkpoint) const;
 
-  // One frame from a vehicle pose (world_from_body). Noise sigma is multiplied by noise_factor.
-  // Returns the number of rays cast.
+  // One frame from a vehicle pose (world_from_body), the other cars where they are. Noise sigma
+  // is multiplied by noise_factor. Returns the number of rays cast.
   std::size_t scan(const Eigen::Isometry3d& world_from_body, int seg_hint, Rng& rng, double noise_factor,
-                   PointBuffers& out) const;
+                   PointBuffers& out, const std::vector<CarBody>& cars = {}) const;
 
  private:
   // Whether every row above r of a column surely returns nothing, given that row r escaped (see
@@ -105,7 +108,7 @@ class LidarCaster {
   // appended to the frame a column, or a group of columns, at a time.
   struct Staging;
   // What both scans work out first for a frame: the sensor's origin and axes in the world, its
-  // segment, the noise, the ray count (the output reserved for it) and the pylons within reach.
+  // segment, the noise, the ray count (the output reserved for it), the pylons and cars within reach.
   struct Frame {
     Eigen::Vector3d o;
     Eigen::Matrix3d R;
@@ -113,8 +116,12 @@ class LidarCaster {
     double sigma = 0;
     std::size_t rays = 0;
     std::vector<int> near_pylons;
+    FrameCars cars;
   };
-  Frame begin_frame(const Eigen::Isometry3d& world_from_body, int seg_hint, double noise_factor, PointBuffers& out) const;
+  Frame begin_frame(const Eigen::Isometry3d& world_from_body, int seg_hint, double noise_factor, PointBuffers& out,
+                    const std::vector<CarBody>& cars) const;
+  // The world's hit on the ray of row r, column c, or a car's when one is nearer.
+  RayHit with_cars(const Frame& f, const RayHit& world, int r, int c) const;
   void add_point(const RayHit& h, int r, int c, double sigma, Rng& rng, Staging& st) const;
   // scan for W neighbouring columns at a time, their rays of a row marched together in SIMD lanes
   // (march_lanes: each lane does march's operations in march's order, so the same bits).
@@ -141,12 +148,9 @@ class LidarCaster {
   template <int W> struct GroupRays;
   void march_columns_avx2(const Frame& f, int first, int stride, ColumnHits& h) const;
   template <int W>
-  std::size_t scan_lanes(const Eigen::Isometry3d& world_from_body, int seg_hint, Rng& rng, double noise_factor,
-                         PointBuffers& out) const;
-  std::size_t scan_one_by_one(const Eigen::Isometry3d& world_from_body, int seg_hint, Rng& rng, double noise_factor,
-                              PointBuffers& out) const;
-  std::size_t scan_avx2(const Eigen::Isometry3d& world_from_body, int seg_hint, Rng& rng, double noise_factor,
-                        PointBuffers& out) const;
+  std::size_t scan_lanes(const Frame& f, Rng& rng, PointBuffers& out) const;
+  std::size_t scan_one_by_one(const Frame& f, Rng& rng, PointBuffers& out) const;
+  std::size_t scan_avx2(const Frame& f, Rng& rng, PointBuffers& out) const;
   // The constructor's steps, in the order it takes them: the pylons sorted by segment (returns each
   // one's segment), the segments' and the blocks' tables, the heights within reach of each block,
   // the rays' directions and the bound on the road's gradient.

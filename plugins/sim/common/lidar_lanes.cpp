@@ -548,11 +548,8 @@ template <int W>
 }
 
 template <int W>
-[[gnu::always_inline]] inline std::size_t LidarCaster::scan_lanes(const Eigen::Isometry3d& world_from_body,
-                                                                   int seg_hint, Rng& rng, double noise_factor,
-                                                                   PointBuffers& out) const {
+[[gnu::always_inline]] inline std::size_t LidarCaster::scan_lanes(const Frame& f, Rng& rng, PointBuffers& out) const {
   static_assert(W == 4, "the second thread marches with march_columns_avx2");
-  const Frame f = begin_frame(world_from_body, seg_hint, noise_factor, out);
   const int rows = static_cast<int>(row_c_.size());
   const int groups = (spec_.columns + W - 1) / W;
   // The caster's scratch: sized once, every entry read is written first this frame (a column's
@@ -573,16 +570,19 @@ template <int W>
     march_columns<W>(f, 0, 1, h);
   }
   // The points, column by column and rows lowest first (the order of the noise draws), a group's
-  // appended at once (one capacity check per buffer).
+  // appended at once (one capacity check per buffer). A column a car may be in: every row held
+  // against the cars, those above its escape (not cast: the world returns nothing there) too.
   Staging st(W * rows);
   for (int c0 = 0; c0 < spec_.columns; c0 += W) {
     const int nl = std::min(W, spec_.columns - c0);
     const std::size_t base = static_cast<std::size_t>(c0) * rows;
     for (int l = 0; l < nl; ++l) {
       const int c = c0 + l;
-      for (int r = 0; r < h.cast[c]; ++r) {
+      const bool sees_car = f.cars.sees(c);
+      for (int r = 0, last = sees_car ? rows : h.cast[c]; r < last; ++r) {
         const std::size_t k = base + static_cast<std::size_t>(r) * W + l;
-        const RayHit hit{h.range[k], static_cast<Surface>(h.surf[k]), h.cos[k]};
+        RayHit hit = r < h.cast[c] ? RayHit{h.range[k], static_cast<Surface>(h.surf[k]), h.cos[k]} : RayHit{};
+        if (sees_car) hit = with_cars(f, hit, r, c);
         if (hit.surface == Surface::none) continue;
         add_point(hit, r, c, f.sigma, rng, st);
       }
@@ -599,10 +599,8 @@ __attribute__((target("avx2"))) void LidarCaster::march_columns_avx2(const Frame
   march_columns<4>(f, first, stride, h);
 }
 
-__attribute__((target("avx2"))) std::size_t LidarCaster::scan_avx2(const Eigen::Isometry3d& world_from_body,
-                                                                    int seg_hint, Rng& rng, double noise_factor,
-                                                                    PointBuffers& out) const {
-  return scan_lanes<4>(world_from_body, seg_hint, rng, noise_factor, out);
+__attribute__((target("avx2"))) std::size_t LidarCaster::scan_avx2(const Frame& f, Rng& rng, PointBuffers& out) const {
+  return scan_lanes<4>(f, rng, out);
 }
 #endif
 

@@ -356,6 +356,7 @@ struct LidarCaster::Staging {
   const double refl = h.surface == Surface::road    ? spec_.reflectivity_road
                       : h.surface == Surface::wall  ? spec_.reflectivity_wall
                       : h.surface == Surface::grass ? spec_.reflectivity_grass
+                      : h.surface == Surface::car   ? spec_.reflectivity_car
                                                     : spec_.reflectivity_pylon;
   st.x[st.m] = static_cast<float>(range * (row_c_[r] * col_c_[c]));
   st.y[st.m] = static_cast<float>(range * (row_c_[r] * col_s_[c]));

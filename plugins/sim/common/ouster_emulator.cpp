@@ -35,6 +35,7 @@ double OusterEmulator::reflectivity(Surface s) const {
     case Surface::wall: return p_.reflectivity_wall;
     case Surface::grass: return p_.reflectivity_grass;
     case Surface::pylon: return p_.reflectivity_pylon;
+    case Surface::car:  // the emulator casts the world alone: no car comes back from it
     case Surface::none: break;
   }
   return 0;

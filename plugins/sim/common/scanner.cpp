@@ -31,7 +31,8 @@ void Scanner::start(WorldSpec world) {
   caster_ = std::make_unique<LidarCaster>(*track_, spec_);
 }
 
-Scanner::Frame Scanner::frame(double t, const Eigen::Isometry3d& world_from_body, double x, double y) {
+Scanner::Frame Scanner::frame(double t, const Eigen::Isometry3d& world_from_body, double x, double y,
+                              const std::vector<CarBody>& cars) {
   const FaultEffect e = faults_.at(t, rng_);
   if (e.drop) {
     ++lost_;
@@ -40,7 +41,7 @@ Scanner::Frame Scanner::frame(double t, const Eigen::Isometry3d& world_from_body
   if (e.freeze && frames_ > 0) return Frame::repeat;
   buf_.clear();
   hint_ = track_->project(x, y, hint_).seg;
-  rays_ += caster_->scan(world_from_body, hint_, rng_, e.noise_factor, buf_);
+  rays_ += caster_->scan(world_from_body, hint_, rng_, e.noise_factor, buf_, cars);
   points_ += buf_.x.size();
   for (const auto* v : {&buf_.x, &buf_.y, &buf_.z, &buf_.intensity}) digest_.add(v->data(), v->size() * sizeof(float));
   ++frames_;

@@ -44,9 +44,10 @@ class Scanner {
   bool started() const { return caster_ != nullptr; }
 
   enum class Frame { lost, repeat, fresh };
-  // The frame at time t, the car at world_from_body (its base_link at x, y): lost (none this
-  // time), repeat (the last fresh frame again: a frozen sensor) or fresh (its points in points()).
-  Frame frame(double t, const Eigen::Isometry3d& world_from_body, double x, double y);
+  // The frame at time t, the car at world_from_body (its base_link at x, y), the other cars where
+  // they are: lost (none this time), repeat (the last fresh frame again: a frozen sensor) or fresh
+  // (its points in points()).
+  Frame frame(double t, const Eigen::Isometry3d& world_from_body, double x, double y, const std::vector<CarBody>& cars = {});
   // A fresh frame's points, sensor frame; they may be moved out (the next scan reserves them again).
   PointBuffers& points() { return buf_; }
 
