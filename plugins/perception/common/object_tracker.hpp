@@ -22,9 +22,20 @@
 #include <Eigen/Core>
 
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 namespace brickyard::perception {
+
+// The other cars' size (the same model as ours by default: the plugin reads the vehicle file) and
+// how their parts are told (car_parts.hpp).
+struct CarShape {
+  double length = 4.9, width = 1.94;  // m
+  double min_extent = 1.2;  // m: a detection this long or wide is (part of) a car; a pylon is not
+  double fit_margin = 0.8;  // m: a car's box in our frame may exceed its size by this (turned against ours)
+  double join_gap = 2.0;    // m: the parts of one car lie this close to each other
+  double sensor_x = 1.9;    // m ahead of base_link: where the LiDARs look from (the faces seen face it)
+};
 
 struct TrackerParams {
   double accel_sigma = 1.0, lateral_accel_sigma = 0.5;  // m/s^2, white: the steady model, along and across
@@ -43,12 +54,19 @@ struct TrackerParams {
   int confirm_window = 4;
   int max_misses = 5;                // frames on end a confirmed track may go unseen (coasting)
   double max_sigma = 3.0;            // m: a track whose position spread grows past it is dropped
+  CarShape car;
+  bool whole_cars = true;            // a car's parts merged and completed to its centre (car_parts.hpp)
+  double road_margin = 0.5;          // m: a detection's centre this far inside the road's edges at
+                                     // least, or it is not followed (a wall's stripes stand at or
+                                     // beyond the edge; a car's centre is half its width inside)
 };
 
 // One detection in the vehicle frame (base_link), as the obstacle detector gives it.
 struct Detection {
   double x = 0, y = 0;            // m
   double size_x = 0, size_y = 0;  // m: its extent, kept on the track
+  std::vector<Eigen::Vector2d> outline;  // its footprint's hull (empty: its box's corners stand for it)
+  double box_yaw = std::numeric_limits<double>::quiet_NaN();  // its sides' turn, [0, pi/2) (NaN: none)
 };
 
 // The car's pose when the frame was taken: detections go to the map frame with it.
@@ -89,9 +107,15 @@ class ObjectTracker {
   const std::vector<Track>& tracks() const { return tracks_; }
   std::uint64_t births() const { return births_; }
   std::uint64_t deaths() const { return deaths_; }
+  std::uint64_t off_road() const { return off_road_; }  // detections left out: not well inside the road
 
  private:
   void predict(double dt);
+  // The angle of the course of the track nearest f to the track's direction (0: none near, or slow).
+  double course_across(const track::Frenet& f) const;
+  static constexpr double kCourseRadius = 6.0;    // m: a track this near a detection lends it its course
+  static constexpr double kCourseMinSpeed = 10.0;  // m/s: slower, its course is noise
+  static constexpr double kCourseSpread = 0.02;    // its speed across at most this share of along, 1 sigma
   // Each detection's track (-1: none), the cheapest gated pairs first.
   std::vector<int> associate(const std::vector<Eigen::Vector2d>& z, const std::vector<double>& r) const;
   // A detection less an estimate's position, along the track the short way round the start line.
@@ -112,7 +136,7 @@ class ObjectTracker {
   bool started_ = false;
   int hint_ = -1;
   std::uint32_t next_id_ = 1;
-  std::uint64_t births_ = 0, deaths_ = 0;
+  std::uint64_t births_ = 0, deaths_ = 0, off_road_ = 0;
 };
 
 }  // namespace brickyard::perception

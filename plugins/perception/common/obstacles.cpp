@@ -177,6 +177,73 @@ bool in_corridor(const Eigen::Vector3f& centroid, const std::vector<std::pair<Wa
 
 }  // namespace
 
+// Andrew's monotone chain over the points sorted by x, then y.
+std::vector<Eigen::Vector2f> footprint_hull(const Points& points, const std::vector<int>& members) {
+  std::vector<Eigen::Vector2f> p;
+  p.reserve(members.size());
+  for (int i : members) p.emplace_back(points[i].x(), points[i].y());
+  std::sort(p.begin(), p.end(), [](const Eigen::Vector2f& a, const Eigen::Vector2f& b) { return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y()); });
+  p.erase(std::unique(p.begin(), p.end()), p.end());
+  if (p.size() < 3) return p;
+  auto cross = [](const Eigen::Vector2f& o, const Eigen::Vector2f& a, const Eigen::Vector2f& b) {
+    return (a.x() - o.x()) * (b.y() - o.y()) - (a.y() - o.y()) * (b.x() - o.x());
+  };
+  std::vector<Eigen::Vector2f> hull(2 * p.size());
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < p.size(); ++i) {  // lower
+    while (k >= 2 && cross(hull[k - 2], hull[k - 1], p[i]) <= 0) --k;
+    hull[k++] = p[i];
+  }
+  for (std::size_t i = p.size() - 1, lower = k + 1; i-- > 0;) {  // upper
+    while (k >= lower && cross(hull[k - 2], hull[k - 1], p[i]) <= 0) --k;
+    hull[k++] = p[i];
+  }
+  hull.resize(k - 1);  // the first point again, last
+  return hull;
+}
+
+namespace {
+constexpr int kBoxMinPoints = 5;          // fewer: no fit
+constexpr float kBoxMinExtent = 0.5f;     // m: a smaller footprint has no sides to speak of
+constexpr float kBoxNear = 0.01f;         // m: closer to a side than this counts as on it
+
+float box_closeness(const std::vector<Eigen::Vector2f>& p, float yaw) {
+  const float c = std::cos(yaw), s = std::sin(yaw);
+  float u0 = 1e30f, u1 = -1e30f, v0 = 1e30f, v1 = -1e30f;
+  for (const auto& q : p) {
+    const float u = c * q.x() + s * q.y(), v = -s * q.x() + c * q.y();
+    u0 = std::min(u0, u), u1 = std::max(u1, u), v0 = std::min(v0, v), v1 = std::max(v1, v);
+  }
+  float score = 0;
+  for (const auto& q : p) {
+    const float u = c * q.x() + s * q.y(), v = -s * q.x() + c * q.y();
+    score += 1.0f / std::max(std::min({u - u0, u1 - u, v - v0, v1 - v}), kBoxNear);
+  }
+  return score;
+}
+}  // namespace
+
+float fitted_box_yaw(const Points& points, const std::vector<int>& members) {
+  if (static_cast<int>(members.size()) < kBoxMinPoints) return std::numeric_limits<float>::quiet_NaN();
+  std::vector<Eigen::Vector2f> p;
+  p.reserve(members.size());
+  Eigen::Vector2f lo(1e30f, 1e30f), hi(-1e30f, -1e30f);
+  for (int i : members) {
+    p.emplace_back(points[i].x(), points[i].y());
+    lo = lo.cwiseMin(p.back()), hi = hi.cwiseMax(p.back());
+  }
+  if ((hi - lo).maxCoeff() < kBoxMinExtent) return std::numeric_limits<float>::quiet_NaN();
+  const float deg = static_cast<float>(M_PI / 180);
+  float best = 0, best_score = -1;
+  for (int k = 0; k < 90; ++k)
+    if (const float sc = box_closeness(p, k * deg); sc > best_score) best_score = sc, best = k * deg;
+  const float coarse = best;
+  for (int k = -10; k <= 10; ++k)
+    if (const float sc = box_closeness(p, coarse + k * 0.1f * deg); sc > best_score) best_score = sc, best = coarse + k * 0.1f * deg;
+  const float quarter = static_cast<float>(M_PI / 2);
+  return best - quarter * std::floor(best / quarter);
+}
+
 std::vector<Obstacle> find_obstacles(const Points& points, const std::vector<std::vector<int>>& clusters,
                                      const std::vector<std::pair<WallFit, int>>& walls, const ObstacleParams& p) {
   std::vector<Obstacle> out;
@@ -200,7 +267,7 @@ std::vector<Obstacle> find_obstacles(const Points& points, const std::vector<std
     members.clear();
     for (int c : part.clusters) members.insert(members.end(), clusters[c].begin(), clusters[c].end());
     if (members.size() >= 4 && lies_flat(points, members, centroid, p)) continue;
-    out.push_back({centroid, size, part.n});
+    out.push_back({centroid, size, part.n, footprint_hull(points, members), fitted_box_yaw(points, members)});
   }
   return out;
 }

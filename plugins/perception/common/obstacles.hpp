@@ -21,6 +21,7 @@
 #include "points.hpp"
 #include "wall_fit.hpp"
 
+#include <limits>
 #include <vector>
 
 namespace brickyard::perception {
@@ -55,7 +56,24 @@ struct Obstacle {
   Eigen::Vector3f centroid = Eigen::Vector3f::Zero();
   Eigen::Vector3f size = Eigen::Vector3f::Zero();  // axis-aligned extent
   std::size_t points = 0;
+  // Its footprint: the convex hull of its points in the xy plane, counter-clockwise. A car seen at
+  // a slant is an L of two faces; its extent along any direction (the track's, where it is) is
+  // the hull's, where a box along the car's axes would be inflated by the slant (car_parts.hpp).
+  std::vector<Eigen::Vector2f> outline;
+  // The turn of the rectangle that fits its points best (rad, [0, pi/2): a rectangle's sides are
+  // the same turned a quarter): most of them close to one of its sides, the back and side of a car
+  // seen at a slant included, where the outline alone cannot tell an L from a triangle. NaN: too
+  // few points or too small to say.
+  float box_yaw = std::numeric_limits<float>::quiet_NaN();
 };
+
+// box_yaw's fit (Obstacle): over turns a degree apart then a tenth, the one whose rectangle about
+// the points has them closest to its sides (each point's distance to the nearest side, scored
+// 1 / max(distance, 1 cm), summed).
+float fitted_box_yaw(const Points& points, const std::vector<int>& members);
+
+// The convex hull (counter-clockwise, no three points in line) of the points' xy.
+std::vector<Eigen::Vector2f> footprint_hull(const Points& points, const std::vector<int>& members);
 
 // `walls`: the valid fits (others are ignored); each wall's side (-1 right, +1 left) says which
 // side of its line is outside the track.

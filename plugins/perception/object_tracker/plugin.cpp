@@ -10,6 +10,7 @@
 #include "perception/common/ego_history.hpp"
 #include "perception/common/object_tracker.hpp"
 #include "perception/object_tracker/track_message.hpp"
+#include "perception/object_tracker/tracker_settings.hpp"
 
 #include "map_msg.hpp"
 
@@ -20,32 +21,6 @@ namespace {
 
 using namespace brickyard;
 using namespace brickyard::perception;
-
-struct Settings {
-  TrackerParams tracker;
-  PredictionParams prediction;
-  bool confirmed_only = true;
-};
-
-ParamBinding<Settings> bindings() {
-  using T = TrackerParams;
-  ParamBinding<Settings> b;
-  b.bind("accel_sigma", &Settings::tracker, &T::accel_sigma).in_unit("m/s^2").range(0.01, 100).doc("white acceleration along the track");
-  b.bind("lateral_accel_sigma", &Settings::tracker, &T::lateral_accel_sigma).in_unit("m/s^2").range(0.01, 100).doc("white acceleration across it");
-  b.bind("meas_sigma", &Settings::tracker, &T::meas_sigma).in_unit("m").range(0.001, 10).doc("a detection's position, 1 sigma");
-  b.bind("meas_sigma_per_m", &Settings::tracker, &T::meas_sigma_per_m).range(0, 1).doc("m of spread added per m of range");
-  b.bind("gate", &Settings::tracker, &T::gate).range(0.1, 1000).doc("chi-square (2 dof) within which a detection may be a track's");
-  b.bind("birth_speed_sigma", &Settings::tracker, &T::birth_speed_sigma).in_unit("m/s").range(0.1, 200).doc("a new track's velocity spread");
-  b.bind("confirm_hits", &Settings::tracker, &T::confirm_hits).range(1, 30).doc("hits that confirm a track ...");
-  b.bind("confirm_window", &Settings::tracker, &T::confirm_window).range(1, 30).doc("... within its first this many frames");
-  b.bind("max_misses", &Settings::tracker, &T::max_misses).range(0, 1000).doc("frames a confirmed track may go unseen");
-  b.bind("max_sigma", &Settings::tracker, &T::max_sigma).in_unit("m").range(0.01, 1000).doc("a track more spread than this is dropped");
-  b.bind("confirmed_only", &Settings::confirmed_only).doc("publish only confirmed tracks");
-  b.bind("horizon_s", &Settings::prediction, &PredictionParams::horizon_s).in_unit("s").range(0, 30).doc("each track's path foreseen this far (0: none)");
-  b.bind("prediction_step_s", &Settings::prediction, &PredictionParams::step_s).in_unit("s").range(0.01, 5).doc("between its points");
-  b.not_above("confirm_hits", "confirm_window");
-  return b;
-}
 
 struct Ports {
   Input<msgs::TrackMap> map;
@@ -69,11 +44,15 @@ class ObjectTrackerNode : public Plugin {
     return Manifest("perception.object_tracker", "1.0.0")
         .describe("tracked objects (position, velocity, heading; births and deaths) from frames of obstacles")
         .with_ports(ports())
-        .parameters(bindings());
+        .parameters(tracker_bindings())
+        .check(&plugins::check_vehicle_file<&tracker_bindings, &TrackerSettings::vehicle>);
   }
 
   void configure(Context& ctx) override {
-    settings_ = bindings().read(ctx.params());
+    settings_ = tracker_bindings().read(ctx.params());
+    const vehicle::Vehicle car = plugins::read_vehicle(ctx, settings_.vehicle);
+    settings_.tracker.car.length = car.front + car.rear;
+    settings_.tracker.car.width = 2 * car.half_width;
     io_ = ports().connect(ctx);
   }
 
@@ -88,7 +67,11 @@ class ObjectTrackerNode : public Plugin {
         continue;
       }
       detections_.clear();
-      for (const auto& d : o->obstacles()) detections_.push_back({d.x(), d.y(), d.size_x(), d.size_y()});
+      for (const auto& d : o->obstacles()) {
+        detections_.push_back({d.x(), d.y(), d.size_x(), d.size_y(), {}, d.box_yaw()});
+        for (std::size_t k = 0; k < std::min(d.outline_x().size(), d.outline_y().size()); ++k)
+          detections_.back().outline.emplace_back(d.outline_x()[k], d.outline_y()[k]);
+      }
       tracker_->update(o->header().stamp_ns() * 1e-9, *ego, detections_);
       publish(o->header().stamp_ns());
     }
@@ -99,6 +82,7 @@ class ObjectTrackerNode : public Plugin {
     ctx.metric("frames_unplaced", static_cast<double>(unplaced_));
     ctx.metric("births", tracker_ ? static_cast<double>(tracker_->births()) : 0.0);
     ctx.metric("deaths", tracker_ ? static_cast<double>(tracker_->deaths()) : 0.0);
+    ctx.metric("detections_off_road", tracker_ ? static_cast<double>(tracker_->off_road()) : 0.0);
   }
 
  private:
@@ -125,7 +109,7 @@ class ObjectTrackerNode : public Plugin {
     io_.tracks.publish(std::move(out));
   }
 
-  Settings settings_;
+  TrackerSettings settings_;
   std::unique_ptr<track::Track> track_;
   std::optional<ObjectTracker> tracker_;
   EgoHistory ego_;

@@ -108,6 +108,8 @@ class ObstacleDetectorNode : public Plugin {
       msgs::Obstacle x;
       x.x(o.centroid.x()); x.y(o.centroid.y()); x.z(o.centroid.z());
       x.size_x(o.size.x()); x.size_y(o.size.y()); x.size_z(o.size.z());
+      for (const auto& q : o.outline) x.outline_x().push_back(q.x()), x.outline_y().push_back(q.y());
+      x.box_yaw(o.box_yaw);
       x.point_count(static_cast<std::uint32_t>(o.points));
       out.obstacles().push_back(x);
     }

@@ -214,3 +214,27 @@ TEST(ObjectTracker, APathForeseenAlongTheTrack) {
   const auto round = predict_along_track(car, track);
   EXPECT_NEAR(round.back().s, 130, 1e-6);
 }
+
+// A wall's stripes at the road's edge, or just inside it (within road_margin), slide along as the
+// car drives (a grazing LiDAR's columns land further on each frame): never followed, each counted
+// as off the road; a car on the road beside them is.
+TEST(ObjectTracker, StripesAtTheRoadsEdgeAreNeverFollowed) {
+  const auto track = circle_track(600);
+  ObjectTracker tracker(track);
+  std::mt19937 rng(3);
+  std::size_t frames = 0;
+  for (int k = 0; k <= 80; ++k, ++frames) {
+    const double t = k * 0.05;
+    const State e = on_circle(600, 55 * t, 55), car = on_circle(600, 40 + 50 * t, 50, 1);
+    std::vector<Detection> d{seen(e, car, 0.1, rng)};
+    for (double left : {8.3, 7.8, -7.7}) {  // the edges at +-8 m
+      Detection stripe = seen(e, on_circle(600, 120 + 40 * t, 0, left), 0.02, rng);
+      stripe.size_x = 0.03, stripe.size_y = 0.0;
+      d.push_back(stripe);
+    }
+    tracker.update(t, {e.x, e.y, e.yaw}, d);
+  }
+  ASSERT_EQ(tracker.tracks().size(), 1u);
+  EXPECT_LT((tracker.tracks()[0].xy - Eigen::Vector2d(on_circle(600, 40 + 50 * 4.0, 50, 1).x, on_circle(600, 40 + 50 * 4.0, 50, 1).y)).norm(), 0.5);
+  EXPECT_EQ(tracker.off_road(), 3 * frames);
+}

@@ -18,7 +18,7 @@ std::string TrackingScore::Band::name() const {
 TrackingScore::TrackingScore(TrackingScoreParams p, std::size_t cars) : p_(std::move(p)), others_(cars) {
   double from = 0;
   for (double to : p_.bands) {
-    bands_.push_back(Band{from, to, {}, {}, 0});
+    bands_.push_back(Band{from, to, {}, {}, {}, 0});
     from = to;
   }
 }
@@ -44,6 +44,7 @@ std::optional<CarTruth> TrackingScore::at(const std::deque<CarTruth>& h, double 
 bool TrackingScore::frame(double t, const std::vector<ScoredTrack>& tracks) {
   const auto us = at(ours_, t);
   if (!us) return false;
+  const auto est = at(estimate_, t);
   ++frames_;
   std::vector<bool> matched(tracks.size(), false);
   for (const auto& history : others_) {
@@ -69,6 +70,11 @@ bool TrackingScore::frame(double t, const std::vector<ScoredTrack>& tracks) {
       }
       b.position_errors.push_back(best);
       b.speed_errors.push_back(std::abs(tracks[nearest].speed - car->speed));
+      if (est) {  // relative to the estimate, put back by the truth
+        const double dx = tracks[nearest].x - est->x, dy = tracks[nearest].y - est->y, turn = us->yaw - est->yaw;
+        const double rx = std::cos(turn) * dx - std::sin(turn) * dy, ry = std::sin(turn) * dx + std::cos(turn) * dy;
+        b.relative_errors.push_back(std::hypot(us->x + rx - cx, us->y + ry - cy));
+      }
     }
   }
   for (std::size_t k = 0; k < tracks.size(); ++k)

@@ -1,12 +1,14 @@
 // sim.tracking_scorer: a tracker's confirmed tracks against the other cars' truth
 // (common/tracking_score.hpp): position and speed errors and misses by range band, phantoms.
 // `require_*` turn the targets into a failed run.
+#include <brickyard/msgs/LocalizationEstimate.h>
 #include <brickyard/msgs/TrackedObjectList.h>
 #include <brickyard/msgs/VehicleState.h>
 #include <brickyard/plugin.hpp>
 
 #include "sim/common/perception_score.hpp"
 #include "sim/common/tracking_score.hpp"
+#include "sim/tracking_scorer/tracking_settings.hpp"
 #include "sim/world_msg.hpp"
 
 #include <algorithm>
@@ -20,35 +22,12 @@ namespace {
 using namespace brickyard;
 using namespace brickyard::sim;
 
-struct Settings {
-  TrackingScoreParams score;
-  double require_position_error_m = -1, require_speed_error_mps = -1;  // p95 in the band around 50 m
-  std::int64_t require_max_phantoms = -1;
-};
-
-ParamBinding<Settings> bindings() {
-  using P = TrackingScoreParams;
-  ParamBinding<Settings> b;
-  b.bind("match_radius_m", &Settings::score, &P::match_radius).in_unit("m").range(0.1, 100)
-      .doc("a track this near a car's centre is that car's");
-  b.bind("bands_m", &Settings::score, &P::bands).in_unit("m").range(1, 10000).doc("the range bands' far ends, rising");
-  b.bind("moving_speed", &Settings::score, &P::moving_speed).in_unit("m/s").range(0, 100)
-      .doc("a track this fast near no car is a phantom");
-  b.bind("centre_ahead", &Settings::score, &P::centre_ahead).in_unit("m").range(-10, 10)
-      .doc("a car's footprint centre ahead of its base_link (the AV-21's: (3.9 - 1.0) / 2)");
-  b.bind("require_position_error_m", &Settings::require_position_error_m).in_unit("m").range(-1, 100)
-      .doc("fail above this p95 position error in the band holding 50 m; < 0: off");
-  b.bind("require_speed_error_mps", &Settings::require_speed_error_mps).in_unit("m/s").range(-1, 100)
-      .doc("fail above this p95 speed error in the band holding 50 m; < 0: off");
-  b.bind("require_max_phantoms", &Settings::require_max_phantoms).range(-1, 1e9).doc("fail above this many phantom tracks; < 0: off");
-  return b;
-}
-
 constexpr std::size_t kOtherCars = 4;  // other0 to other3
 
 struct Ports {
   Input<msgs::VehicleState> truth;
   Input<msgs::TrackedObjectList> tracks;
+  Input<msgs::LocalizationEstimate> estimate;
   std::array<Input<msgs::VehicleState>, kOtherCars> others;
 };
 
@@ -56,6 +35,7 @@ PortBinding<Ports> ports() {
   PortBinding<Ports> b;
   b.input("truth", &Ports::truth).doc("our car's truth").depth(4096);
   b.input("tracks", &Ports::tracks).doc("a tracker's output").depth(256).steps();
+  b.input("estimate", &Ports::estimate).doc("our pose as the stack estimated it (optional): errors placed by the true pose too").optional().depth(4096);
   b.inputs("other", &Ports::others).doc("another car's truth (other0 to other3)").required_first(1).depth(4096);
   return b;
 }
@@ -70,11 +50,11 @@ class TrackingScorer : public Plugin {
     return Manifest("sim.tracking_scorer", "1.0.0")
         .describe("scores tracked objects against the other cars' truth: position and speed errors by range, misses, phantoms")
         .with_ports(ports())
-        .parameters(bindings());
+        .parameters(tracking_scorer_bindings());
   }
 
   void configure(Context& ctx) override {
-    settings_ = bindings().read(ctx.params());
+    settings_ = tracking_scorer_bindings().read(ctx.params());
     const auto& bands = settings_.score.bands;
     if (bands.empty() || !std::is_sorted(bands.begin(), bands.end(), std::less_equal<double>()))
       throw BadInput("parameter 'bands_m': the range bands' far ends must rise, one at least");
@@ -95,6 +75,10 @@ class TrackingScorer : public Plugin {
       if (tracked == 0) continue;
       ctx.metric("position_error_p95_m_" + b.name(), PerceptionScore::percentile(b.position_errors, 0.95));
       ctx.metric("position_error_max_m_" + b.name(), PerceptionScore::percentile(b.position_errors, 1.0));
+      if (!b.relative_errors.empty()) {
+        ctx.metric("relative_error_p95_m_" + b.name(), PerceptionScore::percentile(b.relative_errors, 0.95));
+        ctx.metric("relative_error_max_m_" + b.name(), PerceptionScore::percentile(b.relative_errors, 1.0));
+      }
       ctx.metric("speed_error_p95_mps_" + b.name(), PerceptionScore::percentile(b.speed_errors, 0.95));
       ctx.metric("speed_error_max_mps_" + b.name(), PerceptionScore::percentile(b.speed_errors, 1.0));
     }
@@ -104,6 +88,7 @@ class TrackingScorer : public Plugin {
  private:
   void drain() {
     for (const auto& s : io_.truth.take()) score_->ours(truth_of(*s));
+    for (const auto& e : io_.estimate.take()) score_->estimate({static_cast<double>(e->header().stamp_ns()) * 1e-9, e->x(), e->y(), e->yaw(), e->speed()});
     for (std::size_t i = 0; i < kOtherCars; ++i)
       for (const auto& s : io_.others[i].take()) score_->other(i, truth_of(*s));
     for (const auto& l : io_.tracks.take()) {
@@ -140,7 +125,7 @@ class TrackingScorer : public Plugin {
     }
   }
 
-  Settings settings_;
+  TrackingScorerSettings settings_;
   std::optional<TrackingScore> score_;
   std::vector<ScoredTrack> tracks_;
   Ports io_;
