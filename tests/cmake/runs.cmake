@@ -146,6 +146,11 @@ if(BRICKYARD_SIM)
   by_next_domain(d)
   add_test(NAME evidence.rival_no_contact
     COMMAND ${NETNS} ${CMAKE_CURRENT_SOURCE_DIR}/cli/rival_no_contact.sh ${BY} ${CMAKE_CURRENT_SOURCE_DIR}/graphs ${d} ${RUNS}/rival_no_contact)
+  # The tracker against the simulator's truth, a rival in the LiDARs' view (race_rival.json).
+  by_next_domain(d)
+  add_test(NAME evidence.rival_tracking
+    COMMAND ${NETNS} ${CMAKE_CURRENT_SOURCE_DIR}/cli/rival_tracking.sh ${BY} ${CMAKE_CURRENT_SOURCE_DIR}/graphs ${d} ${RUNS}/rival_tracking)
+  set_tests_properties(evidence.rival_tracking PROPERTIES TIMEOUT 300)
   # The object tracker in the main job: the pylons tracked standing where they stand.
   by_next_domain(d)
   add_test(NAME evidence.object_tracking

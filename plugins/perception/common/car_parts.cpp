@@ -3,8 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
-#include <cstdio>
-#include <cstdlib>
 
 namespace brickyard::perception {
 
@@ -101,7 +99,7 @@ std::optional<double> seen_heading(const std::vector<Detection>& in, const std::
 // turned by its prior heading, loosely across (the prior may be degrees off); what is seen of the
 // car then says its heading, and the group is found again turned by it, as tightly as a footprint
 // allows.
-std::vector<Detection> whole_cars(const std::vector<Detection>& in, const std::vector<double>& theta, const CarShape& car) {
+std::vector<Detection> whole_cars(const std::vector<Detection>& in, const std::vector<PriorHeading>& prior, const CarShape& car) {
   std::vector<int> order(in.size());
   for (std::size_t i = 0; i < in.size(); ++i) order[i] = static_cast<int>(i);
   std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return std::max(in[a].size_x, in[a].size_y) > std::max(in[b].size_x, in[b].size_y); });
@@ -113,12 +111,10 @@ std::vector<Detection> whole_cars(const std::vector<Detection>& in, const std::v
   };
   for (int a : order) {
     if (used[a]) continue;
-    double th = theta[a];
+    double th = prior[a].theta;
     turn_all(th);
     std::vector<int> group = gather(a, parts, order, used, car, kLooseAcross);
-    const double th_prior = th;
-    if (const auto fitted = seen_heading(in, group, th)) th = *fitted;
-    if (std::getenv("BY_DEBUG_FIT")) std::fprintf(stderr, "FIT %zu %.3f %.3f %.3f %.3f\n", group.size(), in[a].x, in[a].y, th_prior, th);
+    if (const auto fitted = seen_heading(in, group, th); fitted && !prior[a].sure) th = *fitted;
     for (int k : group) used[k] = 0;
     turn_all(th);
     group = gather(a, parts, order, used, car, 0.0);

@@ -14,8 +14,16 @@
 
 namespace brickyard::perception {
 
-// `in` (vehicle frame), each turned by its theta: the cars among them made whole, and what is not
-// (a pylon) as it was. Sizes of a car: along and across the track.
-std::vector<Detection> whole_cars(const std::vector<Detection>& in, const std::vector<double>& theta, const CarShape& car);
+// A detection's prior heading (vehicle frame), and whether it is sure: the course of a car
+// followed for a while, smoother than any one frame's sides (a car's sides seen at 70 m come
+// 5 to 8 degrees off from frame to frame); not sure, the car's seen sides may correct it.
+struct PriorHeading {
+  double theta = 0;
+  bool sure = false;
+};
+
+// `in` (vehicle frame), each turned by its prior: the cars among them made whole, and what is not
+// (a pylon) as it was. Sizes of a car: along and across its heading.
+std::vector<Detection> whole_cars(const std::vector<Detection>& in, const std::vector<PriorHeading>& prior, const CarShape& car);
 
 }  // namespace brickyard::perception

@@ -20,12 +20,13 @@ void ObjectTracker::update(double t, const EgoPose& ego, const std::vector<Detec
   const double c = std::cos(ego.yaw), s = std::sin(ego.yaw);
   std::vector<Detection> whole;
   if (p_.whole_cars) {
-    std::vector<double> theta;  // each detection's heading, less ours
+    std::vector<PriorHeading> prior;  // each detection's heading, less ours
     for (const Detection& d : detections) {
       const track::Frenet f = track_->project(ego.x + c * d.x - s * d.y, ego.y + s * d.x + c * d.y, hint_);
-      theta.push_back(std::remainder(track_->heading(f) + course_across(f) - ego.yaw, 2 * M_PI));
+      const auto course = course_across(f);
+      prior.push_back({std::remainder(track_->heading(f) + course.value_or(0.0) - ego.yaw, 2 * M_PI), course.has_value()});
     }
-    whole = whole_cars(detections, theta, p_.car);
+    whole = whole_cars(detections, prior, p_.car);
   }
   const std::vector<Detection>& on_road = p_.whole_cars ? whole : detections;
   std::vector<Eigen::Vector2d> z;
@@ -60,7 +61,7 @@ void ObjectTracker::update(double t, const EgoPose& ego, const std::vector<Detec
 // line's heading entering and leaving turns: its back 2.45 m from its centre then puts that 0.3 m
 // across); the track nearest the place, moving and sure of its course, says by how much: the
 // angle of its velocity to the track's direction. None: along the track.
-double ObjectTracker::course_across(const track::Frenet& f) const {
+std::optional<double> ObjectTracker::course_across(const track::Frenet& f) const {
   const Track* nearest = nullptr;
   double best = kCourseRadius;
   for (const Track& tr : tracks_) {
@@ -70,7 +71,7 @@ double ObjectTracker::course_across(const track::Frenet& f) const {
   // A young track's velocity is a guess; one whose course is known to a degree or so speaks.
   if (!nearest || !nearest->confirmed || std::abs(nearest->state(2)) < kCourseMinSpeed ||
       std::sqrt(nearest->cov(3, 3)) > kCourseSpread * std::abs(nearest->state(2)))
-    return 0.0;
+    return std::nullopt;
   return std::atan2(nearest->state(3), nearest->state(2));
 }
 

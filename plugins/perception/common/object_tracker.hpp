@@ -23,6 +23,7 @@
 
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <vector>
 
 namespace brickyard::perception {
@@ -111,8 +112,9 @@ class ObjectTracker {
 
  private:
   void predict(double dt);
-  // The angle of the course of the track nearest f to the track's direction (0: none near, or slow).
-  double course_across(const track::Frenet& f) const;
+  // The angle of the course of the track nearest f to the track's direction (none: none near,
+  // slow, or not sure of its course).
+  std::optional<double> course_across(const track::Frenet& f) const;
   static constexpr double kCourseRadius = 6.0;    // m: a track this near a detection lends it its course
   static constexpr double kCourseMinSpeed = 10.0;  // m/s: slower, its course is noise
   static constexpr double kCourseSpread = 0.02;    // its speed across at most this share of along, 1 sigma

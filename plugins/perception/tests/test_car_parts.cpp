@@ -44,7 +44,7 @@ TEST(CarParts, ACarAheadIsItsBackAndSideMadeWhole) {
     for (double y : {-3.0, 0.5, 4.0}) {
       const double phi = phi_deg * M_PI / 180;
       const auto parts = seen_car(70, y, phi, 3);
-      const auto whole = whole_cars(parts, std::vector<double>(parts.size(), 0.0), kCar);
+      const auto whole = whole_cars(parts, std::vector<PriorHeading>(parts.size(), {0.0, false}), kCar);
       ASSERT_EQ(whole.size(), 1u) << phi_deg << " deg, y " << y;
       EXPECT_LT(off(whole[0], 70, y), 0.05) << phi_deg << " deg, y " << y << ": at " << whole[0].x << ", " << whole[0].y;
       EXPECT_EQ(whole[0].size_x, kCar.length);
@@ -55,7 +55,7 @@ TEST(CarParts, ACarAheadIsItsBackAndSideMadeWhole) {
 TEST(CarParts, ABackAloneIsCompletedAlongTheTrack) {
   const double phi = 8 * M_PI / 180;
   const auto parts = seen_car(60, -2, phi, 0);
-  const auto whole = whole_cars(parts, {phi}, kCar);
+  const auto whole = whole_cars(parts, {{phi, false}}, kCar);
   ASSERT_EQ(whole.size(), 1u);
   EXPECT_LT(off(whole[0], 60, -2), 0.05);
 }
@@ -63,7 +63,7 @@ TEST(CarParts, ABackAloneIsCompletedAlongTheTrack) {
 // Behind us: its front is seen, and the centre lies half a car behind it.
 TEST(CarParts, ACarBehindIsCompletedAwayFromUs) {
   const auto parts = seen_car(-20, 1.5, 0.0, 2);
-  const auto whole = whole_cars(parts, std::vector<double>(parts.size(), 0.0), kCar);
+  const auto whole = whole_cars(parts, std::vector<PriorHeading>(parts.size(), {0.0, false}), kCar);
   ASSERT_EQ(whole.size(), 1u);
   EXPECT_LT(off(whole[0], -20, 1.5), 0.05);
 }
@@ -72,7 +72,7 @@ TEST(CarParts, ACarBehindIsCompletedAwayFromUs) {
 // still its, not cars of their own.
 TEST(CarParts, FarStacksWithinTheFootprintAreTheCars) {
   const auto parts = seen_car(150, 3, 0.05, 2, 2.3);
-  const auto whole = whole_cars(parts, std::vector<double>(parts.size(), 0.05), kCar);
+  const auto whole = whole_cars(parts, std::vector<PriorHeading>(parts.size(), {0.05, false}), kCar);
   ASSERT_EQ(whole.size(), 1u);
   EXPECT_LT(off(whole[0], 150, 3), 0.05);
 }
@@ -83,7 +83,7 @@ TEST(CarParts, TwoCarsAreNeverOneAndAPylonIsLeftAsItIs) {
   auto parts = seen_car(50, 0, 0, 2);
   const auto beside = seen_car(50, 0 + kCar.width + 1.5, 0, 0);
   parts.insert(parts.end(), beside.begin(), beside.end());
-  auto whole = whole_cars(parts, std::vector<double>(parts.size(), 0.0), kCar);
+  auto whole = whole_cars(parts, std::vector<PriorHeading>(parts.size(), {0.0, false}), kCar);
   ASSERT_EQ(whole.size(), 2u);
   EXPECT_LT(std::min(off(whole[0], 50, 0), off(whole[1], 50, 0)), 0.05);
   EXPECT_LT(std::min(off(whole[0], 50, 3.44), off(whole[1], 50, 3.44)), 0.05);
@@ -91,11 +91,11 @@ TEST(CarParts, TwoCarsAreNeverOneAndAPylonIsLeftAsItIs) {
   parts = seen_car(40, 0, 0, 0);
   const auto behind_it = seen_car(40 + kCar.length + 1.0, 0, 0, 0);
   parts.insert(parts.end(), behind_it.begin(), behind_it.end());
-  whole = whole_cars(parts, std::vector<double>(parts.size(), 0.0), kCar);
+  whole = whole_cars(parts, std::vector<PriorHeading>(parts.size(), {0.0, false}), kCar);
   EXPECT_EQ(whole.size(), 2u);
 
   const Detection pylon{30, -3, 0.5, 0.5};
-  whole = whole_cars({pylon}, {0.0}, kCar);
+  whole = whole_cars({pylon}, {{0.0, false}}, kCar);
   ASSERT_EQ(whole.size(), 1u);
   EXPECT_EQ(whole[0].x, pylon.x);
   EXPECT_EQ(whole[0].size_x, pylon.size_x);

@@ -19,7 +19,8 @@ RefereeNotice notice(Kind kind, std::string text, std::string field = {}) { retu
 
 }  // namespace
 
-RaceJudge::RaceJudge(const Track& track, Footprint fp, RaceRules rules) : ref_(track, fp), rules_(rules), fp_(fp) {}
+RaceJudge::RaceJudge(const Track& track, Footprint fp, RaceRules rules)
+    : ref_(track, fp), rules_(rules), fp_(fp), order_(track, fp.front + fp.rear) {}
 
 std::vector<RefereeNotice> RaceJudge::update(const TruthSample& s) {
   std::vector<RefereeNotice> out;
@@ -89,6 +90,9 @@ std::vector<RefereeNotice> RaceJudge::other_cars(const std::vector<std::optional
     if (rules_.crash_ends_run && !failed_) fail("crash: " + line, out);
     else out.push_back(notice(Kind::warn, line));
   }
+  for (const RaceOrder::Pass& p : order_.update(last_.t, {last_.x, last_.y, last_.yaw, fp_}, others))
+    out.push_back(notice(Kind::info, printed(p.ours ? "passed car %d at s = %.1f m, t = %.3f s" : "passed by car %d at s = %.1f m, t = %.3f s",
+                                             p.car, p.s, p.t)));
   return out;
 }
 

@@ -4,6 +4,7 @@
 // the progress fields and log lines that say so. Framework-free: it returns what to say in the
 // order to say it, and the referee node passes that on.
 #include "car_contacts.hpp"
+#include "race_order.hpp"
 #include "referee.hpp"
 
 #include <cstdint>
@@ -38,9 +39,11 @@ class RaceJudge {
   // One ground-truth sample: what it makes the referee say.
   std::vector<RefereeNotice> update(const TruthSample& s);
   // The other cars' latest poses (none: not seen yet) against ours at the latest sample: a contact
-  // fails the run as a wall's does (crash_ends_run), naming the car (issue 46).
+  // fails the run as a wall's does (crash_ends_run), naming the car; a pass, either way, is said
+  // (issue 46).
   std::vector<RefereeNotice> other_cars(const std::vector<std::optional<CarBox>>& others);
   const CarContactBook& car_contacts() const { return cars_; }
+  const RaceOrder& order() const { return order_; }
   // The run is over: a race short of its laps did not finish (unless it failed already).
   std::vector<RefereeNotice> run_ended();
   // The run ended before the world came: a race did not finish. Nothing when there was no race.
@@ -60,6 +63,7 @@ class RaceJudge {
   RaceRules rules_;
   Footprint fp_;
   CarContactBook cars_;
+  RaceOrder order_;
   TruthSample last_;
   bool failed_ = false;  // the run has failed: one reason is enough
   std::uint64_t samples_ = 0;

@@ -42,6 +42,9 @@ inline void report_metrics(Context& ctx, const RaceJudge& judge, bool with_other
   if (!with_others) return;
   ctx.metric("car_contacts", static_cast<double>(judge.car_contacts().contacts()));
   ctx.metric("min_car_gap_m", judge.car_contacts().min_gap());
+  ctx.metric("passes", static_cast<double>(judge.order().passes()));
+  ctx.metric("passed_by", static_cast<double>(judge.order().passed_by()));
+  ctx.metric("position", static_cast<double>(judge.order().position()));
 }
 
 }  // namespace brickyard::sim
