@@ -21,10 +21,10 @@ def at_most(key, bound):
     if not m.get(key, float("inf")) <= bound: bad.append(f"{key} {m.get(key)} > {bound}")
 def at_least(key, bound):
     if not m.get(key, 0) >= bound: bad.append(f"{key} {m.get(key)} < {bound}")
-at_least("tracked_30_60", 60); at_least("tracked_60_100", 230)
+at_least("tracked_30_60", 60); at_least("tracked_60_100", 600)
 at_most("missed_30_60", 30); at_most("missed_60_100", 5)
-at_most("position_error_p95_m_60_100", 0.6); at_most("relative_error_p95_m_60_100", 0.5)
-at_most("position_error_p95_m_30_60", 0.8); at_most("speed_error_p95_mps_60_100", 2.5)
+at_most("position_error_p95_m_60_100", 0.6); at_most("relative_error_p95_m_60_100", 0.6)
+at_most("position_error_p95_m_30_60", 0.5); at_most("speed_error_p95_mps_60_100", 2.5)
 at_most("phantom_tracks", 5)
 if r["car_contacts"] != 0: bad.append(f"{r['car_contacts']} contacts")
 if bad: sys.exit("; ".join(bad))

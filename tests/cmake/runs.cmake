@@ -151,6 +151,12 @@ if(BRICKYARD_SIM)
   add_test(NAME evidence.rival_tracking
     COMMAND ${NETNS} ${CMAKE_CURRENT_SOURCE_DIR}/cli/rival_tracking.sh ${BY} ${CMAKE_CURRENT_SOURCE_DIR}/graphs ${d} ${RUNS}/rival_tracking)
   set_tests_properties(evidence.rival_tracking PROPERTIES TIMEOUT 300)
+  # Following a slower car on a road course (Monza): no contact, the gap kept.
+  by_next_domain(d)
+  add_test(NAME evidence.rival_follow
+    COMMAND ${NETNS} ${CMAKE_CURRENT_SOURCE_DIR}/cli/rival_follow.sh ${BY} ${CMAKE_CURRENT_SOURCE_DIR}/graphs ${d} ${RUNS}/rival_follow 20
+            --arg track=tracks/Monza.csv --arg wall_side=left --arg rival_line=racelines/Monza.csv)
+  set_tests_properties(evidence.rival_follow PROPERTIES TIMEOUT 300)
   # The object tracker in the main job: the pylons tracked standing where they stand.
   by_next_domain(d)
   add_test(NAME evidence.object_tracking

@@ -10,6 +10,7 @@ RoadGraphConfig road_graph_config(const RoadGraphSettings& s, const vehicle::Veh
   RoadGraphConfig c;
   c.graph = s.graph;
   c.planner = s.planner;
+  c.follow = s.follow;
   c.edge_band = s.obstacle_edge_band;
   c.place_sigmas = s.obstacle_place_sigmas;
   c.graph.half_width = s.half_width.value_or(car.half_width);
@@ -67,7 +68,9 @@ std::string RoadGraphRun::start(track::TrackGeometry map) {
 }
 
 void RoadGraphRun::place(const StampedPose& at, const std::vector<Detection>& list, std::vector<MapObstacle>& seen) {
-  off_track_ += place_detections(at, list, track_.get(), config_.edge_band, config_.place_sigmas, seen);
+  const std::vector<Detection> standing = cars_.empty() ? list : not_moving_cars(at, list, cars_, config_.follow);
+  car_detections_ += list.size() - standing.size();
+  off_track_ += place_detections(at, standing, track_.get(), config_.edge_band, config_.place_sigmas, seen);
 }
 
 void RoadGraphRun::observe(const std::vector<MapObstacle>& seen, std::int64_t now_ns) {
@@ -95,7 +98,21 @@ std::optional<CyclePlan> RoadGraphRun::plan(double x, double y, double speed) {
   out.path = path_geometry(plan.points);
   max_offset_ = std::max(max_offset_, out.path.max_offset);
   out.speed = plan.speed;
+  follow_cars(plan, x, y, out.speed);
   return out;
+}
+
+// The path's speeds no faster than following the first moving car in its way allows.
+void RoadGraphRun::follow_cars(const PlannedPath& plan, double x, double y, std::vector<double>& speed) {
+  if (cars_.empty()) return;
+  double gap = 0;
+  const double cap = follow_speed(plan.points, x, y, config_.planner.search.car_front, config_.graph.half_width, cars_, config_.follow, &gap);
+  min_follow_gap_ = std::min(min_follow_gap_, gap);
+  if (!std::isfinite(cap)) return;
+  bool capped = false;
+  for (double& v : speed)
+    if (v > cap) v = cap, capped = true;
+  following_ += capped;
 }
 
 std::string RoadGraphRun::no_route_warning(const PlannedPath& plan, double x, double y) const {
@@ -133,6 +150,11 @@ std::vector<std::pair<std::string, double>> RoadGraphRun::metrics(std::uint32_t 
       {"obstacles_planned_around_max", static_cast<double>(planned_around_max_)},
       {"emergency_swerves", static_cast<double>(swerves_)},
       {"detections_off_track", static_cast<double>(off_track_)}};
+  if (car_detections_ > 0 || following_ > 0) {
+    m.emplace_back("detections_of_moving_cars", static_cast<double>(car_detections_));
+    m.emplace_back("plans_following", static_cast<double>(following_));
+    m.emplace_back("min_follow_gap_m", min_follow_gap_);
+  }
   if (planner_) {
     m.emplace_back("planned_lap_s", planned_lap_s_);
     m.emplace_back("line_length_m", line_ready_.racing.length);

@@ -4,6 +4,7 @@
 // line, the graph and the planner once the map is known, and each cycle's detections, plan and
 // bookkeeping (the "no route" episodes, the counts the summary reports, the lattice drawn round
 // the obstacles met). The plugin converts the messages.
+#include "follow.hpp"
 #include "line_setup.hpp"
 #include "plan_frames.hpp"
 #include "road_graph.hpp"
@@ -13,6 +14,7 @@
 #include "vehicle/vehicle.hpp"
 
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <set>
@@ -33,12 +35,14 @@ struct RoadGraphSettings {
   double steer_margin = 0.8;
   RoadGraphParams graph;
   PlannerParams planner;
+  FollowParams follow;
 };
 
 // The settings with the car applied.
 struct RoadGraphConfig {
   RoadGraphParams graph;
   PlannerParams planner;
+  FollowParams follow;
   double edge_band = 1.0, place_sigmas = 2.0;  // a detection's placement_band
 };
 
@@ -81,8 +85,11 @@ class RoadGraphRun {
   // Throws RoadGraphInputError naming the line when one of them cannot be made.
   std::string start(track::TrackGeometry map);
 
+  // The cars the tracker follows now (map frame): their detections are not obstacles, and the
+  // plan's speeds follow the first in its way (follow.hpp).
+  void set_cars(std::vector<MovingCar> cars) { cars_ = std::move(cars); }
   // One obstacle list (vehicle frame) placed with the pose of its stamp: what can stand in the
-  // car's way joins `seen`, the rest is counted off the track.
+  // car's way (and is no moving car's) joins `seen`, the rest is counted off the track.
   void place(const StampedPose& at, const std::vector<Detection>& list, std::vector<MapObstacle>& seen);
   // The cycle's detections remembered; the layers round the obstacles noted for the drawing.
   void observe(const std::vector<MapObstacle>& seen, std::int64_t now_ns);
@@ -98,6 +105,7 @@ class RoadGraphRun {
   // Once per episode without a route: which obstacles closed the road (the car brakes for them).
   std::string no_route_warning(const PlannedPath& plan, double x, double y) const;
   void count(const PlannedPath& plan);
+  void follow_cars(const PlannedPath& plan, double x, double y, std::vector<double>& speed);
 
   LineSource src_;
   RoadGraphConfig config_;
@@ -109,6 +117,9 @@ class RoadGraphRun {
   double planned_lap_s_ = 0, max_offset_ = 0;
   bool stopping_ = false;
   std::size_t blocked_ = 0, restarts_ = 0, swerves_ = 0, obstacles_max_ = 0, planned_around_max_ = 0, off_track_ = 0;
+  std::vector<MovingCar> cars_;
+  std::size_t following_ = 0, car_detections_ = 0;  // plans whose speeds followed a car; detections left to the cars
+  double min_follow_gap_ = std::numeric_limits<double>::infinity();
   std::set<int> shown_layers_;
 };
 

@@ -81,6 +81,12 @@ inline ParamBinding<Settings> bindings() {
            "and its heading times the range)");
   b.bind("obstacle_confirmations", planner, &P::confirmations).range(1, 100)
       .doc("frames an obstacle must be detected in before it is planned around");
+  using F = FollowParams;
+  b.bind("follow_headway_s", &Settings::follow, &F::headway_s).in_unit("s").range(0, 10)
+      .doc("a moving car followed (input tracks) is kept this many seconds of its speed ahead, beyond follow_min_gap");
+  b.bind("follow_min_gap", &Settings::follow, &F::min_gap).in_unit("m").range(0, 1000).doc("least gap between the bumpers at any speed");
+  b.bind("follow_decel", &Settings::follow, &F::decel).in_unit("m/s^2").range(0.5, 50)
+      .doc("the braking the follow cap allows to close a gap");
   return b;
 }
 

@@ -8,6 +8,7 @@
 #include <brickyard/msgs/ObstacleList.h>
 #include <brickyard/msgs/Path.h>
 #include <brickyard/msgs/TrackMap.h>
+#include <brickyard/msgs/TrackedObjectList.h>
 #include <brickyard/plugin.hpp>
 
 #include "planning/common/road_graph_run.hpp"
@@ -27,6 +28,7 @@ struct Ports {
   Input<msgs::TrackMap> map;
   Input<msgs::LocalizationEstimate> estimate;
   Input<msgs::ObstacleList> obstacles;
+  Input<msgs::TrackedObjectList> tracks;
   Output<msgs::Path> path;
 };
 
@@ -35,6 +37,7 @@ PortBinding<Ports> ports() {
   b.input("map", &Ports::map).doc("the track: the graph's room and the line's edge margin (must be wired)").optional().depth(1);
   b.input("estimate", &Ports::estimate).doc("where the car is (base_link, map frame)").optional().depth(64);
   b.input("obstacles", &Ports::obstacles).doc("obstacles in the vehicle frame, placed with the estimate of their stamp").optional();
+  b.input("tracks", &Ports::tracks).doc("moving cars (a tracker's): followed, not planned round as obstacles (optional)").optional().depth(1);
   b.output("path", &Ports::path).doc("horizon m of path from just behind the car, with speeds (open)");
   return b;
 }
@@ -42,6 +45,12 @@ PortBinding<Ports> ports() {
 std::vector<Detection> detections(const msgs::ObstacleList& list) {
   std::vector<Detection> out;
   for (const auto& o : list.obstacles()) out.push_back({o.x(), o.y(), o.size_x(), o.size_y()});
+  return out;
+}
+
+std::vector<MovingCar> moving_cars(const msgs::TrackedObjectList& list) {
+  std::vector<MovingCar> out;
+  for (const auto& o : list.objects()) out.push_back({o.x(), o.y(), o.vx(), o.vy(), o.speed_sigma(), o.size_x(), o.size_y()});
   return out;
 }
 
@@ -86,6 +95,7 @@ class RoadGraphNode : public Plugin {
       }
     }
     if (poses_.empty()) return;
+    if (auto t = io_.tracks.take(); !t.empty()) run_->set_cars(moving_cars(*t.back()));
     // Obstacles into the map frame with the estimate at their stamp.
     std::vector<MapObstacle> seen;
     for (auto& list : io_.obstacles.take()) run_->place(*pose_at(poses_, list->header().stamp_ns()), detections(*list), seen);
