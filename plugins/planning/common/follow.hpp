@@ -21,7 +21,8 @@ struct FollowParams {
   double moving_speed = 3.0;  // m/s: a track slower than this is left to the obstacles (a pylon)
   double car_length = 2.0;    // m: a shorter track is no car (a pylon)
   double match_radius = 4.0;  // m: a detection this near a moving car is that car's
-  double side_margin = 0.5;   // m between the cars' sides below which a car is in the path's way
+  double side_margin = 1.5;   // m between the cars' sides below which a car is in the path's way (the IAC's
+                              // lateral gap alongside: nearer than that, a car is followed, not passed)
 };
 
 // An object the tracker follows, map frame: its centre, velocity and its speed's spread, size.
@@ -40,9 +41,11 @@ std::vector<Detection> not_moving_cars(const StampedPose& at, const std::vector<
                                        const FollowParams& p);
 
 // The cap on our speed now, to follow the first moving car in the path's way (the path from the
-// car on, map frame; `front`: our bumper ahead of base_link, `half_width`: ours); none in the way:
+// car on, map frame, its d the racing line's; `front`: our bumper ahead of base_link,
+// `half_width`: ours): a car whose offset from the racing line the path comes within the cars'
+// half widths and side_margin of, where the car will be while we close on it. None in the way:
 // +inf. `gap_out` (when not null): the gap between the bumpers to that car, m (+inf: none).
-double follow_speed(const std::vector<PathSample>& path, double x, double y, double front, double half_width,
+double follow_speed(const std::vector<PathSample>& path, double x, double y, double our_speed, double front, double half_width,
                     const std::vector<MovingCar>& cars, const FollowParams& p, double* gap_out = nullptr);
 
 }  // namespace brickyard::planning

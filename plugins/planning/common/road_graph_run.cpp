@@ -98,15 +98,16 @@ std::optional<CyclePlan> RoadGraphRun::plan(double x, double y, double speed) {
   out.path = path_geometry(plan.points);
   max_offset_ = std::max(max_offset_, out.path.max_offset);
   out.speed = plan.speed;
-  follow_cars(plan, x, y, out.speed);
+  follow_cars(plan, x, y, speed, out.speed);
   return out;
 }
 
 // The path's speeds no faster than following the first moving car in its way allows.
-void RoadGraphRun::follow_cars(const PlannedPath& plan, double x, double y, std::vector<double>& speed) {
+void RoadGraphRun::follow_cars(const PlannedPath& plan, double x, double y, double our_speed, std::vector<double>& speed) {
   if (cars_.empty()) return;
   double gap = 0;
-  const double cap = follow_speed(plan.points, x, y, config_.planner.search.car_front, config_.graph.half_width, cars_, config_.follow, &gap);
+  const double cap = follow_speed(plan.points, x, y, our_speed, config_.planner.search.car_front, config_.graph.half_width, cars_,
+                                  config_.follow, &gap);
   min_follow_gap_ = std::min(min_follow_gap_, gap);
   if (!std::isfinite(cap)) return;
   bool capped = false;

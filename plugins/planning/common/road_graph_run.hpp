@@ -105,7 +105,7 @@ class RoadGraphRun {
   // Once per episode without a route: which obstacles closed the road (the car brakes for them).
   std::string no_route_warning(const PlannedPath& plan, double x, double y) const;
   void count(const PlannedPath& plan);
-  void follow_cars(const PlannedPath& plan, double x, double y, std::vector<double>& speed);
+  void follow_cars(const PlannedPath& plan, double x, double y, double our_speed, std::vector<double>& speed);
 
   LineSource src_;
   RoadGraphConfig config_;
