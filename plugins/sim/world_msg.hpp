@@ -13,6 +13,10 @@
 
 namespace brickyard::sim {
 
+// The other cars a simulator node takes (issue 46): inputs other0 to other3, each another
+// sim.vehicle's truth; the same count for the LiDARs, the referee and the tracking scorer.
+inline constexpr std::size_t kOtherCars = 4;
+
 inline msgs::TrackWorld to_message(const Track& t) {
   const WorldSpec& w = t.spec();
   msgs::TrackWorld m;

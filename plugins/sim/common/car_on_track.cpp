@@ -1,9 +1,20 @@
 #include "car_on_track.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 namespace brickyard::sim {
+
+std::string off_the_road(const Track& track, double s, double d, double half_width) {
+  const Frenet f = track.at(std::fmod(std::fmod(s, track.length()) + track.length(), track.length()), d);
+  const double left = track.width_left(f.seg, f.u), right = track.width_right(f.seg, f.u);
+  if (d + half_width <= left && d - half_width >= -right) return {};
+  char b[200];
+  std::snprintf(b, sizeof b, "the car (%.2f m wide) at d = %.2f m stands off the road at s = %.1f m, which spans d = %.2f to %.2f m",
+                2 * half_width, d, f.s, -right, left);
+  return b;
+}
 
 void CarOnTrack::place(const Track& track, double s, double d, double speed) {
   track_ = &track;

@@ -18,6 +18,10 @@ struct BaseLinkTruth {
   double s = 0, d = 0;  // on the centre line
 };
 
+// Why a car of this half width placed at (s, d) would stand off the road (its side beyond an
+// edge), in words; empty when it stands on it.
+std::string off_the_road(const Track& track, double s, double d, double half_width);
+
 class CarOnTrack {
  public:
   explicit CarOnTrack(VehicleParams p) : model_(std::move(p)) {}

@@ -85,7 +85,19 @@ void RaceJudge::check_failures(const TruthSample& s, const Referee::Events& ev, 
 std::vector<RefereeNotice> RaceJudge::other_cars(const std::vector<std::optional<CarBox>>& others) {
   std::vector<RefereeNotice> out;
   if (samples_ == 0) return out;
-  for (int k : cars_.update({last_.x, last_.y, last_.yaw, fp_}, others)) {
+  // A car that overlaps ours the first time it is seen was placed inside it: its start is wrong.
+  const CarBox ours{last_.x, last_.y, last_.yaw, fp_};
+  if (seen_.size() < others.size()) seen_.resize(others.size(), false);
+  for (std::size_t k = 0; k < others.size(); ++k) {
+    if (!others[k] || seen_[k]) continue;
+    seen_[k] = true;
+    if (cars_touch(ours, *others[k]) && !failed_)
+      fail(printed("car %d starts inside ours at t = %.3f s (s = %.1f m): its start_s and start_d place it there", static_cast<int>(k), last_.t,
+                   ref_.s()),
+           out);
+  }
+  if (failed_) return out;
+  for (int k : cars_.update(ours, others)) {
     const std::string line = printed("contact with car %d at s = %.1f m, t = %.3f s, %.1f m/s", k, ref_.s(), last_.t, last_.speed);
     if (rules_.crash_ends_run && !failed_) fail("crash: " + line, out);
     else out.push_back(notice(Kind::warn, line));

@@ -64,6 +64,7 @@ class RaceJudge {
   Footprint fp_;
   CarContactBook cars_;
   RaceOrder order_;
+  std::vector<bool> seen_;  // per other car: seen once (a first sight inside ours is a wrong start)
   TruthSample last_;
   bool failed_ = false;  // the run has failed: one reason is enough
   std::uint64_t samples_ = 0;

@@ -45,8 +45,6 @@ ParamBinding<Settings> bindings() {
   return b;
 }
 
-constexpr std::size_t kOtherCars = 4;  // other0 to other3
-
 struct Ports {
   Input<msgs::TrackWorld> world;
   Input<msgs::VehicleState> truth;

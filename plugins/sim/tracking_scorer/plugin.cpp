@@ -22,8 +22,6 @@ namespace {
 using namespace brickyard;
 using namespace brickyard::sim;
 
-constexpr std::size_t kOtherCars = 4;  // other0 to other3
-
 struct Ports {
   Input<msgs::VehicleState> truth;
   Input<msgs::TrackedObjectList> tracks;

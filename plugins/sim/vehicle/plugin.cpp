@@ -71,7 +71,9 @@ class Vehicle : public Plugin {
 
   void configure(Context& ctx) override {
     const Settings s = bindings().read(ctx.params());
-    car_.emplace(plugins::read_vehicle(ctx, s.vehicle));
+    const vehicle::Vehicle car = plugins::read_vehicle(ctx, s.vehicle);
+    half_width_ = car.half_width;
+    car_.emplace(car);
     dt_ = 1.0 / s.rate_hz;
     start_s_ = s.start_s;
     start_d_ = s.start_d;
@@ -85,6 +87,8 @@ class Vehicle : public Plugin {
       auto w = newest(io_.world);
       if (!w) return;  // no world yet: the car does not exist
       track_ = std::make_unique<Track>(from_message(*w));
+      if (const std::string off = off_the_road(*track_, start_s_, start_d_, half_width_); !off.empty())
+        throw BadInput("parameter 'start_d': " + off);
       car_->place(*track_, start_s_, start_d_, start_speed_);
       last_step_s_ = ctx.now_s();
       publish(ctx);
@@ -134,7 +138,7 @@ class Vehicle : public Plugin {
   std::optional<CarOnTrack> car_;
   std::unique_ptr<Track> track_;
   CommandWatchdog watchdog_;
-  double dt_ = 0.002, start_s_ = 0, start_d_ = 0, start_speed_ = 0;
+  double dt_ = 0.002, start_s_ = 0, start_d_ = 0, start_speed_ = 0, half_width_ = 0;
   double last_step_s_ = 0;  // real clock: the physics is stepped up to here
   std::uint32_t seq_ = 0;
   Ports io_;
