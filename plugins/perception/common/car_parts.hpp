@@ -16,7 +16,7 @@ namespace brickyard::perception {
 
 // A detection's prior heading (vehicle frame), and whether it is sure: the course of a car
 // followed for a while, smoother than any one frame's sides (a car's sides seen at 70 m come
-// 5 to 8 degrees off from frame to frame); not sure, the car's seen sides may correct it.
+// degrees off from frame to frame); not sure, the car's seen sides may correct it.
 struct PriorHeading {
   double theta = 0;
   bool sure = false;
