@@ -206,6 +206,7 @@ namespace {
 constexpr int kBoxMinPoints = 5;          // fewer: no fit
 constexpr float kBoxMinExtent = 0.5f;     // m: a smaller footprint has no sides to speak of
 constexpr float kBoxNear = 0.01f;         // m: closer to a side than this counts as on it
+constexpr std::size_t kBoxSample = 256;   // points the fit takes at most
 
 float box_closeness(const std::vector<Eigen::Vector2f>& p, float yaw) {
   const float c = std::cos(yaw), s = std::sin(yaw);
@@ -225,11 +226,14 @@ float box_closeness(const std::vector<Eigen::Vector2f>& p, float yaw) {
 
 float fitted_box_yaw(const Points& points, const std::vector<int>& members) {
   if (static_cast<int>(members.size()) < kBoxMinPoints) return std::numeric_limits<float>::quiet_NaN();
+  // At most kBoxSample points, evenly through the obstacle: a near car's thousands cost a
+  // hundred turns each, and its sides show in a few hundred as well.
+  const std::size_t stride = std::max<std::size_t>(1, members.size() / kBoxSample);
   std::vector<Eigen::Vector2f> p;
-  p.reserve(members.size());
+  p.reserve(members.size() / stride + 1);
   Eigen::Vector2f lo(1e30f, 1e30f), hi(-1e30f, -1e30f);
-  for (int i : members) {
-    p.emplace_back(points[i].x(), points[i].y());
+  for (std::size_t k = 0; k < members.size(); k += stride) {
+    p.emplace_back(points[members[k]].x(), points[members[k]].y());
     lo = lo.cwiseMin(p.back()), hi = hi.cwiseMax(p.back());
   }
   if ((hi - lo).maxCoeff() < kBoxMinExtent) return std::numeric_limits<float>::quiet_NaN();
