@@ -57,6 +57,8 @@ if(BRICKYARD_SIM)
   bad_config(validate_missing_track "node 'map' \\(map.track_file\\): .*tracks/Nowhere.csv" validate ${PROJECT_SOURCE_DIR}/configs/race.json --arg track=tracks/Nowhere.csv)
   # A rival's driver at no pace (issue 46).
   bad_config(rival_speed_scale_zero "sim_truth_lap.json#/nodes/driver/params/speed_scale: .*found 0" validate ${PROJECT_SOURCE_DIR}/configs/sim_truth_lap.json --set driver.speed_scale=0)
+  # The tracking scorer's range bands out of order.
+  bad_config(tracking_bands_not_rising "node 'tracking' \\(sim.tracking_scorer\\): parameter 'bands_m': the range bands' far ends must rise.*race_rival.json#/nodes/tracking/params/bands_m" run ${CMAKE_CURRENT_SOURCE_DIR}/graphs/rivals/race_rival.json --set "tracking.bands_m=[60,30]")
 endif()
 # One pass: a structural error elsewhere in the graph does not hide a plugin's own check.
 bad_config(validate_checks_with_structure "map/params/bogus: unknown parameter \"bogus\".*node 'check' \\(testing.expect\\): parameter 'expect' /1/field: poses\\[\\*\\].q: no member 'q'" validate ${BAD}/expect_unknown_field.json --set map.bogus=1)

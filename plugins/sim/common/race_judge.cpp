@@ -102,7 +102,7 @@ std::vector<RefereeNotice> RaceJudge::other_cars(const std::vector<std::optional
     if (rules_.crash_ends_run && !failed_) fail("crash: " + line, out);
     else out.push_back(notice(Kind::warn, line));
   }
-  for (const RaceOrder::Pass& p : order_.update(last_.t, {last_.x, last_.y, last_.yaw, fp_}, others))
+  for (const RaceOrder::Pass& p : order_.update(last_.t, ours, others))
     out.push_back(notice(Kind::info, printed(p.ours ? "passed car %d at s = %.1f m, t = %.3f s" : "passed by car %d at s = %.1f m, t = %.3f s",
                                              p.car, p.s, p.t)));
   return out;

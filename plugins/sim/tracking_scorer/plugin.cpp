@@ -54,7 +54,7 @@ class TrackingScorer : public Plugin {
   void configure(Context& ctx) override {
     settings_ = tracking_scorer_bindings().read(ctx.params());
     const auto& bands = settings_.score.bands;
-    if (bands.empty() || !std::is_sorted(bands.begin(), bands.end(), std::less_equal<double>()))
+    if (bands.empty() || std::adjacent_find(bands.begin(), bands.end(), std::greater_equal<double>()) != bands.end())
       throw BadInput("parameter 'bands_m': the range bands' far ends must rise, one at least");
     score_.emplace(settings_.score, kOtherCars);
     io_ = ports().connect(ctx);
