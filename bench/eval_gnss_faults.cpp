@@ -321,6 +321,8 @@ int main(int argc, char** argv) {
                   num(est, "fixes_refused_by_map"), num(est, "map_overrulings"), num(node(clean, "score"), "p99_error_m"), num(node(clean, "score"), "max_error_m"),
                   clean.wall_s > 0 ? clean.sim_s / clean.wall_s : 0.0);
       print_map_honesty("clean", clean);
+      std::printf("clean: the motion check learnt the wheels' scale %.5f, spreads along %.5f across %.5f; its largest distance %.2f (chi-square, 1 dof)\n\n",
+                  num(est, "motion_scale"), num(est, "motion_spread_along"), num(est, "motion_spread_across"), num(est, "motion_max_d2"));
       // Healthy GNSS refused or overruled by the map: the map was wrong past the gate (a false
       // alarm that, in a race, throws good fixes away).
       if (num(est, "fixes_refused_by_map") > 0 || num(est, "map_overrulings") > 0) {

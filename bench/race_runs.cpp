@@ -27,6 +27,8 @@ RaceRun run_race(const std::string& host, const std::string& graph, const std::v
                     " --domain " + std::to_string(domain) + " --out " + quoted(dir);
   for (const auto& a : args) cmd += " --arg " + quoted(a);
   for (const auto& a : sets) cmd += " --set " + quoted(a);
+  // The run's own command beside its log: any row of a sweep is rerun by hand from it.
+  std::ofstream(dir + ".cmd") << cmd << "\n";
   cmd += " > " + quoted(dir + ".log") + " 2>&1";
   // A summary left by an earlier sweep must not stand for a run that never wrote one.
   std::error_code ec;

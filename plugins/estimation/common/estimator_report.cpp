@@ -49,6 +49,15 @@ std::vector<std::pair<std::string, double>> summary_metrics(const Localizer& loc
     m.emplace_back("map_first_refusal_s", w.first_refusal_s());
     m.emplace_back("map_overrulings", static_cast<double>(w.overrulings()));
     m.emplace_back("map_first_overrule_s", w.first_overrule_s());
+    // The motion check (motion_check.hpp): what it learnt of the wheels, its largest judged
+    // distance (a clean run's margin to the gate), and the epochs it caught a receiver.
+    const MotionCheck& mc = loc.motion();
+    m.emplace_back("motion_catches", static_cast<double>(loc.motion_catches()));
+    m.emplace_back("motion_first_catch_s", loc.first_motion_catch_s());
+    m.emplace_back("motion_scale", mc.scale());
+    m.emplace_back("motion_spread_along", mc.spread_along());
+    m.emplace_back("motion_spread_across", mc.spread_across());
+    m.emplace_back("motion_max_d2", mc.max_d2());
   }
   if (policy == Policy::resilient) {
     m.emplace_back("epsilon_m", selection.epsilon);

@@ -10,13 +10,14 @@ namespace brickyard::estimation {
 
 Localizer::Localizer(LocalizerParams p)
     : p_(p), filter_(p.noise), manager_(p.manager), last_delta_(std::max(p.manager.receivers, 1), -1.0),
-      reacquisition_(p.reacquire), witness_(p.witness) {}
+      reacquisition_(p.reacquire), witness_(p.witness), motion_(p.motion) {}
 
 void Localizer::advance(double t) {
   if (t_ < 0) t_ = t;
   if (t > t_ && have_imu_) {
     const double dt = t - t_;
-    filter_.predict(dt, speed_, yaw_rate_);
+    filter_.predict(dt, speed_ * wheel_scale(), yaw_rate_);
+    reckon_with_sideslip(dt);
     // Dead reckoning alone, never corrected: the motion between two times that a late fix or
     // pose is carried by. The filter's own poses would carry the corrections made since as well
     // and count them twice (a 0.2 s late fix in a turn rocks the heading back and forth).
@@ -34,6 +35,19 @@ void Localizer::advance(double t) {
     past_[past_next_] = odo_;
     past_next_ = (past_next_ + 1) % kPast;
   }
+}
+
+double Localizer::wheel_scale() const {
+  return p_.witness.enabled && motion_.enabled() && motion_.learnt_s() >= p_.motion.learn_s ? motion_.scale() : 1.0;
+}
+
+void Localizer::reckon_with_sideslip(double dt) {
+  const double mid = dr_.yaw + 0.5 * yaw_rate_ * dt;
+  const double vy = -filter_.state()(PoseFilter::SLIP) * speed_ * speed_ * yaw_rate_;
+  const double c = std::cos(mid), s = std::sin(mid);
+  dr_.x += (c * speed_ - s * vy) * dt;
+  dr_.y += (s * speed_ + c * vy) * dt;
+  dr_.yaw += yaw_rate_ * dt;
 }
 
 std::optional<Localizer::Motion> Localizer::motion_since(double stamp) const {
@@ -110,6 +124,46 @@ void Localizer::relocate_on_catch() {
   witness_.shifted(filter_.position() - before);
 }
 
+std::vector<MotionVerdict> Localizer::judge_motion(const std::vector<Fix>& epoch) {
+  std::vector<MotionVerdict> v(epoch.size());
+  if (!p_.witness.enabled || !motion_.enabled()) return v;
+  for (std::size_t i = 0; i < epoch.size(); ++i) {
+    const Eigen::Vector2d base = filter_.base_from_antenna(epoch[i].antenna, epoch[i].lever);
+    const double align = filter_.state()(PoseFilter::YAW) - dr_.yaw;
+    v[i] = motion_.observe(epoch[i].receiver, {t_, base, filter_.fix_variance(epoch[i].sigma), {dr_.x, dr_.y}, align, filter_.position()});
+  }
+  return v;
+}
+
+const MotionVerdict* Localizer::catch_moving(const std::vector<Fix>& epoch, const std::vector<MotionVerdict>& moved, std::vector<bool>& refused) {
+  if (!witness_.standing(t_)) return nullptr;
+  std::vector<bool> off(epoch.size(), false);
+  const MotionVerdict* first = nullptr;
+  for (std::size_t i = 0; i < epoch.size(); ++i) {
+    if (refused[i] || !moved[i].off) continue;
+    off[i] = refused[i] = true;
+    witness_.refuse_beside(t_, epoch[i].receiver);
+    if (!first) first = &moved[i];
+  }
+  if (!first) return nullptr;
+  refuse_beside(epoch, off, refused);
+  ++motion_catches_;
+  if (first_motion_catch_s_ < 0) first_motion_catch_s_ = t_;
+  return first;
+}
+
+void Localizer::relocate_by_motion(const MotionVerdict& v) {
+  const Eigen::Vector2d before = filter_.position();
+  filter_.relocate(v.start_xy + v.travel, with_floor(v.travel_cov, p_.motion.fix_floor));
+  witness_.shifted(filter_.position() - before);
+}
+
+void Localizer::learn_motion(const std::vector<MotionVerdict>& moved, const EpochResult& r) {
+  const bool healthy = !witness_.any_caught() && std::all_of(r.accepted.begin(), r.accepted.end(), [](bool a) { return a; });
+  if (!healthy) return motion_.forget_pending();
+  for (const auto& v : moved) motion_.learn(t_, v);
+}
+
 void Localizer::scan_unlocated() {
   if (p_.witness.enabled && filter_.initialized()) witness_.unlocated(t_, gnss_accepted());
 }
@@ -174,10 +228,17 @@ void Localizer::fixes(double t, const std::vector<Fix>& epoch_in) {
     return;
   }
   const bool caught_before = witness_.any_caught();
-  const std::vector<bool> refused = refused_by_map(epoch);
-  // Caught now: the filter took their fixes until this epoch, so the map's position is the better.
-  if (!caught_before && witness_.any_caught() && witness_.standing(t_)) relocate_on_catch();
+  std::vector<bool> refused = refused_by_map(epoch);
+  const std::vector<MotionVerdict> moved = judge_motion(epoch);
+  const MotionVerdict* moving = catch_moving(epoch, moved, refused);
+  // Caught now: the filter took their fixes until this epoch, so the map's position is the better
+  // (or, caught moving unlike the car, the car's own travel from before they pulled it).
+  if (!caught_before && witness_.any_caught() && witness_.standing(t_)) {
+    if (moving) relocate_by_motion(*moving);
+    else relocate_on_catch();
+  }
   EpochResult r = apply_judged(epoch, refused);
+  learn_motion(moved, r);
   // A standing map says where the car is: fixes it refused are not taken back by reacquisition.
   if (p_.policy == Policy::resilient && witness_.holds_reacquisition(t_)) reacquisition_.reset();
   else if (p_.policy == Policy::resilient) reacquire(t, epoch, r);

@@ -4,6 +4,7 @@
 // (fusion/plugin.cpp) only turns messages into these calls and the state into messages.
 #include "localization_manager.hpp"
 #include "map_witness.hpp"
+#include "motion_check.hpp"
 #include "reacquisition.hpp"
 #include "update_selection.hpp"
 
@@ -34,6 +35,9 @@ struct LocalizerParams {
   // every pose, GNSS healthy or not; once verified it refuses fixes that disagree with it, and a
   // map that never verified is not used.
   WitnessParams witness;
+  // With the map witness: receivers whose fixes move unlike the car (motion_check.hpp) are caught
+  // while the map stands, and the filter put where the car's own motion says it is.
+  MotionParams motion;
 };
 
 class Localizer {
@@ -82,6 +86,9 @@ class Localizer {
   const PoseFilter& filter() const { return filter_; }
   const LocalizationManager& manager() const { return manager_; }
   const MapWitness& witness() const { return witness_; }
+  const MotionCheck& motion() const { return motion_; }
+  std::uint64_t motion_catches() const { return motion_catches_; }  // epochs a receiver was caught moving unlike the car
+  double first_motion_catch_s() const { return first_motion_catch_s_; }  // -1: never
   const LocalizerParams& params() const { return p_; }
   // What happened since the last take_epoch_summary(): the last epoch's case and Δ per receiver
   // (-1: no fix), then reset to "predict only".
@@ -101,6 +108,12 @@ class Localizer {
 
  private:
   void advance(double t);
+  // dr_ moved by dt of the control input, the lateral velocity the filter's sideslip gain gives.
+  void reckon_with_sideslip(double dt);
+  // The wheel speed's scale the motion check learnt (1 until it has): the filter's prediction
+  // takes the speed times it, so that through an outage the car dead reckons on the wheels as
+  // GNSS measured them (a tyre's radius off by 0.5 % is 0.4 m/s at 80 m/s).
+  double wheel_scale() const;
   void initialize(double t, const std::vector<Fix>& epoch);
   // The car's motion from `stamp` to now by dead reckoning, laid on the filter's pose now: where a
   // point fixed to the car then is now. Nothing when the stamp is older than the history or ahead.
@@ -124,6 +137,18 @@ class Localizer {
   void overrule_fixes(const Eigen::Vector2d& offset, const Eigen::Matrix2d& map_cov);
   // A receiver caught lying this epoch: the filter moved onto the map's position (relocate).
   void relocate_on_catch();
+  // Each fix's travel over the motion check's window against the car's (none judged without the
+  // map witness).
+  std::vector<MotionVerdict> judge_motion(const std::vector<Fix>& epoch);
+  // Fixes not yet refused that moved unlike the car are refused and their receivers caught, while
+  // the map stands (a witness to race on); with them, any fix beside them. Returns the verdict
+  // that caught one, if any.
+  const MotionVerdict* catch_moving(const std::vector<Fix>& epoch, const std::vector<MotionVerdict>& moved, std::vector<bool>& refused);
+  // Caught moving: the filter put where it was at the window's start plus the car's travel since.
+  void relocate_by_motion(const MotionVerdict& v);
+  // A healthy epoch's windows learnt (every fix taken, none caught); otherwise the pending ones
+  // forgotten.
+  void learn_motion(const std::vector<MotionVerdict>& moved, const EpochResult& r);
 
   LocalizerParams p_;
   PoseFilter filter_;
@@ -148,6 +173,11 @@ class Localizer {
   double last_accepted_t_ = -1e300;
   std::uint64_t scan_updates_ = 0, scan_refused_ = 0, scan_unverified_ = 0;
   MapWitness witness_;
+  MotionCheck motion_;
+  // Dead reckoning with the filter's sideslip gain, never corrected: the motion check's travel.
+  Past dr_;
+  std::uint64_t motion_catches_ = 0;
+  double first_motion_catch_s_ = -1;
 };
 
 }  // namespace brickyard::estimation

@@ -44,6 +44,15 @@ inline void bind_witness(ParamBinding<Settings>& b) {
   b.bind("witness_retrust_s", &Settings::loc, &L::witness, &W::retrust_s).in_unit("s").range(0, 3600)
       .doc("a receiver the map caught (a fix refused, or the filter it pulled overruled) stays refused until its fixes have "
            "agreed with the filter this long; 0: judged fix by fix");
+  using C = MotionParams;
+  b.bind("motion_window_s", &Settings::loc, &L::motion, &C::window_s).in_unit("s").range(0, 60)
+      .doc("with the map witness: each receiver's travel over this long against the car's predicted travel; a receiver moving "
+           "unlike the car is caught while the map stands (receivers drifting together); 0: no check (docs/algorithms.md)");
+  b.bind("motion_gate", &Settings::loc, &L::motion, &C::gate).range(1, 1000).doc("chi-square, 1 dof, of the motion check: the fixes' travel along the car's against it");
+  b.bind("motion_learn_s", &Settings::loc, &L::motion, &C::learn_s).in_unit("s").range(0, 3600)
+      .doc("s of healthy travel learnt (the wheels' scale, the spreads) before the motion check judges");
+  b.bind("motion_spread_floor", &Settings::loc, &L::motion, &C::spread_floor).range(1e-6, 1)
+      .doc("floor on the motion check's learnt relative spreads");
 }
 
 // The three estimators' parameters: the common ones, then their policy's.
