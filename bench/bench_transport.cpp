@@ -12,6 +12,8 @@
 #include <brickyard/msgs/BlobPubSubTypes.h>
 #include <brickyard/msgs/registry.hpp>
 
+#include "dds_ping.hpp"
+
 #include <fastdds/dds/domain/DomainParticipant.hpp>
 #include <fastdds/dds/domain/DomainParticipantFactory.hpp>
 #include <fastdds/dds/publisher/DataWriter.hpp>
@@ -40,22 +42,12 @@
 using namespace brickyard;
 using namespace brickyard::fw;
 using namespace eprosima::fastdds::dds;
+using namespace brickyard::bench;
 using Clock = std::chrono::steady_clock;
 
 namespace {
 
 int g_domain = 0;
-
-std::int64_t now_ns() { return std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now().time_since_epoch()).count(); }
-
-struct Stats {
-  double median_us, p99_us;
-};
-Stats stats(std::vector<double> ns) {
-  std::sort(ns.begin(), ns.end());
-  auto at = [&](double q) { return ns[std::min(ns.size() - 1, static_cast<std::size_t>(q * (ns.size() - 1) + 0.5))] / 1e3; };
-  return {at(0.5), at(0.99)};
-}
 
 msgs::Blob make_blob(std::size_t bytes) {
   msgs::Blob b;
@@ -63,84 +55,13 @@ msgs::Blob make_blob(std::size_t bytes) {
   return b;
 }
 
-// A raw participant with the same settings as Brickyard's (SHM 16 MiB + UDP loopback).
-DomainParticipant* raw_participant(int domain) {
-  auto* f = DomainParticipantFactory::get_instance();
-  f->load_profiles();
-  DomainParticipantQos q = f->get_default_participant_qos();
-  q.transport().use_builtin_transports = false;
-  auto shm = std::make_shared<eprosima::fastdds::rtps::SharedMemTransportDescriptor>();
-  shm->segment_size(16u << 20);
-  q.transport().user_transports.push_back(shm);
-  auto udp = std::make_shared<eprosima::fastdds::rtps::UDPv4TransportDescriptor>();
-  udp->interfaceWhiteList.push_back("127.0.0.1");
-  q.transport().user_transports.push_back(udp);
-  eprosima::fastrtps::rtps::Locator_t peer;
-  peer.kind = LOCATOR_KIND_UDPv4;
-  eprosima::fastrtps::rtps::IPLocator::setIPv4(peer, "127.0.0.1");
-  q.wire_protocol().builtin.initialPeersList.push_back(peer);
-  return f->create_participant(domain, q);
-}
-
 // The raw endpoints' QoS is ours (transport/dds.cpp): RELIABLE, KEEP_LAST 8, and DDS liveliness,
 // AUTOMATIC with a 0.5 s lease asserted every 0.1 s (how a process notices a dead peer), unless
 // g_raw_liveliness is false: the last line, what liveliness itself costs.
 bool g_raw_liveliness = true;
 
-DataWriterQos writer_qos() {
-  DataWriterQos q = DATAWRITER_QOS_DEFAULT;
-  if (g_raw_liveliness) {
-    q.liveliness().kind = AUTOMATIC_LIVELINESS_QOS;
-    q.liveliness().lease_duration = eprosima::fastrtps::Duration_t(0.5);
-    q.liveliness().announcement_period = eprosima::fastrtps::Duration_t(0.1);
-  }
-  q.reliability().kind = RELIABLE_RELIABILITY_QOS;
-  q.history().kind = KEEP_LAST_HISTORY_QOS;
-  q.history().depth = 8;
-  q.endpoint().history_memory_policy = eprosima::fastrtps::rtps::PREALLOCATED_WITH_REALLOC_MEMORY_MODE;
-  return q;
-}
-DataReaderQos reader_qos() {
-  DataReaderQos q = DATAREADER_QOS_DEFAULT;
-  if (g_raw_liveliness) {
-    q.liveliness().kind = AUTOMATIC_LIVELINESS_QOS;
-    q.liveliness().lease_duration = eprosima::fastrtps::Duration_t(0.5);
-  }
-  q.reliability().kind = RELIABLE_RELIABILITY_QOS;
-  q.history().kind = KEEP_LAST_HISTORY_QOS;
-  q.history().depth = 8;
-  q.endpoint().history_memory_policy = eprosima::fastrtps::rtps::PREALLOCATED_WITH_REALLOC_MEMORY_MODE;
-  return q;
-}
-
-// Signals arrival of one sample to a waiting thread; a sample of another size than `bytes` ends
-// the benchmark (what arrived is not what was timed).
-struct Arrival {
-  std::mutex m;
-  std::condition_variable cv;
-  std::int64_t t = 0;
-  int count = 0;
-  std::size_t bytes = 0;
-  void mark(std::size_t arrived_bytes) {
-    if (arrived_bytes != bytes) {
-      std::fprintf(stderr, "bench_transport: a sample of %zu bytes arrived, %zu were sent\n", arrived_bytes, bytes);
-      std::exit(1);
-    }
-    std::int64_t tn = now_ns();
-    std::lock_guard<std::mutex> l(m);
-    t = tn;
-    ++count;
-    cv.notify_one();
-  }
-  std::int64_t wait_for(int n) {
-    std::unique_lock<std::mutex> l(m);
-    if (!cv.wait_for(l, std::chrono::seconds(5), [&] { return count >= n; })) {
-      std::fprintf(stderr, "timeout waiting for sample %d\n", n);
-      std::exit(1);
-    }
-    return t;
-  }
-};
+DataWriterQos writer_qos() { return our_writer_qos(g_raw_liveliness); }
+DataReaderQos reader_qos() { return our_reader_qos(g_raw_liveliness); }
 
 constexpr int kWarmup = 10;
 
@@ -161,7 +82,7 @@ Stats time_samples(int n, Arrival& arrival, double divisor, Prepare prepare, Sen
 
 struct RawListener : DataReaderListener {
   msgs::Blob sample;
-  Arrival arrival;
+  Arrival arrival{"bench_transport"};
   void on_data_available(DataReader* r) override {
     SampleInfo info;
     while (r->take_next_sample(&sample, &info) == ReturnCode_t::RETCODE_OK)
@@ -216,7 +137,7 @@ struct OursPorts {
   DdsTransport transport;
   OutputPort out{"out", kBlob};
   InputQueue in{"in", kBlob, 8, true};
-  Arrival arrival;
+  Arrival arrival{"bench_transport"};
 };
 
 Stats ours_same_process(std::size_t bytes, int n) {
@@ -269,18 +190,7 @@ Stats raw_two_process(std::size_t bytes, int n) {
   RawListener l;
   l.arrival.bytes = bytes;
   auto* r = p->create_subscriber(SUBSCRIBER_QOS_DEFAULT)->create_datareader(pong, reader_qos(), &l);
-  // Wait for both directions to match.
-  for (int k = 0; k < 500; ++k) {
-    PublicationMatchedStatus pm;
-    SubscriptionMatchedStatus sm;
-    w->get_publication_matched_status(pm);
-    r->get_subscription_matched_status(sm);
-    if (pm.current_count > 0 && sm.current_count > 0) break;
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  }
-  // Matching is seen from each side separately: give the echo's writer time to match our reader
-  // (as in the ours case below), or the first echo can be lost.
-  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  wait_matched(w, r);
   msgs::Blob msg = make_blob(bytes);
   Stats st = time_samples(n, l.arrival, 2.0, [] {}, [&] { w->write(&msg); });
   waitpid(child, nullptr, 0);

@@ -12,6 +12,8 @@
 #include <brickyard/msgs/Blob.h>
 #include <brickyard/msgs/BlobPubSubTypes.h>
 #include <fastdds/dds/core/LoanableSequence.hpp>
+#include "dds_ping.hpp"
+
 #include <fastdds/dds/domain/DomainParticipant.hpp>
 #include <fastdds/dds/domain/DomainParticipantFactory.hpp>
 #include <fastdds/dds/publisher/DataWriter.hpp>
@@ -39,23 +41,13 @@
 #include <vector>
 
 using namespace eprosima::fastdds::dds;
+using namespace brickyard::bench;
 using Clock = std::chrono::steady_clock;
 
 namespace {
 
 int g_domain = 0;
 constexpr int kWarmup = 10;
-
-std::int64_t now_ns() { return std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now().time_since_epoch()).count(); }
-
-struct Stats {
-  double median_us = 0, p99_us = 0;
-};
-Stats stats(std::vector<double> ns) {
-  std::sort(ns.begin(), ns.end());
-  auto at = [&](double q) { return ns[std::min(ns.size() - 1, static_cast<std::size_t>(q * (ns.size() - 1) + 0.5))] / 1e3; };
-  return {at(0.5), at(0.99)};
-}
 
 // A sample of a fixed capacity: how many bytes it carries, then the bytes. Plain (no pointer, its
 // C++ layout is its wire layout) and bounded: what data-sharing's loans need.
@@ -105,72 +97,8 @@ template <std::size_t Cap> class PlainBlobType : public TopicDataType {
   }
 };
 
-DomainParticipant* participant(int domain) {
-  auto* f = DomainParticipantFactory::get_instance();
-  f->load_profiles();
-  DomainParticipantQos q = f->get_default_participant_qos();
-  q.transport().use_builtin_transports = false;
-  auto shm = std::make_shared<eprosima::fastdds::rtps::SharedMemTransportDescriptor>();
-  shm->segment_size(16u << 20);
-  q.transport().user_transports.push_back(shm);
-  auto udp = std::make_shared<eprosima::fastdds::rtps::UDPv4TransportDescriptor>();
-  udp->interfaceWhiteList.push_back("127.0.0.1");
-  q.transport().user_transports.push_back(udp);
-  eprosima::fastrtps::rtps::Locator_t peer;
-  peer.kind = LOCATOR_KIND_UDPv4;
-  eprosima::fastrtps::rtps::IPLocator::setIPv4(peer, "127.0.0.1");
-  q.wire_protocol().builtin.initialPeersList.push_back(peer);
-  return f->create_participant(domain, q);
-}
-
-// Our endpoints' QoS (transport/dds.cpp); data-sharing left automatic: on where the type allows.
-template <class Q> void our_qos(Q& q) {
-  q.liveliness().kind = AUTOMATIC_LIVELINESS_QOS;
-  q.liveliness().lease_duration = eprosima::fastrtps::Duration_t(0.5);
-  q.reliability().kind = RELIABLE_RELIABILITY_QOS;
-  q.history().kind = KEEP_LAST_HISTORY_QOS;
-  q.history().depth = 8;
-  q.endpoint().history_memory_policy = eprosima::fastrtps::rtps::PREALLOCATED_WITH_REALLOC_MEMORY_MODE;
-}
-DataWriterQos writer_qos() {
-  DataWriterQos q = DATAWRITER_QOS_DEFAULT;
-  our_qos(q);
-  q.liveliness().announcement_period = eprosima::fastrtps::Duration_t(0.1);
-  return q;
-}
-DataReaderQos reader_qos() {
-  DataReaderQos q = DATAREADER_QOS_DEFAULT;
-  our_qos(q);
-  return q;
-}
-
-// One sample's arrival, seen by a waiting thread; another size than was sent ends the bench.
-struct Arrival {
-  std::mutex m;
-  std::condition_variable cv;
-  std::int64_t t = 0;
-  int count = 0;
-  std::size_t bytes = 0;
-  void mark(std::size_t arrived) {
-    if (arrived != bytes) {
-      std::fprintf(stderr, "bench_zero_copy: a sample of %zu bytes arrived, %zu were sent\n", arrived, bytes);
-      std::exit(1);
-    }
-    const std::int64_t tn = now_ns();
-    std::lock_guard<std::mutex> l(m);
-    t = tn;
-    ++count;
-    cv.notify_one();
-  }
-  std::int64_t wait_for(int n) {
-    std::unique_lock<std::mutex> l(m);
-    if (!cv.wait_for(l, std::chrono::seconds(5), [&] { return count >= n; })) {
-      std::fprintf(stderr, "bench_zero_copy: timeout waiting for sample %d\n", n);
-      std::exit(1);
-    }
-    return t;
-  }
-};
+DataWriterQos writer_qos() { return our_writer_qos(true); }
+DataReaderQos reader_qos() { return our_reader_qos(true); }
 
 // How a path writes and takes its samples.
 struct SerializedPath {
@@ -219,7 +147,7 @@ template <std::size_t Cap> struct LoanedPath {
 
 template <class Path> struct Listener : DataReaderListener {
   Path* path = nullptr;
-  Arrival arrival;
+  Arrival arrival{"bench_zero_copy"};
   void on_data_available(DataReader* r) override { path->take_all(r, arrival); }
 };
 
@@ -231,7 +159,7 @@ template <class Path> struct Endpoints {
   Path path;
   Listener<Path> listener;
   Endpoints(const char* out, const char* in, std::size_t bytes) {
-    p = participant(g_domain);
+    p = raw_participant(g_domain);
     TypeSupport ts(new typename Path::Type());
     ts.register_type(p);
     auto* to = p->create_topic(out, ts.get_type_name(), TOPIC_QOS_DEFAULT);
@@ -248,18 +176,6 @@ template <class Path> struct Endpoints {
   ~Endpoints() {
     p->delete_contained_entities();
     DomainParticipantFactory::get_instance()->delete_participant(p);
-  }
-  void wait_matched() {
-    for (int k = 0; k < 500; ++k) {
-      PublicationMatchedStatus pm;
-      SubscriptionMatchedStatus sm;
-      w->get_publication_matched_status(pm);
-      r->get_subscription_matched_status(sm);
-      if (pm.current_count > 0 && sm.current_count > 0) break;
-      std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    }
-    // Each side sees its match on its own: the echo's writer may not have matched our reader yet.
-    std::this_thread::sleep_for(std::chrono::milliseconds(200));
   }
 };
 
@@ -289,7 +205,7 @@ template <class Path> Stats ping(const char* name, std::size_t bytes, int n) {
   Stats st;
   {
     Endpoints<Path> e("zc_ping", "zc_pong", bytes);
-    e.wait_matched();
+    wait_matched(e.w, e.r);
     std::vector<double> lat;
     for (int i = 0; i < total; ++i) {
       e.path.prepare(bytes);
