@@ -174,5 +174,13 @@ if(BRICKYARD_BENCH)  # bench/ is built with the simulator only
     COMMAND ${NETNS} env EVAL_GNSS_FAULTS_DIR=${RUNS}/gnss_faults $<TARGET_FILE:eval_gnss_faults> --track Spielberg --layout outer
             --placements 1 --durations 60 --faults dropout,bias_both,bias_one --domain ${d})
   set_tests_properties(evidence.gnss_faults_spielberg PROPERTIES TIMEOUT 900)
+  # Both receivers drifting together at (0.2, -0.2) m/s claiming RTK-fixed, on Monza with its outer
+  # wall only, at a sixth, a half and five sixths of lap 2 (seed 1): the first put the car into
+  # the wall 12.9 s in before the motion check (docs/algorithms.md); every run must finish clean.
+  by_next_domains(d_drift 2)  # the clean run's, and the fault runs' (--jobs 1: d + 1)
+  add_test(NAME evidence.gnss_drift_monza
+    COMMAND ${NETNS} env EVAL_GNSS_FAULTS_DIR=${RUNS}/gnss_drift $<TARGET_FILE:eval_gnss_faults> --track Monza --layout outer
+            --placements 3 --seed 1 --durations 60 --faults drift_both --domain ${d_drift})
+  set_tests_properties(evidence.gnss_drift_monza PROPERTIES TIMEOUT 1200)
 endif()
 endif()
