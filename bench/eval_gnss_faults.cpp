@@ -64,12 +64,13 @@ std::string window(const char* type, double start, double end, const std::string
 
 // The fault classes: each receiver's faults (both always set: race.json's own are the paper's),
 // and the LiDARs'. A bias claims RTK-fixed (fix_type 3) while it lasts.
-const std::vector<std::string> kClasses = {"dropout", "bias_both", "bias_one", "drift_both", "paper", "lidar_loss"};
+const std::vector<std::string> kClasses = {"dropout", "bias_both", "bias_one", "drift_both", "freeze_both", "paper", "lidar_loss"};
 
 std::vector<std::string> fault_sets(const std::string& cls, double start, double end) {
   const std::string bias = "[" + window("bias", start, end, R"(,"offset":[6,-8,0],"fix_type":3)") + "]";
   const std::string drift = "[" + window("drift", start, end, R"(,"rate":[0.2,-0.2,0],"fix_type":3)") + "]";
   const std::string dropout = "[" + window("dropout", start, end) + "]";
+  const std::string frozen = "[" + window("freeze", start, end, R"(,"fix_type":3)") + "]";
   auto gnss = [](const std::string& left, const std::string& right) {
     return std::vector<std::string>{"gnss_left.faults=" + left, "gnss_right.faults=" + right};
   };
@@ -77,6 +78,7 @@ std::vector<std::string> fault_sets(const std::string& cls, double start, double
   if (cls == "bias_both") return gnss(bias, bias);
   if (cls == "bias_one") return gnss(bias, "[]");
   if (cls == "drift_both") return gnss(drift, drift);
+  if (cls == "freeze_both") return gnss(frozen, frozen);
   if (cls == "paper") return {};
   // lidar_loss: GNSS gone for the window, and every LiDAR's frames lost for 3 s in its middle.
   std::vector<std::string> s = gnss(dropout, dropout);
@@ -261,7 +263,7 @@ int parse(int argc, char** argv, Options& o) {
   }
   for (const auto& c : o.classes)
     if (std::find(kClasses.begin(), kClasses.end(), c) == kClasses.end())
-      return std::fprintf(stderr, "eval_gnss_faults: --faults: %s: not one of dropout, bias_both, bias_one, drift_both, paper, lidar_loss\n", c.c_str()), 2;
+      return std::fprintf(stderr, "eval_gnss_faults: --faults: %s: not one of dropout, bias_both, bias_one, drift_both, freeze_both, paper, lidar_loss\n", c.c_str()), 2;
   for (const auto& d : o.durations)
     if (d != "laps" && !(std::atof(d.c_str()) > 0)) return std::fprintf(stderr, "eval_gnss_faults: --durations: %s: seconds or laps\n", d.c_str()), 2;
   if (!o.only_layout.empty() && o.only_layout != "outer" && o.only_layout != "both")

@@ -56,6 +56,12 @@ bad_config(tracker_latency_too_long "node 'path_tracker' \\(control.path_tracker
 if(BRICKYARD_SIM)
   bad_config(validate_missing_track "node 'map' \\(map.track_file\\): .*tracks/Nowhere.csv" validate ${PROJECT_SOURCE_DIR}/configs/race.json --arg track=tracks/Nowhere.csv)
   # A rival's driver at no pace (issue 46).
+  # A rival placed wrong, refused at validation (its `track` and `clear_of`: docs/tracking.md).
+  set(RIVAL ${CMAKE_CURRENT_SOURCE_DIR}/graphs/rivals/rival_ahead.json)
+  bad_config(rival_start_off_road "node 'rival' \\(sim.vehicle\\): parameter 'start_d': the car \\(1.94 m wide\\) at d = 7.00 m stands off the road at s = 120.0 m" run ${RIVAL} --set rival.start_d=7)
+  bad_config(rival_start_inside "node 'rival' \\(sim.vehicle\\): parameter 'start_s': the car at s = 2.0 m, d = 0.00 m stands inside the one starting at s = 0.0 m, d = 0.00 m" validate ${RIVAL} --set rival.start_s=2)
+  bad_config(rival_start_inside_race "node 'rival' \\(sim.vehicle\\): parameter 'start_s': the car at s = 1.0 m, d = 0.50 m stands inside the one starting at s = 0.0 m" run ${CMAKE_CURRENT_SOURCE_DIR}/graphs/rivals/race_rival.json --arg rival_start_s=1 --arg rival_offset=0 --set rival.start_d=0.5)
+  bad_config(rival_clear_of_not_pairs "node 'rival' \\(sim.vehicle\\): parameter 'clear_of': /0: not an \\[s, d\\] pair" run ${RIVAL} --set "rival.clear_of=[[0]]")
   bad_config(rival_speed_scale_zero "sim_truth_lap.json#/nodes/driver/params/speed_scale: .*found 0" validate ${PROJECT_SOURCE_DIR}/configs/sim_truth_lap.json --set driver.speed_scale=0)
   # The tracking scorer's range bands out of order.
   bad_config(tracking_bands_not_rising "node 'tracking' \\(sim.tracking_scorer\\): parameter 'bands_m': the range bands' far ends must rise.*race_rival.json#/nodes/tracking/params/bands_m" run ${CMAKE_CURRENT_SOURCE_DIR}/graphs/rivals/race_rival.json --set "tracking.bands_m=[60,30]")

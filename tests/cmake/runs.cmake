@@ -143,16 +143,17 @@ if(BRICKYARD_SIM)
   add_test(NAME evidence.rival_contact
     COMMAND ${NETNS} ${EXPECT} 1 "crash: contact with car 0 at s = [0-9.]+ m" --
             ${BY} run ${CMAKE_CURRENT_SOURCE_DIR}/graphs/rivals/rival_ahead.json --domain ${d} --quiet --progress 0 --no-report)
-  # A rival placed wrong: off the road, or inside our car: the run fails at its start, naming the
-  # node and the parameter (exit 1: the track is known once the world is published; docs/tracking.md).
+  # A rival placed wrong with no `track` or `clear_of` to check it at validation (those:
+  # bad_input.rival_start_*): the run fails at its start, naming the node and the parameter (exit
+  # 1: the track is known once the world is published; docs/tracking.md).
   by_next_domain(d)
   add_test(NAME evidence.rival_start_off_road
     COMMAND ${NETNS} ${EXPECT} 1 "node 'rival' \\(sim.vehicle\\) failed in step: parameter 'start_d': the car \\(1.94 m wide\\) at d = 7.00 m stands off the road" --
-            ${BY} run ${CMAKE_CURRENT_SOURCE_DIR}/graphs/rivals/rival_ahead.json --set rival.start_d=7 --domain ${d} --quiet --progress 0 --no-report)
+            ${BY} run ${CMAKE_CURRENT_SOURCE_DIR}/graphs/rivals/rival_ahead.json --set rival.start_d=7 --set rival.track= --domain ${d} --quiet --progress 0 --no-report)
   by_next_domain(d)
   add_test(NAME evidence.rival_start_inside
     COMMAND ${NETNS} ${EXPECT} 1 "node 'referee' \\(sim.referee\\): car 0 starts inside ours at t = 0.002 s" --
-            ${BY} run ${CMAKE_CURRENT_SOURCE_DIR}/graphs/rivals/rival_ahead.json --set rival.start_s=2 --domain ${d} --quiet --progress 0 --no-report)
+            ${BY} run ${CMAKE_CURRENT_SOURCE_DIR}/graphs/rivals/rival_ahead.json --set rival.start_s=2 --set "rival.clear_of=[]" --domain ${d} --quiet --progress 0 --no-report)
   by_next_domain(d)
   add_test(NAME evidence.rival_no_contact
     COMMAND ${NETNS} ${CMAKE_CURRENT_SOURCE_DIR}/cli/rival_no_contact.sh ${BY} ${CMAKE_CURRENT_SOURCE_DIR}/graphs ${d} ${RUNS}/rival_no_contact)

@@ -55,6 +55,7 @@ std::vector<std::pair<std::string, double>> summary_metrics(const Localizer& loc
     m.emplace_back("motion_catches", static_cast<double>(loc.motion_catches()));
     m.emplace_back("motion_first_catch_s", loc.first_motion_catch_s());
     m.emplace_back("motion_scale", mc.scale());
+    m.emplace_back("motion_wheel_scale", mc.wheel_scale());  // the scale dead reckoning took
     m.emplace_back("motion_spread_along", mc.spread_along());
     m.emplace_back("motion_spread_across", mc.spread_across());
     m.emplace_back("motion_max_d2", mc.max_d2());

@@ -37,9 +37,7 @@ void Localizer::advance(double t) {
   }
 }
 
-double Localizer::wheel_scale() const {
-  return p_.witness.enabled && motion_.enabled() && motion_.learnt_s() >= p_.motion.learn_s ? motion_.scale() : 1.0;
-}
+double Localizer::wheel_scale() const { return p_.witness.enabled ? motion_.wheel_scale() : 1.0; }
 
 void Localizer::reckon_with_sideslip(double dt) {
   const double mid = dr_.yaw + 0.5 * yaw_rate_ * dt;

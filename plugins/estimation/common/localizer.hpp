@@ -110,9 +110,10 @@ class Localizer {
   void advance(double t);
   // dr_ moved by dt of the control input, the lateral velocity the filter's sideslip gain gives.
   void reckon_with_sideslip(double dt);
-  // The wheel speed's scale the motion check learnt (1 until it has): the filter's prediction
-  // takes the speed times it, so that through an outage the car dead reckons on the wheels as
-  // GNSS measured them (a tyre's radius off by 0.5 % is 0.4 m/s at 80 m/s).
+  // The wheel speed's scale the motion check learnt, where it is sure the wheels are off
+  // (MotionCheck::wheel_scale; 1 otherwise): the filter's prediction takes the speed times it, so
+  // that through an outage the car dead reckons on the wheels as GNSS measured them (a tyre's
+  // radius off by 0.5 % is 0.4 m/s at 80 m/s).
   double wheel_scale() const;
   void initialize(double t, const std::vector<Fix>& epoch);
   // The car's motion from `stamp` to now by dead reckoning, laid on the filter's pose now: where a

@@ -16,7 +16,12 @@ std::deque<MotionSample>& MotionCheck::ring(int receiver) {
 double MotionCheck::spread_along() const { return std::max(std::sqrt(var_along_), p_.spread_floor); }
 double MotionCheck::spread_across() const { return std::max(std::sqrt(var_across_), p_.spread_floor); }
 
-void MotionCheck::restart(int receiver) { ring(receiver).clear(); }
+double MotionCheck::scale_sigma() const { return spread_along() / std::sqrt(std::max(1.0, learnt_s_ / p_.window_s)); }
+
+double MotionCheck::wheel_scale() const {
+  if (!enabled() || learnt_s_ < p_.learn_s || std::abs(scale_ - 1) <= 3 * scale_sigma()) return 1.0;
+  return scale_;
+}
 
 MotionVerdict MotionCheck::observe(int receiver, const MotionSample& s) {
   MotionVerdict v;

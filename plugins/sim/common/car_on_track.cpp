@@ -1,5 +1,7 @@
 #include "car_on_track.hpp"
 
+#include <nlohmann/json.hpp>
+
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
@@ -14,6 +16,33 @@ std::string off_the_road(const Track& track, double s, double d, double half_wid
   std::snprintf(b, sizeof b, "the car (%.2f m wide) at d = %.2f m stands off the road at s = %.1f m, which spans d = %.2f to %.2f m",
                 2 * half_width, d, f.s, -right, left);
   return b;
+}
+
+std::string start_inside(const StartPlace& ours, const StartPlace& other, double front, double rear, double half_width, double length) {
+  double ahead = ours.s - other.s;  // how far our base_link is ahead of the other's
+  if (length > 0) ahead = std::remainder(ahead, length);
+  const bool along = ahead < front + rear && -ahead < front + rear;
+  const bool across = std::abs(ours.d - other.d) < 2 * half_width;
+  if (!along || !across) return {};
+  char b[200];
+  std::snprintf(b, sizeof b, "the car at s = %.1f m, d = %.2f m stands inside the one starting at s = %.1f m, d = %.2f m (%.2f m long, %.2f m wide)",
+                ours.s, ours.d, other.s, other.d, front + rear, 2 * half_width);
+  return b;
+}
+
+std::vector<StartPlace> parse_starts(const std::string& text) {
+  const nlohmann::json j = nlohmann::json::parse(text, nullptr, false);
+  if (j.is_discarded() || !j.is_array()) throw std::invalid_argument("not a JSON array of [s, d] pairs");
+  std::vector<StartPlace> out;
+  for (std::size_t i = 0; i < j.size(); ++i) {
+    const auto& e = j[i];
+    const std::string at = "/" + std::to_string(i);
+    if (!e.is_array() || e.size() != 2) throw std::invalid_argument(at + ": not an [s, d] pair");
+    for (std::size_t k = 0; k < 2; ++k)
+      if (!e[k].is_number() || !std::isfinite(e[k].get<double>())) throw std::invalid_argument(at + "/" + std::to_string(k) + ": not a finite number");
+    out.push_back({e[0].get<double>(), e[1].get<double>()});
+  }
+  return out;
 }
 
 void CarOnTrack::place(const Track& track, double s, double d, double speed) {

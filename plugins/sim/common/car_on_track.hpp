@@ -8,6 +8,7 @@
 #include "vehicle_model.hpp"
 
 #include <string>
+#include <vector>
 
 namespace brickyard::sim {
 
@@ -21,6 +22,18 @@ struct BaseLinkTruth {
 // Why a car of this half width placed at (s, d) would stand off the road (its side beyond an
 // edge), in words; empty when it stands on it.
 std::string off_the_road(const Track& track, double s, double d, double half_width);
+
+// Another car's start on the centre line.
+struct StartPlace {
+  double s = 0, d = 0;
+};
+// Why a car starting at `ours` would stand inside another of the same shape starting at `other`
+// (footprints `front` ahead of and `rear` behind base_link along s, `half_width` either side; s
+// apart the short way round a loop of `length` m when > 0), in words; empty when clear.
+std::string start_inside(const StartPlace& ours, const StartPlace& other, double front, double rear, double half_width, double length);
+// The starts of a JSON array of [s, d] pairs. Throws std::invalid_argument naming the JSON pointer
+// at fault.
+std::vector<StartPlace> parse_starts(const std::string& json_text);
 
 class CarOnTrack {
  public:

@@ -5,6 +5,9 @@
 
 #include <gtest/gtest.h>
 
+#include <stdexcept>
+#include <string>
+
 using namespace brickyard::sim;
 
 namespace {
@@ -48,4 +51,37 @@ TEST(RivalStart, ACarStartingInsideOursIsAWrongStart) {
   said = clear.other_cars({CarBox{120, 0, 0, fp}});
   ASSERT_FALSE(said.empty());
   EXPECT_NE(said.back().text.find("crash: contact with car 0"), std::string::npos);
+}
+
+// At validation (sim.vehicle's `clear_of`): a start whose footprint overlaps another's, named with
+// both places; clear ahead, behind and beside; the short way round the loop's start line.
+TEST(RivalStart, AStartInsideAnotherIsNamed) {
+  const double front = 3.9, rear = 1.0, half = 0.97, loop = 4000;
+  EXPECT_NE(start_inside({2, 0}, {0, 0}, front, rear, half, loop).find("the car at s = 2.0 m, d = 0.00 m stands inside the one starting at s = 0.0 m, d = 0.00 m"),
+            std::string::npos);
+  EXPECT_NE(start_inside({-4.8, 1.0}, {0, 0}, front, rear, half, loop), "") << "behind, its nose in our tail";
+  EXPECT_EQ(start_inside({5.0, 0}, {0, 0}, front, rear, half, loop), "") << "a car's length ahead";
+  EXPECT_EQ(start_inside({-5.0, 0}, {0, 0}, front, rear, half, loop), "");
+  EXPECT_EQ(start_inside({1, 1.95}, {0, 0}, front, rear, half, loop), "") << "beside, a car's width across";
+  EXPECT_NE(start_inside({3998, 0}, {1, 0}, front, rear, half, loop), "") << "across the start line";
+  EXPECT_EQ(start_inside({3998, 0}, {1, 0}, front, rear, half, 0), "") << "no loop known: s as given";
+}
+
+TEST(RivalStart, StartsAreSAndDPairsNamedByPointer) {
+  const auto starts = parse_starts("[[0, 0], [120.5, -1.5]]");
+  ASSERT_EQ(starts.size(), 2u);
+  EXPECT_EQ(starts[1].s, 120.5);
+  EXPECT_EQ(starts[1].d, -1.5);
+  EXPECT_TRUE(parse_starts("[]").empty());
+  auto message = [](const char* text) {
+    try {
+      parse_starts(text);
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_EQ(message("[[0]]"), "/0: not an [s, d] pair");
+  EXPECT_EQ(message("[[0, 0], [1, \"a\"]]"), "/1/1: not a finite number");
+  EXPECT_EQ(message("{}"), "not a JSON array of [s, d] pairs");
 }

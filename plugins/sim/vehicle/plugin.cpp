@@ -6,7 +6,7 @@
 
 #include <optional>
 
-#include "vehicle_param.hpp"
+#include "vehicle_settings.hpp"
 
 #include "sim/common/car_on_track.hpp"
 #include "sim/common/step_span.hpp"
@@ -16,29 +16,6 @@ namespace {
 
 using namespace brickyard;
 using namespace brickyard::sim;
-
-struct Settings {
-  double rate_hz = 500;  // the trigger's rate, and 1 / rate_hz the integration step
-  double start_s = 0, start_d = 0, start_speed = 0;
-  std::string vehicle = plugins::default_vehicle_file;
-  CommandWatchdogParams watchdog;
-};
-
-ParamBinding<Settings> bindings() {
-  ParamBinding<Settings> b;
-  b.bind("rate_hz", &Settings::rate_hz).in_unit("Hz").range(100, 10000).doc("integration rate");
-  b.bind("start_s", &Settings::start_s).in_unit("m").range(-1e5, 1e5).doc("start position along the centre line");
-  b.bind("start_d", &Settings::start_d).in_unit("m").range(-100, 100).doc("start lateral offset, left positive");
-  b.bind("start_speed", &Settings::start_speed).in_unit("m/s").range(0, 200);
-  plugins::bind_vehicle(b, &Settings::vehicle);
-  using W = CommandWatchdogParams;
-  b.bind("command_timeout", &Settings::watchdog, &W::timeout_s).in_unit("s").range(0.01, 3600)
-      .doc("commands stale this long (once they have come): throttle off, brake to a stop (the command watchdog)");
-  b.bind("first_command_timeout", &Settings::watchdog, &W::first_timeout_s).in_unit("s").range(0.01, 3600)
-      .doc("no command this long after the car exists: the same");
-  b.bind("watchdog_brake", &Settings::watchdog, &W::brake).range(0, 1).doc("the brake pedal while the watchdog stops the car");
-  return b;
-}
 
 struct Ports {
   Input<msgs::TrackWorld> world;
@@ -64,13 +41,13 @@ class Vehicle : public Plugin {
         .describe("Dynamic single-track race car (the vehicle file's, AV-21 by default) on the world's banked road; publishes ground truth")
         .with_ports(ports())
         .plays(roles::vehicle_interface)
-        .parameters(bindings())
-        .check(&plugins::check_vehicle_file<&bindings, &Settings::vehicle>)
+        .parameters(vehicle_bindings())
+        .check(&check_start)
         .periodic("rate_hz");
   }
 
   void configure(Context& ctx) override {
-    const Settings s = bindings().read(ctx.params());
+    const VehicleSettings s = vehicle_bindings().read(ctx.params());
     const vehicle::Vehicle car = plugins::read_vehicle(ctx, s.vehicle);
     half_width_ = car.half_width;
     car_.emplace(car);
